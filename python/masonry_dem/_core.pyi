@@ -1,0 +1,137 @@
+"""Type stubs of the compiled core (Rust, PyO3). SI units throughout: m, N, Pa, kg, s.
+
+Block indices: wall blocks are numbered 0..n_wall-1 in the order given; the base (if any) and
+the top beam (if any) come after them (see `Model.base_index`, `Model.top_index`).
+Interface families: "bed", "head", "base", "top".
+"""
+
+from typing import Literal, Optional, Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.int64]
+
+__version__: str
+
+class MasonryError(Exception):
+    """Base class of every error raised by masonry_dem."""
+
+class InputError(MasonryError, ValueError):
+    """Bad input: a key, block or interface is named in the message."""
+
+class ConvergenceError(MasonryError):
+    """A solver did not converge (results up to the last converged step are kept where possible)."""
+
+class MechanismError(MasonryError):
+    """The model is a mechanism before any load (e.g. a block that nothing holds)."""
+
+def running_bond(
+    block_length: float,
+    block_height: float,
+    courses: int,
+    length: float,
+    first_course: Literal["half", "full"] = "half",
+    openings: Optional[Sequence[Sequence[float]]] = None,
+) -> FloatArray:
+    """Blocks [x0, y0, x1, y1] (shape (n, 4), m) of a running-bond wall standing at y = 0 from x = 0.
+
+    Courses alternate between starting with a half block ("half") and a whole block ("full");
+    a block that would cross x = length is cut there. Blocks whose centroid lies inside an
+    opening [x0, y0, x1, y1] are removed."""
+
+def pattern(block_length: float, block_height: float, rows: Sequence[Sequence[float]]) -> FloatArray:
+    """Blocks [x0, y0, x1, y1] (shape (n, 4), m) from courses listed bottom to top; each entry is a
+    length in units of block_length, a negative entry is a gap of that length."""
+
+class Model:
+    """A wall of rigid blocks joined by zero-thickness Mohr-Coulomb interfaces.
+
+    blocks: (n, 4) array of axis-aligned rectangles [x0, y0, x1, y1] in m.
+    thickness: out-of-plane thickness [m]; density [kg/m3].
+    base: True puts a fixed rigid foundation under the lowest blocks, spanning the wall.
+    top_rotation: None (no top beam), "fixed" or "free": a rigid, weightless beam resting on the
+        highest blocks and spanning the wall; top_force: dead force [Fx, Fy] on it [N].
+    joints: {family: law} with family in "default", "bed", "head", "base", "top"; a law is a dict
+        with keys normal_stiffness [N/m3], shear_stiffness [N/m3], friction [-], cohesion [Pa],
+        tensile_strength [Pa], dilatancy [-] (tan psi). Missing keys of a family law fall back to
+        "default"; missing keys of "default" fall back to 1e10, 1e10, 0.65, 0, 0, 0.
+    gravity [m/s2]; live: "horizontal_weight" (lambda * W_i on every block towards +x) or
+        "top_horizontal" (lambda newtons on the top beam towards +x).
+    Raises InputError naming the key, block or interface on bad input.
+    """
+
+    def __init__(
+        self,
+        blocks: npt.ArrayLike,
+        thickness: float = 1.0,
+        density: float = 1000.0,
+        base: bool = True,
+        top_rotation: Optional[Literal["fixed", "free"]] = None,
+        top_force: Sequence[float] = (0.0, 0.0),
+        joints: Optional[dict[str, dict[str, float]]] = None,
+        gravity: float = 9.81,
+        live: Literal["horizontal_weight", "top_horizontal"] = "horizontal_weight",
+    ) -> None: ...
+    def fix(self, block: int, dof: Literal[0, 1, 2], value: float = 0.0) -> None:
+        """Fix dof (0: u1 [m], 1: u2 [m], 2: phi [rad]) of a block at a prescribed value."""
+    @property
+    def n_blocks(self) -> int:
+        """Number of wall blocks (base and top beam not counted)."""
+    @property
+    def n_interfaces(self) -> int: ...
+    @property
+    def base_index(self) -> Optional[int]: ...
+    @property
+    def top_index(self) -> Optional[int]: ...
+    @property
+    def rects(self) -> FloatArray:
+        """(n_all, 4) rectangles of all blocks, wall blocks first, then base, then top beam."""
+    @property
+    def weights(self) -> FloatArray:
+        """(n_all,) weight of each block [N] (0 for base and top beam)."""
+    @property
+    def interface_blocks(self) -> IntArray:
+        """(m, 2) block indices (a, b) of each interface; the normal points from a to b."""
+    @property
+    def interface_geometry(self) -> FloatArray:
+        """(m, 5): centroid x, y [m], normal nx, ny, length l [m]."""
+    @property
+    def interface_family(self) -> list[str]:
+        """Family of each interface: "bed", "head", "base" or "top"."""
+    def solve_static(
+        self,
+        control: Literal["load", "displacement"] = "load",
+        steps: int = 200,
+        max_displacement: float = 0.002,
+        control_block: Optional[int] = None,
+        tolerance: float = 1e-4,
+        max_iterations: int = 50,
+    ) -> "Results":
+        """Static incremental analysis (Newton with the consistent tangent).
+
+        control="load": raise lambda until collapse; the collapse multiplier is bracketed to
+        `tolerance` (relative). control="displacement": drive the horizontal displacement of
+        control_block (default: the top beam if any, else the highest block at the right end)
+        to max_displacement [m] in `steps` increments, through the peak and after it.
+        Releases the GIL; returns Results with status "collapse", "completed" or "failed"
+        (never raises for a solver failure; the error is in Results.error)."""
+
+class Results:
+    method: str  # "static" | "dynamic"
+    status: str  # "collapse" | "completed" | "failed"
+    error: Optional[str]
+    collapse_multiplier: float  # lambda at collapse, or the peak of the curve (NaN if none)
+    curve_multiplier: FloatArray  # (k,) lambda at each converged step, from 0
+    curve_displacement: FloatArray  # (k,) horizontal displacement of the control point [m]
+    control_block: int
+    displacements: FloatArray  # (n_all, 3): u1 [m], u2 [m], phi [rad] at the last converged step
+    mechanism: FloatArray  # (n_all, 3): last increment, scaled so that max |u| over blocks is 1
+    interface_forces: FloatArray  # (m, 3): N [N] (tension > 0), T [N], M [N m]
+    interface_states: IntArray  # (m,) bit flags: 1 open, 2 sliding, 4 rocking; 0 elastic
+    broken: npt.NDArray[np.bool_]  # (m,) joint lost its cohesion and tensile strength
+    joint_states: dict[str, int]  # counts: elastic, sliding, rocking, open
+    iterations: int  # total equilibrium iterations
+    steps: int  # converged steps
+    elapsed_s: float

@@ -1,0 +1,180 @@
+//! Interface detection (every shared stretch of boundary between two blocks) and the
+//! kinematics of an interface: generalized jumps `e = (dN, dT, dphi) = B q`.
+//!
+//! Detection hashes the blocks into a uniform grid and tests only pairs that share a cell,
+//! so it costs O(n) for walls of similar blocks, never O(n^2).
+
+use crate::error::{Error, Result};
+use crate::geometry::{Rect, REL_TOL};
+use std::collections::HashMap;
+
+/// Which kind of joint an interface is; each family may have its own joint law.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Family {
+    /// Horizontal joint between two wall blocks.
+    Bed,
+    /// Vertical joint between two wall blocks.
+    Head,
+    /// Joint between a wall block and the base.
+    Base,
+    /// Joint between a wall block and the top beam.
+    Top,
+}
+
+impl Family {
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::Bed => "bed",
+            Family::Head => "head",
+            Family::Base => "base",
+            Family::Top => "top",
+        }
+    }
+}
+
+/// One interface: blocks `a` and `b`, the normal `n` points from `a` to `b`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Interface {
+    pub a: usize,
+    pub b: usize,
+    /// Centroid of the shared segment [m].
+    pub c: [f64; 2],
+    /// Unit normal from a to b: (0, 1) for a bed joint, (1, 0) for a head joint.
+    pub n: [f64; 2],
+    /// Length of the shared segment [m].
+    pub l: f64,
+    pub family: Family,
+    /// `B` (3 x 6, row-major): jumps (dN, dT, dphi) from the dof (u1, u2, phi) of a then b.
+    pub b_mat: [[f64; 6]; 3],
+}
+
+impl Interface {
+    /// Tangent unit vector `t = (n_y, -n_x)`: +x on a bed joint, -y on a head joint.
+    pub fn t(&self) -> [f64; 2] {
+        [self.n[1], -self.n[0]]
+    }
+
+    /// Builds the interface and its `B` matrix from the two blocks' centroids.
+    pub fn new(a: usize, b: usize, ga: [f64; 2], gb: [f64; 2], c: [f64; 2], n: [f64; 2], l: f64, family: Family) -> Self {
+        let t = [n[1], -n[0]];
+        // point velocity of block B at c: u + phi * k x (c - g) = (u1 - phi (cy - gy), u2 + phi (cx - gx))
+        let ra = [-(c[1] - ga[1]), c[0] - ga[0]];
+        let rb = [-(c[1] - gb[1]), c[0] - gb[0]];
+        let row = |v: [f64; 2]| -> [f64; 6] {
+            [-v[0], -v[1], -(v[0] * ra[0] + v[1] * ra[1]), v[0], v[1], v[0] * rb[0] + v[1] * rb[1]]
+        };
+        let b_mat = [row(n), row(t), [0.0, 0.0, -1.0, 0.0, 0.0, 1.0]];
+        Interface { a, b, c, n, l, family, b_mat }
+    }
+
+    /// The six global dof indices (a's u1, u2, phi then b's).
+    pub fn dofs(&self) -> [usize; 6] {
+        let (a, b) = (3 * self.a, 3 * self.b);
+        [a, a + 1, a + 2, b, b + 1, b + 2]
+    }
+
+    /// Jumps `e = B q` from the global displacement vector `u` (3 per block).
+    #[inline]
+    pub fn jumps(&self, u: &[f64]) -> [f64; 3] {
+        let d = self.dofs();
+        let mut e = [0.0; 3];
+        for (r, row) in self.b_mat.iter().enumerate() {
+            e[r] = (0..6).map(|k| row[k] * u[d[k]]).sum();
+        }
+        e
+    }
+}
+
+/// What kind a block is, for naming families.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BlockKind {
+    Wall,
+    Base,
+    Top,
+}
+
+/// Finds every pair of blocks that share a stretch of boundary of positive length, and refuses
+/// overlapping blocks (naming both). `names` gives the label of a block for messages.
+pub fn detect(rects: &[Rect], kinds: &[BlockKind], name: impl Fn(usize) -> String) -> Result<Vec<Interface>> {
+    if rects.is_empty() {
+        return Ok(vec![]);
+    }
+    let (mut xmin, mut ymin, mut xmax, mut ymax) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+    let (mut sw, mut sh) = (0.0, 0.0);
+    for r in rects {
+        xmin = xmin.min(r.x0);
+        ymin = ymin.min(r.y0);
+        xmax = xmax.max(r.x1);
+        ymax = ymax.max(r.y1);
+        sw += r.width();
+        sh += r.height();
+    }
+    let scale = (xmax - xmin).max(ymax - ymin);
+    let tol = REL_TOL * scale.max(1.0) * 10.0;
+    let nb = rects.len() as f64;
+    // Cells about twice the mean block size: a few blocks a cell.
+    let cell = (2.0 * (sw / nb).max(sh / nb)).max(tol * 10.0);
+    let cell_of = |x: f64, lo: f64| ((x - lo) / cell).floor() as i64;
+    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::with_capacity(rects.len());
+    for (i, r) in rects.iter().enumerate() {
+        for cx in cell_of(r.x0 - tol, xmin)..=cell_of(r.x1 + tol, xmin) {
+            for cy in cell_of(r.y0 - tol, ymin)..=cell_of(r.y1 + tol, ymin) {
+                grid.entry((cx, cy)).or_default().push(i);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    let mut keys: Vec<_> = grid.keys().copied().collect();
+    keys.sort_unstable();
+    for key in keys {
+        let members = &grid[&key];
+        for (p, &i) in members.iter().enumerate() {
+            for &j in &members[p + 1..] {
+                let (ri, rj) = (&rects[i], &rects[j]);
+                let ix0 = ri.x0.max(rj.x0);
+                let ix1 = ri.x1.min(rj.x1);
+                let iy0 = ri.y0.max(rj.y0);
+                let iy1 = ri.y1.min(rj.y1);
+                let (w, h) = (ix1 - ix0, iy1 - iy0);
+                if w < -tol || h < -tol {
+                    continue; // apart
+                }
+                // handle each pair once: in the cell holding the lower-left corner of the intersection
+                if (cell_of(ix0, xmin), cell_of(iy0, ymin)) != key {
+                    continue;
+                }
+                if w > tol && h > tol {
+                    return Err(Error::input(format!(
+                        "{} and {} overlap (intersection {:.6} x {:.6} m)",
+                        name(i.min(j)),
+                        name(i.max(j)),
+                        w,
+                        h
+                    )));
+                }
+                let (lo, hi, c, n, l) = if w > tol {
+                    // horizontal contact: the lower block is a
+                    let (lo, hi) = if ri.y0 < rj.y0 { (i, j) } else { (j, i) };
+                    (lo, hi, [0.5 * (ix0 + ix1), 0.5 * (rects[lo].y1 + rects[hi].y0)], [0.0, 1.0], w)
+                } else if h > tol {
+                    let (lo, hi) = if ri.x0 < rj.x0 { (i, j) } else { (j, i) };
+                    (lo, hi, [0.5 * (rects[lo].x1 + rects[hi].x0), 0.5 * (iy0 + iy1)], [1.0, 0.0], h)
+                } else {
+                    continue; // corner touch only
+                };
+                let family = match (kinds[lo], kinds[hi]) {
+                    (BlockKind::Base, _) | (_, BlockKind::Base) => Family::Base,
+                    (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
+                    _ if n[1] == 1.0 => Family::Bed,
+                    _ => Family::Head,
+                };
+                if kinds[lo] != BlockKind::Wall && kinds[hi] != BlockKind::Wall {
+                    continue; // base against top beam: not a joint of the wall
+                }
+                out.push(Interface::new(lo, hi, rects[lo].centroid(), rects[hi].centroid(), c, n, l, family));
+            }
+        }
+    }
+    out.sort_by(|p, q| (p.a, p.b).cmp(&(q.a, q.b)));
+    Ok(out)
+}

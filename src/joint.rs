@@ -1,0 +1,310 @@
+//! The joint law: elastic stiffness, the Mohr-Coulomb / tension cut-off / rocking strength
+//! domain in resultants (N, T, M), and its return mapping with the consistent tangent.
+//! Both solvers call [`return_map`]; there is no second copy of the law.
+//!
+//! Convention: N > 0 in tension (opening), T along the interface tangent, M the relative moment.
+//! With area `A = l s` and `I = s l^3 / 12`, the strength domain is
+//! - Coulomb: `|T| <= c A - mu N`
+//! - rocking: `|M| <= (ft A - N) l / 2` (its two faces together give the cut-off `N <= ft A`)
+//!
+//! i.e. exactly the domain of two contact points at the interface ends. The elastic law is
+//! `D = diag(kN A, kT A, kN I)`. Flow: sliding with dilatancy `tan(psi)` (non-associative unless
+//! `dilatancy == friction`), rocking associative. A joint with cohesion or tensile strength loses
+//! both at its first failure (brittle), and behaves as a dry joint afterwards.
+//!
+//! The return mapping is the exact multi-surface projection `sigma = sigma_trial - D M dgamma`
+//! with the active set found by enumeration (Kuhn-Tucker conditions checked: dgamma >= 0, every
+//! face satisfied), corners and the apex included. With associative flow it is the closest-point
+//! projection in the D-metric. The faces are planes, so within an active set the consistent tangent
+//! `D - D M (A D M)^-1 A D` is exact.
+//!
+//! ```
+//! use masonry_dem::joint::{return_map, JointLaw, JointState, Section};
+//! let law = JointLaw { friction: 0.6, ..JointLaw::default() };
+//! let sec = Section::new(0.4, 1.0);
+//! // compressed by a jump of -1e-6 m and slipped by 1e-5 m: the joint slides, |T| = mu |N|
+//! let r = return_map(&law, &sec, [-1e-6, 1e-5, 0.0], &JointState::default());
+//! assert!((r.force[1].abs() - 0.6 * r.force[0].abs()).abs() < 1e-6 * r.force[0].abs());
+//! ```
+
+use crate::error::{non_negative, positive, Error, Result};
+
+/// State flag: the joint is open (at the tension cut-off, carrying nothing beyond ft A).
+pub const OPEN: u8 = 1;
+/// State flag: the joint is at the Coulomb limit.
+pub const SLIDING: u8 = 2;
+/// State flag: the joint is at the rocking (moment) limit on one edge.
+pub const ROCKING: u8 = 4;
+
+/// Parameters of a joint law (case format `[joints]`), SI units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointLaw {
+    /// kN, normal stiffness per unit area [N/m3].
+    pub normal_stiffness: f64,
+    /// kT, shear stiffness per unit area [N/m3].
+    pub shear_stiffness: f64,
+    /// mu = tan(phi) [-].
+    pub friction: f64,
+    /// c [Pa]; lost at the first failure of the joint.
+    pub cohesion: f64,
+    /// ft [Pa]; lost at the first failure of the joint.
+    pub tensile_strength: f64,
+    /// tan(psi) [-], between 0 and `friction`; equal to `friction` means associative flow.
+    pub dilatancy: f64,
+}
+
+impl Default for JointLaw {
+    fn default() -> Self {
+        JointLaw {
+            normal_stiffness: 1e10,
+            shear_stiffness: 1e10,
+            friction: 0.65,
+            cohesion: 0.0,
+            tensile_strength: 0.0,
+            dilatancy: 0.0,
+        }
+    }
+}
+
+impl JointLaw {
+    /// Mortar-joint stiffnesses from the mortar's moduli and the joint thickness: kN = E/e, kT = G/e.
+    pub fn mortar_stiffness(self, young: f64, shear: f64, joint_thickness: f64) -> Self {
+        JointLaw { normal_stiffness: young / joint_thickness, shear_stiffness: shear / joint_thickness, ..self }
+    }
+
+    /// Checks every parameter; `what` prefixes the key names (e.g. "joints.bed").
+    pub fn validate(&self, what: &str) -> Result<()> {
+        positive(&format!("{what}.normal_stiffness"), self.normal_stiffness)?;
+        positive(&format!("{what}.shear_stiffness"), self.shear_stiffness)?;
+        non_negative(&format!("{what}.friction"), self.friction)?;
+        non_negative(&format!("{what}.cohesion"), self.cohesion)?;
+        non_negative(&format!("{what}.tensile_strength"), self.tensile_strength)?;
+        non_negative(&format!("{what}.dilatancy"), self.dilatancy)?;
+        if self.dilatancy > self.friction * (1.0 + 1e-12) {
+            return Err(Error::input(format!(
+                "{what}.dilatancy = {} exceeds {what}.friction = {}: tan(psi) must lie between 0 and tan(phi)",
+                self.dilatancy, self.friction
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// Geometric properties of an interface section.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Section {
+    /// A = l s [m2]
+    pub area: f64,
+    /// I = s l^3 / 12 [m4]
+    pub inertia: f64,
+    /// l [m]
+    pub length: f64,
+}
+
+impl Section {
+    /// The section of an interface of length `l` in a wall of thickness `s`.
+    pub fn new(length: f64, thickness: f64) -> Self {
+        Section { area: length * thickness, inertia: thickness * length.powi(3) / 12.0, length }
+    }
+}
+
+/// History variables of one interface.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct JointState {
+    /// Plastic jumps (dN, dT, dphi).
+    pub plastic: [f64; 3],
+    /// The joint has failed once and lost its cohesion and tensile strength.
+    pub broken: bool,
+}
+
+/// What the return mapping gives back.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Response {
+    /// (N [N], T [N], M [N m])
+    pub force: [f64; 3],
+    /// The updated history (to be committed once the step has converged).
+    pub state: JointState,
+    /// OPEN | SLIDING | ROCKING bits, 0 when elastic.
+    pub flags: u8,
+    /// d force / d jumps (row-major), consistent with the mapping.
+    pub tangent: [[f64; 3]; 3],
+}
+
+/// The four faces of the domain, each `a . sigma <= b`, with flow direction `m`.
+/// Order: Coulomb +T, Coulomb -T, rocking +M, rocking -M (rocking faces divided by l/2).
+struct Faces {
+    a: [[f64; 3]; 4],
+    m: [[f64; 3]; 4],
+    b: [f64; 4],
+}
+
+impl Faces {
+    fn new(law: &JointLaw, sec: &Section, dry: bool) -> Self {
+        let (c, ft) = if dry { (0.0, 0.0) } else { (law.cohesion, law.tensile_strength) };
+        let (mu, tp) = (law.friction, law.dilatancy);
+        let k = 2.0 / sec.length;
+        let a = [[mu, 1.0, 0.0], [mu, -1.0, 0.0], [1.0, 0.0, k], [1.0, 0.0, -k]];
+        let m = [[tp, 1.0, 0.0], [tp, -1.0, 0.0], a[2], a[3]];
+        let b = [c * sec.area, c * sec.area, ft * sec.area, ft * sec.area];
+        Faces { a, m, b }
+    }
+    #[inline]
+    fn f(&self, j: usize, s: &[f64; 3]) -> f64 {
+        dot(&self.a[j], s) - self.b[j]
+    }
+}
+
+#[inline]
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Active sets tried, smallest first: single faces, then edges, then corners.
+const SUBSETS: [u8; 14] = [1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14];
+
+/// Solves the k x k system (k <= 3) in place by Gaussian elimination with partial pivoting;
+/// returns false if it is singular relative to its scale.
+fn solve_small(g: &mut [[f64; 3]; 3], r: &mut [f64; 3], k: usize) -> bool {
+    let scale = (0..k).flat_map(|i| (0..k).map(move |j| (i, j))).map(|(i, j)| g[i][j].abs()).fold(0.0, f64::max);
+    if scale == 0.0 {
+        return false;
+    }
+    for col in 0..k {
+        let p = (col..k).max_by(|&x, &y| g[x][col].abs().total_cmp(&g[y][col].abs())).unwrap();
+        if g[p][col].abs() <= 1e-12 * scale {
+            return false;
+        }
+        g.swap(col, p);
+        r.swap(col, p);
+        for row in col + 1..k {
+            let f = g[row][col] / g[col][col];
+            for c2 in col..k {
+                g[row][c2] -= f * g[col][c2];
+            }
+            r[row] -= f * r[col];
+        }
+    }
+    for col in (0..k).rev() {
+        let mut s = r[col];
+        for c2 in col + 1..k {
+            s -= g[col][c2] * r[c2];
+        }
+        r[col] = s / g[col][col];
+    }
+    true
+}
+
+/// The return mapping: forces, updated history, state flags and consistent tangent for the total
+/// jumps `e`, starting from the committed history `committed`.
+pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState) -> Response {
+    let d = [law.normal_stiffness * sec.area, law.shear_stiffness * sec.area, law.normal_stiffness * sec.inertia];
+    let ep = committed.plastic;
+    let trial = [d[0] * (e[0] - ep[0]), d[1] * (e[1] - ep[1]), d[2] * (e[2] - ep[2])];
+    let k = 2.0 / sec.length;
+    let scale = trial[0].abs() + trial[1].abs() + (trial[2] * k).abs();
+    let mut broken = committed.broken;
+    let strong = law.cohesion > 0.0 || law.tensile_strength > 0.0;
+    if strong && !broken {
+        let intact = Faces::new(law, sec, false);
+        let tol = 1e-12 * (scale + intact.b[0] + intact.b[2]);
+        broken = (0..4).any(|j| intact.f(j, &trial) > tol);
+    }
+    let faces = Faces::new(law, sec, broken || !strong);
+    let tol = 1e-12 * (scale + faces.b[0] + faces.b[2]) + f64::MIN_POSITIVE;
+    let elastic_tangent = [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
+    let finish = |force: [f64; 3], tangent: [[f64; 3]; 3]| -> Response {
+        let plastic = [e[0] - force[0] / d[0], e[1] - force[1] / d[1], e[2] - force[2] / d[2]];
+        Response { force, state: JointState { plastic, broken }, flags: flags(&faces, &force, sec), tangent }
+    };
+    if (0..4).all(|j| faces.f(j, &trial) <= tol) {
+        return finish(trial, elastic_tangent);
+    }
+    // D m_j for every face
+    let dm: [[f64; 3]; 4] = std::array::from_fn(|j| [d[0] * faces.m[j][0], d[1] * faces.m[j][1], d[2] * faces.m[j][2]]);
+    for &mask in SUBSETS.iter() {
+        let mut act_buf = [0usize; 3];
+        let mut n = 0;
+        for j in 0..4 {
+            if mask & (1 << j) != 0 {
+                act_buf[n] = j;
+                n += 1;
+            }
+        }
+        let act = &act_buf[..n];
+        let mut g = [[0.0; 3]; 3];
+        let mut r = [0.0; 3];
+        for (p, &i) in act.iter().enumerate() {
+            r[p] = faces.f(i, &trial);
+            for (q, &j) in act.iter().enumerate() {
+                g[p][q] = dot(&faces.a[i], &dm[j]);
+            }
+        }
+        let g0 = g;
+        if !solve_small(&mut g, &mut r, n) {
+            continue;
+        }
+        let gtol = 1e-12 * r[..n].iter().map(|x| x.abs()).fold(0.0, f64::max);
+        if r[..n].iter().any(|&x| x < -gtol) {
+            continue;
+        }
+        let mut s = trial;
+        for (p, &j) in act.iter().enumerate() {
+            for c in 0..3 {
+                s[c] -= r[p] * dm[j][c];
+            }
+        }
+        if (0..4).filter(|j| mask & (1 << j) == 0).any(|j| faces.f(j, &s) > tol) {
+            continue;
+        }
+        // consistent tangent D - (D M) G^-1 (A D)
+        let mut tangent = elastic_tangent;
+        for col in 0..3 {
+            // G^-1 (A D)[:, col]
+            let mut g1 = g0;
+            let mut rhs = [0.0; 3];
+            for (p, &i) in act.iter().enumerate() {
+                rhs[p] = faces.a[i][col] * d[col];
+            }
+            if !solve_small(&mut g1, &mut rhs, n) {
+                break;
+            }
+            for row in 0..3 {
+                for (p, &j) in act.iter().enumerate() {
+                    tangent[row][col] -= dm[j][row] * rhs[p];
+                }
+            }
+        }
+        return finish(s, tangent);
+    }
+    // No active set satisfied the conditions (degenerate data): fall back on the apex, the one
+    // point of the domain that every face reaches, carrying nothing beyond the cut-off.
+    let n_apex = if faces.a[0][0] > 0.0 { faces.b[2].min(faces.b[0] / faces.a[0][0]) } else { faces.b[2] };
+    finish([n_apex, 0.0, 0.0], [[0.0; 3]; 3])
+}
+
+/// The state flags of a force that lies in the domain.
+fn flags(faces: &Faces, s: &[f64; 3], sec: &Section) -> u8 {
+    let scale = s[0].abs() + s[1].abs() + (s[2] * 2.0 / sec.length).abs() + faces.b[0] + faces.b[2];
+    let tol = 1e-9 * scale + f64::MIN_POSITIVE;
+    let at = |j: usize| faces.f(j, s) >= -tol;
+    if at(2) && at(3) {
+        OPEN
+    } else {
+        let mut fl = 0;
+        if at(0) || at(1) {
+            fl |= SLIDING;
+        }
+        if at(2) || at(3) {
+            fl |= ROCKING;
+        }
+        fl
+    }
+}
+
+/// Whether a force (N, T, M) lies in the domain of `law` (dry if `broken`), to relative `rtol`.
+pub fn admissible(law: &JointLaw, sec: &Section, force: &[f64; 3], broken: bool, rtol: f64) -> bool {
+    let strong = law.cohesion > 0.0 || law.tensile_strength > 0.0;
+    let faces = Faces::new(law, sec, broken || !strong);
+    let scale = force[0].abs() + force[1].abs() + (force[2] * 2.0 / sec.length).abs() + faces.b[0] + faces.b[2];
+    (0..4).all(|j| faces.f(j, force) <= rtol * scale)
+}

@@ -1,0 +1,43 @@
+//! # masonry-dem
+//!
+//! Nonlinear in-plane analysis of masonry walls made of rigid blocks joined by zero-thickness
+//! Mohr-Coulomb interfaces (dry or mortar joints), after Baraldi & Cecchi (2016).
+//!
+//! - [`geometry`]: rectangles and wall generators; [`interface`]: contact detection and kinematics;
+//! - [`joint`]: the joint law and its return mapping (shared by every solver);
+//! - [`model`]: blocks, interfaces, supports and loads;
+//! - [`static_solver`]: the static incremental solver (load or displacement control);
+//! - [`results`]: what an analysis returns; [`error`]: the error type.
+//!
+//! Units are SI throughout: m, N, Pa, kg, s.
+//!
+//! ```
+//! use masonry_dem::geometry::{running_bond, RunningBond, FirstCourse};
+//! use masonry_dem::joint::JointLaw;
+//! use masonry_dem::model::{JointLaws, Model, ModelSpec};
+//! use masonry_dem::static_solver::{solve, StaticOptions};
+//!
+//! let blocks = running_bond(&RunningBond { block_length: 0.4, block_height: 0.175, courses: 6,
+//!     length: 2.0, first_course: FirstCourse::Half, openings: vec![] }).unwrap();
+//! let law = JointLaw { friction: 0.65, dilatancy: 0.65, ..JointLaw::default() };
+//! let model = Model::new(ModelSpec { blocks, gravity: 10.0, joints: JointLaws::uniform(law),
+//!     ..ModelSpec::default() }).unwrap();
+//! let res = solve(&model, &StaticOptions::default()).unwrap();
+//! assert!((res.collapse_multiplier - 0.6429).abs() < 0.01 * 0.6429);
+//! ```
+
+pub mod error;
+pub mod geometry;
+pub mod interface;
+pub mod joint;
+pub(crate) mod linalg;
+pub mod model;
+pub mod results;
+pub mod static_solver;
+
+#[cfg(feature = "python")]
+mod python;
+
+pub use error::{Error, Result};
+pub use model::{Model, ModelSpec};
+pub use results::{Results, Status};

@@ -1,0 +1,90 @@
+//! What an analysis returns.
+
+use crate::joint::{OPEN, ROCKING, SLIDING};
+
+/// How an analysis ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    /// A mechanism formed; `collapse_multiplier` is the last equilibrium (or the peak of the curve).
+    Collapse,
+    /// The requested path ended without collapse.
+    Completed,
+    /// The solver failed; `error` says why and the curve holds the converged steps.
+    Failed,
+}
+
+impl Status {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Status::Collapse => "collapse",
+            Status::Completed => "completed",
+            Status::Failed => "failed",
+        }
+    }
+}
+
+/// Counts of interfaces by state at the last converged step. An interface that both slides and
+/// rocks counts in both; an open one counts only as open.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct JointStateCounts {
+    pub elastic: usize,
+    pub sliding: usize,
+    pub rocking: usize,
+    pub open: usize,
+}
+
+/// Results of an analysis. Block arrays cover all blocks (wall, base, top beam).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Results {
+    /// "static" or "dynamic".
+    pub method: &'static str,
+    pub status: Status,
+    pub error: Option<String>,
+    /// lambda at collapse (load control) or the peak of the curve (displacement control);
+    /// NaN when no step converged.
+    pub collapse_multiplier: f64,
+    /// lambda at each converged step, from the dead-load state (lambda = 0) on.
+    pub curve_multiplier: Vec<f64>,
+    /// Horizontal displacement of the control block's centroid [m] at each converged step.
+    pub curve_displacement: Vec<f64>,
+    pub control_block: usize,
+    /// (u1 [m], u2 [m], phi [rad]) of every block at the last converged step.
+    pub displacements: Vec<[f64; 3]>,
+    /// The collapse mechanism (the last increment), scaled so that the largest block
+    /// translation is 1.
+    pub mechanism: Vec<[f64; 3]>,
+    /// (N [N], T [N], M [N m]) of every interface at the last converged step; N > 0 in tension.
+    pub interface_forces: Vec<[f64; 3]>,
+    /// OPEN | SLIDING | ROCKING bits of every interface (0: elastic).
+    pub interface_states: Vec<u8>,
+    /// Interfaces that have lost their cohesion and tensile strength.
+    pub broken: Vec<bool>,
+    /// Equilibrium iterations in all.
+    pub iterations: usize,
+    /// Converged steps.
+    pub steps: usize,
+    pub elapsed_s: f64,
+}
+
+impl Results {
+    /// Interface counts by state.
+    pub fn joint_states(&self) -> JointStateCounts {
+        let mut c = JointStateCounts::default();
+        for &f in &self.interface_states {
+            if f & OPEN != 0 {
+                c.open += 1;
+            } else {
+                if f & SLIDING != 0 {
+                    c.sliding += 1;
+                }
+                if f & ROCKING != 0 {
+                    c.rocking += 1;
+                }
+                if f == 0 {
+                    c.elastic += 1;
+                }
+            }
+        }
+        c
+    }
+}

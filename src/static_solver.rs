@@ -1,0 +1,648 @@
+//! The static incremental solver (the "static solution method" of Baraldi & Cecchi 2016).
+//!
+//! Equilibrium `f_int(u) = f_dead + lambda f_live` is solved step by step with full Newton
+//! iterations on the consistent tangent of the return-mapped joint law (exact within an active
+//! set, since the faces of the strength domain are planes). The tangent is assembled into a
+//! sparse matrix of fixed pattern (every interface kept in the pattern, also at zero stiffness)
+//! and factorized by sparse LU: symbolic analysis once per analysis, numeric refactorization at
+//! each iteration.
+//!
+//! - **Load control** raises lambda; a step that does not converge (or meets a singular tangent)
+//!   is halved, and the collapse multiplier is bracketed between the last converged and the
+//!   first failed multiplier until the bracket is `tolerance` (relative) wide.
+//! - **Displacement control** prescribes the horizontal displacement of the control block and
+//!   takes lambda as the unknown in its place (the matrix gets a column `-f_live`), so the path is
+//!   followed through the peak and after it.
+//!
+//! Joint histories are committed only at converged steps, so a failed step leaves no trace.
+
+use crate::error::Error;
+use crate::joint::{return_map, JointState};
+use crate::linalg::SparseLu;
+use crate::model::{LiveLoad, Model};
+use crate::results::{Results, Status};
+use std::time::Instant;
+
+/// How the load is driven.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Control {
+    /// Raise lambda until collapse.
+    Load,
+    /// Drive the horizontal displacement of the control block by `max_displacement` [m].
+    Displacement { max_displacement: f64 },
+}
+
+/// Options of the static solver.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StaticOptions {
+    pub control: Control,
+    /// Number of increments (a hint: the solver cuts steps where needed).
+    pub steps: usize,
+    /// Relative width of the bracket on the collapse multiplier (load control).
+    pub tolerance: f64,
+    /// Newton iterations before a step is cut.
+    pub max_iterations: usize,
+    /// Equilibrium is reached when |residual| <= residual_tolerance * |applied forces|.
+    pub residual_tolerance: f64,
+    /// Block whose horizontal centroid displacement is the curve's abscissa (and the driven
+    /// dof under displacement control); default [`Model::default_control_block`].
+    pub control_block: Option<usize>,
+}
+
+impl Default for StaticOptions {
+    fn default() -> Self {
+        StaticOptions {
+            control: Control::Load,
+            steps: 200,
+            tolerance: 1e-4,
+            max_iterations: 50,
+            residual_tolerance: 1e-9,
+            control_block: None,
+        }
+    }
+}
+
+/// Reported after each converged step; the callback returns `false` to stop the run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Progress {
+    pub step: usize,
+    pub multiplier: f64,
+    pub displacement: f64,
+    /// Fraction of the requested path done, in [0, 1] (displacement control), or NaN.
+    pub fraction: f64,
+}
+
+/// Runs a static analysis. Bad options or an unsupported model are an `Err`; a solver failure
+/// is a `Results` with status `Failed`, its reason and the converged part of the curve.
+pub fn solve(model: &Model, opts: &StaticOptions) -> Result<Results, Error> {
+    solve_with(model, opts, &mut |_| true)
+}
+
+/// Runs a static analysis, calling `monitor` after each converged step (return `false` to stop).
+pub fn solve_with(
+    model: &Model,
+    opts: &StaticOptions,
+    monitor: &mut dyn FnMut(&Progress) -> bool,
+) -> Result<Results, Error> {
+    let start = Instant::now();
+    let mut s = Solver::new(model, opts)?;
+    let outcome = match opts.control {
+        Control::Load => s.load_control(monitor),
+        Control::Displacement { max_displacement } => s.displacement_control(max_displacement, monitor),
+    };
+    Ok(s.finish(outcome, start))
+}
+
+/// Outcome of a run: status, and the reason when it failed.
+type Outcome = (Status, Option<Error>);
+
+struct Solver<'a> {
+    model: &'a Model,
+    opts: StaticOptions,
+    control_dof: usize,
+    /// equation of each dof (None: fixed)
+    eq: Vec<Option<usize>>,
+    n_eq: usize,
+    u: Vec<f64>,
+    lambda: f64,
+    committed: Vec<JointState>,
+    trial: Vec<JointState>,
+    forces: Vec<[f64; 3]>,
+    flags: Vec<u8>,
+    tangents: Vec<[[f64; 3]; 3]>,
+    fint: Vec<f64>,
+    rhs: Vec<f64>,
+    load_sys: Option<(SparseLu, Vec<[u32; 36]>)>,
+    disp_sys: Option<(SparseLu, Vec<[u32; 36]>, Vec<(usize, u32)>)>,
+    /// force scale for the residual test
+    iterations: usize,
+    steps: usize,
+    curve_l: Vec<f64>,
+    curve_u: Vec<f64>,
+    u_prev: Vec<f64>,
+    mechanism: Option<Vec<f64>>,
+    u_limit: f64,
+}
+
+const NONE: u32 = u32::MAX;
+
+impl<'a> Solver<'a> {
+    fn new(model: &'a Model, opts: &StaticOptions) -> Result<Self, Error> {
+        if opts.steps == 0 {
+            return Err(Error::input("analysis.steps must be at least 1"));
+        }
+        if !(opts.tolerance > 0.0 && opts.tolerance < 1.0) {
+            return Err(Error::input(format!("analysis tolerance must lie in (0, 1), got {}", opts.tolerance)));
+        }
+        if !(opts.residual_tolerance > 0.0 && opts.residual_tolerance < 1.0) {
+            return Err(Error::input(format!("residual tolerance must lie in (0, 1), got {}", opts.residual_tolerance)));
+        }
+        if opts.max_iterations == 0 {
+            return Err(Error::input("max_iterations must be at least 1"));
+        }
+        if let Control::Displacement { max_displacement } = opts.control {
+            if !(max_displacement.is_finite() && max_displacement != 0.0) {
+                return Err(Error::input(format!(
+                    "analysis.max_displacement must be a finite non-zero length, got {max_displacement}"
+                )));
+            }
+        }
+        model.check_supports()?;
+        let nb = model.n_blocks();
+        let control_block = opts.control_block.unwrap_or_else(|| model.default_control_block());
+        if control_block >= nb {
+            return Err(Error::input(format!("control block {control_block} does not exist (the model has {nb} blocks)")));
+        }
+        let control_dof = 3 * control_block;
+        let fixed = model.fixed();
+        if matches!(opts.control, Control::Displacement { .. }) && fixed[control_dof] {
+            return Err(Error::input(format!(
+                "the horizontal displacement of the control block ({}) is fixed: it cannot be driven",
+                model.block_name(control_block)
+            )));
+        }
+        let mut eq = vec![None; 3 * nb];
+        let mut n_eq = 0;
+        for (d, e) in eq.iter_mut().enumerate() {
+            if !fixed[d] {
+                *e = Some(n_eq);
+                n_eq += 1;
+            }
+        }
+        if n_eq == 0 {
+            return Err(Error::input("every dof of the model is fixed: nothing to solve"));
+        }
+        let m = model.interfaces().len();
+        let r = model.rects();
+        let (mut lo, mut hi) = (f64::MAX, f64::MIN);
+        for b in r {
+            lo = lo.min(b.x0.min(b.y0));
+            hi = hi.max(b.x1.max(b.y1));
+        }
+        let mut u_limit = 0.1 * (hi - lo);
+        if let Control::Displacement { max_displacement } = opts.control {
+            u_limit = u_limit.max(10.0 * max_displacement.abs());
+        }
+        Ok(Solver {
+            model,
+            opts: *opts,
+            control_dof,
+            eq,
+            n_eq,
+            u: model.prescribed().to_vec(),
+            lambda: 0.0,
+            committed: vec![JointState::default(); m],
+            trial: vec![JointState::default(); m],
+            forces: vec![[0.0; 3]; m],
+            flags: vec![0; m],
+            tangents: vec![[[0.0; 3]; 3]; m],
+            fint: vec![0.0; 3 * nb],
+            rhs: vec![0.0; n_eq],
+            load_sys: None,
+            disp_sys: None,
+            iterations: 0,
+            steps: 0,
+            curve_l: vec![],
+            curve_u: vec![],
+            u_prev: model.prescribed().to_vec(),
+            mechanism: None,
+            u_limit,
+        })
+    }
+
+    /// Slot map of every interface's 6 x 6 block for a system whose column of `col_skip` is
+    /// not an unknown.
+    fn slots(&self, sys: &SparseLu, col_skip: Option<usize>) -> Vec<[u32; 36]> {
+        self.model
+            .interfaces()
+            .iter()
+            .map(|it| {
+                let d = it.dofs();
+                let mut s = [NONE; 36];
+                for i in 0..6 {
+                    for j in 0..6 {
+                        if let (Some(r), Some(c)) = (self.eq[d[i]], self.eq[d[j]]) {
+                            if Some(d[j]) != col_skip {
+                                s[6 * i + j] = sys.slot(r, c).expect("pattern entry") as u32;
+                            }
+                        }
+                    }
+                }
+                s
+            })
+            .collect()
+    }
+
+    fn pattern(&self, col_skip: Option<usize>) -> Vec<(usize, usize)> {
+        let mut e = Vec::with_capacity(36 * self.model.interfaces().len());
+        for it in self.model.interfaces() {
+            let d = it.dofs();
+            for &di in &d {
+                for &dj in &d {
+                    if let (Some(r), Some(c)) = (self.eq[di], self.eq[dj]) {
+                        if Some(dj) != col_skip {
+                            e.push((r, c));
+                        }
+                    }
+                }
+            }
+        }
+        e
+    }
+
+    fn ensure_load_sys(&mut self) -> Result<(), Error> {
+        if self.load_sys.is_none() {
+            let sys = SparseLu::new(self.n_eq, self.pattern(None))?;
+            let slots = self.slots(&sys, None);
+            self.load_sys = Some((sys, slots));
+        }
+        Ok(())
+    }
+
+    fn ensure_disp_sys(&mut self) -> Result<(), Error> {
+        if self.disp_sys.is_none() {
+            let cd = self.control_dof;
+            let lam_col = self.eq[cd].expect("free control dof");
+            let live = self.model.live_load();
+            let live_rows: Vec<usize> = (0..live.len()).filter(|&d| live[d] != 0.0 && self.eq[d].is_some()).collect();
+            let mut entries = self.pattern(Some(cd));
+            entries.extend(live_rows.iter().map(|&d| (self.eq[d].unwrap(), lam_col)));
+            let sys = SparseLu::new(self.n_eq, entries)?;
+            let slots = self.slots(&sys, Some(cd));
+            let lam_slots = live_rows.iter().map(|&d| (d, sys.slot(self.eq[d].unwrap(), lam_col).unwrap() as u32)).collect();
+            self.disp_sys = Some((sys, slots, lam_slots));
+        }
+        Ok(())
+    }
+
+    /// Joint forces, trial histories, tangents and internal forces at the current `u`.
+    fn evaluate(&mut self) {
+        let model = self.model;
+        for (k, it) in model.interfaces().iter().enumerate() {
+            let e = it.jumps(&self.u);
+            let r = return_map(model.law(k), &model.sections()[k], e, &self.committed[k]);
+            self.forces[k] = r.force;
+            self.trial[k] = r.state;
+            self.flags[k] = r.flags;
+            self.tangents[k] = r.tangent;
+        }
+        model.internal_forces(&self.forces, &mut self.fint);
+    }
+
+    /// Residual on the equations (external minus internal); returns its norm and the norm of
+    /// the applied forces.
+    fn residual(&mut self) -> (f64, f64) {
+        let (fd, fl) = (self.model.dead_load(), self.model.live_load());
+        let (mut rn, mut fnorm) = (0.0, 0.0);
+        for (d, e) in self.eq.iter().enumerate() {
+            let f = fd[d] + self.lambda * fl[d];
+            fnorm += f * f;
+            if let Some(k) = *e {
+                let r = f - self.fint[d];
+                self.rhs[k] = r;
+                rn += r * r;
+            }
+        }
+        (rn.sqrt(), fnorm.sqrt())
+    }
+
+    /// Adds the interface stiffnesses B^T D_t B to the values of `sys` through `slots`.
+    fn assemble(model: &Model, tangents: &[[[f64; 3]; 3]], sys: &mut SparseLu, slots: &[[u32; 36]]) {
+        let vals = sys.values_mut();
+        vals.fill(0.0);
+        for ((it, dt), sl) in model.interfaces().iter().zip(tangents).zip(slots) {
+            let b = &it.b_mat;
+            // DB = D_t B (3 x 6)
+            let mut db = [[0.0; 6]; 3];
+            for r in 0..3 {
+                for c in 0..6 {
+                    db[r][c] = dt[r][0] * b[0][c] + dt[r][1] * b[1][c] + dt[r][2] * b[2][c];
+                }
+            }
+            for i in 0..6 {
+                for j in 0..6 {
+                    let s = sl[6 * i + j];
+                    if s != NONE {
+                        vals[s as usize] += b[0][i] * db[0][j] + b[1][i] * db[1][j] + b[2][i] * db[2][j];
+                    }
+                }
+            }
+        }
+    }
+
+    fn check_u(&self) -> Result<(), Error> {
+        let big = self.u.iter().map(|v| v.abs()).fold(0.0, f64::max);
+        if !big.is_finite() {
+            return Err(Error::Convergence("non-finite displacement".into()));
+        }
+        let nb = self.model.n_blocks();
+        let tmax = (0..nb).map(|i| self.u[3 * i].abs().max(self.u[3 * i + 1].abs())).fold(0.0, f64::max);
+        if tmax > self.u_limit {
+            return Err(Error::Convergence(format!(
+                "displacements grew beyond {:.3e} m (the small-displacement model no longer holds)",
+                self.u_limit
+            )));
+        }
+        Ok(())
+    }
+
+    /// Newton iterations at fixed lambda (load control). `u` and `trial` hold the result.
+    fn newton_load(&mut self) -> Result<usize, Error> {
+        self.ensure_load_sys()?;
+        self.newton(false)
+    }
+
+    /// Newton iterations with the control dof prescribed and lambda unknown.
+    fn newton_disp(&mut self) -> Result<usize, Error> {
+        self.ensure_disp_sys()?;
+        self.newton(true)
+    }
+
+    /// Newton on the consistent tangent with a backtracking line search on the residual norm
+    /// (the law is piecewise linear: full steps can cycle between active sets near a mechanism).
+    fn newton(&mut self, disp: bool) -> Result<usize, Error> {
+        let cd = self.control_dof;
+        let lam_eq = self.eq[cd].unwrap_or(usize::MAX);
+        self.evaluate();
+        let (mut rn, mut fnorm) = self.residual();
+        let mut u0 = vec![0.0; self.u.len()];
+        let mut delta = vec![0.0; self.n_eq];
+        for it in 0..self.opts.max_iterations {
+            if rn <= self.opts.residual_tolerance * fnorm.max(f64::MIN_POSITIVE) {
+                return Ok(it);
+            }
+            self.iterations += 1;
+            if disp {
+                let (sys, slots, lam_slots) = self.disp_sys.as_mut().unwrap();
+                Self::assemble(self.model, &self.tangents, sys, slots);
+                let live = self.model.live_load();
+                let vals = sys.values_mut();
+                for &(d, s) in lam_slots.iter() {
+                    vals[s as usize] -= live[d];
+                }
+                sys.factorize()?;
+                sys.solve_in_place(&mut self.rhs)?;
+            } else {
+                let (sys, slots) = self.load_sys.as_mut().unwrap();
+                Self::assemble(self.model, &self.tangents, sys, slots);
+                sys.factorize()?;
+                sys.solve_in_place(&mut self.rhs)?;
+            }
+            delta.copy_from_slice(&self.rhs);
+            u0.copy_from_slice(&self.u);
+            let lam0 = self.lambda;
+            // keep a single iterate within a tenth of the displacement limit
+            let big = self
+                .eq
+                .iter()
+                .enumerate()
+                .filter_map(|(d, e)| e.filter(|_| d % 3 != 2 && !(disp && d == cd)).map(|k| delta[k].abs()))
+                .fold(0.0, f64::max);
+            let mut alpha: f64 = if big > 0.1 * self.u_limit { 0.1 * self.u_limit / big } else { 1.0 };
+            let (mut best_alpha, mut best_rn) = (alpha, f64::INFINITY);
+            for trial in 0..12 {
+                for (d, e) in self.eq.iter().enumerate() {
+                    if let Some(k) = *e {
+                        if !(disp && d == cd) {
+                            self.u[d] = u0[d] + alpha * delta[k];
+                        }
+                    }
+                }
+                if disp {
+                    self.lambda = lam0 + alpha * delta[lam_eq];
+                }
+                self.evaluate();
+                let (r, f) = self.residual();
+                if r < best_rn {
+                    best_rn = r;
+                    best_alpha = alpha;
+                }
+                let _ = f;
+                if r <= (1.0 - 1e-4 * alpha) * rn || trial == 11 {
+                    break;
+                }
+                alpha *= 0.5;
+            }
+            if alpha != best_alpha {
+                alpha = best_alpha;
+                for (d, e) in self.eq.iter().enumerate() {
+                    if let Some(k) = *e {
+                        if !(disp && d == cd) {
+                            self.u[d] = u0[d] + alpha * delta[k];
+                        }
+                    }
+                }
+                if disp {
+                    self.lambda = lam0 + alpha * delta[lam_eq];
+                }
+                self.evaluate();
+            }
+            let (r, f) = self.residual();
+            rn = r;
+            fnorm = f;
+            if !self.lambda.is_finite() {
+                return Err(Error::Convergence("non-finite load multiplier".into()));
+            }
+            self.check_u()?;
+        }
+        Err(Error::Convergence(format!("no equilibrium after {} iterations", self.opts.max_iterations)))
+    }
+
+    fn commit(&mut self, monitor: &mut dyn FnMut(&Progress) -> bool, fraction: f64) -> Result<(), Error> {
+        self.committed.copy_from_slice(&self.trial);
+        self.curve_l.push(self.lambda);
+        self.curve_u.push(self.u[self.control_dof]);
+        self.steps += 1;
+        let p = Progress { step: self.steps, multiplier: self.lambda, displacement: self.u[self.control_dof], fraction };
+        if monitor(&p) {
+            Ok(())
+        } else {
+            Err(Error::Interrupted)
+        }
+    }
+
+    /// The state under dead load alone.
+    fn dead_state(&mut self, monitor: &mut dyn FnMut(&Progress) -> bool) -> Result<(), Error> {
+        self.lambda = 0.0;
+        self.newton_load().map_err(|e| match e {
+            Error::Convergence(why) => Error::Mechanism(format!("no equilibrium under the dead loads alone: {why}")),
+            e => e,
+        })?;
+        self.u_prev.copy_from_slice(&self.u);
+        self.commit(monitor, 0.0)
+    }
+
+    /// A natural scale of lambda: 1 for the seismic coefficient, the dead loads for a force.
+    fn lambda_scale(&self) -> f64 {
+        match self.model.live() {
+            LiveLoad::HorizontalWeight => 1.0,
+            LiveLoad::TopHorizontal => {
+                let w: f64 = self.model.weight().iter().sum();
+                let fd = self.model.dead_load();
+                let t = self.model.top().unwrap();
+                (w + fd[3 * t].abs() + fd[3 * t + 1].abs()).max(1.0)
+            }
+        }
+    }
+
+    fn load_control(&mut self, monitor: &mut dyn FnMut(&Progress) -> bool) -> Outcome {
+        if let Err(e) = self.dead_state(monitor) {
+            return (Status::Failed, Some(e));
+        }
+        let scale = self.lambda_scale();
+        let max_lambda = 1e3 * scale;
+        let mut dl = 4.0 * scale / self.opts.steps as f64;
+        let mut cut = false; // a step has failed: no more growth
+        let mut u_conv = self.u.clone();
+        let mut lam_conv = 0.0;
+        let max_attempts = 100 * self.opts.steps + 1000;
+        for _ in 0..max_attempts {
+            self.lambda = lam_conv + dl;
+            match self.newton_load() {
+                Ok(iters) => {
+                    self.u_prev.copy_from_slice(&u_conv);
+                    u_conv.copy_from_slice(&self.u);
+                    lam_conv = self.lambda;
+                    if let Err(e) = self.commit(monitor, f64::NAN) {
+                        return (Status::Failed, Some(e));
+                    }
+                    if !cut && iters <= 3 {
+                        dl *= 1.5;
+                    }
+                    if lam_conv > max_lambda {
+                        return (Status::Completed, None);
+                    }
+                }
+                Err(Error::Interrupted) => return (Status::Failed, Some(Error::Interrupted)),
+                Err(_) => {
+                    self.u.copy_from_slice(&u_conv);
+                    self.lambda = lam_conv;
+                    dl *= 0.5;
+                    cut = true;
+                    // collapse: no equilibrium even a bracket-width above the last one
+                    if 2.0 * dl <= self.opts.tolerance * lam_conv.abs().max(1e-3 * scale) {
+                        self.mechanism = self.collapse_mechanism();
+                        self.u.copy_from_slice(&u_conv);
+                        self.lambda = lam_conv;
+                        self.evaluate();
+                        return (Status::Collapse, None);
+                    }
+                }
+            }
+        }
+        (Status::Failed, Some(Error::Convergence(format!("no collapse bracket after {max_attempts} attempts"))))
+    }
+
+    /// The collapse mechanism: one displacement-controlled increment from the collapse state
+    /// (the increment of a formed mechanism), or else the last load increment.
+    fn collapse_mechanism(&mut self) -> Option<Vec<f64>> {
+        let cd = self.control_dof;
+        if self.model.fixed()[cd] {
+            return None;
+        }
+        let u0 = self.u.clone();
+        let lam0 = self.lambda;
+        let h = self.u_limit * 1e-3;
+        self.u[cd] += h;
+        let res = self.newton_disp();
+        let out = res.ok().map(|_| self.u.iter().zip(&u0).map(|(a, b)| a - b).collect());
+        self.u.copy_from_slice(&u0);
+        self.lambda = lam0;
+        out
+    }
+
+    fn displacement_control(&mut self, max_disp: f64, monitor: &mut dyn FnMut(&Progress) -> bool) -> Outcome {
+        if let Err(e) = self.dead_state(monitor) {
+            return (Status::Failed, Some(e));
+        }
+        let cd = self.control_dof;
+        let u_start = self.u[cd];
+        let target = u_start + max_disp;
+        let base_step = max_disp / self.opts.steps as f64;
+        let mut step = base_step;
+        let min_step = base_step.abs() / 4096.0;
+        let mut u_conv = self.u.clone();
+        let mut lam_conv = self.lambda;
+        let mut k0: Option<f64> = None; // initial stiffness d lambda / d u
+        let mut k_last = f64::NAN;
+        while (target - u_conv[cd]) * max_disp.signum() > 1e-12 * max_disp.abs() {
+            let remaining = target - u_conv[cd];
+            let h = if step.abs() > remaining.abs() { remaining } else { step };
+            self.u[cd] = u_conv[cd] + h;
+            match self.newton_disp() {
+                Ok(_) => {
+                    let k = (self.lambda - lam_conv) / h;
+                    k0.get_or_insert(k);
+                    k_last = k;
+                    self.u_prev.copy_from_slice(&u_conv);
+                    u_conv.copy_from_slice(&self.u);
+                    lam_conv = self.lambda;
+                    let frac = (u_conv[cd] - u_start) / max_disp;
+                    if let Err(e) = self.commit(monitor, frac) {
+                        return (Status::Failed, Some(e));
+                    }
+                    if step.abs() < base_step.abs() {
+                        step *= 2.0;
+                    }
+                }
+                Err(Error::Interrupted) => return (Status::Failed, Some(Error::Interrupted)),
+                Err(e) => {
+                    self.u.copy_from_slice(&u_conv);
+                    self.lambda = lam_conv;
+                    step *= 0.5;
+                    if step.abs() < min_step {
+                        self.evaluate();
+                        return (Status::Failed, Some(e));
+                    }
+                }
+            }
+        }
+        self.evaluate();
+        let peak = self.curve_l.iter().cloned().fold(f64::MIN, f64::max);
+        let softened = lam_conv < peak * (1.0 - 1e-3);
+        let flat = match k0 {
+            Some(k0) if k0 != 0.0 => (k_last / k0).abs() < 1e-3,
+            _ => false,
+        };
+        if softened || flat {
+            (Status::Collapse, None)
+        } else {
+            (Status::Completed, None)
+        }
+    }
+
+    fn finish(mut self, outcome: Outcome, start: Instant) -> Results {
+        let (status, err) = outcome;
+        let model = self.model;
+        let nb = model.n_blocks();
+        // the converged state: committed histories with the last converged displacements
+        let mech = self.mechanism.take().unwrap_or_else(|| self.u.iter().zip(&self.u_prev).map(|(a, b)| a - b).collect());
+        let scale = (0..nb).map(|i| mech[3 * i].hypot(mech[3 * i + 1])).fold(0.0, f64::max);
+        let scale = if scale > 0.0 { 1.0 / scale } else { 0.0 };
+        let collapse_multiplier = match self.opts.control {
+            Control::Load => self.curve_l.last().copied().unwrap_or(f64::NAN),
+            Control::Displacement { .. } => self.curve_l.iter().cloned().fold(f64::NAN, f64::max),
+        };
+        Results {
+            method: "static",
+            status,
+            error: err.map(|e| e.to_string()),
+            collapse_multiplier: if status == Status::Completed && self.opts.control == Control::Load {
+                f64::NAN
+            } else {
+                collapse_multiplier
+            },
+            curve_multiplier: self.curve_l,
+            curve_displacement: self.curve_u,
+            control_block: self.control_dof / 3,
+            displacements: (0..nb).map(|i| [self.u[3 * i], self.u[3 * i + 1], self.u[3 * i + 2]]).collect(),
+            mechanism: (0..nb).map(|i| [mech[3 * i] * scale, mech[3 * i + 1] * scale, mech[3 * i + 2] * scale]).collect(),
+            interface_forces: self.forces,
+            interface_states: self.flags,
+            broken: self.committed.iter().map(|s| s.broken).collect(),
+            iterations: self.iterations,
+            steps: self.steps,
+            elapsed_s: start.elapsed().as_secs_f64(),
+        }
+    }
+}

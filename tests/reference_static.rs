@@ -1,0 +1,75 @@
+//! The static solver against closed forms and exact limit-analysis values
+//! (../shared/benchmarks/README.md). Tolerances are those of the issue.
+
+mod common;
+use common::*;
+use masonry_dem::geometry::Rect;
+use masonry_dem::results::Status;
+use masonry_dem::static_solver::{solve, Control, StaticOptions};
+
+fn collapse(model: &masonry_dem::Model) -> f64 {
+    let r = solve(model, &StaticOptions::default()).unwrap();
+    assert_eq!(r.status, Status::Collapse, "status {:?}, error {:?}", r.status, r.error);
+    r.collapse_multiplier
+}
+
+#[test]
+fn single_block_slides_at_mu() {
+    let m = blocks_model(vec![Rect::new(0.0, 0.0, 0.4, 0.175)], dry(0.65, 0.0, 1e10));
+    assert_close(collapse(&m), 0.65, 0.005, "sliding block");
+}
+
+#[test]
+fn single_block_rocks_at_b_over_h() {
+    let m = blocks_model(vec![Rect::new(0.0, 0.0, 0.2, 0.6)], dry(0.65, 0.0, 1e10));
+    assert_close(collapse(&m), 1.0 / 3.0, 0.005, "rocking block");
+}
+
+#[test]
+fn stack_of_three_turns_at_b_over_total_height() {
+    let blocks = (0..3).map(|k| Rect::new(0.0, 0.5 * k as f64, 0.3, 0.5 * (k + 1) as f64)).collect();
+    let m = blocks_model(blocks, dry(0.65, 0.0, 1e10));
+    assert_close(collapse(&m), 0.2, 0.005, "stack of three");
+}
+
+#[test]
+fn ferris_wall1_associative() {
+    assert_close(collapse(&ferris(6, dry(0.65, 0.65, 1e10))), 0.6429, 0.01, "wall 1 associative");
+}
+
+#[test]
+fn ferris_wall2_associative() {
+    assert_close(collapse(&ferris(10, dry(0.65, 0.65, 1e10))), 0.5800, 0.01, "wall 2 associative");
+}
+
+#[test]
+fn ferris_wall1_non_associative() {
+    assert_close(collapse(&ferris(6, dry(0.65, 0.0, 1e10))), 0.640, 0.03, "wall 1 non-associative");
+}
+
+#[test]
+fn ferris_wall2_non_associative() {
+    assert_close(collapse(&ferris(10, dry(0.65, 0.0, 1e10))), 0.563, 0.03, "wall 2 non-associative");
+}
+
+#[test]
+fn wall2_collapse_does_not_depend_on_penalty_stiffness() {
+    let stiff = collapse(&ferris(10, dry(0.65, 0.65, 1e10)));
+    let soft = collapse(&ferris(10, dry(0.65, 0.65, 1e8)));
+    assert_close(soft, stiff, 0.01, "wall 2 with kN = kT = 1e8 against 1e10");
+}
+
+#[test]
+fn displacement_control_passes_the_peak() {
+    let m = ferris(6, dry(0.65, 0.65, 1e10));
+    let opts = StaticOptions { control: Control::Displacement { max_displacement: 0.002 }, steps: 100, ..Default::default() };
+    let r = solve(&m, &opts).unwrap();
+    assert_ne!(r.status, Status::Failed, "error {:?}", r.error);
+    assert_close(r.collapse_multiplier, 0.6429, 0.02, "wall 1 peak under displacement control");
+    // the curve goes on past the peak: steps after the one reaching 99.9% of the peak
+    let peak_at = r.curve_multiplier.iter().position(|&l| l >= 0.999 * r.collapse_multiplier).unwrap();
+    let after = r.curve_multiplier.len() - 1 - peak_at;
+    assert!(after >= 10, "only {after} steps after the peak");
+    let last_u = *r.curve_displacement.last().unwrap();
+    assert!((last_u - 0.002).abs() < 1e-9, "the curve stops at {last_u} m, not at 2 mm");
+}
