@@ -18,7 +18,7 @@ __version__: str
 class MasonryError(Exception):
     """Base class of every error raised by masonry_dem."""
 
-class InputError(MasonryError, ValueError):
+class InputError(MasonryError):
     """Bad input: a key, block or interface is named in the message."""
 
 class ConvergenceError(MasonryError):

@@ -1,0 +1,406 @@
+//! PyO3 bindings: the module `masonry_dem._core`. A thin layer: argument conversion, the error
+//! mapping, the GIL released during analyses, Ctrl-C checked between steps, panics caught.
+
+use crate::error::Error;
+use crate::geometry::{self, FirstCourse, Rect, RunningBond};
+use crate::joint::JointLaw;
+use crate::model::{JointLaws, LiveLoad, Model, ModelSpec, TopBeam};
+use crate::results::Results;
+use crate::static_solver::{self, Control, StaticOptions};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
+use pyo3::create_exception;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+create_exception!(_core, MasonryError, PyException, "Base class of every error raised by masonry_dem.");
+create_exception!(_core, InputError, MasonryError, "Bad input: the message names the key, block or interface.");
+create_exception!(_core, ConvergenceError, MasonryError, "A solver did not converge.");
+create_exception!(_core, MechanismError, MasonryError, "The model is a mechanism before any load.");
+
+fn to_py(e: Error) -> PyErr {
+    match e {
+        Error::Input(m) => InputError::new_err(m),
+        Error::Mechanism(m) => MechanismError::new_err(m),
+        Error::Convergence(m) => ConvergenceError::new_err(m),
+        Error::Interrupted => MasonryError::new_err("interrupted by the user"),
+    }
+}
+
+/// Runs `f` and turns a panic into a MasonryError, so that no panic crosses into Python.
+fn guarded<T>(f: impl FnOnce() -> Result<T, Error>) -> PyResult<T> {
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)) {
+        Ok(r) => r.map_err(to_py),
+        Err(p) => {
+            let msg = p
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| p.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown".into());
+            Err(MasonryError::new_err(format!("internal error (please report it): {msg}")))
+        }
+    }
+}
+
+fn rects_from(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Rect>> {
+    let rows: Vec<Vec<f64>> = if let Ok(a) = obj.extract::<PyReadonlyArray2<f64>>() {
+        let a = a.as_array();
+        a.rows().into_iter().map(|r| r.to_vec()).collect()
+    } else {
+        obj.extract::<Vec<Vec<f64>>>()
+            .map_err(|_| InputError::new_err(format!("{what}: expected a list of [x0, y0, x1, y1] rows of numbers")))?
+    };
+    rows.iter()
+        .enumerate()
+        .map(|(i, r)| {
+            if r.len() != 4 {
+                Err(InputError::new_err(format!("{what}[{i}]: expected 4 numbers [x0, y0, x1, y1], got {}", r.len())))
+            } else {
+                Ok(Rect::new(r[0], r[1], r[2], r[3]))
+            }
+        })
+        .collect()
+}
+
+fn rects_to_py<'py>(py: Python<'py>, rects: &[Rect]) -> Bound<'py, PyArray2<f64>> {
+    let flat: Vec<f64> = rects.iter().flat_map(|r| [r.x0, r.y0, r.x1, r.y1]).collect();
+    Array2::from_shape_vec((rects.len(), 4), flat).unwrap().into_pyarray(py)
+}
+
+fn rows3<'py>(py: Python<'py>, v: &[[f64; 3]]) -> Bound<'py, PyArray2<f64>> {
+    let flat: Vec<f64> = v.iter().flatten().copied().collect();
+    Array2::from_shape_vec((v.len(), 3), flat).unwrap().into_pyarray(py)
+}
+
+/// Blocks [x0, y0, x1, y1] (shape (n, 4), m) of a running-bond wall standing at y = 0 from x = 0.
+#[pyfunction]
+#[pyo3(signature = (block_length, block_height, courses, length, first_course="half", openings=None))]
+fn running_bond<'py>(
+    py: Python<'py>,
+    block_length: f64,
+    block_height: f64,
+    courses: i64,
+    length: f64,
+    first_course: &str,
+    openings: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let first_course = match first_course {
+        "half" => FirstCourse::Half,
+        "full" => FirstCourse::Full,
+        o => return Err(InputError::new_err(format!("running_bond.first_course must be \"half\" or \"full\", got {o:?}"))),
+    };
+    if courses < 1 {
+        return Err(InputError::new_err(format!("running_bond.courses must be at least 1, got {courses}")));
+    }
+    let openings = match openings {
+        Some(o) if !o.is_none() => rects_from(o, "running_bond.openings")?,
+        _ => vec![],
+    };
+    let p = RunningBond { block_length, block_height, courses: courses as usize, length, first_course, openings };
+    let blocks = guarded(|| geometry::running_bond(&p))?;
+    Ok(rects_to_py(py, &blocks))
+}
+
+/// Blocks [x0, y0, x1, y1] (shape (n, 4), m) from courses listed bottom to top.
+#[pyfunction]
+fn pattern<'py>(py: Python<'py>, block_length: f64, block_height: f64, rows: Vec<Vec<f64>>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let blocks = guarded(|| geometry::pattern(block_length, block_height, &rows))?;
+    Ok(rects_to_py(py, &blocks))
+}
+
+const LAW_KEYS: [&str; 6] = ["normal_stiffness", "shear_stiffness", "friction", "cohesion", "tensile_strength", "dilatancy"];
+
+fn law_from(d: &Bound<'_, PyAny>, base: JointLaw, what: &str) -> PyResult<JointLaw> {
+    let d = d.cast::<PyDict>().map_err(|_| InputError::new_err(format!("{what}: expected a dict of joint parameters")))?;
+    let mut law = base;
+    for (k, v) in d.iter() {
+        let key: String = k.extract().map_err(|_| InputError::new_err(format!("{what}: keys must be strings")))?;
+        if v.is_instance_of::<pyo3::types::PyBool>() {
+            return Err(InputError::new_err(format!("{what}.{key}: expected a number, got a boolean")));
+        }
+        let x: f64 = v.extract().map_err(|_| InputError::new_err(format!("{what}.{key}: expected a number")))?;
+        match key.as_str() {
+            "normal_stiffness" => law.normal_stiffness = x,
+            "shear_stiffness" => law.shear_stiffness = x,
+            "friction" => law.friction = x,
+            "cohesion" => law.cohesion = x,
+            "tensile_strength" => law.tensile_strength = x,
+            "dilatancy" => law.dilatancy = x,
+            _ => {
+                return Err(InputError::new_err(format!(
+                    "{what}: unknown key {key:?} (expected one of {})",
+                    LAW_KEYS.join(", ")
+                )))
+            }
+        }
+    }
+    Ok(law)
+}
+
+/// A wall of rigid blocks joined by zero-thickness Mohr-Coulomb interfaces (see _core.pyi).
+#[pyclass(name = "Model", module = "masonry_dem._core")]
+struct PyModel {
+    inner: Model,
+}
+
+#[pymethods]
+impl PyModel {
+    #[new]
+    #[pyo3(signature = (blocks, thickness=1.0, density=1000.0, base=true, top_rotation=None, top_force=vec![0.0, 0.0], joints=None, gravity=9.81, live="horizontal_weight"))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        blocks: &Bound<'_, PyAny>,
+        thickness: f64,
+        density: f64,
+        base: bool,
+        top_rotation: Option<&str>,
+        top_force: Vec<f64>,
+        joints: Option<&Bound<'_, PyDict>>,
+        gravity: f64,
+        live: &str,
+    ) -> PyResult<Self> {
+        let blocks = rects_from(blocks, "blocks")?;
+        if top_force.len() != 2 {
+            return Err(InputError::new_err(format!("top.force: expected 2 numbers [Fx, Fy] in N, got {}", top_force.len())));
+        }
+        let top_force = (top_force[0], top_force[1]);
+        let top = match top_rotation {
+            None => None,
+            Some("fixed") => Some(TopBeam { rotation_fixed: true, force: [top_force.0, top_force.1] }),
+            Some("free") => Some(TopBeam { rotation_fixed: false, force: [top_force.0, top_force.1] }),
+            Some(o) => return Err(InputError::new_err(format!("top.rotation must be \"fixed\" or \"free\", got {o:?}"))),
+        };
+        let live = match live {
+            "horizontal_weight" => LiveLoad::HorizontalWeight,
+            "top_horizontal" => LiveLoad::TopHorizontal,
+            o => {
+                return Err(InputError::new_err(format!(
+                    "loads.live must be \"horizontal_weight\" or \"top_horizontal\", got {o:?}"
+                )))
+            }
+        };
+        let mut laws = JointLaws::default();
+        if let Some(j) = joints {
+            if let Some(d) = j.get_item("default")? {
+                laws.default = law_from(&d, JointLaw::default(), "joints")?;
+            }
+            for (k, v) in j.iter() {
+                let fam: String = k.extract()?;
+                let slot = match fam.as_str() {
+                    "default" => continue,
+                    "bed" => &mut laws.bed,
+                    "head" => &mut laws.head,
+                    "base" => &mut laws.base,
+                    "top" => &mut laws.top,
+                    o => {
+                        return Err(InputError::new_err(format!(
+                            "joints: unknown family {o:?} (expected default, bed, head, base or top)"
+                        )))
+                    }
+                };
+                *slot = Some(law_from(&v, laws.default, &format!("joints.{fam}"))?);
+            }
+        }
+        let spec = ModelSpec { blocks, thickness, density, base, top, joints: laws, gravity, live };
+        Ok(PyModel { inner: guarded(|| Model::new(spec))? })
+    }
+
+    /// Fix dof (0: u1 [m], 1: u2 [m], 2: phi [rad]) of a block at a prescribed value.
+    #[pyo3(signature = (block, dof, value=0.0))]
+    fn fix(&mut self, block: usize, dof: usize, value: f64) -> PyResult<()> {
+        self.inner.fix(block, dof, value).map_err(to_py)
+    }
+
+    #[getter]
+    fn n_blocks(&self) -> usize {
+        self.inner.n_wall()
+    }
+    #[getter]
+    fn n_interfaces(&self) -> usize {
+        self.inner.interfaces().len()
+    }
+    #[getter]
+    fn base_index(&self) -> Option<usize> {
+        self.inner.base()
+    }
+    #[getter]
+    fn top_index(&self) -> Option<usize> {
+        self.inner.top()
+    }
+    #[getter]
+    fn rects<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        rects_to_py(py, self.inner.rects())
+    }
+    #[getter]
+    fn weights<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.weight().to_vec().into_pyarray(py)
+    }
+    #[getter]
+    fn interface_blocks<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
+        let it = self.inner.interfaces();
+        let flat: Vec<i64> = it.iter().flat_map(|i| [i.a as i64, i.b as i64]).collect();
+        Array2::from_shape_vec((it.len(), 2), flat).unwrap().into_pyarray(py)
+    }
+    #[getter]
+    fn interface_geometry<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let it = self.inner.interfaces();
+        let flat: Vec<f64> = it.iter().flat_map(|i| [i.c[0], i.c[1], i.n[0], i.n[1], i.l]).collect();
+        Array2::from_shape_vec((it.len(), 5), flat).unwrap().into_pyarray(py)
+    }
+    #[getter]
+    fn interface_family(&self) -> Vec<&'static str> {
+        self.inner.interfaces().iter().map(|i| i.family.name()).collect()
+    }
+
+    /// Static incremental analysis (see _core.pyi). Releases the GIL; Ctrl-C stops it between
+    /// steps and returns what was computed (status "failed", error "interrupted by the user").
+    #[pyo3(signature = (control="load", steps=200, max_displacement=0.002, control_block=None, tolerance=1e-4, max_iterations=50))]
+    #[allow(clippy::too_many_arguments)]
+    fn solve_static(
+        &self,
+        py: Python<'_>,
+        control: &str,
+        steps: i64,
+        max_displacement: f64,
+        control_block: Option<usize>,
+        tolerance: f64,
+        max_iterations: i64,
+    ) -> PyResult<PyResults> {
+        let control = match control {
+            "load" => Control::Load,
+            "displacement" => Control::Displacement { max_displacement },
+            o => return Err(InputError::new_err(format!("analysis.control must be \"load\" or \"displacement\", got {o:?}"))),
+        };
+        if steps < 1 {
+            return Err(InputError::new_err(format!("analysis.steps must be at least 1, got {steps}")));
+        }
+        if max_iterations < 1 {
+            return Err(InputError::new_err(format!("max_iterations must be at least 1, got {max_iterations}")));
+        }
+        let opts = StaticOptions {
+            control,
+            steps: steps as usize,
+            tolerance,
+            max_iterations: max_iterations as usize,
+            control_block,
+            ..StaticOptions::default()
+        };
+        let model = &self.inner;
+        let res = py.detach(|| {
+            guarded(|| {
+                let mut monitor = |_: &static_solver::Progress| Python::attach(|py| py.check_signals().is_ok());
+                static_solver::solve_with(model, &opts, &mut monitor)
+            })
+        })?;
+        Ok(PyResults { inner: res })
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Model({} blocks, {} interfaces)", self.inner.n_wall(), self.inner.interfaces().len())
+    }
+}
+
+/// Results of an analysis (see _core.pyi).
+#[pyclass(name = "Results", module = "masonry_dem._core")]
+struct PyResults {
+    inner: Results,
+}
+
+#[pymethods]
+impl PyResults {
+    #[getter]
+    fn method(&self) -> &'static str {
+        self.inner.method
+    }
+    #[getter]
+    fn status(&self) -> &'static str {
+        self.inner.status.as_str()
+    }
+    #[getter]
+    fn error(&self) -> Option<String> {
+        self.inner.error.clone()
+    }
+    #[getter]
+    fn collapse_multiplier(&self) -> f64 {
+        self.inner.collapse_multiplier
+    }
+    #[getter]
+    fn curve_multiplier<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.curve_multiplier.clone().into_pyarray(py)
+    }
+    #[getter]
+    fn curve_displacement<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.curve_displacement.clone().into_pyarray(py)
+    }
+    #[getter]
+    fn control_block(&self) -> usize {
+        self.inner.control_block
+    }
+    #[getter]
+    fn displacements<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        rows3(py, &self.inner.displacements)
+    }
+    #[getter]
+    fn mechanism<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        rows3(py, &self.inner.mechanism)
+    }
+    #[getter]
+    fn interface_forces<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        rows3(py, &self.inner.interface_forces)
+    }
+    #[getter]
+    fn interface_states<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        self.inner.interface_states.iter().map(|&s| s as i64).collect::<Vec<_>>().into_pyarray(py)
+    }
+    #[getter]
+    fn broken<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<bool>> {
+        self.inner.broken.clone().into_pyarray(py)
+    }
+    #[getter]
+    fn joint_states<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let c = self.inner.joint_states();
+        let d = PyDict::new(py);
+        d.set_item("elastic", c.elastic)?;
+        d.set_item("sliding", c.sliding)?;
+        d.set_item("rocking", c.rocking)?;
+        d.set_item("open", c.open)?;
+        Ok(d)
+    }
+    #[getter]
+    fn iterations(&self) -> usize {
+        self.inner.iterations
+    }
+    #[getter]
+    fn steps(&self) -> usize {
+        self.inner.steps
+    }
+    #[getter]
+    fn elapsed_s(&self) -> f64 {
+        self.inner.elapsed_s
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "Results(method={:?}, status={:?}, collapse_multiplier={:.6}, steps={})",
+            self.inner.method,
+            self.inner.status.as_str(),
+            self.inner.collapse_multiplier,
+            self.inner.steps
+        )
+    }
+}
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("MasonryError", py.get_type::<MasonryError>())?;
+    m.add("InputError", py.get_type::<InputError>())?;
+    m.add("ConvergenceError", py.get_type::<ConvergenceError>())?;
+    m.add("MechanismError", py.get_type::<MechanismError>())?;
+    m.add_function(wrap_pyfunction!(running_bond, m)?)?;
+    m.add_function(wrap_pyfunction!(pattern, m)?)?;
+    m.add_class::<PyModel>()?;
+    m.add_class::<PyResults>()?;
+    Ok(())
+}
