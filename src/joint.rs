@@ -282,6 +282,48 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
     finish([n_apex, 0.0, 0.0], [[0.0; 3]; 3])
 }
 
+/// The tangent of a joint whose force `force` lies in the domain, taking as active every face
+/// within `margin` (relative) of its limit: the tangent the joint will have once the load has
+/// brought it to the limit. Used to find the collapse mechanism from the last equilibrium.
+pub fn tangent_near_limit(law: &JointLaw, sec: &Section, force: &[f64; 3], broken: bool, margin: f64) -> [[f64; 3]; 3] {
+    let d = [law.normal_stiffness * sec.area, law.shear_stiffness * sec.area, law.normal_stiffness * sec.inertia];
+    let strong = law.cohesion > 0.0 || law.tensile_strength > 0.0;
+    let faces = Faces::new(law, sec, broken || !strong);
+    let scale = force[0].abs() + force[1].abs() + (force[2] * 2.0 / sec.length).abs() + faces.b[0] + faces.b[2];
+    let near: Vec<usize> = (0..4).filter(|&j| faces.f(j, force) >= -margin * scale).collect();
+    let mut tangent = [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
+    if near.is_empty() {
+        return tangent;
+    }
+    if near.len() > 3 {
+        return [[0.0; 3]; 3]; // the apex: the joint carries nothing more
+    }
+    let dm: [[f64; 3]; 4] = std::array::from_fn(|j| [d[0] * faces.m[j][0], d[1] * faces.m[j][1], d[2] * faces.m[j][2]]);
+    let n = near.len();
+    let mut g = [[0.0; 3]; 3];
+    for (p, &i) in near.iter().enumerate() {
+        for (q, &j) in near.iter().enumerate() {
+            g[p][q] = dot(&faces.a[i], &dm[j]);
+        }
+    }
+    for col in 0..3 {
+        let mut g1 = g;
+        let mut rhs = [0.0; 3];
+        for (p, &i) in near.iter().enumerate() {
+            rhs[p] = faces.a[i][col] * d[col];
+        }
+        if !solve_small(&mut g1, &mut rhs, n) {
+            return [[0.0; 3]; 3];
+        }
+        for row in 0..3 {
+            for (p, &j) in near.iter().enumerate() {
+                tangent[row][col] -= dm[j][row] * rhs[p];
+            }
+        }
+    }
+    tangent
+}
+
 /// The state flags of a force that lies in the domain.
 fn flags(faces: &Faces, s: &[f64; 3], sec: &Section) -> u8 {
     let scale = s[0].abs() + s[1].abs() + (s[2] * 2.0 / sec.length).abs() + faces.b[0] + faces.b[2];

@@ -17,7 +17,7 @@
 //! Joint histories are committed only at converged steps, so a failed step leaves no trace.
 
 use crate::error::Error;
-use crate::joint::{return_map, JointState};
+use crate::joint::{return_map, tangent_near_limit, JointState};
 use crate::linalg::SparseLu;
 use crate::model::{LiveLoad, Model};
 use crate::results::{Results, Status};
@@ -121,6 +121,8 @@ struct Solver<'a> {
     curve_u: Vec<f64>,
     u_prev: Vec<f64>,
     mechanism: Option<Vec<f64>>,
+    /// how far the last failed load step had gone from the converged state
+    diverged: Option<Vec<f64>>,
     u_limit: f64,
 }
 
@@ -206,6 +208,7 @@ impl<'a> Solver<'a> {
             curve_u: vec![],
             u_prev: model.prescribed().to_vec(),
             mechanism: None,
+            diverged: None,
             u_limit,
         })
     }
@@ -515,6 +518,9 @@ impl<'a> Solver<'a> {
                 }
                 Err(Error::Interrupted) => return (Status::Failed, Some(Error::Interrupted)),
                 Err(_) => {
+                    if self.u.iter().all(|v| v.is_finite()) {
+                        self.diverged = Some(self.u.iter().zip(&u_conv).map(|(a, b)| a - b).collect());
+                    }
                     self.u.copy_from_slice(&u_conv);
                     self.lambda = lam_conv;
                     dl *= 0.5;
@@ -533,22 +539,69 @@ impl<'a> Solver<'a> {
         (Status::Failed, Some(Error::Convergence(format!("no collapse bracket after {max_attempts} attempts"))))
     }
 
-    /// The collapse mechanism: one displacement-controlled increment from the collapse state
-    /// (the increment of a formed mechanism), or else the last load increment.
+    /// The collapse mechanism at the last equilibrium (the collapse state): the increment of a
+    /// displacement-controlled step from it; where that step does not converge (a joint just
+    /// short of its limit opens wide in the first iterate), the null mode of the tangent in
+    /// which every joint face within 0.1% of its limit is active; then the direction in which
+    /// the last failed load step went.
     fn collapse_mechanism(&mut self) -> Option<Vec<f64>> {
         let cd = self.control_dof;
-        if self.model.fixed()[cd] {
-            return None;
+        if self.model.fixed()[cd] || self.ensure_disp_sys().is_err() {
+            return self.diverged.take();
         }
-        let u0 = self.u.clone();
-        let lam0 = self.lambda;
-        let h = self.u_limit * 1e-3;
-        self.u[cd] += h;
-        let res = self.newton_disp();
-        let out = res.ok().map(|_| self.u.iter().zip(&u0).map(|(a, b)| a - b).collect());
+        let (u0, lam0) = (self.u.clone(), self.lambda);
+        self.u[cd] += self.u_limit * 1e-3;
+        let step = self.newton_disp();
+        let out: Option<Vec<f64>> = step.ok().map(|_| self.u.iter().zip(&u0).map(|(a, b)| a - b).collect());
         self.u.copy_from_slice(&u0);
         self.lambda = lam0;
-        out
+        out.or_else(|| self.null_mode()).or_else(|| self.diverged.take())
+    }
+
+    /// The null mode of the tangent with every joint face within 0.1% of its limit active,
+    /// normalized by a unit horizontal velocity of the control block (a bordered system, in
+    /// which the live load may do work).
+    fn null_mode(&mut self) -> Option<Vec<f64>> {
+        let cd = self.control_dof;
+        let model = self.model;
+        self.evaluate();
+        for k in 0..model.interfaces().len() {
+            self.tangents[k] = tangent_near_limit(model.law(k), &model.sections()[k], &self.forces[k], self.trial[k].broken, 1e-3);
+        }
+        // rhs = -K e_c: the forces that a unit control displacement calls for
+        let mut kc = vec![0.0; self.u.len()];
+        for (it, dt) in model.interfaces().iter().zip(&self.tangents) {
+            let d = it.dofs();
+            if let Some(j) = d.iter().position(|&x| x == cd) {
+                let b = &it.b_mat;
+                let db = [0, 1, 2].map(|r| dt[r][0] * b[0][j] + dt[r][1] * b[1][j] + dt[r][2] * b[2][j]);
+                for i in 0..6 {
+                    kc[d[i]] += b[0][i] * db[0] + b[1][i] * db[1] + b[2][i] * db[2];
+                }
+            }
+        }
+        for (d, e) in self.eq.iter().enumerate() {
+            if let Some(k) = *e {
+                self.rhs[k] = -kc[d];
+            }
+        }
+        let (sys, slots, lam_slots) = self.disp_sys.as_mut().unwrap();
+        Self::assemble(model, &self.tangents, sys, slots);
+        let live = model.live_load();
+        let vals = sys.values_mut();
+        for &(d, s) in lam_slots.iter() {
+            vals[s as usize] -= live[d];
+        }
+        if sys.factorize().is_ok() && sys.solve_in_place(&mut self.rhs).is_ok() {
+            let mut v = vec![0.0; self.u.len()];
+            for (d, e) in self.eq.iter().enumerate() {
+                if let Some(k) = *e {
+                    v[d] = if d == cd { 1.0 } else { self.rhs[k] };
+                }
+            }
+            return Some(v);
+        }
+        None
     }
 
     fn displacement_control(&mut self, max_disp: f64, monitor: &mut dyn FnMut(&Progress) -> bool) -> Outcome {
@@ -618,7 +671,9 @@ impl<'a> Solver<'a> {
         // the converged state: committed histories with the last converged displacements
         let mech = self.mechanism.take().unwrap_or_else(|| self.u.iter().zip(&self.u_prev).map(|(a, b)| a - b).collect());
         let scale = (0..nb).map(|i| mech[3 * i].hypot(mech[3 * i + 1])).fold(0.0, f64::max);
-        let scale = if scale > 0.0 { 1.0 / scale } else { 0.0 };
+        // oriented so that the live load does positive work on it
+        let work: f64 = mech.iter().zip(model.live_load()).map(|(v, f)| v * f).sum();
+        let scale = if scale > 0.0 { work.signum() / scale } else { 0.0 };
         let collapse_multiplier = match self.opts.control {
             Control::Load => self.curve_l.last().copied().unwrap_or(f64::NAN),
             Control::Displacement { .. } => self.curve_l.iter().cloned().fold(f64::NAN, f64::max),

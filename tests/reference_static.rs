@@ -73,3 +73,33 @@ fn displacement_control_passes_the_peak() {
     let last_u = *r.curve_displacement.last().unwrap();
     assert!((last_u - 0.002).abs() < 1e-9, "the curve stops at {last_u} m, not at 2 mm");
 }
+
+/// The instantaneous centre of rotation of block `i` in the mechanism.
+fn centre(model: &masonry_dem::Model, mech: &[[f64; 3]], i: usize) -> [f64; 2] {
+    let g = model.rects()[i].centroid();
+    let [u1, u2, phi] = mech[i];
+    [g[0] - u2 / phi, g[1] + u1 / phi]
+}
+
+#[test]
+fn mechanisms_of_the_closed_form_cases() {
+    // rocking block: turns clockwise about its leeward toe (0.2, 0)
+    let m = blocks_model(vec![Rect::new(0.0, 0.0, 0.2, 0.6)], dry(0.65, 0.0, 1e10));
+    let r = solve(&m, &StaticOptions::default()).unwrap();
+    assert!(r.mechanism[0][2] < 0.0, "clockwise: phi < 0");
+    let c = centre(&m, &r.mechanism, 0);
+    assert!((c[0] - 0.2).abs() < 1e-3 && c[1].abs() < 1e-3, "centre {c:?} is not the toe (0.2, 0)");
+    // stack: the three blocks turn together about the base toe (0.3, 0)
+    let blocks = (0..3).map(|k| Rect::new(0.0, 0.5 * k as f64, 0.3, 0.5 * (k + 1) as f64)).collect();
+    let m = blocks_model(blocks, dry(0.65, 0.0, 1e10));
+    let r = solve(&m, &StaticOptions::default()).unwrap();
+    for i in 0..3 {
+        let c = centre(&m, &r.mechanism, i);
+        assert!((c[0] - 0.3).abs() < 1e-3 && c[1].abs() < 1e-3, "block {i} turns about {c:?}, not (0.3, 0)");
+    }
+    // sliding block: translates towards +x
+    let m = blocks_model(vec![Rect::new(0.0, 0.0, 0.4, 0.175)], dry(0.65, 0.0, 1e10));
+    let r = solve(&m, &StaticOptions::default()).unwrap();
+    let [u1, u2, phi] = r.mechanism[0];
+    assert!((u1 - 1.0).abs() < 1e-6 && u2.abs() < 1e-6 && phi.abs() < 1e-3, "{:?}", r.mechanism[0]);
+}

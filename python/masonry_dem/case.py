@@ -1,0 +1,533 @@
+"""Case files (TOML, format 1) and result files (JSON, format 1).
+
+The keys are a public contract, described in ``case-format.md``; this module follows it exactly:
+
+* :func:`load_case` reads a case file, :func:`parse_case` a TOML string, :func:`case_from_dict` an
+  already parsed table. Every key and type is checked by name before anything is computed; a bad
+  case raises :class:`masonry_dem.InputError` with a one-line message that starts with the file name
+  and names the key with its table path, e.g. ``wall.toml: unknown key 'frictoin' in [joints.bed]``.
+* :class:`Case` maps the case onto the core: ``build_model()`` gives a :class:`masonry_dem.Model`,
+  ``run()`` the :class:`masonry_dem.Results` of the analysis.
+* :func:`result_dict` / :func:`write_result_json` produce the result file.
+
+Units are SI throughout: m, N, Pa, kg, s.
+"""
+
+from __future__ import annotations
+
+import difflib
+import json
+import math
+import os
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _core
+from ._core import InputError, MasonryError
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - exercised on Python < 3.11 only
+    import tomli as tomllib
+
+__all__ = [
+    "FORMAT",
+    "Case",
+    "load_case",
+    "parse_case",
+    "case_from_dict",
+    "run_case",
+    "result_dict",
+    "write_result_json",
+]
+
+#: The version of the case-file and result-file format this module reads and writes.
+FORMAT = 1
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+# Keys of a joint law, in the order of case-format.md, and the interface families that may override them.
+LAW_KEYS = ("normal_stiffness", "shear_stiffness", "friction", "cohesion", "tensile_strength", "dilatancy")
+FAMILIES = ("bed", "head", "base", "top")
+GEOMETRY_KINDS = ("running_bond", "pattern", "blocks")
+
+
+# --------------------------------------------------------------------------------------------------
+# Validation helpers
+# --------------------------------------------------------------------------------------------------
+
+
+def _type_name(value: Any) -> str:
+    """The TOML name of the type of a parsed value (for error messages)."""
+    if isinstance(value, bool):
+        return "boolean"
+    if isinstance(value, int):
+        return "integer"
+    if isinstance(value, float):
+        return "float"
+    if isinstance(value, str):
+        return "string"
+    if isinstance(value, list):
+        return "array"
+    if isinstance(value, dict):
+        return "table"
+    return type(value).__name__  # datetime, date, time
+
+
+def _is_number(value: Any) -> bool:
+    """True for TOML integers and floats; booleans are not numbers."""
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _quote(value: Any) -> str:
+    return json.dumps(value) if isinstance(value, str) else repr(value)
+
+
+def _positive(x: float) -> Optional[str]:
+    return None if x > 0 else "must be > 0"
+
+
+def _non_negative(x: float) -> Optional[str]:
+    return None if x >= 0 else "must be >= 0"
+
+
+class _Table:
+    """A parsed TOML table with its path, for key-by-key validation with precise messages.
+
+    ``path`` is the dotted table path ("" for the top level, "joints.bed", ...). The constructor
+    refuses keys outside ``allowed`` at once, so that a typo is reported as an unknown key rather
+    than as a missing one.
+    """
+
+    def __init__(self, data: Mapping[str, Any], path: str, source: str, allowed: Sequence[str]) -> None:
+        self.data = data
+        self.path = path
+        self.source = source
+        for key in data:
+            if key not in allowed:
+                where = f"in [{path}]" if path else "at the top level"
+                close = difflib.get_close_matches(key, allowed, n=1)
+                hint = f" (did you mean '{close[0]}'?)" if close else f" (allowed: {', '.join(allowed)})"
+                raise self.error(f"unknown key '{key}' {where}{hint}")
+
+    # -- messages ----------------------------------------------------------------------------------
+
+    def error(self, message: str) -> InputError:
+        """An InputError whose message starts with the file name."""
+        return InputError(f"{self.source}: {message}")
+
+    def where(self, key: str) -> str:
+        """'[path] key' (or just 'key' at the top level), the prefix of a message about one value."""
+        return f"[{self.path}] {key}" if self.path else key
+
+    def key_error(self, key: str, message: str) -> InputError:
+        return self.error(f"{self.where(key)}: {message}")
+
+    def missing(self, key: str) -> InputError:
+        where = f"in [{self.path}]" if self.path else "at the top level"
+        return self.error(f"missing key '{key}' {where}")
+
+    # -- typed getters -----------------------------------------------------------------------------
+
+    def __contains__(self, key: str) -> bool:
+        return key in self.data
+
+    def _get(self, key: str, required: bool) -> Any:
+        if key not in self.data:
+            if required:
+                raise self.missing(key)
+            return None
+        return self.data[key]
+
+    def number(
+        self,
+        key: str,
+        default: Optional[float] = None,
+        check: Optional[Callable[[float], Optional[str]]] = None,
+    ) -> float:
+        """A finite float (TOML integer or float, not boolean); required when ``default`` is None."""
+        value = self._get(key, default is None)
+        if value is None:
+            return float(default)  # type: ignore[arg-type]
+        return self._number_value(self.where(key), value, check)
+
+    def _number_value(self, label: str, value: Any, check: Optional[Callable[[float], Optional[str]]] = None) -> float:
+        if not _is_number(value):
+            raise self.error(f"{label}: expected a number, got {_type_name(value)}")
+        x = float(value)
+        if not math.isfinite(x):
+            raise self.error(f"{label}: expected a finite number, got {value}")
+        if check is not None:
+            problem = check(x)
+            if problem:
+                raise self.error(f"{label}: {problem}, got {value}")
+        return x
+
+    def integer(
+        self, key: str, default: Optional[int] = None, minimum: Optional[int] = None, maximum: int = 2**31 - 1
+    ) -> int:
+        """An integer (not a float, not a boolean) in [minimum, maximum]; required when ``default`` is None."""
+        value = self._get(key, default is None)
+        if value is None:
+            return int(default)  # type: ignore[arg-type]
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise self.key_error(key, f"expected an integer, got {_type_name(value)}")
+        if minimum is not None and value < minimum:
+            raise self.key_error(key, f"must be >= {minimum}, got {value}")
+        if value > maximum:
+            raise self.key_error(key, f"must be <= {maximum}, got {value}")
+        return value
+
+    def string(self, key: str, default: Optional[str] = None, choices: Optional[Sequence[str]] = None) -> str:
+        """A string, one of ``choices`` if given; required when ``default`` is None."""
+        value = self._get(key, default is None)
+        if value is None:
+            return str(default)
+        if not isinstance(value, str):
+            raise self.key_error(key, f"expected a string, got {_type_name(value)}")
+        if choices is not None and value not in choices:
+            options = ", ".join(_quote(c) for c in choices)
+            raise self.key_error(key, f"expected one of {options}, got {_quote(value)}")
+        return value
+
+    def table(self, key: str, allowed: Sequence[str], required: bool = False) -> Optional["_Table"]:
+        """A sub-table (checked for unknown keys), or None when absent and not required."""
+        value = self._get(key, required)
+        if value is None:
+            return None
+        if not isinstance(value, dict):
+            raise self.key_error(key, f"expected a table, got {_type_name(value)}")
+        path = f"{self.path}.{key}" if self.path else key
+        return _Table(value, path, self.source, allowed)
+
+    def array(self, key: str, required: bool = True) -> Optional[List[Any]]:
+        value = self._get(key, required)
+        if value is None:
+            return None
+        if not isinstance(value, list):
+            raise self.key_error(key, f"expected an array, got {_type_name(value)}")
+        return value
+
+    def numbers(self, label: str, value: Any, length: Optional[int] = None, what: str = "") -> List[float]:
+        """An array of finite numbers (of ``length`` entries if given); ``label`` names it in messages."""
+        if not isinstance(value, list):
+            expected = f"an array of {length} numbers{what}" if length else "an array of numbers"
+            raise self.error(f"{label}: expected {expected}, got {_type_name(value)}")
+        if length is not None and len(value) != length:
+            raise self.error(f"{label}: expected {length} numbers{what}, got {len(value)}")
+        return [self._number_value(f"{label}[{i}]", v) for i, v in enumerate(value)]
+
+    def rectangles(self, key: str, required: bool = True) -> Optional[List[List[float]]]:
+        """An array of rectangles [x0, y0, x1, y1] [m] with x1 > x0 and y1 > y0."""
+        items = self.array(key, required)
+        if items is None:
+            return None
+        rects = []
+        for i, item in enumerate(items):
+            label = f"{self.where(key)}[{i}]"
+            x0, y0, x1, y1 = self.numbers(label, item, 4, " [x0, y0, x1, y1]")
+            if not (x1 > x0 and y1 > y0):
+                raise self.error(f"{label}: expected x1 > x0 and y1 > y0, got {item}")
+            rects.append([x0, y0, x1, y1])
+        return rects
+
+
+# --------------------------------------------------------------------------------------------------
+# The case
+# --------------------------------------------------------------------------------------------------
+
+
+@dataclass
+class Case:
+    """One wall and one analysis, as read from a case file.
+
+    Attributes:
+        title: the case title.
+        model_kwargs: keyword arguments of :class:`masonry_dem.Model` (``blocks`` as an (n, 4) array
+            of rectangles [x0, y0, x1, y1] in m, thickness [m], density [kg/m3], base, top_rotation,
+            top_force [N], joints, gravity [m/s2], live).
+        analysis_kwargs: keyword arguments of :meth:`masonry_dem.Model.solve_static` (control, steps,
+            max_displacement [m], control_block).
+        method: "static" or "dynamic".
+        source: where the case came from (file name), the first word of every error message.
+    """
+
+    title: str
+    model_kwargs: Dict[str, Any]
+    analysis_kwargs: Dict[str, Any] = field(default_factory=dict)
+    method: str = "static"
+    source: str = "<case>"
+
+    def build_model(self) -> "_core.Model":
+        """Build the model; errors of the core are re-raised with the file name in front."""
+        try:
+            return _core.Model(**self.model_kwargs)
+        except MasonryError as exc:
+            raise type(exc)(f"{self.source}: {exc}") from exc
+
+    def check_method(self, method: Optional[str] = None) -> str:
+        """The method to use ("static"), ``method`` overriding the case's; refuse what cannot run.
+
+        Raises:
+            masonry_dem.InputError: an unknown method.
+            masonry_dem.MasonryError: "dynamic": the explicit solver is not available yet.
+        """
+        method = self.method if method is None else method
+        if method not in ("static", "dynamic"):
+            raise InputError(f'{self.source}: method: expected one of "static", "dynamic", got {_quote(method)}')
+        if method == "dynamic":
+            raise MasonryError(
+                f'{self.source}: method "dynamic": the explicit (molecular dynamics) solver is not available '
+                'yet; use method = "static"'
+            )
+        return method
+
+    def solve(self, model: "_core.Model", method: Optional[str] = None) -> "_core.Results":
+        """Run the analysis of this case on ``model`` (built by :meth:`build_model`).
+
+        ``method`` overrides the case's [analysis] method. The static solver never raises for a
+        solver failure: check ``Results.status`` and ``Results.error``.
+        """
+        self.check_method(method)
+        return model.solve_static(**self.analysis_kwargs)
+
+    def run(self, method: Optional[str] = None) -> "_core.Results":
+        """Build the model and run the analysis; ``method`` overrides the case's method."""
+        self.check_method(method)
+        return self.solve(self.build_model(), method)
+
+
+def load_case(path: PathLike) -> Case:
+    """Read and check a case file (TOML, format 1).
+
+    Raises:
+        OSError: the file cannot be read.
+        masonry_dem.InputError: the file is not valid TOML or not a valid case; the message starts
+            with the file name (as given) and names the key.
+    """
+    source = os.fspath(path)
+    data = Path(path).read_bytes()
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{source}: not a UTF-8 text file ({exc.reason} at byte {exc.start})") from None
+    return parse_case(text, source=source, default_title=Path(path).stem)
+
+
+def parse_case(text: str, source: str = "<string>", default_title: str = "untitled") -> Case:
+    """Check a case given as TOML text; ``source`` names it in error messages."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{source}: invalid TOML: {exc}") from None
+    return case_from_dict(data, source=source, default_title=default_title)
+
+
+def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_title: str = "untitled") -> Case:
+    """Check a parsed case (nested dicts as from ``tomllib``) and map it onto the core's arguments.
+
+    Every key is checked before the core is called (the core then generates the geometry).
+    """
+    top = _Table(data, "", source, ("format", "title", "geometry", "base", "top", "joints", "loads", "analysis"))
+
+    if "format" not in top:
+        raise top.error("missing key 'format' at the top level (expected format = 1)")
+    fmt = top.integer("format")
+    if fmt != FORMAT:
+        raise top.key_error(
+            "format", f"expected {FORMAT}, got {fmt} (this version of masonry-dem reads format {FORMAT})"
+        )
+    title = top.string("title", default=default_title)
+
+    # [geometry]
+    geo = top.table("geometry", ("thickness", "density") + GEOMETRY_KINDS, required=True)
+    assert geo is not None
+    thickness = geo.number("thickness", 1.0, _positive)
+    density = geo.number("density", 1000.0, _positive)
+    given = [k for k in GEOMETRY_KINDS if k in geo]
+    if not given:
+        raise geo.error("[geometry] needs exactly one of running_bond, pattern, blocks; none is given")
+    if len(given) > 1:
+        raise geo.error(
+            f"[geometry] needs exactly one of running_bond, pattern, blocks; {' and '.join(given)} are both given"
+            if len(given) == 2
+            else "[geometry] needs exactly one of running_bond, pattern, blocks; all three are given"
+        )
+    kind = given[0]
+    geometry: Dict[str, Any]
+    if kind == "running_bond":
+        rb = geo.table(
+            "running_bond", ("block_length", "block_height", "courses", "length", "first_course", "openings")
+        )
+        assert rb is not None
+        geometry = dict(
+            block_length=rb.number("block_length", check=_positive),
+            block_height=rb.number("block_height", check=_positive),
+            courses=rb.integer("courses", minimum=1),
+            length=rb.number("length", check=_positive),
+            first_course=rb.string("first_course", "half", ("half", "full")),
+            openings=rb.rectangles("openings", required=False),
+        )
+    elif kind == "pattern":
+        pt = geo.table("pattern", ("block_length", "block_height", "rows"))
+        assert pt is not None
+        block_length = pt.number("block_length", check=_positive)
+        block_height = pt.number("block_height", check=_positive)
+        rows_in = pt.array("rows")
+        assert rows_in is not None
+        rows = []
+        for i, row in enumerate(rows_in):
+            label = f"{pt.where('rows')}[{i}]"
+            entries = pt.numbers(label, row)
+            for j, x in enumerate(entries):
+                if x == 0:
+                    raise pt.error(f"{label}[{j}]: must not be 0 (a block or a gap has a length)")
+            rows.append(entries)
+        geometry = dict(block_length=block_length, block_height=block_height, rows=rows)
+    else:
+        rects = geo.rectangles("blocks")
+        assert rects is not None
+        if not rects:
+            raise geo.key_error("blocks", "expected at least one block [x0, y0, x1, y1]")
+        geometry = dict(blocks=rects)
+
+    # [base]
+    base_t = top.table("base", ("kind",))
+    base = True if base_t is None else base_t.string("kind", "fixed", ("fixed", "none")) == "fixed"
+
+    # [top]
+    top_t = top.table("top", ("rotation", "force"))
+    top_rotation: Optional[str] = None
+    top_force = [0.0, 0.0]
+    if top_t is not None:
+        top_rotation = top_t.string("rotation", "fixed", ("fixed", "free"))
+        force = top_t.array("force", required=False)
+        if force is not None:
+            top_force = top_t.numbers(top_t.where("force"), force, 2, " [Fx, Fy]")
+
+    # [joints]
+    joints_t = top.table("joints", LAW_KEYS + FAMILIES)
+    joints: Dict[str, Dict[str, float]] = {}
+    if joints_t is not None:
+        default_law = _law(joints_t)
+        if default_law:
+            joints["default"] = default_law
+        for family in FAMILIES:
+            fam_t = joints_t.table(family, LAW_KEYS)
+            if fam_t is not None:
+                joints[family] = _law(fam_t)
+
+    # [loads]
+    loads_t = top.table("loads", ("gravity", "live"))
+    gravity, live = 9.81, "horizontal_weight"
+    if loads_t is not None:
+        gravity = loads_t.number("gravity", 9.81, _non_negative)
+        live = loads_t.string("live", "horizontal_weight", ("horizontal_weight", "top_horizontal"))
+        if live == "top_horizontal" and top_rotation is None:
+            raise loads_t.key_error("live", '"top_horizontal" pushes the top beam: add a [top] table')
+
+    # [analysis]
+    an_t = top.table("analysis", ("method", "control", "control_point", "max_displacement", "steps"))
+    method, control, max_disp, steps = "static", "load", 0.002, 200
+    if an_t is not None:
+        method = an_t.string("method", "static", ("static", "dynamic"))
+        control = an_t.string("control", "load", ("load", "displacement"))
+        an_t.string("control_point", "top", ("top",))
+        max_disp = an_t.number("max_displacement", 0.002, _positive)
+        steps = an_t.integer("steps", 200, minimum=1)
+
+    # All keys are valid: map them onto the core (the generators may still refuse a geometry).
+    try:
+        if kind == "running_bond":
+            blocks = _core.running_bond(**geometry)
+        elif kind == "pattern":
+            blocks = _core.pattern(**geometry)
+        else:
+            blocks = np.asarray(geometry["blocks"], dtype=np.float64)
+    except MasonryError as exc:
+        raise type(exc)(f"{source}: [geometry.{kind}] {exc}") from exc
+
+    model_kwargs: Dict[str, Any] = dict(
+        blocks=blocks,
+        thickness=thickness,
+        density=density,
+        base=base,
+        top_rotation=top_rotation,
+        top_force=top_force,
+        joints=joints or None,
+        gravity=gravity,
+        live=live,
+    )
+    analysis_kwargs: Dict[str, Any] = dict(control=control, steps=steps, max_displacement=max_disp, control_block=None)
+    return Case(title=title, model_kwargs=model_kwargs, analysis_kwargs=analysis_kwargs, method=method, source=source)
+
+
+def _law(table: _Table) -> Dict[str, float]:
+    """The joint-law keys present in a [joints] or [joints.<family>] table."""
+    checks: Dict[str, Callable[[float], Optional[str]]] = {
+        "normal_stiffness": _positive,
+        "shear_stiffness": _positive,
+        "friction": _non_negative,
+        "cohesion": _non_negative,
+        "tensile_strength": _non_negative,
+        "dilatancy": _non_negative,
+    }
+    return {key: table.number(key, check=checks[key]) for key in LAW_KEYS if key in table}
+
+
+def run_case(path: PathLike, method: Optional[str] = None) -> "_core.Results":
+    """Load a case file and run it; ``method`` ("static" | "dynamic") overrides the file's."""
+    return load_case(path).run(method)
+
+
+# --------------------------------------------------------------------------------------------------
+# Result file
+# --------------------------------------------------------------------------------------------------
+
+JOINT_STATE_KEYS = ("elastic", "sliding", "rocking", "open")
+
+
+def _json_float(x: Any) -> Optional[float]:
+    """A float for JSON, or None (null) when not finite: JSON has no NaN."""
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def result_dict(results: Any, model: Any, title: str) -> Dict[str, Any]:
+    """The result file of case-format.md as a dict, ready for ``json.dump``.
+
+    ``results`` is a :class:`masonry_dem.Results`, ``model`` the :class:`masonry_dem.Model` it came
+    from (for the numbers of blocks and interfaces). Non-finite numbers become None (JSON null).
+    ``curve.displacement`` and ``elapsed_s`` are in m and s.
+    """
+    states = getattr(results, "joint_states", None) or {}
+    out: Dict[str, Any] = {
+        "format": FORMAT,
+        "title": title,
+        "method": str(results.method),
+        "status": str(results.status),
+        "blocks": int(model.n_blocks),
+        "interfaces": int(model.n_interfaces),
+        "collapse_multiplier": _json_float(results.collapse_multiplier),
+        "curve": {
+            "multiplier": [_json_float(x) for x in np.asarray(results.curve_multiplier, dtype=float)],
+            "displacement": [_json_float(x) for x in np.asarray(results.curve_displacement, dtype=float)],
+        },
+        "joint_states": {key: int(states.get(key, 0)) for key in JOINT_STATE_KEYS},
+        "elapsed_s": _json_float(results.elapsed_s),
+    }
+    if out["status"] == "failed":
+        out["error"] = str(results.error) if results.error else "unknown error"
+    return out
+
+
+def write_result_json(path: PathLike, results: Any, model: Any, title: str) -> Dict[str, Any]:
+    """Write the result file (see :func:`result_dict`) to ``path``; return the dict written."""
+    data = result_dict(results, model, title)
+    text = json.dumps(data, indent=2, allow_nan=False)
+    Path(path).write_text(text + "\n", encoding="utf-8")
+    return data

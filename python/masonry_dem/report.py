@@ -1,0 +1,235 @@
+"""Plain-text reports of an analysis: the summary printed by the command line and a one-line
+description of the collapse mechanism, derived from ``Results.mechanism`` and the joint states.
+
+Also the kinematic helpers shared with :mod:`masonry_dem.plot` (no matplotlib here).
+Lengths in m, rotations in rad; a positive rotation is counterclockwise.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import Counter
+from typing import Any, Dict, List, Sequence
+
+import numpy as np
+
+__all__ = [
+    "OPEN",
+    "SLIDING",
+    "ROCKING",
+    "corner_motion",
+    "deformed_corners",
+    "describe_mechanism",
+    "interface_jumps",
+    "format_multiplier",
+    "summary",
+]
+
+#: Bit flags of Results.interface_states (0 is elastic).
+OPEN, SLIDING, ROCKING = 1, 2, 4
+
+#: A block moves in the mechanism when its largest corner motion exceeds this fraction of the largest of all.
+MOVING_FRACTION = 1e-2
+#: An interface is cracked in the mechanism when the jump across it (slip, or the gap at one end) exceeds this
+#: fraction of the largest corner motion of a block.
+CRACK_TOLERANCE = 5e-2
+
+
+def _corners(rect: Sequence[float]) -> np.ndarray:
+    x0, y0, x1, y1 = (float(v) for v in rect)
+    return np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]])
+
+
+def _centroid(rect: Sequence[float]) -> np.ndarray:
+    return np.array([(rect[0] + rect[2]) / 2.0, (rect[1] + rect[3]) / 2.0])
+
+
+def corner_motion(rects: np.ndarray, motion: np.ndarray) -> np.ndarray:
+    """(n,) largest corner displacement [m] of each block for the small motion (u1, u2, phi) at its centroid."""
+    out = np.zeros(len(rects))
+    for i, (rect, (u1, u2, phi)) in enumerate(zip(rects, motion)):
+        r = _corners(rect) - _centroid(rect)
+        out[i] = float(np.max(np.hypot(u1 - phi * r[:, 1], u2 + phi * r[:, 0])))
+    return out
+
+
+def deformed_corners(rect: Sequence[float], motion: Sequence[float], scale: float) -> np.ndarray:
+    """(4, 2) corners [m] of a block moved by ``scale`` * (u1, u2) [m] and turned by ``scale`` * phi [rad]
+    about its centroid. The rotation is applied exactly, so the drawn rectangle keeps its shape."""
+    p = _corners(rect)
+    c = _centroid(rect)
+    u1, u2, phi = (float(v) for v in motion)
+    a = scale * phi
+    rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+    moved: np.ndarray = c + scale * np.array([u1, u2]) + (p - c) @ rot.T
+    return moved
+
+
+def interface_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
+    """(m, 3) jumps of a motion (n_all, 3) of the blocks across each interface: slip [m] (along the
+    tangent), and the normal gaps [m] at the two ends of the interface, largest first (positive opens).
+
+    With the interface normal n from block a to block b and ``[u] = u_b(c) - u_a(c)`` at the interface
+    centroid c: slip = t.[u], gaps = n.[u] +/- (phi_b - phi_a) l / 2.
+    """
+    rects = np.asarray(model.rects, dtype=np.float64)
+    pairs = np.asarray(model.interface_blocks, dtype=np.int64).reshape(-1, 2)
+    geom = np.asarray(model.interface_geometry, dtype=np.float64).reshape(-1, 5)
+    out = np.zeros((len(pairs), 3))
+    for k, ((a, b), (cx, cy, nx, ny, length)) in enumerate(zip(pairs, geom)):
+        c = np.array([cx, cy])
+        ua = _transport(motion[a], _centroid(rects[a]), c)
+        ub = _transport(motion[b], _centroid(rects[b]), c)
+        du = ub[:2] - ua[:2]
+        dn, dt = nx * du[0] + ny * du[1], -ny * du[0] + nx * du[1]
+        half = abs(ub[2] - ua[2]) * length / 2
+        out[k] = (dt, dn + half, dn - half)
+    return out
+
+
+def _transport(motion: np.ndarray, src: np.ndarray, dst: np.ndarray) -> np.ndarray:
+    """The rigid motion (u1, u2, phi) given at point ``src`` expressed at point ``dst``."""
+    u1, u2, phi = motion
+    d = dst - src
+    return np.array([u1 - phi * d[1], u2 + phi * d[0], phi])
+
+
+def _connected_parts(moving: Sequence[int], pairs: np.ndarray, cracked: Sequence[bool]) -> List[List[int]]:
+    """Group the moving blocks into parts: blocks joined by an interface that the crack does not cross."""
+    parent = {i: i for i in moving}
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for (a, b), crack in zip(pairs, cracked):
+        if not crack and int(a) in parent and int(b) in parent:
+            parent[root(int(a))] = root(int(b))
+    groups: Dict[int, List[int]] = {}
+    for i in moving:
+        groups.setdefault(root(i), []).append(i)
+    return list(groups.values())
+
+
+def _describe_part(rects: np.ndarray, motion: np.ndarray, part: Sequence[int]) -> str:
+    """'turning clockwise about (x, y) m' or 'sliding at +43 deg from +x': the area-weighted mean rigid
+    motion of one part."""
+    areas = np.array([(rects[i][2] - rects[i][0]) * (rects[i][3] - rects[i][1]) for i in part])
+    cents = np.array([_centroid(rects[i]) for i in part])
+    r = (areas[:, None] * cents).sum(axis=0) / areas.sum()
+    at_r = np.array([_transport(motion[i], cents[k], r) for k, i in enumerate(part)])
+    u1, u2, phi = (areas[:, None] * at_r).sum(axis=0) / areas.sum()
+    lo = np.min([rects[i][:2] for i in part], axis=0)
+    hi = np.max([rects[i][2:] for i in part], axis=0)
+    size = float(np.hypot(*(hi - lo)))
+    speed = math.hypot(u1, u2)
+    if abs(phi) * 5.0 * size < speed:  # the centre of rotation is far away: a translation
+        angle = math.degrees(math.atan2(u2, u1))
+        return f"sliding at {angle:+.0f} deg from +x"
+    sense = "counterclockwise" if phi > 0 else "clockwise"
+    px, py = r[0] - u2 / phi, r[1] + u1 / phi
+    return f"turning {sense} about ({px:.2f}, {py:.2f}) m"
+
+
+def _plural(n: int, word: str) -> str:
+    return f"{n} {word}" if n == 1 else f"{n} {word}s"
+
+
+def _part_name(part: Sequence[int], n_wall: int) -> str:
+    """'3 blocks', '2 blocks and the top beam', 'the top beam' (indices >= n_wall are the top beam)."""
+    blocks = sum(1 for i in part if i < n_wall)
+    if blocks == len(part):
+        return _plural(blocks, "block")
+    return f"{_plural(blocks, 'block')} and the top beam" if blocks else "the top beam"
+
+
+def _family_counts(indices: Sequence[int], families: Sequence[str]) -> str:
+    counts = Counter(families[k] for k in indices)
+    return ", ".join(f"{n} {fam}" for fam, n in counts.most_common())
+
+
+def describe_mechanism(model: Any, results: Any) -> str:
+    """One line on the mechanism (``Results.mechanism``, the last displacement increment).
+
+    It says how many wall blocks move; the parts they form (blocks held together by interfaces
+    that the crack does not cross), each turning (clockwise or not, about its instantaneous centre
+    [m]) or sliding; and the crack: the interfaces across which the mechanism slips, opens, or
+    rocks (opens at one end only), counted by family. An interface may both slip and open."""
+    rects = np.asarray(model.rects, dtype=np.float64)
+    n = int(model.n_blocks)
+    mech = np.asarray(results.mechanism, dtype=np.float64)
+    if mech.shape != (len(rects), 3) or not np.all(np.isfinite(mech)):
+        return "none (no displacement increment)"
+    # The bodies that may move: the wall blocks and the top beam (not the base).
+    top = model.top_index
+    bodies = list(range(n)) + ([int(top)] if top is not None else [])
+    cm = corner_motion(rects, mech)
+    peak = float(max(cm[i] for i in bodies))
+    if not peak > 0:
+        return "none (no displacement increment)"
+    moving = [i for i in bodies if cm[i] > MOVING_FRACTION * peak]
+    n_moving = sum(1 for i in moving if i < n)
+    beam = " and the top beam" if top is not None and int(top) in moving else ""  # the beam is no wall block
+
+    # The crack: the interfaces across which the mechanism has a jump.
+    families = list(model.interface_family)
+    jumps = interface_jumps(model, mech)
+    tol = CRACK_TOLERANCE * peak
+    slips = [k for k, (slip, _, _) in enumerate(jumps) if abs(slip) > tol]
+    opens = [k for k, (_, _, g_min) in enumerate(jumps) if g_min > tol]
+    rocks = [k for k, (_, g_max, g_min) in enumerate(jumps) if g_max > tol >= g_min]
+    cracked = np.zeros(len(jumps), dtype=bool)
+    cracked[slips + opens + rocks] = True
+
+    # The parts: moving blocks held together by uncracked interfaces.
+    parts = _connected_parts(moving, np.asarray(model.interface_blocks), list(cracked))
+    parts.sort(key=len, reverse=True)
+    if n_moving == 0:
+        head = "only the top beam moves"
+    else:
+        plural = "s" if n_moving == 1 and not beam else ""
+        head = f"{n_moving} of {n} block{'s' if n > 1 else ''}{beam} move{plural}"
+    if len(parts) == 1:
+        text = f"{head} as one part, {_describe_part(rects, mech, parts[0])}"
+    else:
+        shown = "; ".join(f"{_part_name(p, n)} {_describe_part(rects, mech, p)}" for p in parts[:2])
+        more = f"; {len(parts) - 2} more" if len(parts) > 2 else ""
+        text = f"{head} in {len(parts)} parts: {shown}{more}"
+
+    if cracked.any():
+        pieces = [
+            f"{len(ks)} {what} ({_family_counts(ks, families)})"
+            for ks, what in ((slips, "slip"), (opens, "open"), (rocks, "rock"))
+            if ks
+        ]
+        text += f"; the crack runs through {_plural(int(cracked.sum()), 'interface')}: " + ", ".join(pieces)
+    return text
+
+
+def format_multiplier(value: float, live: str = "horizontal_weight") -> str:
+    """The collapse multiplier for people: 4 decimals, or a force in N with ``live = "top_horizontal"``."""
+    if not math.isfinite(value):
+        return "none"
+    if live == "top_horizontal":
+        return f"{value:.1f} N (peak horizontal force on the top beam)"
+    return f"{value:.4f}"
+
+
+def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight") -> str:
+    """The short human summary printed by ``masonry-dem run`` (several lines, no trailing newline)."""
+    states: Dict[str, int] = dict(results.joint_states)
+    joint_text = ", ".join(f"{int(states.get(k, 0))} {k}" for k in ("elastic", "sliding", "rocking", "open"))
+    lines = [
+        title,
+        f"  blocks:              {model.n_blocks}",
+        f"  interfaces:          {model.n_interfaces}",
+        f"  method:              {results.method}",
+        f"  status:              {results.status}" + (f" ({results.error})" if results.status == "failed" else ""),
+        f"  collapse multiplier: {format_multiplier(float(results.collapse_multiplier), live)}",
+        f"  joint states:        {joint_text}",
+        f"  mechanism:           {describe_mechanism(model, results)}",
+        f"  elapsed:             {results.elapsed_s:.3g} s ({results.steps} steps, {results.iterations} iterations)",
+    ]
+    return "\n".join(lines)

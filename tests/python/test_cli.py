@@ -1,0 +1,170 @@
+"""The ``masonry-dem`` command line, run as a subprocess (and in-process for the failed-solver path)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+from types import SimpleNamespace
+from typing import List
+
+import pytest
+
+import masonry_dem as md
+from masonry_dem import cli
+from masonry_dem.case import Case
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+PNG = b"\x89PNG\r\n\x1a\n"
+
+
+def masonry_dem(*args: str, cwd: Path, module: str = "masonry_dem") -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", module, *args], cwd=cwd, capture_output=True, text=True, timeout=600)
+
+
+def assert_one_line_error(proc: subprocess.CompletedProcess, status: int) -> str:
+    assert proc.returncode == status, (proc.stdout, proc.stderr)
+    assert "Traceback" not in proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1, proc.stderr
+    assert lines[0].startswith("masonry-dem: error: "), lines[0]
+    return lines[0]
+
+
+def test_help(tmp_path: Path) -> None:
+    proc = masonry_dem("--help", cwd=tmp_path)
+    assert proc.returncode == 0
+    assert "run" in proc.stdout and "demo" in proc.stdout and "examples:" in proc.stdout
+    proc = masonry_dem("run", "--help", cwd=tmp_path)
+    assert proc.returncode == 0
+    assert "--method" in proc.stdout and "--json" in proc.stdout and "--plot" in proc.stdout
+    assert "examples:" in proc.stdout
+    proc = masonry_dem("--version", cwd=tmp_path)
+    assert proc.returncode == 0 and md.__version__ in proc.stdout
+
+
+def test_run(tmp_path: Path) -> None:
+    out = tmp_path / "results" / "r.json"
+    png = tmp_path / "results" / "r.png"
+    proc = masonry_dem(
+        "run", str(EXAMPLES / "single-block-rocking.toml"), "--json", str(out), "--plot", str(png), cwd=tmp_path
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == ""
+    text = proc.stdout
+    assert text.startswith("Single block rocking (0.2 x 0.6 m)\n")
+    for label in (
+        "blocks:",
+        "interfaces:",
+        "status:",
+        "collapse multiplier:",
+        "joint states:",
+        "mechanism:",
+        "elapsed:",
+    ):
+        assert label in text
+    data = json.loads(out.read_text())
+    assert data["title"] == "Single block rocking (0.2 x 0.6 m)"
+    # the multiplier is printed with 4 decimals
+    assert f"collapse multiplier: {data['collapse_multiplier']:.4f}" in text
+    assert png.read_bytes().startswith(PNG)
+
+
+def test_run_through_cli_module(tmp_path: Path) -> None:
+    proc = masonry_dem("run", str(EXAMPLES / "single-block-sliding.toml"), cwd=tmp_path, module="masonry_dem.cli")
+    assert proc.returncode == 0, proc.stderr
+    assert "collapse multiplier:" in proc.stdout
+
+
+def test_demo_default_plot(tmp_path: Path) -> None:
+    proc = masonry_dem("demo", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.startswith("Ferris & Tin-Loi wall 1\n")
+    assert "blocks:              33" in proc.stdout
+    assert (tmp_path / "out" / "demo.png").read_bytes().startswith(PNG)
+
+
+def test_demo_outputs(tmp_path: Path) -> None:
+    proc = masonry_dem("demo", "--plot", "a/b/w.png", "--json", "a/w.json", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "a" / "b" / "w.png").read_bytes().startswith(PNG)
+    data = json.loads((tmp_path / "a" / "w.json").read_text())
+    assert data["blocks"] == 33 and data["title"] == "Ferris & Tin-Loi wall 1"
+    assert not (tmp_path / "out").exists()
+
+
+def test_missing_file(tmp_path: Path) -> None:
+    proc = masonry_dem("run", "no-such-case.toml", cwd=tmp_path)
+    line = assert_one_line_error(proc, 2)
+    assert "no-such-case.toml" in line and "No such file" in line
+
+
+def test_directory_as_case(tmp_path: Path) -> None:
+    (tmp_path / "d.toml").mkdir()
+    assert_one_line_error(masonry_dem("run", "d.toml", cwd=tmp_path), 2)
+
+
+def test_bad_case_is_one_line(tmp_path: Path) -> None:
+    text = (EXAMPLES / "single-block-sliding.toml").read_text().replace("friction = 0.65", "frictoin = 0.65")
+    (tmp_path / "bad.toml").write_text(text)
+    line = assert_one_line_error(masonry_dem("run", "bad.toml", cwd=tmp_path), 2)
+    assert line.startswith("masonry-dem: error: bad.toml: unknown key 'frictoin' in [joints]")
+
+
+def test_invalid_toml_is_one_line(tmp_path: Path) -> None:
+    (tmp_path / "bad.toml").write_text("format = 1\n[geometry\n")
+    line = assert_one_line_error(masonry_dem("run", "bad.toml", cwd=tmp_path), 2)
+    assert "bad.toml: invalid TOML" in line
+
+
+def test_core_input_error_is_exit_2(tmp_path: Path) -> None:
+    # valid keys, but two overlapping blocks: the core refuses the model
+    text = "format = 1\n[geometry]\nblocks = [[0, 0, 1, 1], [0.5, 0, 1.5, 1]]\n"
+    (tmp_path / "overlap.toml").write_text(text)
+    proc = masonry_dem("run", "overlap.toml", cwd=tmp_path)
+    line = assert_one_line_error(proc, 2)
+    assert line.startswith("masonry-dem: error: overlap.toml: ")
+
+
+def test_dynamic_not_available(tmp_path: Path) -> None:
+    proc = masonry_dem("run", str(EXAMPLES / "single-block-sliding.toml"), "--method", "dynamic", cwd=tmp_path)
+    line = assert_one_line_error(proc, 1)
+    assert "not available yet" in line
+
+
+def test_bad_arguments(tmp_path: Path) -> None:
+    proc = masonry_dem("run", "x.toml", "--method", "fem", cwd=tmp_path)
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    proc = masonry_dem(cwd=tmp_path)
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+
+
+def test_unwritable_output(tmp_path: Path) -> None:
+    (tmp_path / "file").write_text("")
+    proc = masonry_dem("run", str(EXAMPLES / "single-block-sliding.toml"), "--json", "file/r.json", cwd=tmp_path)
+    line = assert_one_line_error(proc, 1)
+    assert "cannot write" in line
+
+
+def test_failed_status(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    """A solver failure prints the reason, writes the JSON and the plot, and exits with 1."""
+    real_solve = Case.solve
+
+    def failing_solve(self: Case, model: md.Model, method: object = None) -> SimpleNamespace:
+        r = real_solve(self, model, method)
+        names: List[str] = [n for n in dir(r) if not n.startswith("_") and not callable(getattr(r, n))]
+        fake = SimpleNamespace(**{n: getattr(r, n) for n in names})
+        fake.status, fake.error = "failed", "no convergence at step 3"
+        return fake
+
+    monkeypatch.setattr(Case, "solve", failing_solve)
+    out, png = tmp_path / "f.json", tmp_path / "f.png"
+    status = cli.main(["run", str(EXAMPLES / "single-block-sliding.toml"), "--json", str(out), "--plot", str(png)])
+    captured = capsys.readouterr()
+    assert status == 1
+    assert captured.err.strip() == "masonry-dem: error: the analysis failed: no convergence at step 3"
+    assert "status:              failed (no convergence at step 3)" in captured.out
+    data = json.loads(out.read_text())
+    assert data["status"] == "failed" and data["error"] == "no convergence at step 3"
+    assert png.read_bytes().startswith(PNG)
