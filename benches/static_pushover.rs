@@ -18,8 +18,18 @@ fn wall2(dilatancy: f64) -> Model {
         openings: vec![],
     })
     .unwrap();
-    let law = JointLaw { friction: 0.65, dilatancy, ..JointLaw::default() };
-    Model::new(ModelSpec { blocks, gravity: 10.0, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap()
+    let law = JointLaw {
+        friction: 0.65,
+        dilatancy,
+        ..JointLaw::default()
+    };
+    Model::new(ModelSpec {
+        blocks,
+        gravity: 10.0,
+        joints: JointLaws::uniform(law),
+        ..ModelSpec::default()
+    })
+    .unwrap()
 }
 
 fn bench(c: &mut Criterion) {
@@ -27,7 +37,9 @@ fn bench(c: &mut Criterion) {
     g.sample_size(10);
     for (name, psi) in [("wall2_associative", 0.65), ("wall2_non_associative", 0.0)] {
         let model = wall2(psi);
-        g.bench_function(name, |b| b.iter(|| solve(black_box(&model), &StaticOptions::default()).unwrap()));
+        g.bench_function(name, |b| {
+            b.iter(|| solve(black_box(&model), &StaticOptions::default()).unwrap())
+        });
     }
     g.finish();
 }

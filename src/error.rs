@@ -32,7 +32,9 @@ pub(crate) fn positive(what: &str, value: f64) -> Result<f64> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(Error::input(format!("{what} must be a finite number > 0, got {value}")))
+        Err(Error::input(format!(
+            "{what} must be a finite number > 0, got {value}"
+        )))
     }
 }
 
@@ -41,6 +43,8 @@ pub(crate) fn non_negative(what: &str, value: f64) -> Result<f64> {
     if value.is_finite() && value >= 0.0 {
         Ok(value)
     } else {
-        Err(Error::input(format!("{what} must be a finite number >= 0, got {value}")))
+        Err(Error::input(format!(
+            "{what} must be a finite number >= 0, got {value}"
+        )))
     }
 }

@@ -46,7 +46,9 @@ impl Rect {
     pub fn validate(&self, what: &str) -> Result<()> {
         for v in [self.x0, self.y0, self.x1, self.y1] {
             if !v.is_finite() {
-                return Err(Error::input(format!("{what}: coordinate {v} is not finite")));
+                return Err(Error::input(format!(
+                    "{what}: coordinate {v} is not finite"
+                )));
             }
         }
         if self.x1 <= self.x0 || self.y1 <= self.y0 {
@@ -104,9 +106,17 @@ pub fn running_bond(p: &RunningBond) -> Result<Vec<Rect>> {
         let mut x = 0.0;
         let mut first = true;
         while x < p.length - tol {
-            let w = if first && half_start { 0.5 * p.block_length } else { p.block_length };
+            let w = if first && half_start {
+                0.5 * p.block_length
+            } else {
+                p.block_length
+            };
             first = false;
-            let x1 = if x + w > p.length - tol { p.length } else { x + w };
+            let x1 = if x + w > p.length - tol {
+                p.length
+            } else {
+                x + w
+            };
             out.push(Rect::new(x, y0, x1, y1));
             x = x1;
         }
@@ -120,7 +130,9 @@ pub fn pattern(block_length: f64, block_height: f64, rows: &[Vec<f64>]) -> Resul
     positive("pattern.block_length", block_length)?;
     positive("pattern.block_height", block_height)?;
     if rows.is_empty() {
-        return Err(Error::input("pattern.rows is empty: give at least one course"));
+        return Err(Error::input(
+            "pattern.rows is empty: give at least one course",
+        ));
     }
     check_count("pattern", rows.iter().map(|r| r.len() as f64).sum())?;
     let mut out = Vec::new();

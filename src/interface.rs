@@ -55,16 +55,40 @@ impl Interface {
     }
 
     /// Builds the interface and its `B` matrix from the two blocks' centroids.
-    pub fn new(a: usize, b: usize, ga: [f64; 2], gb: [f64; 2], c: [f64; 2], n: [f64; 2], l: f64, family: Family) -> Self {
+    pub fn new(
+        a: usize,
+        b: usize,
+        ga: [f64; 2],
+        gb: [f64; 2],
+        c: [f64; 2],
+        n: [f64; 2],
+        l: f64,
+        family: Family,
+    ) -> Self {
         let t = [n[1], -n[0]];
         // point velocity of block B at c: u + phi * k x (c - g) = (u1 - phi (cy - gy), u2 + phi (cx - gx))
         let ra = [-(c[1] - ga[1]), c[0] - ga[0]];
         let rb = [-(c[1] - gb[1]), c[0] - gb[0]];
         let row = |v: [f64; 2]| -> [f64; 6] {
-            [-v[0], -v[1], -(v[0] * ra[0] + v[1] * ra[1]), v[0], v[1], v[0] * rb[0] + v[1] * rb[1]]
+            [
+                -v[0],
+                -v[1],
+                -(v[0] * ra[0] + v[1] * ra[1]),
+                v[0],
+                v[1],
+                v[0] * rb[0] + v[1] * rb[1],
+            ]
         };
         let b_mat = [row(n), row(t), [0.0, 0.0, -1.0, 0.0, 0.0, 1.0]];
-        Interface { a, b, c, n, l, family, b_mat }
+        Interface {
+            a,
+            b,
+            c,
+            n,
+            l,
+            family,
+            b_mat,
+        }
     }
 
     /// The six global dof indices (a's u1, u2, phi then b's).
@@ -95,7 +119,11 @@ pub enum BlockKind {
 
 /// Finds every pair of blocks that share a stretch of boundary of positive length, and refuses
 /// overlapping blocks (naming both). `names` gives the label of a block for messages.
-pub fn detect(rects: &[Rect], kinds: &[BlockKind], name: impl Fn(usize) -> String) -> Result<Vec<Interface>> {
+pub fn detect(
+    rects: &[Rect],
+    kinds: &[BlockKind],
+    name: impl Fn(usize) -> String,
+) -> Result<Vec<Interface>> {
     if rects.is_empty() {
         return Ok(vec![]);
     }
@@ -155,10 +183,22 @@ pub fn detect(rects: &[Rect], kinds: &[BlockKind], name: impl Fn(usize) -> Strin
                 let (lo, hi, c, n, l) = if w > tol {
                     // horizontal contact: the lower block is a
                     let (lo, hi) = if ri.y0 < rj.y0 { (i, j) } else { (j, i) };
-                    (lo, hi, [0.5 * (ix0 + ix1), 0.5 * (rects[lo].y1 + rects[hi].y0)], [0.0, 1.0], w)
+                    (
+                        lo,
+                        hi,
+                        [0.5 * (ix0 + ix1), 0.5 * (rects[lo].y1 + rects[hi].y0)],
+                        [0.0, 1.0],
+                        w,
+                    )
                 } else if h > tol {
                     let (lo, hi) = if ri.x0 < rj.x0 { (i, j) } else { (j, i) };
-                    (lo, hi, [0.5 * (rects[lo].x1 + rects[hi].x0), 0.5 * (iy0 + iy1)], [1.0, 0.0], h)
+                    (
+                        lo,
+                        hi,
+                        [0.5 * (rects[lo].x1 + rects[hi].x0), 0.5 * (iy0 + iy1)],
+                        [1.0, 0.0],
+                        h,
+                    )
                 } else {
                     continue; // corner touch only
                 };
@@ -171,7 +211,16 @@ pub fn detect(rects: &[Rect], kinds: &[BlockKind], name: impl Fn(usize) -> Strin
                 if kinds[lo] != BlockKind::Wall && kinds[hi] != BlockKind::Wall {
                     continue; // base against top beam: not a joint of the wall
                 }
-                out.push(Interface::new(lo, hi, rects[lo].centroid(), rects[hi].centroid(), c, n, l, family));
+                out.push(Interface::new(
+                    lo,
+                    hi,
+                    rects[lo].centroid(),
+                    rects[hi].centroid(),
+                    c,
+                    n,
+                    l,
+                    family,
+                ));
             }
         }
     }

@@ -69,7 +69,11 @@ impl Default for JointLaw {
 impl JointLaw {
     /// Mortar-joint stiffnesses from the mortar's moduli and the joint thickness: kN = E/e, kT = G/e.
     pub fn mortar_stiffness(self, young: f64, shear: f64, joint_thickness: f64) -> Self {
-        JointLaw { normal_stiffness: young / joint_thickness, shear_stiffness: shear / joint_thickness, ..self }
+        JointLaw {
+            normal_stiffness: young / joint_thickness,
+            shear_stiffness: shear / joint_thickness,
+            ..self
+        }
     }
 
     /// Checks every parameter; `what` prefixes the key names (e.g. "joints.bed").
@@ -104,7 +108,11 @@ pub struct Section {
 impl Section {
     /// The section of an interface of length `l` in a wall of thickness `s`.
     pub fn new(length: f64, thickness: f64) -> Self {
-        Section { area: length * thickness, inertia: thickness * length.powi(3) / 12.0, length }
+        Section {
+            area: length * thickness,
+            inertia: thickness * length.powi(3) / 12.0,
+            length,
+        }
     }
 }
 
@@ -140,10 +148,19 @@ struct Faces {
 
 impl Faces {
     fn new(law: &JointLaw, sec: &Section, dry: bool) -> Self {
-        let (c, ft) = if dry { (0.0, 0.0) } else { (law.cohesion, law.tensile_strength) };
+        let (c, ft) = if dry {
+            (0.0, 0.0)
+        } else {
+            (law.cohesion, law.tensile_strength)
+        };
         let (mu, tp) = (law.friction, law.dilatancy);
         let k = 2.0 / sec.length;
-        let a = [[mu, 1.0, 0.0], [mu, -1.0, 0.0], [1.0, 0.0, k], [1.0, 0.0, -k]];
+        let a = [
+            [mu, 1.0, 0.0],
+            [mu, -1.0, 0.0],
+            [1.0, 0.0, k],
+            [1.0, 0.0, -k],
+        ];
         let m = [[tp, 1.0, 0.0], [tp, -1.0, 0.0], a[2], a[3]];
         let b = [c * sec.area, c * sec.area, ft * sec.area, ft * sec.area];
         Faces { a, m, b }
@@ -165,12 +182,17 @@ const SUBSETS: [u8; 14] = [1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14];
 /// Solves the k x k system (k <= 3) in place by Gaussian elimination with partial pivoting;
 /// returns false if it is singular relative to its scale.
 fn solve_small(g: &mut [[f64; 3]; 3], r: &mut [f64; 3], k: usize) -> bool {
-    let scale = (0..k).flat_map(|i| (0..k).map(move |j| (i, j))).map(|(i, j)| g[i][j].abs()).fold(0.0, f64::max);
+    let scale = (0..k)
+        .flat_map(|i| (0..k).map(move |j| (i, j)))
+        .map(|(i, j)| g[i][j].abs())
+        .fold(0.0, f64::max);
     if scale == 0.0 {
         return false;
     }
     for col in 0..k {
-        let p = (col..k).max_by(|&x, &y| g[x][col].abs().total_cmp(&g[y][col].abs())).unwrap();
+        let p = (col..k)
+            .max_by(|&x, &y| g[x][col].abs().total_cmp(&g[y][col].abs()))
+            .unwrap();
         if g[p][col].abs() <= 1e-12 * scale {
             return false;
         }
@@ -197,9 +219,17 @@ fn solve_small(g: &mut [[f64; 3]; 3], r: &mut [f64; 3], k: usize) -> bool {
 /// The return mapping: forces, updated history, state flags and consistent tangent for the total
 /// jumps `e`, starting from the committed history `committed`.
 pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState) -> Response {
-    let d = [law.normal_stiffness * sec.area, law.shear_stiffness * sec.area, law.normal_stiffness * sec.inertia];
+    let d = [
+        law.normal_stiffness * sec.area,
+        law.shear_stiffness * sec.area,
+        law.normal_stiffness * sec.inertia,
+    ];
     let ep = committed.plastic;
-    let trial = [d[0] * (e[0] - ep[0]), d[1] * (e[1] - ep[1]), d[2] * (e[2] - ep[2])];
+    let trial = [
+        d[0] * (e[0] - ep[0]),
+        d[1] * (e[1] - ep[1]),
+        d[2] * (e[2] - ep[2]),
+    ];
     let k = 2.0 / sec.length;
     let scale = trial[0].abs() + trial[1].abs() + (trial[2] * k).abs();
     let mut broken = committed.broken;
@@ -213,14 +243,29 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
     let tol = 1e-12 * (scale + faces.b[0] + faces.b[2]) + f64::MIN_POSITIVE;
     let elastic_tangent = [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
     let finish = |force: [f64; 3], tangent: [[f64; 3]; 3]| -> Response {
-        let plastic = [e[0] - force[0] / d[0], e[1] - force[1] / d[1], e[2] - force[2] / d[2]];
-        Response { force, state: JointState { plastic, broken }, flags: flags(&faces, &force, sec), tangent }
+        let plastic = [
+            e[0] - force[0] / d[0],
+            e[1] - force[1] / d[1],
+            e[2] - force[2] / d[2],
+        ];
+        Response {
+            force,
+            state: JointState { plastic, broken },
+            flags: flags(&faces, &force, sec),
+            tangent,
+        }
     };
     if (0..4).all(|j| faces.f(j, &trial) <= tol) {
         return finish(trial, elastic_tangent);
     }
     // D m_j for every face
-    let dm: [[f64; 3]; 4] = std::array::from_fn(|j| [d[0] * faces.m[j][0], d[1] * faces.m[j][1], d[2] * faces.m[j][2]]);
+    let dm: [[f64; 3]; 4] = std::array::from_fn(|j| {
+        [
+            d[0] * faces.m[j][0],
+            d[1] * faces.m[j][1],
+            d[2] * faces.m[j][2],
+        ]
+    });
     for &mask in SUBSETS.iter() {
         let mut act_buf = [0usize; 3];
         let mut n = 0;
@@ -253,7 +298,10 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
                 s[c] -= r[p] * dm[j][c];
             }
         }
-        if (0..4).filter(|j| mask & (1 << j) == 0).any(|j| faces.f(j, &s) > tol) {
+        if (0..4)
+            .filter(|j| mask & (1 << j) == 0)
+            .any(|j| faces.f(j, &s) > tol)
+        {
             continue;
         }
         // consistent tangent D - (D M) G^-1 (A D)
@@ -278,19 +326,39 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
     }
     // No active set satisfied the conditions (degenerate data): fall back on the apex, the one
     // point of the domain that every face reaches, carrying nothing beyond the cut-off.
-    let n_apex = if faces.a[0][0] > 0.0 { faces.b[2].min(faces.b[0] / faces.a[0][0]) } else { faces.b[2] };
+    let n_apex = if faces.a[0][0] > 0.0 {
+        faces.b[2].min(faces.b[0] / faces.a[0][0])
+    } else {
+        faces.b[2]
+    };
     finish([n_apex, 0.0, 0.0], [[0.0; 3]; 3])
 }
 
 /// The tangent of a joint whose force `force` lies in the domain, taking as active every face
 /// within `margin` (relative) of its limit: the tangent the joint will have once the load has
 /// brought it to the limit. Used to find the collapse mechanism from the last equilibrium.
-pub fn tangent_near_limit(law: &JointLaw, sec: &Section, force: &[f64; 3], broken: bool, margin: f64) -> [[f64; 3]; 3] {
-    let d = [law.normal_stiffness * sec.area, law.shear_stiffness * sec.area, law.normal_stiffness * sec.inertia];
+pub fn tangent_near_limit(
+    law: &JointLaw,
+    sec: &Section,
+    force: &[f64; 3],
+    broken: bool,
+    margin: f64,
+) -> [[f64; 3]; 3] {
+    let d = [
+        law.normal_stiffness * sec.area,
+        law.shear_stiffness * sec.area,
+        law.normal_stiffness * sec.inertia,
+    ];
     let strong = law.cohesion > 0.0 || law.tensile_strength > 0.0;
     let faces = Faces::new(law, sec, broken || !strong);
-    let scale = force[0].abs() + force[1].abs() + (force[2] * 2.0 / sec.length).abs() + faces.b[0] + faces.b[2];
-    let near: Vec<usize> = (0..4).filter(|&j| faces.f(j, force) >= -margin * scale).collect();
+    let scale = force[0].abs()
+        + force[1].abs()
+        + (force[2] * 2.0 / sec.length).abs()
+        + faces.b[0]
+        + faces.b[2];
+    let near: Vec<usize> = (0..4)
+        .filter(|&j| faces.f(j, force) >= -margin * scale)
+        .collect();
     let mut tangent = [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
     if near.is_empty() {
         return tangent;
@@ -298,7 +366,13 @@ pub fn tangent_near_limit(law: &JointLaw, sec: &Section, force: &[f64; 3], broke
     if near.len() > 3 {
         return [[0.0; 3]; 3]; // the apex: the joint carries nothing more
     }
-    let dm: [[f64; 3]; 4] = std::array::from_fn(|j| [d[0] * faces.m[j][0], d[1] * faces.m[j][1], d[2] * faces.m[j][2]]);
+    let dm: [[f64; 3]; 4] = std::array::from_fn(|j| {
+        [
+            d[0] * faces.m[j][0],
+            d[1] * faces.m[j][1],
+            d[2] * faces.m[j][2],
+        ]
+    });
     let n = near.len();
     let mut g = [[0.0; 3]; 3];
     for (p, &i) in near.iter().enumerate() {

@@ -45,13 +45,23 @@ impl SparseLu {
         }
         let nnz = row_idx.len();
         let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        let symbolic = factorize_symbolic_lu(pattern.as_ref(), Default::default())
-            .map_err(|e| Error::Convergence(format!("sparse LU symbolic analysis failed: {e:?}")))?;
+        let symbolic =
+            factorize_symbolic_lu(pattern.as_ref(), Default::default()).map_err(|e| {
+                Error::Convergence(format!("sparse LU symbolic analysis failed: {e:?}"))
+            })?;
         let par = Par::Seq;
-        let factor_buf = MemBuffer::try_new(symbolic.factorize_numeric_lu_scratch::<f64>(par, Default::default()))
-            .map_err(|_| Error::input(format!("out of memory for the factorization of a {n} x {n} matrix")))?;
+        let factor_buf = MemBuffer::try_new(
+            symbolic.factorize_numeric_lu_scratch::<f64>(par, Default::default()),
+        )
+        .map_err(|_| {
+            Error::input(format!(
+                "out of memory for the factorization of a {n} x {n} matrix"
+            ))
+        })?;
         let solve_buf = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, par))
-            .map_err(|_| Error::input(format!("out of memory for the solve of a {n} x {n} matrix")))?;
+            .map_err(|_| {
+                Error::input(format!("out of memory for the solve of a {n} x {n} matrix"))
+            })?;
         Ok(SparseLu {
             n,
             pattern,
@@ -81,11 +91,19 @@ impl SparseLu {
     /// Numeric LU of the current values (partial pivoting), reusing the symbolic analysis.
     pub fn factorize(&mut self) -> Result<()> {
         if self.values.iter().any(|v| !v.is_finite()) {
-            return Err(Error::Convergence("the tangent matrix has a non-finite entry".into()));
+            return Err(Error::Convergence(
+                "the tangent matrix has a non-finite entry".into(),
+            ));
         }
         let mat = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
         self.symbolic
-            .factorize_numeric_lu(&mut self.numeric, mat, Par::Seq, MemStack::new(&mut self.factor_buf), Default::default())
+            .factorize_numeric_lu(
+                &mut self.numeric,
+                mat,
+                Par::Seq,
+                MemStack::new(&mut self.factor_buf),
+                Default::default(),
+            )
             .map_err(|e| Error::Convergence(format!("the tangent matrix is singular ({e:?})")))?;
         self.factorized = true;
         Ok(())

@@ -31,7 +31,10 @@ pub struct JointLaws {
 impl JointLaws {
     /// One law for every interface.
     pub fn uniform(law: JointLaw) -> Self {
-        JointLaws { default: law, ..Default::default() }
+        JointLaws {
+            default: law,
+            ..Default::default()
+        }
     }
     /// The law of a family.
     pub fn of(&self, f: Family) -> &JointLaw {
@@ -138,13 +141,19 @@ impl Model {
             r.validate(&format!("block {i}"))?;
         }
         spec.joints.default.validate("joints")?;
-        for (name, law) in [("bed", spec.joints.bed), ("head", spec.joints.head), ("base", spec.joints.base), ("top", spec.joints.top)] {
+        for (name, law) in [
+            ("bed", spec.joints.bed),
+            ("head", spec.joints.head),
+            ("base", spec.joints.base),
+            ("top", spec.joints.top),
+        ] {
             if let Some(l) = law {
                 l.validate(&format!("joints.{name}"))?;
             }
         }
         let n_wall = spec.blocks.len();
-        let (mut xmin, mut ymin, mut xmax, mut ymax, mut hmax) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN, 0.0f64);
+        let (mut xmin, mut ymin, mut xmax, mut ymax, mut hmax) =
+            (f64::MAX, f64::MAX, f64::MIN, f64::MIN, 0.0f64);
         for r in &spec.blocks {
             xmin = xmin.min(r.x0);
             ymin = ymin.min(r.y0);
@@ -162,7 +171,9 @@ impl Model {
         if let Some(t) = &spec.top {
             for (k, v) in t.force.iter().enumerate() {
                 if !v.is_finite() {
-                    return Err(Error::input(format!("top.force[{k}] must be finite, got {v}")));
+                    return Err(Error::input(format!(
+                        "top.force[{k}] must be finite, got {v}"
+                    )));
                 }
             }
         }
@@ -172,7 +183,9 @@ impl Model {
             rects.len() - 1
         });
         if spec.live == LiveLoad::TopHorizontal && top.is_none() {
-            return Err(Error::input("loads.live = \"top_horizontal\" needs a top beam ([top])"));
+            return Err(Error::input(
+                "loads.live = \"top_horizontal\" needs a top beam ([top])",
+            ));
         }
         if spec.live == LiveLoad::HorizontalWeight && spec.gravity == 0.0 {
             return Err(Error::input("loads.live = \"horizontal_weight\" needs gravity > 0 (the live load is lambda times the weights)"));
@@ -185,7 +198,10 @@ impl Model {
             touched[it.b] = true;
         }
         if let Some(i) = (0..n_wall).find(|&i| !touched[i]) {
-            return Err(Error::input(format!("{} touches no other block", block_name(i, n_wall, base, top, &rects))));
+            return Err(Error::input(format!(
+                "{} touches no other block",
+                block_name(i, n_wall, base, top, &rects)
+            )));
         }
         if let Some(t) = top {
             if !touched[t] {
@@ -201,7 +217,15 @@ impl Model {
             .map(|(r, m)| m * (r.width().powi(2) + r.height().powi(2)) / 12.0)
             .collect();
         // the base and the top beam carry no self-weight: the beam's load is its `force`
-        let weight: Vec<f64> = (0..nb).map(|i| if i < n_wall { mass[i] * spec.gravity } else { 0.0 }).collect();
+        let weight: Vec<f64> = (0..nb)
+            .map(|i| {
+                if i < n_wall {
+                    mass[i] * spec.gravity
+                } else {
+                    0.0
+                }
+            })
+            .collect();
         let sections = interfaces.iter().map(|it| Section::new(it.l, s)).collect();
         let mut fixed = vec![false; 3 * nb];
         if let Some(b) = base {
@@ -246,13 +270,20 @@ impl Model {
     /// Fixes dof `dof` (0: u1, 1: u2, 2: phi) of block `block` at `value` [m or rad].
     pub fn fix(&mut self, block: usize, dof: usize, value: f64) -> Result<()> {
         if block >= self.rects.len() {
-            return Err(Error::input(format!("fix: block {block} does not exist (the model has {} blocks)", self.rects.len())));
+            return Err(Error::input(format!(
+                "fix: block {block} does not exist (the model has {} blocks)",
+                self.rects.len()
+            )));
         }
         if dof > 2 {
-            return Err(Error::input(format!("fix: dof {dof} of block {block} must be 0 (u1), 1 (u2) or 2 (phi)")));
+            return Err(Error::input(format!(
+                "fix: dof {dof} of block {block} must be 0 (u1), 1 (u2) or 2 (phi)"
+            )));
         }
         if !value.is_finite() {
-            return Err(Error::input(format!("fix: value of dof {dof} of block {block} must be finite, got {value}")));
+            return Err(Error::input(format!(
+                "fix: value of dof {dof} of block {block} must be finite, got {value}"
+            )));
         }
         self.fixed[3 * block + dof] = true;
         self.prescribed[3 * block + dof] = value;
@@ -268,9 +299,13 @@ impl Model {
             adj[it.a].push(it.b);
             adj[it.b].push(it.a);
         }
-        let mut seen: Vec<bool> = (0..nb).map(|i| self.fixed[3 * i..3 * i + 3].iter().any(|&f| f)).collect();
+        let mut seen: Vec<bool> = (0..nb)
+            .map(|i| self.fixed[3 * i..3 * i + 3].iter().any(|&f| f))
+            .collect();
         if !seen.iter().any(|&s| s) {
-            return Err(Error::input("the wall has no support: no base ([base] kind = \"none\") and no fixed dof"));
+            return Err(Error::input(
+                "the wall has no support: no base ([base] kind = \"none\") and no fixed dof",
+            ));
         }
         let mut stack: Vec<usize> = (0..nb).filter(|&i| seen[i]).collect();
         while let Some(i) = stack.pop() {
@@ -378,7 +413,9 @@ impl Model {
         (0..self.n_wall)
             .max_by(|&i, &j| {
                 let (a, b) = (&self.rects[i], &self.rects[j]);
-                (a.y1, a.x1).partial_cmp(&(b.y1, b.x1)).unwrap_or(std::cmp::Ordering::Equal)
+                (a.y1, a.x1)
+                    .partial_cmp(&(b.y1, b.x1))
+                    .unwrap_or(std::cmp::Ordering::Equal)
             })
             .unwrap_or(0)
     }
@@ -395,7 +432,13 @@ impl Model {
     }
 }
 
-fn block_name(i: usize, n_wall: usize, base: Option<usize>, top: Option<usize>, rects: &[Rect]) -> String {
+fn block_name(
+    i: usize,
+    n_wall: usize,
+    base: Option<usize>,
+    top: Option<usize>,
+    rects: &[Rect],
+) -> String {
     if Some(i) == base {
         "the base".into()
     } else if Some(i) == top {

@@ -88,7 +88,9 @@ pub fn solve_with(
     let mut s = Solver::new(model, opts)?;
     let outcome = match opts.control {
         Control::Load => s.load_control(monitor),
-        Control::Displacement { max_displacement } => s.displacement_control(max_displacement, monitor),
+        Control::Displacement { max_displacement } => {
+            s.displacement_control(max_displacement, monitor)
+        }
     };
     Ok(s.finish(outcome, start))
 }
@@ -134,10 +136,16 @@ impl<'a> Solver<'a> {
             return Err(Error::input("analysis.steps must be at least 1"));
         }
         if !(opts.tolerance > 0.0 && opts.tolerance < 1.0) {
-            return Err(Error::input(format!("analysis tolerance must lie in (0, 1), got {}", opts.tolerance)));
+            return Err(Error::input(format!(
+                "analysis tolerance must lie in (0, 1), got {}",
+                opts.tolerance
+            )));
         }
         if !(opts.residual_tolerance > 0.0 && opts.residual_tolerance < 1.0) {
-            return Err(Error::input(format!("residual tolerance must lie in (0, 1), got {}", opts.residual_tolerance)));
+            return Err(Error::input(format!(
+                "residual tolerance must lie in (0, 1), got {}",
+                opts.residual_tolerance
+            )));
         }
         if opts.max_iterations == 0 {
             return Err(Error::input("max_iterations must be at least 1"));
@@ -151,9 +159,13 @@ impl<'a> Solver<'a> {
         }
         model.check_supports()?;
         let nb = model.n_blocks();
-        let control_block = opts.control_block.unwrap_or_else(|| model.default_control_block());
+        let control_block = opts
+            .control_block
+            .unwrap_or_else(|| model.default_control_block());
         if control_block >= nb {
-            return Err(Error::input(format!("control block {control_block} does not exist (the model has {nb} blocks)")));
+            return Err(Error::input(format!(
+                "control block {control_block} does not exist (the model has {nb} blocks)"
+            )));
         }
         let control_dof = 3 * control_block;
         let fixed = model.fixed();
@@ -172,7 +184,9 @@ impl<'a> Solver<'a> {
             }
         }
         if n_eq == 0 {
-            return Err(Error::input("every dof of the model is fixed: nothing to solve"));
+            return Err(Error::input(
+                "every dof of the model is fixed: nothing to solve",
+            ));
         }
         let m = model.interfaces().len();
         let r = model.rects();
@@ -267,12 +281,17 @@ impl<'a> Solver<'a> {
             let cd = self.control_dof;
             let lam_col = self.eq[cd].expect("free control dof");
             let live = self.model.live_load();
-            let live_rows: Vec<usize> = (0..live.len()).filter(|&d| live[d] != 0.0 && self.eq[d].is_some()).collect();
+            let live_rows: Vec<usize> = (0..live.len())
+                .filter(|&d| live[d] != 0.0 && self.eq[d].is_some())
+                .collect();
             let mut entries = self.pattern(Some(cd));
             entries.extend(live_rows.iter().map(|&d| (self.eq[d].unwrap(), lam_col)));
             let sys = SparseLu::new(self.n_eq, entries)?;
             let slots = self.slots(&sys, Some(cd));
-            let lam_slots = live_rows.iter().map(|&d| (d, sys.slot(self.eq[d].unwrap(), lam_col).unwrap() as u32)).collect();
+            let lam_slots = live_rows
+                .iter()
+                .map(|&d| (d, sys.slot(self.eq[d].unwrap(), lam_col).unwrap() as u32))
+                .collect();
             self.disp_sys = Some((sys, slots, lam_slots));
         }
         Ok(())
@@ -310,7 +329,12 @@ impl<'a> Solver<'a> {
     }
 
     /// Adds the interface stiffnesses B^T D_t B to the values of `sys` through `slots`.
-    fn assemble(model: &Model, tangents: &[[[f64; 3]; 3]], sys: &mut SparseLu, slots: &[[u32; 36]]) {
+    fn assemble(
+        model: &Model,
+        tangents: &[[[f64; 3]; 3]],
+        sys: &mut SparseLu,
+        slots: &[[u32; 36]],
+    ) {
         let vals = sys.values_mut();
         vals.fill(0.0);
         for ((it, dt), sl) in model.interfaces().iter().zip(tangents).zip(slots) {
@@ -326,7 +350,8 @@ impl<'a> Solver<'a> {
                 for j in 0..6 {
                     let s = sl[6 * i + j];
                     if s != NONE {
-                        vals[s as usize] += b[0][i] * db[0][j] + b[1][i] * db[1][j] + b[2][i] * db[2][j];
+                        vals[s as usize] +=
+                            b[0][i] * db[0][j] + b[1][i] * db[1][j] + b[2][i] * db[2][j];
                     }
                 }
             }
@@ -339,7 +364,9 @@ impl<'a> Solver<'a> {
             return Err(Error::Convergence("non-finite displacement".into()));
         }
         let nb = self.model.n_blocks();
-        let tmax = (0..nb).map(|i| self.u[3 * i].abs().max(self.u[3 * i + 1].abs())).fold(0.0, f64::max);
+        let tmax = (0..nb)
+            .map(|i| self.u[3 * i].abs().max(self.u[3 * i + 1].abs()))
+            .fold(0.0, f64::max);
         if tmax > self.u_limit {
             return Err(Error::Convergence(format!(
                 "displacements grew beyond {:.3e} m (the small-displacement model no longer holds)",
@@ -399,9 +426,16 @@ impl<'a> Solver<'a> {
                 .eq
                 .iter()
                 .enumerate()
-                .filter_map(|(d, e)| e.filter(|_| d % 3 != 2 && !(disp && d == cd)).map(|k| delta[k].abs()))
+                .filter_map(|(d, e)| {
+                    e.filter(|_| d % 3 != 2 && !(disp && d == cd))
+                        .map(|k| delta[k].abs())
+                })
                 .fold(0.0, f64::max);
-            let mut alpha: f64 = if big > 0.1 * self.u_limit { 0.1 * self.u_limit / big } else { 1.0 };
+            let mut alpha: f64 = if big > 0.1 * self.u_limit {
+                0.1 * self.u_limit / big
+            } else {
+                1.0
+            };
             let (mut best_alpha, mut best_rn) = (alpha, f64::INFINITY);
             for trial in 0..12 {
                 for (d, e) in self.eq.iter().enumerate() {
@@ -448,15 +482,27 @@ impl<'a> Solver<'a> {
             }
             self.check_u()?;
         }
-        Err(Error::Convergence(format!("no equilibrium after {} iterations", self.opts.max_iterations)))
+        Err(Error::Convergence(format!(
+            "no equilibrium after {} iterations",
+            self.opts.max_iterations
+        )))
     }
 
-    fn commit(&mut self, monitor: &mut dyn FnMut(&Progress) -> bool, fraction: f64) -> Result<(), Error> {
+    fn commit(
+        &mut self,
+        monitor: &mut dyn FnMut(&Progress) -> bool,
+        fraction: f64,
+    ) -> Result<(), Error> {
         self.committed.copy_from_slice(&self.trial);
         self.curve_l.push(self.lambda);
         self.curve_u.push(self.u[self.control_dof]);
         self.steps += 1;
-        let p = Progress { step: self.steps, multiplier: self.lambda, displacement: self.u[self.control_dof], fraction };
+        let p = Progress {
+            step: self.steps,
+            multiplier: self.lambda,
+            displacement: self.u[self.control_dof],
+            fraction,
+        };
         if monitor(&p) {
             Ok(())
         } else {
@@ -468,7 +514,9 @@ impl<'a> Solver<'a> {
     fn dead_state(&mut self, monitor: &mut dyn FnMut(&Progress) -> bool) -> Result<(), Error> {
         self.lambda = 0.0;
         self.newton_load().map_err(|e| match e {
-            Error::Convergence(why) => Error::Mechanism(format!("no equilibrium under the dead loads alone: {why}")),
+            Error::Convergence(why) => {
+                Error::Mechanism(format!("no equilibrium under the dead loads alone: {why}"))
+            }
             e => e,
         })?;
         self.u_prev.copy_from_slice(&self.u);
@@ -519,7 +567,8 @@ impl<'a> Solver<'a> {
                 Err(Error::Interrupted) => return (Status::Failed, Some(Error::Interrupted)),
                 Err(_) => {
                     if self.u.iter().all(|v| v.is_finite()) {
-                        self.diverged = Some(self.u.iter().zip(&u_conv).map(|(a, b)| a - b).collect());
+                        self.diverged =
+                            Some(self.u.iter().zip(&u_conv).map(|(a, b)| a - b).collect());
                     }
                     self.u.copy_from_slice(&u_conv);
                     self.lambda = lam_conv;
@@ -536,26 +585,48 @@ impl<'a> Solver<'a> {
                 }
             }
         }
-        (Status::Failed, Some(Error::Convergence(format!("no collapse bracket after {max_attempts} attempts"))))
+        (
+            Status::Failed,
+            Some(Error::Convergence(format!(
+                "no collapse bracket after {max_attempts} attempts"
+            ))),
+        )
     }
 
     /// The collapse mechanism at the last equilibrium (the collapse state): the increment of a
-    /// displacement-controlled step from it; where that step does not converge (a joint just
-    /// short of its limit opens wide in the first iterate), the null mode of the tangent in
-    /// which every joint face within 0.1% of its limit is active; then the direction in which
-    /// the last failed load step went.
+    /// displacement-controlled step from it; where that step does not converge, the same step
+    /// predicted by the null mode of the tangent in which every joint face within 0.1% of its
+    /// limit is active; then that null mode itself; then the direction in which the last failed
+    /// load step went.
     fn collapse_mechanism(&mut self) -> Option<Vec<f64>> {
         let cd = self.control_dof;
         if self.model.fixed()[cd] || self.ensure_disp_sys().is_err() {
             return self.diverged.take();
         }
         let (u0, lam0) = (self.u.clone(), self.lambda);
-        self.u[cd] += self.u_limit * 1e-3;
-        let step = self.newton_disp();
-        let out: Option<Vec<f64>> = step.ok().map(|_| self.u.iter().zip(&u0).map(|(a, b)| a - b).collect());
+        let h = self.u_limit * 1e-3;
+        let mut step_from = |s: &mut Self, predictor: Option<&Vec<f64>>| -> Option<Vec<f64>> {
+            s.u.copy_from_slice(&u0);
+            s.lambda = lam0;
+            match predictor {
+                Some(v) => s.u.iter_mut().zip(v).for_each(|(u, v)| *u += h * v),
+                None => s.u[cd] += h,
+            }
+            let out = s
+                .newton_disp()
+                .ok()
+                .map(|_| s.u.iter().zip(&u0).map(|(a, b)| a - b).collect());
+            s.u.copy_from_slice(&u0);
+            s.lambda = lam0;
+            out
+        };
+        if let Some(v) = step_from(self, None) {
+            return Some(v);
+        }
+        let mode = self.null_mode();
         self.u.copy_from_slice(&u0);
-        self.lambda = lam0;
-        out.or_else(|| self.null_mode()).or_else(|| self.diverged.take())
+        let out = mode.as_ref().and_then(|v| step_from(self, Some(v)));
+        out.or(mode).or_else(|| self.diverged.take())
     }
 
     /// The null mode of the tangent with every joint face within 0.1% of its limit active,
@@ -566,7 +637,13 @@ impl<'a> Solver<'a> {
         let model = self.model;
         self.evaluate();
         for k in 0..model.interfaces().len() {
-            self.tangents[k] = tangent_near_limit(model.law(k), &model.sections()[k], &self.forces[k], self.trial[k].broken, 1e-3);
+            self.tangents[k] = tangent_near_limit(
+                model.law(k),
+                &model.sections()[k],
+                &self.forces[k],
+                self.trial[k].broken,
+                1e-3,
+            );
         }
         // rhs = -K e_c: the forces that a unit control displacement calls for
         let mut kc = vec![0.0; self.u.len()];
@@ -574,7 +651,8 @@ impl<'a> Solver<'a> {
             let d = it.dofs();
             if let Some(j) = d.iter().position(|&x| x == cd) {
                 let b = &it.b_mat;
-                let db = [0, 1, 2].map(|r| dt[r][0] * b[0][j] + dt[r][1] * b[1][j] + dt[r][2] * b[2][j]);
+                let db =
+                    [0, 1, 2].map(|r| dt[r][0] * b[0][j] + dt[r][1] * b[1][j] + dt[r][2] * b[2][j]);
                 for i in 0..6 {
                     kc[d[i]] += b[0][i] * db[0] + b[1][i] * db[1] + b[2][i] * db[2];
                 }
@@ -604,7 +682,11 @@ impl<'a> Solver<'a> {
         None
     }
 
-    fn displacement_control(&mut self, max_disp: f64, monitor: &mut dyn FnMut(&Progress) -> bool) -> Outcome {
+    fn displacement_control(
+        &mut self,
+        max_disp: f64,
+        monitor: &mut dyn FnMut(&Progress) -> bool,
+    ) -> Outcome {
         if let Err(e) = self.dead_state(monitor) {
             return (Status::Failed, Some(e));
         }
@@ -618,12 +700,29 @@ impl<'a> Solver<'a> {
         let mut lam_conv = self.lambda;
         let mut k0: Option<f64> = None; // initial stiffness d lambda / d u
         let mut k_last = f64::NAN;
+        let mut streak = 0;
+        let mut last: Option<(f64, f64)> = None; // previous step and the lambda before it
         while (target - u_conv[cd]) * max_disp.signum() > 1e-12 * max_disp.abs() {
             let remaining = target - u_conv[cd];
-            let h = if step.abs() > remaining.abs() { remaining } else { step };
+            let h = if step.abs() > remaining.abs() {
+                remaining
+            } else {
+                step
+            };
+            // predictor: the previous increment, scaled to this step (exact on a plateau)
+            if let Some((h_prev, lam_prev)) = last {
+                let r = h / h_prev;
+                for (d, e) in self.eq.iter().enumerate() {
+                    if e.is_some() {
+                        self.u[d] = u_conv[d] + r * (u_conv[d] - self.u_prev[d]);
+                    }
+                }
+                self.lambda = lam_conv + r * (lam_conv - lam_prev);
+            }
             self.u[cd] = u_conv[cd] + h;
             match self.newton_disp() {
                 Ok(_) => {
+                    last = Some((h, lam_conv));
                     let k = (self.lambda - lam_conv) / h;
                     k0.get_or_insert(k);
                     k_last = k;
@@ -634,14 +733,19 @@ impl<'a> Solver<'a> {
                     if let Err(e) = self.commit(monitor, frac) {
                         return (Status::Failed, Some(e));
                     }
-                    if step.abs() < base_step.abs() {
+                    // grow back only after a run of successes: on a plateau a step that has
+                    // just failed tends to fail again
+                    streak += 1;
+                    if step.abs() < base_step.abs() && streak >= 4 {
                         step *= 2.0;
+                        streak = 0;
                     }
                 }
                 Err(Error::Interrupted) => return (Status::Failed, Some(Error::Interrupted)),
                 Err(e) => {
                     self.u.copy_from_slice(&u_conv);
                     self.lambda = lam_conv;
+                    streak = 0;
                     step *= 0.5;
                     if step.abs() < min_step {
                         self.evaluate();
@@ -669,11 +773,23 @@ impl<'a> Solver<'a> {
         let model = self.model;
         let nb = model.n_blocks();
         // the converged state: committed histories with the last converged displacements
-        let mech = self.mechanism.take().unwrap_or_else(|| self.u.iter().zip(&self.u_prev).map(|(a, b)| a - b).collect());
-        let scale = (0..nb).map(|i| mech[3 * i].hypot(mech[3 * i + 1])).fold(0.0, f64::max);
+        let mech = self.mechanism.take().unwrap_or_else(|| {
+            self.u
+                .iter()
+                .zip(&self.u_prev)
+                .map(|(a, b)| a - b)
+                .collect()
+        });
+        let scale = (0..nb)
+            .map(|i| mech[3 * i].hypot(mech[3 * i + 1]))
+            .fold(0.0, f64::max);
         // oriented so that the live load does positive work on it
         let work: f64 = mech.iter().zip(model.live_load()).map(|(v, f)| v * f).sum();
-        let scale = if scale > 0.0 { work.signum() / scale } else { 0.0 };
+        let scale = if scale > 0.0 {
+            work.signum() / scale
+        } else {
+            0.0
+        };
         let collapse_multiplier = match self.opts.control {
             Control::Load => self.curve_l.last().copied().unwrap_or(f64::NAN),
             Control::Displacement { .. } => self.curve_l.iter().cloned().fold(f64::NAN, f64::max),
@@ -682,7 +798,9 @@ impl<'a> Solver<'a> {
             method: "static",
             status,
             error: err.map(|e| e.to_string()),
-            collapse_multiplier: if status == Status::Completed && self.opts.control == Control::Load {
+            collapse_multiplier: if status == Status::Completed
+                && self.opts.control == Control::Load
+            {
                 f64::NAN
             } else {
                 collapse_multiplier
@@ -690,8 +808,18 @@ impl<'a> Solver<'a> {
             curve_multiplier: self.curve_l,
             curve_displacement: self.curve_u,
             control_block: self.control_dof / 3,
-            displacements: (0..nb).map(|i| [self.u[3 * i], self.u[3 * i + 1], self.u[3 * i + 2]]).collect(),
-            mechanism: (0..nb).map(|i| [mech[3 * i] * scale, mech[3 * i + 1] * scale, mech[3 * i + 2] * scale]).collect(),
+            displacements: (0..nb)
+                .map(|i| [self.u[3 * i], self.u[3 * i + 1], self.u[3 * i + 2]])
+                .collect(),
+            mechanism: (0..nb)
+                .map(|i| {
+                    [
+                        mech[3 * i] * scale,
+                        mech[3 * i + 1] * scale,
+                        mech[3 * i + 2] * scale,
+                    ]
+                })
+                .collect(),
             interface_forces: self.forces,
             interface_states: self.flags,
             broken: self.committed.iter().map(|s| s.broken).collect(),

@@ -2,13 +2,33 @@
 //! domain in the D-metric when psi = phi (closest point), the tangent matches finite
 //! differences, and a joint that failed has lost its cohesion and tensile strength.
 
-use masonry_dem::joint::{admissible, return_map, JointLaw, JointState, Section, OPEN, ROCKING, SLIDING};
+use masonry_dem::joint::{
+    admissible, return_map, JointLaw, JointState, Section, OPEN, ROCKING, SLIDING,
+};
 
 fn laws() -> Vec<JointLaw> {
-    let dry_assoc = JointLaw { normal_stiffness: 1e9, shear_stiffness: 4e8, friction: 0.65, dilatancy: 0.65, ..Default::default() };
-    let dry_nonassoc = JointLaw { dilatancy: 0.0, ..dry_assoc };
-    let mortar = JointLaw { cohesion: 0.35e6, tensile_strength: 0.25e6, friction: 0.75, dilatancy: 0.0, ..dry_assoc };
-    let mortar_assoc = JointLaw { dilatancy: 0.75, ..mortar };
+    let dry_assoc = JointLaw {
+        normal_stiffness: 1e9,
+        shear_stiffness: 4e8,
+        friction: 0.65,
+        dilatancy: 0.65,
+        ..Default::default()
+    };
+    let dry_nonassoc = JointLaw {
+        dilatancy: 0.0,
+        ..dry_assoc
+    };
+    let mortar = JointLaw {
+        cohesion: 0.35e6,
+        tensile_strength: 0.25e6,
+        friction: 0.75,
+        dilatancy: 0.0,
+        ..dry_assoc
+    };
+    let mortar_assoc = JointLaw {
+        dilatancy: 0.75,
+        ..mortar
+    };
     vec![dry_assoc, dry_nonassoc, mortar, mortar_assoc]
 }
 
@@ -17,7 +37,9 @@ fn jumps() -> Vec<[f64; 3]> {
     let mut out = vec![];
     let mut s: u64 = 12345;
     let mut rnd = || {
-        s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         ((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
     };
     for _ in 0..4000 {
@@ -34,7 +56,11 @@ fn trial_size(law: &JointLaw, e: &[f64; 3]) -> f64 {
         + (law.normal_stiffness * SEC.inertia * e[2] * 2.0 / SEC.length).abs()
 }
 
-const SEC: Section = Section { area: 0.4 * 0.1, inertia: 0.1 * 0.4 * 0.4 * 0.4 / 12.0, length: 0.4 };
+const SEC: Section = Section {
+    area: 0.4 * 0.1,
+    inertia: 0.1 * 0.4 * 0.4 * 0.4 / 12.0,
+    length: 0.4,
+};
 
 #[test]
 fn result_lies_in_the_domain() {
@@ -43,7 +69,11 @@ fn result_lies_in_the_domain() {
             let r = return_map(&law, &SEC, e, &JointState::default());
             // round-off is measured against the size of the trial force
             let tol = 1e-12 * trial_size(&law, &e);
-            assert!(admissible(&law, &SEC, &r.force, r.state.broken, tol), "{law:?} e={e:?} -> {:?}", r.force);
+            assert!(
+                admissible(&law, &SEC, &r.force, r.state.broken, tol),
+                "{law:?} e={e:?} -> {:?}",
+                r.force
+            );
         }
     }
 }
@@ -52,7 +82,11 @@ fn result_lies_in_the_domain() {
 fn associative_return_is_the_closest_point_in_the_d_metric() {
     // closest point: for every admissible point y, (trial - s)^T D^-1 (y - s) <= 0
     for law in [laws()[0], laws()[3]] {
-        let d = [law.normal_stiffness * SEC.area, law.shear_stiffness * SEC.area, law.normal_stiffness * SEC.inertia];
+        let d = [
+            law.normal_stiffness * SEC.area,
+            law.shear_stiffness * SEC.area,
+            law.normal_stiffness * SEC.inertia,
+        ];
         let probes: Vec<[f64; 3]> = jumps()
             .iter()
             .map(|e| return_map(&law, &SEC, *e, &JointState::default()).force)
@@ -64,14 +98,24 @@ fn associative_return_is_the_closest_point_in_the_d_metric() {
             }
             let trial = [d[0] * e[0], d[1] * e[1], d[2] * e[2]];
             let s = r.force;
-            let g = [(trial[0] - s[0]) / d[0], (trial[1] - s[1]) / d[1], (trial[2] - s[2]) / d[2]];
+            let g = [
+                (trial[0] - s[0]) / d[0],
+                (trial[1] - s[1]) / d[1],
+                (trial[2] - s[2]) / d[2],
+            ];
             let gn = (g[0] * g[0] * d[0] + g[1] * g[1] * d[1] + g[2] * g[2] * d[2]).sqrt();
             for y in &probes {
                 let v = g[0] * (y[0] - s[0]) + g[1] * (y[1] - s[1]) + g[2] * (y[2] - s[2]);
-                let yn = ((y[0] - s[0]).powi(2) / d[0] + (y[1] - s[1]).powi(2) / d[1] + (y[2] - s[2]).powi(2) / d[2]).sqrt();
+                let yn = ((y[0] - s[0]).powi(2) / d[0]
+                    + (y[1] - s[1]).powi(2) / d[1]
+                    + (y[2] - s[2]).powi(2) / d[2])
+                    .sqrt();
                 // the probes are themselves returned forces: allow them 1e-9 N of round-off
                 let noise = 1e-9 * (g[0].abs() + g[1].abs() + g[2].abs() * 2.0 / SEC.length);
-                assert!(v <= 1e-7 * gn * yn + noise, "not the closest point: e={e:?} s={s:?} y={y:?} v={v:e}");
+                assert!(
+                    v <= 1e-7 * gn * yn + noise,
+                    "not the closest point: e={e:?} s={s:?} y={y:?} v={v:e}"
+                );
             }
         }
     }
@@ -93,7 +137,10 @@ fn tangent_matches_finite_differences() {
                 em[j] -= h;
                 let rp = return_map(&law, &SEC, ep, &JointState::default());
                 let rm = return_map(&law, &SEC, em, &JointState::default());
-                same_set &= rp.flags == r.flags && rm.flags == r.flags && rp.state.broken == r.state.broken && rm.state.broken == r.state.broken;
+                same_set &= rp.flags == r.flags
+                    && rm.flags == r.flags
+                    && rp.state.broken == r.state.broken
+                    && rm.state.broken == r.state.broken;
                 for i in 0..3 {
                     fd[i][j] = (rp.force[i] - rm.force[i]) / (2.0 * h);
                 }
@@ -104,7 +151,9 @@ fn tangent_matches_finite_differences() {
             let kmax = law.normal_stiffness * SEC.area;
             for i in 0..3 {
                 for j in 0..3 {
-                    let scale = kmax * if i == 2 || j == 2 { SEC.length } else { 1.0 } * if i == 2 && j == 2 { SEC.length } else { 1.0 };
+                    let scale = kmax
+                        * if i == 2 || j == 2 { SEC.length } else { 1.0 }
+                        * if i == 2 && j == 2 { SEC.length } else { 1.0 };
                     assert!(
                         (fd[i][j] - r.tangent[i][j]).abs() <= 1e-5 * scale,
                         "tangent [{i}][{j}] = {:e}, finite difference {:e} ({law:?}, e={e:?}, flags {})",
@@ -145,7 +194,9 @@ fn rotation_under_compression_rocks_at_the_edge() {
     // N = kN A dN = -4e4 N; the moment limit is |N| l / 2 = 8e3 N m
     let r = return_map(&law, &SEC, [-1e-6, 0.0, 1e-3], &JointState::default());
     assert_eq!(r.flags & ROCKING, ROCKING);
-    assert!((r.force[2].abs() - r.force[0].abs() * SEC.length / 2.0).abs() < 1e-9 * r.force[2].abs());
+    assert!(
+        (r.force[2].abs() - r.force[0].abs() * SEC.length / 2.0).abs() < 1e-9 * r.force[2].abs()
+    );
 }
 
 #[test]
@@ -172,9 +223,17 @@ fn a_failed_mortar_joint_has_lost_cohesion_and_tensile_strength() {
     // fail it in shear
     let r1 = return_map(&law, &SEC, [0.0, 1e-2, 0.0], &JointState::default());
     assert!(r1.state.broken);
-    assert!(r1.force[1].abs() < 1e-9 * law.cohesion * SEC.area, "no cohesion left: T = {}", r1.force[1]);
+    assert!(
+        r1.force[1].abs() < 1e-9 * law.cohesion * SEC.area,
+        "no cohesion left: T = {}",
+        r1.force[1]
+    );
     // the same small tension is no longer carried
     let e = [r1.state.plastic[0] + small, r1.state.plastic[1], 0.0];
     let r2 = return_map(&law, &SEC, e, &r1.state);
-    assert!(r2.force[0] <= 1e-9 && r2.flags == OPEN, "broken joint carried N = {}", r2.force[0]);
+    assert!(
+        r2.force[0] <= 1e-9 && r2.flags == OPEN,
+        "broken joint carried N = {}",
+        r2.force[0]
+    );
 }

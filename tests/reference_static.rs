@@ -9,7 +9,13 @@ use masonry_dem::static_solver::{solve, Control, StaticOptions};
 
 fn collapse(model: &masonry_dem::Model) -> f64 {
     let r = solve(model, &StaticOptions::default()).unwrap();
-    assert_eq!(r.status, Status::Collapse, "status {:?}, error {:?}", r.status, r.error);
+    assert_eq!(
+        r.status,
+        Status::Collapse,
+        "status {:?}, error {:?}",
+        r.status,
+        r.error
+    );
     r.collapse_multiplier
 }
 
@@ -27,29 +33,51 @@ fn single_block_rocks_at_b_over_h() {
 
 #[test]
 fn stack_of_three_turns_at_b_over_total_height() {
-    let blocks = (0..3).map(|k| Rect::new(0.0, 0.5 * k as f64, 0.3, 0.5 * (k + 1) as f64)).collect();
+    let blocks = (0..3)
+        .map(|k| Rect::new(0.0, 0.5 * k as f64, 0.3, 0.5 * (k + 1) as f64))
+        .collect();
     let m = blocks_model(blocks, dry(0.65, 0.0, 1e10));
     assert_close(collapse(&m), 0.2, 0.005, "stack of three");
 }
 
 #[test]
 fn ferris_wall1_associative() {
-    assert_close(collapse(&ferris(6, dry(0.65, 0.65, 1e10))), 0.6429, 0.01, "wall 1 associative");
+    assert_close(
+        collapse(&ferris(6, dry(0.65, 0.65, 1e10))),
+        0.6429,
+        0.01,
+        "wall 1 associative",
+    );
 }
 
 #[test]
 fn ferris_wall2_associative() {
-    assert_close(collapse(&ferris(10, dry(0.65, 0.65, 1e10))), 0.5800, 0.01, "wall 2 associative");
+    assert_close(
+        collapse(&ferris(10, dry(0.65, 0.65, 1e10))),
+        0.5800,
+        0.01,
+        "wall 2 associative",
+    );
 }
 
 #[test]
 fn ferris_wall1_non_associative() {
-    assert_close(collapse(&ferris(6, dry(0.65, 0.0, 1e10))), 0.640, 0.03, "wall 1 non-associative");
+    assert_close(
+        collapse(&ferris(6, dry(0.65, 0.0, 1e10))),
+        0.640,
+        0.03,
+        "wall 1 non-associative",
+    );
 }
 
 #[test]
 fn ferris_wall2_non_associative() {
-    assert_close(collapse(&ferris(10, dry(0.65, 0.0, 1e10))), 0.563, 0.03, "wall 2 non-associative");
+    assert_close(
+        collapse(&ferris(10, dry(0.65, 0.0, 1e10))),
+        0.563,
+        0.03,
+        "wall 2 non-associative",
+    );
 }
 
 #[test]
@@ -62,16 +90,34 @@ fn wall2_collapse_does_not_depend_on_penalty_stiffness() {
 #[test]
 fn displacement_control_passes_the_peak() {
     let m = ferris(6, dry(0.65, 0.65, 1e10));
-    let opts = StaticOptions { control: Control::Displacement { max_displacement: 0.002 }, steps: 100, ..Default::default() };
+    let opts = StaticOptions {
+        control: Control::Displacement {
+            max_displacement: 0.002,
+        },
+        steps: 100,
+        ..Default::default()
+    };
     let r = solve(&m, &opts).unwrap();
     assert_ne!(r.status, Status::Failed, "error {:?}", r.error);
-    assert_close(r.collapse_multiplier, 0.6429, 0.02, "wall 1 peak under displacement control");
+    assert_close(
+        r.collapse_multiplier,
+        0.6429,
+        0.02,
+        "wall 1 peak under displacement control",
+    );
     // the curve goes on past the peak: steps after the one reaching 99.9% of the peak
-    let peak_at = r.curve_multiplier.iter().position(|&l| l >= 0.999 * r.collapse_multiplier).unwrap();
+    let peak_at = r
+        .curve_multiplier
+        .iter()
+        .position(|&l| l >= 0.999 * r.collapse_multiplier)
+        .unwrap();
     let after = r.curve_multiplier.len() - 1 - peak_at;
     assert!(after >= 10, "only {after} steps after the peak");
     let last_u = *r.curve_displacement.last().unwrap();
-    assert!((last_u - 0.002).abs() < 1e-9, "the curve stops at {last_u} m, not at 2 mm");
+    assert!(
+        (last_u - 0.002).abs() < 1e-9,
+        "the curve stops at {last_u} m, not at 2 mm"
+    );
 }
 
 /// The instantaneous centre of rotation of block `i` in the mechanism.
@@ -88,18 +134,30 @@ fn mechanisms_of_the_closed_form_cases() {
     let r = solve(&m, &StaticOptions::default()).unwrap();
     assert!(r.mechanism[0][2] < 0.0, "clockwise: phi < 0");
     let c = centre(&m, &r.mechanism, 0);
-    assert!((c[0] - 0.2).abs() < 1e-3 && c[1].abs() < 1e-3, "centre {c:?} is not the toe (0.2, 0)");
+    assert!(
+        (c[0] - 0.2).abs() < 1e-3 && c[1].abs() < 1e-3,
+        "centre {c:?} is not the toe (0.2, 0)"
+    );
     // stack: the three blocks turn together about the base toe (0.3, 0)
-    let blocks = (0..3).map(|k| Rect::new(0.0, 0.5 * k as f64, 0.3, 0.5 * (k + 1) as f64)).collect();
+    let blocks = (0..3)
+        .map(|k| Rect::new(0.0, 0.5 * k as f64, 0.3, 0.5 * (k + 1) as f64))
+        .collect();
     let m = blocks_model(blocks, dry(0.65, 0.0, 1e10));
     let r = solve(&m, &StaticOptions::default()).unwrap();
     for i in 0..3 {
         let c = centre(&m, &r.mechanism, i);
-        assert!((c[0] - 0.3).abs() < 1e-3 && c[1].abs() < 1e-3, "block {i} turns about {c:?}, not (0.3, 0)");
+        assert!(
+            (c[0] - 0.3).abs() < 1e-3 && c[1].abs() < 1e-3,
+            "block {i} turns about {c:?}, not (0.3, 0)"
+        );
     }
     // sliding block: translates towards +x
     let m = blocks_model(vec![Rect::new(0.0, 0.0, 0.4, 0.175)], dry(0.65, 0.0, 1e10));
     let r = solve(&m, &StaticOptions::default()).unwrap();
     let [u1, u2, phi] = r.mechanism[0];
-    assert!((u1 - 1.0).abs() < 1e-6 && u2.abs() < 1e-6 && phi.abs() < 1e-3, "{:?}", r.mechanism[0]);
+    assert!(
+        (u1 - 1.0).abs() < 1e-6 && u2.abs() < 1e-6 && phi.abs() < 1e-3,
+        "{:?}",
+        r.mechanism[0]
+    );
 }

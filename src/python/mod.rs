@@ -14,10 +14,30 @@ use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-create_exception!(_core, MasonryError, PyException, "Base class of every error raised by masonry_dem.");
-create_exception!(_core, InputError, MasonryError, "Bad input: the message names the key, block or interface.");
-create_exception!(_core, ConvergenceError, MasonryError, "A solver did not converge.");
-create_exception!(_core, MechanismError, MasonryError, "The model is a mechanism before any load.");
+create_exception!(
+    _core,
+    MasonryError,
+    PyException,
+    "Base class of every error raised by masonry_dem."
+);
+create_exception!(
+    _core,
+    InputError,
+    MasonryError,
+    "Bad input: the message names the key, block or interface."
+);
+create_exception!(
+    _core,
+    ConvergenceError,
+    MasonryError,
+    "A solver did not converge."
+);
+create_exception!(
+    _core,
+    MechanismError,
+    MasonryError,
+    "The model is a mechanism before any load."
+);
 
 fn to_py(e: Error) -> PyErr {
     match e {
@@ -38,7 +58,9 @@ fn guarded<T>(f: impl FnOnce() -> Result<T, Error>) -> PyResult<T> {
                 .map(|s| s.to_string())
                 .or_else(|| p.downcast_ref::<String>().cloned())
                 .unwrap_or_else(|| "unknown".into());
-            Err(MasonryError::new_err(format!("internal error (please report it): {msg}")))
+            Err(MasonryError::new_err(format!(
+                "internal error (please report it): {msg}"
+            )))
         }
     }
 }
@@ -48,14 +70,20 @@ fn rects_from(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Rect>> {
         let a = a.as_array();
         a.rows().into_iter().map(|r| r.to_vec()).collect()
     } else {
-        obj.extract::<Vec<Vec<f64>>>()
-            .map_err(|_| InputError::new_err(format!("{what}: expected a list of [x0, y0, x1, y1] rows of numbers")))?
+        obj.extract::<Vec<Vec<f64>>>().map_err(|_| {
+            InputError::new_err(format!(
+                "{what}: expected a list of [x0, y0, x1, y1] rows of numbers"
+            ))
+        })?
     };
     rows.iter()
         .enumerate()
         .map(|(i, r)| {
             if r.len() != 4 {
-                Err(InputError::new_err(format!("{what}[{i}]: expected 4 numbers [x0, y0, x1, y1], got {}", r.len())))
+                Err(InputError::new_err(format!(
+                    "{what}[{i}]: expected 4 numbers [x0, y0, x1, y1], got {}",
+                    r.len()
+                )))
             } else {
                 Ok(Rect::new(r[0], r[1], r[2], r[3]))
             }
@@ -64,13 +92,20 @@ fn rects_from(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Rect>> {
 }
 
 fn rects_to_py<'py>(py: Python<'py>, rects: &[Rect]) -> Bound<'py, PyArray2<f64>> {
-    let flat: Vec<f64> = rects.iter().flat_map(|r| [r.x0, r.y0, r.x1, r.y1]).collect();
-    Array2::from_shape_vec((rects.len(), 4), flat).unwrap().into_pyarray(py)
+    let flat: Vec<f64> = rects
+        .iter()
+        .flat_map(|r| [r.x0, r.y0, r.x1, r.y1])
+        .collect();
+    Array2::from_shape_vec((rects.len(), 4), flat)
+        .unwrap()
+        .into_pyarray(py)
 }
 
 fn rows3<'py>(py: Python<'py>, v: &[[f64; 3]]) -> Bound<'py, PyArray2<f64>> {
     let flat: Vec<f64> = v.iter().flatten().copied().collect();
-    Array2::from_shape_vec((v.len(), 3), flat).unwrap().into_pyarray(py)
+    Array2::from_shape_vec((v.len(), 3), flat)
+        .unwrap()
+        .into_pyarray(py)
 }
 
 /// Blocks [x0, y0, x1, y1] (shape (n, 4), m) of a running-bond wall standing at y = 0 from x = 0.
@@ -88,38 +123,71 @@ fn running_bond<'py>(
     let first_course = match first_course {
         "half" => FirstCourse::Half,
         "full" => FirstCourse::Full,
-        o => return Err(InputError::new_err(format!("running_bond.first_course must be \"half\" or \"full\", got {o:?}"))),
+        o => {
+            return Err(InputError::new_err(format!(
+                "running_bond.first_course must be \"half\" or \"full\", got {o:?}"
+            )))
+        }
     };
     if courses < 1 {
-        return Err(InputError::new_err(format!("running_bond.courses must be at least 1, got {courses}")));
+        return Err(InputError::new_err(format!(
+            "running_bond.courses must be at least 1, got {courses}"
+        )));
     }
     let openings = match openings {
         Some(o) if !o.is_none() => rects_from(o, "running_bond.openings")?,
         _ => vec![],
     };
-    let p = RunningBond { block_length, block_height, courses: courses as usize, length, first_course, openings };
+    let p = RunningBond {
+        block_length,
+        block_height,
+        courses: courses as usize,
+        length,
+        first_course,
+        openings,
+    };
     let blocks = guarded(|| geometry::running_bond(&p))?;
     Ok(rects_to_py(py, &blocks))
 }
 
 /// Blocks [x0, y0, x1, y1] (shape (n, 4), m) from courses listed bottom to top.
 #[pyfunction]
-fn pattern<'py>(py: Python<'py>, block_length: f64, block_height: f64, rows: Vec<Vec<f64>>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+fn pattern<'py>(
+    py: Python<'py>,
+    block_length: f64,
+    block_height: f64,
+    rows: Vec<Vec<f64>>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let blocks = guarded(|| geometry::pattern(block_length, block_height, &rows))?;
     Ok(rects_to_py(py, &blocks))
 }
 
-const LAW_KEYS: [&str; 6] = ["normal_stiffness", "shear_stiffness", "friction", "cohesion", "tensile_strength", "dilatancy"];
+const LAW_KEYS: [&str; 6] = [
+    "normal_stiffness",
+    "shear_stiffness",
+    "friction",
+    "cohesion",
+    "tensile_strength",
+    "dilatancy",
+];
 
 fn law_from(d: &Bound<'_, PyAny>, base: JointLaw, what: &str) -> PyResult<JointLaw> {
-    let d = d.cast::<PyDict>().map_err(|_| InputError::new_err(format!("{what}: expected a dict of joint parameters")))?;
+    let d = d
+        .cast::<PyDict>()
+        .map_err(|_| InputError::new_err(format!("{what}: expected a dict of joint parameters")))?;
     let mut law = base;
     for (k, v) in d.iter() {
-        let key: String = k.extract().map_err(|_| InputError::new_err(format!("{what}: keys must be strings")))?;
+        let key: String = k
+            .extract()
+            .map_err(|_| InputError::new_err(format!("{what}: keys must be strings")))?;
         if v.is_instance_of::<pyo3::types::PyBool>() {
-            return Err(InputError::new_err(format!("{what}.{key}: expected a number, got a boolean")));
+            return Err(InputError::new_err(format!(
+                "{what}.{key}: expected a number, got a boolean"
+            )));
         }
-        let x: f64 = v.extract().map_err(|_| InputError::new_err(format!("{what}.{key}: expected a number")))?;
+        let x: f64 = v
+            .extract()
+            .map_err(|_| InputError::new_err(format!("{what}.{key}: expected a number")))?;
         match key.as_str() {
             "normal_stiffness" => law.normal_stiffness = x,
             "shear_stiffness" => law.shear_stiffness = x,
@@ -162,14 +230,27 @@ impl PyModel {
     ) -> PyResult<Self> {
         let blocks = rects_from(blocks, "blocks")?;
         if top_force.len() != 2 {
-            return Err(InputError::new_err(format!("top.force: expected 2 numbers [Fx, Fy] in N, got {}", top_force.len())));
+            return Err(InputError::new_err(format!(
+                "top.force: expected 2 numbers [Fx, Fy] in N, got {}",
+                top_force.len()
+            )));
         }
         let top_force = (top_force[0], top_force[1]);
         let top = match top_rotation {
             None => None,
-            Some("fixed") => Some(TopBeam { rotation_fixed: true, force: [top_force.0, top_force.1] }),
-            Some("free") => Some(TopBeam { rotation_fixed: false, force: [top_force.0, top_force.1] }),
-            Some(o) => return Err(InputError::new_err(format!("top.rotation must be \"fixed\" or \"free\", got {o:?}"))),
+            Some("fixed") => Some(TopBeam {
+                rotation_fixed: true,
+                force: [top_force.0, top_force.1],
+            }),
+            Some("free") => Some(TopBeam {
+                rotation_fixed: false,
+                force: [top_force.0, top_force.1],
+            }),
+            Some(o) => {
+                return Err(InputError::new_err(format!(
+                    "top.rotation must be \"fixed\" or \"free\", got {o:?}"
+                )))
+            }
         };
         let live = match live {
             "horizontal_weight" => LiveLoad::HorizontalWeight,
@@ -193,17 +274,26 @@ impl PyModel {
                     "head" => &mut laws.head,
                     "base" => &mut laws.base,
                     "top" => &mut laws.top,
-                    o => {
-                        return Err(InputError::new_err(format!(
-                            "joints: unknown family {o:?} (expected default, bed, head, base or top)"
-                        )))
-                    }
+                    o => return Err(InputError::new_err(format!(
+                        "joints: unknown family {o:?} (expected default, bed, head, base or top)"
+                    ))),
                 };
                 *slot = Some(law_from(&v, laws.default, &format!("joints.{fam}"))?);
             }
         }
-        let spec = ModelSpec { blocks, thickness, density, base, top, joints: laws, gravity, live };
-        Ok(PyModel { inner: guarded(|| Model::new(spec))? })
+        let spec = ModelSpec {
+            blocks,
+            thickness,
+            density,
+            base,
+            top,
+            joints: laws,
+            gravity,
+            live,
+        };
+        Ok(PyModel {
+            inner: guarded(|| Model::new(spec))?,
+        })
     }
 
     /// Fix dof (0: u1 [m], 1: u2 [m], 2: phi [rad]) of a block at a prescribed value.
@@ -240,17 +330,28 @@ impl PyModel {
     fn interface_blocks<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
         let it = self.inner.interfaces();
         let flat: Vec<i64> = it.iter().flat_map(|i| [i.a as i64, i.b as i64]).collect();
-        Array2::from_shape_vec((it.len(), 2), flat).unwrap().into_pyarray(py)
+        Array2::from_shape_vec((it.len(), 2), flat)
+            .unwrap()
+            .into_pyarray(py)
     }
     #[getter]
     fn interface_geometry<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let it = self.inner.interfaces();
-        let flat: Vec<f64> = it.iter().flat_map(|i| [i.c[0], i.c[1], i.n[0], i.n[1], i.l]).collect();
-        Array2::from_shape_vec((it.len(), 5), flat).unwrap().into_pyarray(py)
+        let flat: Vec<f64> = it
+            .iter()
+            .flat_map(|i| [i.c[0], i.c[1], i.n[0], i.n[1], i.l])
+            .collect();
+        Array2::from_shape_vec((it.len(), 5), flat)
+            .unwrap()
+            .into_pyarray(py)
     }
     #[getter]
     fn interface_family(&self) -> Vec<&'static str> {
-        self.inner.interfaces().iter().map(|i| i.family.name()).collect()
+        self.inner
+            .interfaces()
+            .iter()
+            .map(|i| i.family.name())
+            .collect()
     }
 
     /// Static incremental analysis (see _core.pyi). Releases the GIL; Ctrl-C stops it between
@@ -270,13 +371,21 @@ impl PyModel {
         let control = match control {
             "load" => Control::Load,
             "displacement" => Control::Displacement { max_displacement },
-            o => return Err(InputError::new_err(format!("analysis.control must be \"load\" or \"displacement\", got {o:?}"))),
+            o => {
+                return Err(InputError::new_err(format!(
+                    "analysis.control must be \"load\" or \"displacement\", got {o:?}"
+                )))
+            }
         };
         if steps < 1 {
-            return Err(InputError::new_err(format!("analysis.steps must be at least 1, got {steps}")));
+            return Err(InputError::new_err(format!(
+                "analysis.steps must be at least 1, got {steps}"
+            )));
         }
         if max_iterations < 1 {
-            return Err(InputError::new_err(format!("max_iterations must be at least 1, got {max_iterations}")));
+            return Err(InputError::new_err(format!(
+                "max_iterations must be at least 1, got {max_iterations}"
+            )));
         }
         let opts = StaticOptions {
             control,
@@ -289,7 +398,8 @@ impl PyModel {
         let model = &self.inner;
         let res = py.detach(|| {
             guarded(|| {
-                let mut monitor = |_: &static_solver::Progress| Python::attach(|py| py.check_signals().is_ok());
+                let mut monitor =
+                    |_: &static_solver::Progress| Python::attach(|py| py.check_signals().is_ok());
                 static_solver::solve_with(model, &opts, &mut monitor)
             })
         })?;
@@ -297,7 +407,11 @@ impl PyModel {
     }
 
     fn __repr__(&self) -> String {
-        format!("Model({} blocks, {} interfaces)", self.inner.n_wall(), self.inner.interfaces().len())
+        format!(
+            "Model({} blocks, {} interfaces)",
+            self.inner.n_wall(),
+            self.inner.interfaces().len()
+        )
     }
 }
 
@@ -351,7 +465,12 @@ impl PyResults {
     }
     #[getter]
     fn interface_states<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
-        self.inner.interface_states.iter().map(|&s| s as i64).collect::<Vec<_>>().into_pyarray(py)
+        self.inner
+            .interface_states
+            .iter()
+            .map(|&s| s as i64)
+            .collect::<Vec<_>>()
+            .into_pyarray(py)
     }
     #[getter]
     fn broken<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<bool>> {
