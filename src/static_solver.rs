@@ -605,7 +605,7 @@ impl<'a> Solver<'a> {
         }
         let (u0, lam0) = (self.u.clone(), self.lambda);
         let h = self.u_limit * 1e-3;
-        let mut step_from = |s: &mut Self, predictor: Option<&Vec<f64>>| -> Option<Vec<f64>> {
+        let step_from = |s: &mut Self, predictor: Option<&Vec<f64>>| -> Option<Vec<f64>> {
             s.u.copy_from_slice(&u0);
             s.lambda = lam0;
             match predictor {
