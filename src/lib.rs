@@ -7,6 +7,7 @@
 //! - [`joint`]: the joint law and its return mapping (shared by every solver);
 //! - [`model`]: blocks, interfaces, supports and loads;
 //! - [`static_solver`]: the static incremental solver (load or displacement control);
+//! - [`explicit`]: the explicit (molecular dynamics) solver: quasi-static analyses and time histories;
 //! - [`results`]: what an analysis returns; [`error`]: the error type.
 //!
 //! Units are SI throughout: m, N, Pa, kg, s.
@@ -27,6 +28,7 @@
 //! ```
 
 pub mod error;
+pub mod explicit;
 pub mod geometry;
 pub mod interface;
 pub mod joint;

@@ -1,0 +1,821 @@
+//! The explicit ("molecular dynamics") solver: velocity-Verlet integration of the blocks'
+//! equations of motion `M a = f_ext(t) - f_int(u) - f_damp`, with a diagonal mass (m, m, J).
+//! It never assembles or factorizes a matrix. Interface forces come from the same joint law as
+//! the static solver ([`crate::joint::return_map`]), applied to the increments of each time step
+//! (histories are committed at every step).
+//!
+//! - Time step: `safety * 2 / omega_max`, with `omega_max` bounded from above by Gershgorin's
+//!   theorem on the elastic interface stiffnesses (so the step is stable), unless given.
+//! - Damping: local non-viscous (Cundall: `-alpha |f| sign(v)` per dof; the default of
+//!   quasi-static runs) or mass-proportional viscous (`-c m v`).
+//! - Quasi-static load control: each load level is relaxed until the unbalanced-force ratio is
+//!   below a tolerance; a level at which the wall runs away (or does not settle) is a failure,
+//!   and the collapse multiplier is bracketed by halving the load step, as in the static solver.
+//! - Quasi-static displacement control: the control dof is driven; lambda follows from the
+//!   control dof's own equation (the condition of the static solver's bordered system).
+//! - Time histories: free motion from initial conditions, or a horizontal base acceleration
+//!   (inertial forces `-m a_g(t)` in the frame of the base).
+//!
+//! The interface loop is the hot path: flat arrays, no allocation per step, parallel over
+//! interfaces with rayon (each interface writes only its own slot; the gather onto blocks is
+//! a separate pass).
+
+use crate::error::Error;
+use crate::joint::{return_map, JointLaw, JointState, Section};
+use crate::model::{LiveLoad, Model};
+use crate::results::{Results, Status};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// Damping of the explicit solver.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Damping {
+    None,
+    /// Local non-viscous damping (Cundall): a force `-alpha |f| sign(v)` on each dof, `alpha` in [0, 1).
+    Local(f64),
+    /// Mass-proportional viscous damping `-c m v` [1/s].
+    Viscous(f64),
+}
+
+/// How the quasi-static analysis is driven.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum QsControl {
+    Load,
+    Displacement { max_displacement: f64 },
+}
+
+/// Options of the quasi-static explicit analysis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExplicitOptions {
+    pub control: QsControl,
+    /// Load levels or displacement stages (a hint, as for the static solver).
+    pub steps: usize,
+    /// Relative width of the bracket on the collapse multiplier.
+    pub tolerance: f64,
+    /// A level is settled when |unbalanced forces| <= ratio * |applied forces|.
+    pub unbalanced_ratio: f64,
+    pub damping: Damping,
+    /// Time step [s]; None: automatic.
+    pub time_step: Option<f64>,
+    /// Fraction of the stability limit used by the automatic time step.
+    pub safety: f64,
+    /// Time steps allowed to settle one level before it counts as not settling.
+    pub max_steps_per_level: usize,
+    /// Threads of the interface loop; 0: all cores.
+    pub threads: usize,
+    pub control_block: Option<usize>,
+}
+
+impl Default for ExplicitOptions {
+    fn default() -> Self {
+        ExplicitOptions {
+            control: QsControl::Load,
+            steps: 200,
+            tolerance: 1e-3,
+            unbalanced_ratio: 1e-5,
+            damping: Damping::Local(0.8),
+            time_step: None,
+            safety: 0.8,
+            max_steps_per_level: 200_000,
+            threads: 0,
+            control_block: None,
+        }
+    }
+}
+
+/// Options of a dynamic time history.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicOptions {
+    /// Duration [s].
+    pub duration: f64,
+    pub time_step: Option<f64>,
+    pub safety: f64,
+    pub damping: Damping,
+    /// Initial (u1, u2, phi) of every block; None: zero.
+    pub initial_displacement: Option<Vec<[f64; 3]>>,
+    /// Initial velocities of every block; None: zero.
+    pub initial_velocity: Option<Vec<[f64; 3]>>,
+    /// Horizontal base acceleration history: times [s] and accelerations [m/s2], linear between
+    /// samples, zero outside.
+    pub base_acceleration: Option<(Vec<f64>, Vec<f64>)>,
+    /// Live load multiplier held constant during the run.
+    pub live_multiplier: f64,
+    /// Record every n-th step.
+    pub record_every: usize,
+    pub threads: usize,
+}
+
+impl Default for DynamicOptions {
+    fn default() -> Self {
+        DynamicOptions {
+            duration: 1.0,
+            time_step: None,
+            safety: 0.8,
+            damping: Damping::None,
+            initial_displacement: None,
+            initial_velocity: None,
+            base_acceleration: None,
+            live_multiplier: 0.0,
+            record_every: 1,
+            threads: 0,
+        }
+    }
+}
+
+/// A recorded time history.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimeHistory {
+    pub status: Status,
+    pub error: Option<String>,
+    pub time_step: f64,
+    pub times: Vec<f64>,
+    /// (u1, u2, phi) of every block at each recorded time (record-major).
+    pub displacements: Vec<Vec<[f64; 3]>>,
+    pub velocities: Vec<Vec<[f64; 3]>>,
+    /// Kinetic energy [J] at each recorded time.
+    pub kinetic_energy: Vec<f64>,
+    /// Elastic energy stored in the joints [J].
+    pub elastic_energy: Vec<f64>,
+    /// Work done on the blocks by the external loads (dead, live, base inertia) [J].
+    pub external_work: Vec<f64>,
+    /// Energy dissipated by damping and joint plasticity [J].
+    pub dissipated: Vec<f64>,
+    pub steps: usize,
+    pub elapsed_s: f64,
+}
+
+/// Progress reported to a monitor; it returns false to stop the run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Progress {
+    pub step: usize,
+    pub multiplier: f64,
+    pub displacement: f64,
+    /// Fraction of the run done (NaN if unknown).
+    pub fraction: f64,
+}
+
+/// The stable time step of the model: `2 / omega_max` with a Gershgorin bound on `omega_max`.
+pub fn critical_time_step(model: &Model) -> f64 {
+    let nb = model.n_blocks();
+    let mut row = vec![0.0; 3 * nb];
+    for (k, it) in model.interfaces().iter().enumerate() {
+        let law = model.law(k);
+        let s = &model.sections()[k];
+        let d = [law.normal_stiffness * s.area, law.shear_stiffness * s.area, law.normal_stiffness * s.inertia];
+        let dofs = it.dofs();
+        let b = &it.b_mat;
+        for i in 0..6 {
+            for j in 0..6 {
+                let kij = d[0] * b[0][i] * b[0][j] + d[1] * b[1][i] * b[1][j] + d[2] * b[2][i] * b[2][j];
+                row[dofs[i]] += kij.abs();
+            }
+        }
+    }
+    let fixed = model.fixed();
+    let mut w2: f64 = 0.0;
+    for i in 0..nb {
+        let mm = [model.mass()[i], model.mass()[i], model.inertia()[i]];
+        for k in 0..3 {
+            if !fixed[3 * i + k] {
+                w2 = w2.max(row[3 * i + k] / mm[k]);
+            }
+        }
+    }
+    if w2 > 0.0 {
+        2.0 / w2.sqrt()
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// The integrator's state and work arrays (flat, allocated once).
+struct Integrator<'a> {
+    model: &'a Model,
+    laws: Vec<JointLaw>,
+    sections: Vec<Section>,
+    inv_mass: Vec<f64>,
+    mass: Vec<f64>,
+    free: Vec<bool>,
+    u: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    f_int: Vec<f64>,
+    f_ext: Vec<f64>,
+    states: Vec<JointState>,
+    forces: Vec<[f64; 3]>,
+    flags: Vec<u8>,
+    fe: Vec<[f64; 6]>,
+    dt: f64,
+    damping: Damping,
+    pool: rayon::ThreadPool,
+    steps: usize,
+}
+
+impl<'a> Integrator<'a> {
+    fn new(model: &'a Model, dt: Option<f64>, safety: f64, damping: Damping, threads: usize) -> Result<Self, Error> {
+        let crit = critical_time_step(model);
+        let dt = match dt {
+            Some(dt) => {
+                if !(dt.is_finite() && dt > 0.0) {
+                    return Err(Error::input(format!("time_step must be a finite number > 0, got {dt}")));
+                }
+                if dt > crit {
+                    return Err(Error::input(format!(
+                        "time_step = {dt:.3e} s exceeds the stability limit of this model, {crit:.3e} s"
+                    )));
+                }
+                dt
+            }
+            None => {
+                if !(safety > 0.0 && safety <= 1.0) {
+                    return Err(Error::input(format!("safety must lie in (0, 1], got {safety}")));
+                }
+                if !crit.is_finite() {
+                    return Err(Error::input("no stiffness holds the model: no stable time step"));
+                }
+                safety * crit
+            }
+        };
+        match damping {
+            Damping::Local(a) if !(0.0..1.0).contains(&a) => {
+                return Err(Error::input(format!("local damping coefficient must lie in [0, 1), got {a}")))
+            }
+            Damping::Viscous(c) if !(c.is_finite() && c >= 0.0) => {
+                return Err(Error::input(format!("viscous damping coefficient must be finite and >= 0, got {c}")))
+            }
+            _ => {}
+        }
+        let nb = model.n_blocks();
+        let m = model.interfaces().len();
+        let fixed = model.fixed();
+        let mut mass = vec![0.0; 3 * nb];
+        let mut inv_mass = vec![0.0; 3 * nb];
+        for i in 0..nb {
+            let mm = [model.mass()[i], model.mass()[i], model.inertia()[i]];
+            for k in 0..3 {
+                mass[3 * i + k] = mm[k];
+                if !fixed[3 * i + k] {
+                    inv_mass[3 * i + k] = 1.0 / mm[k];
+                }
+            }
+        }
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| Error::input(format!("cannot start {threads} threads: {e}")))?;
+        Ok(Integrator {
+            model,
+            laws: (0..m).map(|k| *model.law(k)).collect(),
+            sections: model.sections().to_vec(),
+            inv_mass,
+            mass,
+            free: fixed.iter().map(|f| !f).collect(),
+            u: model.prescribed().to_vec(),
+            v: vec![0.0; 3 * nb],
+            a: vec![0.0; 3 * nb],
+            f_int: vec![0.0; 3 * nb],
+            f_ext: vec![0.0; 3 * nb],
+            states: vec![JointState::default(); m],
+            forces: vec![[0.0; 3]; m],
+            flags: vec![0; m],
+            fe: vec![[0.0; 6]; m],
+            dt,
+            damping,
+            pool,
+            steps: 0,
+        })
+    }
+
+    /// Interface forces at the current `u` from the committed histories, which are updated
+    /// (each time step is an increment), then gathered into `f_int`.
+    fn interface_forces(&mut self) {
+        let model = self.model;
+        let u = &self.u;
+        let laws = &self.laws;
+        let sections = &self.sections;
+        let work = |(k, ((st, f), (fl, fe))): (usize, ((&mut JointState, &mut [f64; 3]), (&mut u8, &mut [f64; 6])))| {
+            let it = &model.interfaces()[k];
+            let r = return_map(&laws[k], &sections[k], it.jumps(u), st);
+            *st = r.state;
+            *f = r.force;
+            *fl = r.flags;
+            let b = &it.b_mat;
+            for j in 0..6 {
+                fe[j] = b[0][j] * r.force[0] + b[1][j] * r.force[1] + b[2][j] * r.force[2];
+            }
+        };
+        if self.pool.current_num_threads() > 1 && self.fe.len() >= 512 {
+            let par = self
+                .states
+                .par_iter_mut()
+                .zip(self.forces.par_iter_mut())
+                .zip(self.flags.par_iter_mut().zip(self.fe.par_iter_mut()))
+                .enumerate();
+            self.pool.install(|| par.with_min_len(256).for_each(work));
+        } else {
+            let iter = self.states.iter_mut().zip(self.forces.iter_mut()).zip(self.flags.iter_mut().zip(self.fe.iter_mut()));
+            iter.enumerate().for_each(work);
+        }
+        self.f_int.fill(0.0);
+        for (it, fe) in model.interfaces().iter().zip(&self.fe) {
+            let d = it.dofs();
+            for j in 0..6 {
+                self.f_int[d[j]] += fe[j];
+            }
+        }
+    }
+
+    /// Accelerations from the current forces, with damping against the current velocity.
+    fn accelerations(&mut self) {
+        for d in 0..self.u.len() {
+            if !self.free[d] {
+                self.a[d] = 0.0;
+                continue;
+            }
+            let mut f = self.f_ext[d] - self.f_int[d];
+            let v = self.v[d];
+            let fd = match self.damping {
+                Damping::None => 0.0,
+                Damping::Local(alpha) => {
+                    if v != 0.0 {
+                        -alpha * f.abs() * v.signum()
+                    } else {
+                        0.0
+                    }
+                }
+                Damping::Viscous(c) => -c * self.mass[d] * v,
+            };
+            f += fd;
+            self.a[d] = f * self.inv_mass[d];
+        }
+    }
+
+    /// One velocity-Verlet step; `f_ext` must hold the external forces at the new time.
+    /// `prescribed`: dof driven to a value (displacement control).
+    fn step(&mut self, set_ext: &mut dyn FnMut(&mut [f64], &[f64]), prescribed: Option<(usize, f64)>) {
+        let dt = self.dt;
+        for d in 0..self.u.len() {
+            if self.free[d] {
+                self.v[d] += 0.5 * dt * self.a[d];
+                self.u[d] += dt * self.v[d];
+            }
+        }
+        if let Some((d, val)) = prescribed {
+            self.v[d] = (val - self.u[d]) / dt;
+            self.u[d] = val;
+        }
+        self.interface_forces();
+        set_ext(&mut self.f_ext, &self.f_int);
+        self.accelerations();
+        for d in 0..self.u.len() {
+            if self.free[d] {
+                self.v[d] += 0.5 * dt * self.a[d];
+            }
+        }
+        if let Some((d, _)) = prescribed {
+            self.a[d] = 0.0;
+        }
+        self.steps += 1;
+    }
+
+    /// |unbalanced forces| / |applied forces| on the free dofs, dof `skip` left out.
+    fn unbalanced_ratio(&self, skip: Option<usize>) -> f64 {
+        let (mut r, mut f) = (0.0, 0.0);
+        for d in 0..self.u.len() {
+            if self.free[d] && Some(d) != skip {
+                let x = self.f_ext[d] - self.f_int[d];
+                r += x * x;
+                f += self.f_ext[d] * self.f_ext[d];
+            }
+        }
+        (r / f.max(f64::MIN_POSITIVE)).sqrt()
+    }
+
+    fn kinetic_energy(&self) -> f64 {
+        0.5 * (0..self.u.len()).filter(|&d| self.free[d]).map(|d| self.mass[d] * self.v[d] * self.v[d]).sum::<f64>()
+    }
+
+    fn elastic_energy(&self) -> f64 {
+        let mut e = 0.0;
+        for (k, f) in self.forces.iter().enumerate() {
+            let (law, s) = (&self.laws[k], &self.sections[k]);
+            e += 0.5
+                * (f[0] * f[0] / (law.normal_stiffness * s.area)
+                    + f[1] * f[1] / (law.shear_stiffness * s.area)
+                    + f[2] * f[2] / (law.normal_stiffness * s.inertia));
+        }
+        e
+    }
+}
+
+/// Outcome of relaxing one load level.
+enum Level {
+    Settled,
+    RanAway,
+    Stopped,
+}
+
+/// Runs a quasi-static analysis with the explicit solver; same results as the static solver.
+pub fn solve(model: &Model, opts: &ExplicitOptions) -> Result<Results, Error> {
+    solve_with(model, opts, &mut |_| true)
+}
+
+/// As [`solve`], calling `monitor` after each settled level (return false to stop).
+pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut(&Progress) -> bool) -> Result<Results, Error> {
+    let start = Instant::now();
+    if opts.steps == 0 {
+        return Err(Error::input("analysis.steps must be at least 1"));
+    }
+    if !(opts.tolerance > 0.0 && opts.tolerance < 1.0) {
+        return Err(Error::input(format!("tolerance must lie in (0, 1), got {}", opts.tolerance)));
+    }
+    if !(opts.unbalanced_ratio > 0.0 && opts.unbalanced_ratio < 1.0) {
+        return Err(Error::input(format!("unbalanced_ratio must lie in (0, 1), got {}", opts.unbalanced_ratio)));
+    }
+    model.check_supports()?;
+    let nb = model.n_blocks();
+    let control_block = opts.control_block.unwrap_or_else(|| model.default_control_block());
+    if control_block >= nb {
+        return Err(Error::input(format!("control block {control_block} does not exist (the model has {nb} blocks)")));
+    }
+    let cd = 3 * control_block;
+    if let QsControl::Displacement { max_displacement } = opts.control {
+        if !(max_displacement.is_finite() && max_displacement != 0.0) {
+            return Err(Error::input(format!("analysis.max_displacement must be a finite non-zero length, got {max_displacement}")));
+        }
+        if model.fixed()[cd] || model.live_load()[cd] == 0.0 {
+            return Err(Error::input(format!(
+                "the control block ({}) must be free to move horizontally and carry live load",
+                model.block_name(control_block)
+            )));
+        }
+    }
+    let mut s = Integrator::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
+    let (mut lo, mut hi) = (f64::MAX, f64::MIN);
+    for r in model.rects() {
+        lo = lo.min(r.x0.min(r.y0));
+        hi = hi.max(r.x1.max(r.y1));
+    }
+    let size = hi - lo;
+    let mut curve_l = vec![];
+    let mut curve_u = vec![];
+    let fd = model.dead_load().to_vec();
+    let fl = model.live_load().to_vec();
+
+    // relax at multiplier `lam` (or, with `drive`, with the control dof held at a value and
+    // lambda from its equation); the run counts as running away when a block moves more than
+    // `u_fail` from the start of the level
+    let relax = |s: &mut Integrator,
+                 lam: &mut f64,
+                 drive: Option<f64>,
+                 u_fail: f64,
+                 monitor: &mut dyn FnMut(&Progress) -> bool|
+     -> Level {
+        let u0 = s.u.clone();
+        let lam_cell = std::cell::Cell::new(*lam);
+        let mut set_ext = |f: &mut [f64], fint: &[f64]| {
+            if drive.is_some() {
+                lam_cell.set((fint[cd] - fd[cd]) / fl[cd]);
+            }
+            let l = lam_cell.get();
+            for d in 0..f.len() {
+                f[d] = fd[d] + l * fl[d];
+            }
+        };
+        for k in 0..opts.max_steps_per_level {
+            s.step(&mut set_ext, drive.map(|x| (cd, x)));
+            *lam = lam_cell.get();
+            if k % 16 == 15 {
+                if s.unbalanced_ratio(drive.map(|_| cd)) <= opts.unbalanced_ratio {
+                    return Level::Settled;
+                }
+                let moved = (0..nb).map(|i| (s.u[3 * i] - u0[3 * i]).hypot(s.u[3 * i + 1] - u0[3 * i + 1])).fold(0.0, f64::max);
+                if moved > u_fail || !moved.is_finite() {
+                    return Level::RanAway;
+                }
+            }
+            if k % 4096 == 4095 {
+                let p = Progress { step: s.steps, multiplier: *lam, displacement: s.u[cd], fraction: f64::NAN };
+                if !monitor(&p) {
+                    return Level::Stopped;
+                }
+            }
+        }
+        Level::RanAway
+    };
+
+    // dead load
+    let mut lam = 0.0;
+    let u_fail0 = 1e-2 * size;
+    match relax(&mut s, &mut lam, None, u_fail0, monitor) {
+        Level::Settled => {}
+        Level::Stopped => return Ok(finish(model, s, Status::Failed, Some(Error::Interrupted), curve_l, curve_u, None, control_block, start)),
+        Level::RanAway => {
+            let e = Error::Mechanism("no equilibrium under the dead loads alone (the wall does not settle)".into());
+            return Ok(finish(model, s, Status::Failed, Some(e), curve_l, curve_u, None, control_block, start));
+        }
+    }
+    s.v.fill(0.0);
+    curve_l.push(0.0);
+    curve_u.push(s.u[cd]);
+    // displacements beyond 20 x the settlement under dead load (at least 1e-4 of the wall) are
+    // a running mechanism, not an elastic response
+    let settle = (0..nb).map(|i| s.u[3 * i].hypot(s.u[3 * i + 1])).fold(0.0, f64::max);
+    let u_fail = (20.0 * settle).max(1e-4 * size);
+    let save = |s: &Integrator| (s.u.clone(), s.states.clone());
+    let restore = |s: &mut Integrator, st: &(Vec<f64>, Vec<JointState>)| {
+        s.u.copy_from_slice(&st.0);
+        s.states.copy_from_slice(&st.1);
+        s.v.fill(0.0);
+        s.a.fill(0.0);
+    };
+    match opts.control {
+        QsControl::Load => {
+            let scale = match model.live() {
+                LiveLoad::HorizontalWeight => 1.0,
+                LiveLoad::TopHorizontal => (model.weight().iter().sum::<f64>() + fd.iter().map(|x| x.abs()).sum::<f64>()).max(1.0),
+            };
+            let mut dl = 4.0 * scale / opts.steps as f64;
+            let mut lam_conv = 0.0;
+            let mut saved = save(&s);
+            let mut mechanism = None;
+            let max_levels = 100 * opts.steps + 1000;
+            for _ in 0..max_levels {
+                let mut l = lam_conv + dl;
+                match relax(&mut s, &mut l, None, u_fail, monitor) {
+                    Level::Settled => {
+                        lam_conv = l;
+                        saved = save(&s);
+                        s.v.fill(0.0);
+                        curve_l.push(l);
+                        curve_u.push(s.u[cd]);
+                        let p = Progress { step: s.steps, multiplier: l, displacement: s.u[cd], fraction: f64::NAN };
+                        if !monitor(&p) {
+                            return Ok(finish(model, s, Status::Failed, Some(Error::Interrupted), curve_l, curve_u, None, control_block, start));
+                        }
+                        if lam_conv > 1e3 * scale {
+                            return Ok(finish(model, s, Status::Completed, None, curve_l, curve_u, None, control_block, start));
+                        }
+                    }
+                    Level::Stopped => {
+                        restore(&mut s, &saved);
+                        return Ok(finish(model, s, Status::Failed, Some(Error::Interrupted), curve_l, curve_u, None, control_block, start));
+                    }
+                    Level::RanAway => {
+                        mechanism = Some(s.u.iter().zip(&saved.0).map(|(a, b)| a - b).collect::<Vec<f64>>());
+                        restore(&mut s, &saved);
+                        dl *= 0.5;
+                        if 2.0 * dl <= opts.tolerance * lam_conv.abs().max(1e-3 * scale) {
+                            s.interface_forces();
+                            return Ok(finish(model, s, Status::Collapse, None, curve_l, curve_u, mechanism, control_block, start));
+                        }
+                    }
+                }
+            }
+            let e = Error::Convergence(format!("no collapse bracket after {max_levels} load levels"));
+            Ok(finish(model, s, Status::Failed, Some(e), curve_l, curve_u, mechanism, control_block, start))
+        }
+        QsControl::Displacement { max_displacement } => {
+            let u_start = s.u[cd];
+            let stages = opts.steps;
+            let mut prev = save(&s);
+            for k in 1..=stages {
+                let target = u_start + max_displacement * k as f64 / stages as f64;
+                // drive the control dof there over a few hundred steps, then relax holding it
+                let from = s.u[cd];
+                let n_drive = 200;
+                let mut set_ext = |f: &mut [f64], fint: &[f64]| {
+                    lam = (fint[cd] - fd[cd]) / fl[cd];
+                    for d in 0..f.len() {
+                        f[d] = fd[d] + lam * fl[d];
+                    }
+                };
+                for j in 1..=n_drive {
+                    let x = from + (target - from) * j as f64 / n_drive as f64;
+                    s.step(&mut set_ext, Some((cd, x)));
+                }
+                match relax(&mut s, &mut lam, Some(target), f64::INFINITY, monitor) {
+                    Level::Settled | Level::RanAway => {}
+                    Level::Stopped => {
+                        return Ok(finish(model, s, Status::Failed, Some(Error::Interrupted), curve_l, curve_u, None, control_block, start))
+                    }
+                }
+                let mech: Vec<f64> = s.u.iter().zip(&prev.0).map(|(a, b)| a - b).collect();
+                prev = save(&s);
+                curve_l.push(lam);
+                curve_u.push(s.u[cd]);
+                let p = Progress { step: s.steps, multiplier: lam, displacement: s.u[cd], fraction: k as f64 / stages as f64 };
+                if !monitor(&p) {
+                    return Ok(finish(model, s, Status::Failed, Some(Error::Interrupted), curve_l, curve_u, Some(mech), control_block, start));
+                }
+                if k == stages {
+                    let peak = curve_l.iter().cloned().fold(f64::MIN, f64::max);
+                    let n = curve_l.len();
+                    let k0 = (curve_l[1] - curve_l[0]) / (curve_u[1] - curve_u[0]);
+                    let kl = (curve_l[n - 1] - curve_l[n - 2]) / (curve_u[n - 1] - curve_u[n - 2]);
+                    let collapsed = lam < peak * (1.0 - 1e-3) || (kl / k0).abs() < 1e-2;
+                    let status = if collapsed { Status::Collapse } else { Status::Completed };
+                    return Ok(finish(model, s, status, None, curve_l, curve_u, Some(mech), control_block, start));
+                }
+            }
+            unreachable!("the loop returns at its last stage")
+        }
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    model: &Model,
+    s: Integrator,
+    status: Status,
+    err: Option<Error>,
+    curve_l: Vec<f64>,
+    curve_u: Vec<f64>,
+    mechanism: Option<Vec<f64>>,
+    control_block: usize,
+    start: Instant,
+) -> Results {
+    let nb = model.n_blocks();
+    let mech = mechanism.unwrap_or_else(|| vec![0.0; 3 * nb]);
+    let scale = (0..nb).map(|i| mech[3 * i].hypot(mech[3 * i + 1])).fold(0.0, f64::max);
+    let work: f64 = mech.iter().zip(model.live_load()).map(|(v, f)| v * f).sum();
+    let scale = if scale > 0.0 { work.signum() / scale } else { 0.0 };
+    // load control that ends without collapse has no collapse multiplier
+    let collapse_multiplier = if status == Status::Completed && mechanism_is_none(&mech) {
+        f64::NAN
+    } else {
+        curve_l.iter().cloned().fold(f64::NAN, f64::max)
+    };
+    Results {
+        method: "dynamic",
+        status,
+        error: err.map(|e| e.to_string()),
+        collapse_multiplier,
+        curve_multiplier: curve_l,
+        curve_displacement: curve_u,
+        control_block,
+        displacements: (0..nb).map(|i| [s.u[3 * i], s.u[3 * i + 1], s.u[3 * i + 2]]).collect(),
+        mechanism: (0..nb).map(|i| [mech[3 * i] * scale, mech[3 * i + 1] * scale, mech[3 * i + 2] * scale]).collect(),
+        interface_forces: s.forces,
+        interface_states: s.flags,
+        broken: s.states.iter().map(|st| st.broken).collect(),
+        iterations: s.steps,
+        steps: 0,
+        elapsed_s: start.elapsed().as_secs_f64(),
+    }
+}
+
+fn mechanism_is_none(m: &[f64]) -> bool {
+    m.iter().all(|&x| x == 0.0)
+}
+
+/// Integrates the equations of motion in time (free motion, base acceleration).
+pub fn simulate(model: &Model, opts: &DynamicOptions) -> Result<TimeHistory, Error> {
+    simulate_with(model, opts, &mut |_| true)
+}
+
+/// As [`simulate`], calling `monitor` every few thousand steps (return false to stop).
+pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnMut(&Progress) -> bool) -> Result<TimeHistory, Error> {
+    let start = Instant::now();
+    if !(opts.duration.is_finite() && opts.duration > 0.0) {
+        return Err(Error::input(format!("duration must be a finite number > 0, got {}", opts.duration)));
+    }
+    if opts.record_every == 0 {
+        return Err(Error::input("record_every must be at least 1"));
+    }
+    if !opts.live_multiplier.is_finite() {
+        return Err(Error::input("live_multiplier must be finite"));
+    }
+    let nb = model.n_blocks();
+    if let Some((t, a)) = &opts.base_acceleration {
+        if t.len() != a.len() || t.is_empty() {
+            return Err(Error::input(format!(
+                "base_acceleration: times and accelerations must be non-empty and of equal length (got {} and {})",
+                t.len(),
+                a.len()
+            )));
+        }
+        if t.iter().chain(a).any(|x| !x.is_finite()) || t.windows(2).any(|w| w[1] <= w[0]) {
+            return Err(Error::input("base_acceleration: times must increase and every value must be finite"));
+        }
+    }
+    for (what, init) in [("initial_displacement", &opts.initial_displacement), ("initial_velocity", &opts.initial_velocity)] {
+        if let Some(v) = init {
+            if v.len() != nb {
+                return Err(Error::input(format!("{what}: expected {nb} rows (one per block), got {}", v.len())));
+            }
+            if v.iter().flatten().any(|x| !x.is_finite()) {
+                return Err(Error::input(format!("{what}: every value must be finite")));
+            }
+        }
+    }
+    model.check_supports()?;
+    let mut s = Integrator::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
+    let fixed = model.fixed();
+    if let Some(u0) = &opts.initial_displacement {
+        for i in 0..nb {
+            for k in 0..3 {
+                if !fixed[3 * i + k] {
+                    s.u[3 * i + k] = u0[i][k];
+                }
+            }
+        }
+    }
+    if let Some(v0) = &opts.initial_velocity {
+        for i in 0..nb {
+            for k in 0..3 {
+                if !fixed[3 * i + k] {
+                    s.v[3 * i + k] = v0[i][k];
+                }
+            }
+        }
+    }
+    let fd = model.dead_load().to_vec();
+    let fl = model.live_load().to_vec();
+    let lam = opts.live_multiplier;
+    let mass = s.mass.clone();
+    let base = opts.base_acceleration.clone();
+    let ag = move |t: f64| -> f64 {
+        match &base {
+            None => 0.0,
+            Some((ts, a)) => {
+                if t < ts[0] || t > ts[ts.len() - 1] {
+                    return 0.0;
+                }
+                let k = ts.partition_point(|&x| x <= t).clamp(1, ts.len() - 1);
+                let (t0, t1) = (ts[k - 1], ts[k]);
+                a[k - 1] + (a[k] - a[k - 1]) * (t - t0) / (t1 - t0)
+            }
+        }
+    };
+    let ext = |f: &mut [f64], t: f64| {
+        let g = ag(t);
+        for d in 0..f.len() {
+            f[d] = fd[d] + lam * fl[d] - if d % 3 == 0 { mass[d] * g } else { 0.0 };
+        }
+    };
+    ext(&mut s.f_ext, 0.0);
+    s.interface_forces();
+    s.accelerations();
+    let n_steps = (opts.duration / s.dt).ceil() as usize;
+    let cap = n_steps / opts.record_every + 2;
+    let mut h = TimeHistory {
+        status: Status::Completed,
+        error: None,
+        time_step: s.dt,
+        times: Vec::with_capacity(cap),
+        displacements: Vec::with_capacity(cap),
+        velocities: Vec::with_capacity(cap),
+        kinetic_energy: Vec::with_capacity(cap),
+        elastic_energy: Vec::with_capacity(cap),
+        external_work: Vec::with_capacity(cap),
+        dissipated: Vec::with_capacity(cap),
+        steps: 0,
+        elapsed_s: 0.0,
+    };
+    // work of the external forces, by the trapezoidal rule on each step
+    let mut work = 0.0;
+    let mut f_prev = s.f_ext.clone();
+    let mut u_prev = s.u.clone();
+    let record = |h: &mut TimeHistory, s: &Integrator, t: f64, work: f64| {
+        h.times.push(t);
+        h.displacements.push((0..nb).map(|i| [s.u[3 * i], s.u[3 * i + 1], s.u[3 * i + 2]]).collect());
+        h.velocities.push((0..nb).map(|i| [s.v[3 * i], s.v[3 * i + 1], s.v[3 * i + 2]]).collect());
+        let ke = s.kinetic_energy();
+        let ee = s.elastic_energy();
+        h.kinetic_energy.push(ke);
+        h.elastic_energy.push(ee);
+        h.external_work.push(work);
+        h.dissipated.push(work - ke - ee);
+    };
+    record(&mut h, &s, 0.0, 0.0);
+    for n in 1..=n_steps {
+        let t = n as f64 * s.dt;
+        let mut set_ext = |f: &mut [f64], _: &[f64]| ext(f, t);
+        s.step(&mut set_ext, None);
+        for d in 0..s.u.len() {
+            work += 0.5 * (s.f_ext[d] + f_prev[d]) * (s.u[d] - u_prev[d]);
+        }
+        f_prev.copy_from_slice(&s.f_ext);
+        u_prev.copy_from_slice(&s.u);
+        if s.u.iter().any(|x| !x.is_finite()) {
+            h.status = Status::Failed;
+            h.error = Some(format!("non-finite displacement at t = {t:.6} s (step {n})"));
+            break;
+        }
+        if n % opts.record_every == 0 || n == n_steps {
+            record(&mut h, &s, t, work);
+        }
+        if n % 4096 == 0 {
+            let p = Progress { step: n, multiplier: lam, displacement: f64::NAN, fraction: n as f64 / n_steps as f64 };
+            if !monitor(&p) {
+                h.status = Status::Failed;
+                h.error = Some(Error::Interrupted.to_string());
+                break;
+            }
+        }
+    }
+    h.steps = s.steps;
+    h.elapsed_s = start.elapsed().as_secs_f64();
+    Ok(h)
+}
