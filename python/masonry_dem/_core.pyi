@@ -5,7 +5,7 @@ the top beam (if any) come after them (see `Model.base_index`, `Model.top_index`
 Interface families: "bed", "head", "base", "top".
 """
 
-from typing import Literal, Optional, Sequence
+from typing import Callable, Literal, Optional, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -108,6 +108,7 @@ class Model:
         control_block: Optional[int] = None,
         tolerance: float = 1e-4,
         max_iterations: int = 50,
+        progress: Optional[Callable[[int, float, float, float], None]] = None,
     ) -> "Results":
         """Static incremental analysis (Newton with the consistent tangent).
 
@@ -116,7 +117,74 @@ class Model:
         control_block (default: the top beam if any, else the highest block at the right end)
         to max_displacement [m] in `steps` increments, through the peak and after it.
         Releases the GIL; returns Results with status "collapse", "completed" or "failed"
-        (never raises for a solver failure; the error is in Results.error)."""
+        (never raises for a solver failure; the error is in Results.error).
+        progress: optional callable(step, multiplier, displacement, fraction) called after each
+        converged step (fraction in [0, 1] under displacement control, NaN otherwise)."""
+    def solve_dynamic(
+        self,
+        control: Literal["load", "displacement"] = "load",
+        steps: int = 200,
+        max_displacement: float = 0.002,
+        control_block: Optional[int] = None,
+        tolerance: float = 1e-3,
+        unbalanced_ratio: float = 1e-5,
+        damping: Literal["local", "viscous", "none"] = "local",
+        damping_coefficient: float = 0.8,
+        time_step: Optional[float] = None,
+        safety: float = 0.8,
+        threads: int = 0,
+        progress: Optional[Callable[[int, float, float, float], None]] = None,
+    ) -> "Results":
+        """Quasi-static analysis with the explicit (molecular dynamics) solver; the same Results
+        as solve_static, with method "dynamic" and `iterations` = time steps.
+
+        control="load": each load level is relaxed until |unbalanced| <= unbalanced_ratio *
+        |applied|; the collapse multiplier is bracketed to `tolerance`. control="displacement":
+        the control block is driven to max_displacement in `steps` stages, lambda following from
+        its equation. damping: "local" (Cundall, coefficient alpha in [0, 1)), "viscous"
+        (mass-proportional, coefficient c [1/s]) or "none". time_step [s]: None for the automatic
+        stable step (safety * the stability limit); a user step above the limit is an InputError.
+        threads: threads of the interface loop (0: all cores). Releases the GIL; Ctrl-C stops it
+        and returns what was computed. progress: as in solve_static, every few thousand steps."""
+    def simulate(
+        self,
+        duration: float,
+        time_step: Optional[float] = None,
+        safety: float = 0.8,
+        damping: Literal["local", "viscous", "none"] = "none",
+        damping_coefficient: float = 0.0,
+        initial_displacements: Optional[npt.ArrayLike] = None,
+        initial_velocities: Optional[npt.ArrayLike] = None,
+        base_acceleration: Optional[tuple[npt.ArrayLike, npt.ArrayLike]] = None,
+        live_multiplier: float = 0.0,
+        record_every: int = 1,
+        large_rotations: bool = True,
+        threads: int = 0,
+        progress: Optional[Callable[[int, float, float, float], None]] = None,
+    ) -> "TimeHistory":
+        """Time history with the explicit solver: free motion from initial conditions
+        (initial_displacements / initial_velocities: (n_all, 3) arrays of u1 [m], u2 [m],
+        phi [rad] and their rates) and/or a horizontal base acceleration given as (times [s],
+        accelerations [m/s2]), linear between samples. live_multiplier: lambda held constant.
+        large_rotations: block kinematics with finite rotations (needed for rocking); False uses
+        the linearized kinematics of the static solver. Records every record_every-th step.
+        Releases the GIL; Ctrl-C stops it and returns what was computed (status "failed")."""
+    def critical_time_step(self) -> float:
+        """The stability limit of the explicit solver's time step [s] (Gershgorin bound)."""
+
+class TimeHistory:
+    status: str  # "completed" | "failed"
+    error: Optional[str]
+    time_step: float  # [s]
+    times: FloatArray  # (k,) [s]
+    displacements: FloatArray  # (k, n_all, 3): u1 [m], u2 [m], phi [rad]
+    velocities: FloatArray  # (k, n_all, 3)
+    kinetic_energy: FloatArray  # (k,) [J]
+    elastic_energy: FloatArray  # (k,) energy stored in the joints [J]
+    external_work: FloatArray  # (k,) work of the external loads since t = 0 [J]
+    dissipated: FloatArray  # (k,) external_work - kinetic - elastic [J] (damping, friction)
+    steps: int
+    elapsed_s: float
 
 class Results:
     method: str  # "static" | "dynamic"
@@ -132,6 +200,6 @@ class Results:
     interface_states: IntArray  # (m,) bit flags: 1 open, 2 sliding, 4 rocking; 0 elastic
     broken: npt.NDArray[np.bool_]  # (m,) joint lost its cohesion and tensile strength
     joint_states: dict[str, int]  # counts: elastic, sliding, rocking, open
-    iterations: int  # total equilibrium iterations
+    iterations: int  # total equilibrium iterations (static) or time steps (dynamic)
     steps: int  # converged steps
     elapsed_s: float
