@@ -102,6 +102,8 @@ pub struct DynamicOptions {
     pub live_multiplier: f64,
     /// Record every n-th step.
     pub record_every: usize,
+    /// Finite rotations of the blocks (rocking); false: the linearized kinematics.
+    pub large_rotations: bool,
     pub threads: usize,
 }
 
@@ -117,6 +119,7 @@ impl Default for DynamicOptions {
             base_acceleration: None,
             live_multiplier: 0.0,
             record_every: 1,
+            large_rotations: true,
             threads: 0,
         }
     }
@@ -209,6 +212,11 @@ struct Integrator<'a> {
     damping: Damping,
     pool: rayon::ThreadPool,
     steps: usize,
+    /// finite rotations (time histories) or the linearized kinematics of the static solver
+    large: bool,
+    /// reference centroids and (cos, sin) of the current rotation of each block
+    centroids: Vec<[f64; 2]>,
+    cs: Vec<[f64; 2]>,
 }
 
 impl<'a> Integrator<'a> {
@@ -283,6 +291,9 @@ impl<'a> Integrator<'a> {
             damping,
             pool,
             steps: 0,
+            large: false,
+            centroids: model.rects().iter().map(|r| r.centroid()).collect(),
+            cs: vec![[1.0, 0.0]; nb],
         })
     }
 
@@ -293,15 +304,34 @@ impl<'a> Integrator<'a> {
         let u = &self.u;
         let laws = &self.laws;
         let sections = &self.sections;
+        if self.large {
+            for (i, cs) in self.cs.iter_mut().enumerate() {
+                let (s, c) = u[3 * i + 2].sin_cos();
+                *cs = [c, s];
+            }
+        }
+        let (large, g, cs) = (self.large, &self.centroids, &self.cs);
         let work = |(k, ((st, f), (fl, fe))): (usize, ((&mut JointState, &mut [f64; 3]), (&mut u8, &mut [f64; 6])))| {
             let it = &model.interfaces()[k];
-            let r = return_map(&laws[k], &sections[k], it.jumps(u), st);
-            *st = r.state;
-            *f = r.force;
-            *fl = r.flags;
-            let b = &it.b_mat;
-            for j in 0..6 {
-                fe[j] = b[0][j] * r.force[0] + b[1][j] * r.force[1] + b[2][j] * r.force[2];
+            if large {
+                let (a, b) = (it.a, it.b);
+                // the normal force's eccentricity at the previous step, within the interface
+                let ecc = if f[0] < 0.0 { (f[2] / f[0]).clamp(-0.5 * it.l, 0.5 * it.l) } else { 0.0 };
+                let kin = it.large_kinematics(g[a], g[b], &u[3 * a..3 * a + 3], &u[3 * b..3 * b + 3], cs[a], cs[b], ecc);
+                let r = return_map(&laws[k], &sections[k], kin.jumps, st);
+                *st = r.state;
+                *f = r.force;
+                *fl = r.flags;
+                *fe = kin.forces(r.force);
+            } else {
+                let r = return_map(&laws[k], &sections[k], it.jumps(u), st);
+                *st = r.state;
+                *f = r.force;
+                *fl = r.flags;
+                let b = &it.b_mat;
+                for j in 0..6 {
+                    fe[j] = b[0][j] * r.force[0] + b[1][j] * r.force[1] + b[2][j] * r.force[2];
+                }
             }
         };
         if self.pool.current_num_threads() > 1 && self.fe.len() >= 512 {
@@ -711,6 +741,7 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
     }
     model.check_supports()?;
     let mut s = Integrator::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
+    s.large = opts.large_rotations;
     let fixed = model.fixed();
     if let Some(u0) = &opts.initial_displacement {
         for i in 0..nb {

@@ -97,6 +97,52 @@ impl Interface {
         [a, a + 1, a + 2, b, b + 1, b + 2]
     }
 
+    /// Jumps with finite rotations in the current configuration, for the explicit solver.
+    /// Measured in the frame of block a rotated with it: the normal gap at `c`, the slip at the
+    /// point where the normal force acts (`c + e t`, `e` the eccentricity M/N of the previous
+    /// force, within the interface) and `sin` of the relative rotation, so that the gaps at
+    /// both ends of the interface are exact (`dN +- l/2 dphi`): a block turning about its edge
+    /// neither penetrates nor slips there. To first order this is `B q`.
+    /// `ga`, `gb`: the blocks' reference centroids; `ua`, `ub`: their (u1, u2, phi); `csa`,
+    /// `csb`: (cos, sin) of their rotations.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    pub fn large_kinematics(
+        &self,
+        ga: [f64; 2],
+        gb: [f64; 2],
+        ua: &[f64],
+        ub: &[f64],
+        csa: [f64; 2],
+        csb: [f64; 2],
+        e: f64,
+    ) -> LargeKinematics {
+        let rot = |cs: [f64; 2], v: [f64; 2]| [cs[0] * v[0] - cs[1] * v[1], cs[1] * v[0] + cs[0] * v[1]];
+        let ra = rot(csa, [self.c[0] - ga[0], self.c[1] - ga[1]]);
+        let rb = rot(csb, [self.c[0] - gb[0], self.c[1] - gb[1]]);
+        let n = rot(csa, self.n);
+        let t = [n[1], -n[0]];
+        let gap = [
+            ub[0] + gb[0] + rb[0] - (ua[0] + ga[0] + ra[0]),
+            ub[1] + gb[1] + rb[1] - (ua[1] + ga[1] + ra[1]),
+        ];
+        // relative rotation: cos and sin of (phi_b - phi_a)
+        let rel = [csb[0] * csa[0] + csb[1] * csa[1], csb[1] * csa[0] - csb[0] * csa[1]];
+        LargeKinematics {
+            jumps: [
+                n[0] * gap[0] + n[1] * gap[1],
+                t[0] * gap[0] + t[1] * gap[1] + e * (rel[0] - 1.0),
+                rel[1],
+            ],
+            n,
+            t,
+            ra,
+            rb,
+            rel,
+            e,
+        }
+    }
+
     /// Jumps `e = B q` from the global displacement vector `u` (3 per block).
     #[inline]
     pub fn jumps(&self, u: &[f64]) -> [f64; 3] {
@@ -106,6 +152,34 @@ impl Interface {
             e[r] = (0..6).map(|k| row[k] * u[d[k]]).sum();
         }
         e
+    }
+}
+
+/// Current-configuration kinematics of an interface (see [`Interface::large_kinematics`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LargeKinematics {
+    pub jumps: [f64; 3],
+    pub n: [f64; 2],
+    pub t: [f64; 2],
+    /// Arms from the centroids of a and b to the interface point, rotated.
+    pub ra: [f64; 2],
+    pub rb: [f64; 2],
+    /// cos and sin of the relative rotation.
+    pub rel: [f64; 2],
+    /// Eccentricity of the slip point along t [m].
+    pub e: f64,
+}
+
+impl LargeKinematics {
+    /// Generalized internal forces on (a's u1, u2, phi, b's u1, u2, phi) of force (N, T, M).
+    #[inline]
+    pub fn forces(&self, s: [f64; 3]) -> [f64; 6] {
+        let f = [s[0] * self.n[0] + s[1] * self.t[0], s[0] * self.n[1] + s[1] * self.t[1]];
+        let cross = |r: [f64; 2]| r[0] * f[1] - r[1] * f[0];
+        // work-conjugate of the relative rotation: d(sin)/dphi = cos, and the slip point's
+        // d(e (cos - 1))/dphi = -e sin
+        let m = s[2] * self.rel[0] - s[1] * self.e * self.rel[1];
+        [-f[0], -f[1], -cross(self.ra) - m, f[0], f[1], cross(self.rb) + m]
     }
 }
 

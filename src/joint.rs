@@ -12,6 +12,11 @@
 //! `dilatancy == friction`), rocking associative. A joint with cohesion or tensile strength loses
 //! both at its first failure (brittle), and behaves as a dry joint afterwards.
 //!
+//! History: only the Coulomb flow (slip, and the opening that dilatancy couples to it) is
+//! permanent. The flow on the rocking faces (opening, lifting about an edge) is recoverable:
+//! a gap closes again without resistance, as at a no-tension contact, so a rocking block can
+//! rock back.
+//!
 //! The return mapping is the exact multi-surface projection `sigma = sigma_trial - D M dgamma`
 //! with the active set found by enumeration (Kuhn-Tucker conditions checked: dgamma >= 0, every
 //! face satisfied), corners and the apex included. With associative flow it is the closest-point
@@ -242,12 +247,11 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
     let faces = Faces::new(law, sec, broken || !strong);
     let tol = 1e-12 * (scale + faces.b[0] + faces.b[2]) + f64::MIN_POSITIVE;
     let elastic_tangent = [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
-    let finish = |force: [f64; 3], tangent: [[f64; 3]; 3]| -> Response {
-        let plastic = [
-            e[0] - force[0] / d[0],
-            e[1] - force[1] / d[1],
-            e[2] - force[2] / d[2],
-        ];
+    // Only the Coulomb flow (slip and its dilatancy) is history: an opening or a rocking gap
+    // closes again without resistance (no-tension contact), so the rocking faces' flow is not
+    // stored. Within a step the mapping, and so its tangent, is the same.
+    let finish = |force: [f64; 3], slip: [f64; 3], tangent: [[f64; 3]; 3]| -> Response {
+        let plastic = [ep[0] + slip[0], ep[1] + slip[1], ep[2] + slip[2]];
         Response {
             force,
             state: JointState { plastic, broken },
@@ -256,7 +260,7 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
         }
     };
     if (0..4).all(|j| faces.f(j, &trial) <= tol) {
-        return finish(trial, elastic_tangent);
+        return finish(trial, [0.0; 3], elastic_tangent);
     }
     // D m_j for every face
     let dm: [[f64; 3]; 4] = std::array::from_fn(|j| {
@@ -293,9 +297,13 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
             continue;
         }
         let mut s = trial;
+        let mut slip = [0.0; 3];
         for (p, &j) in act.iter().enumerate() {
             for c in 0..3 {
                 s[c] -= r[p] * dm[j][c];
+                if j < 2 {
+                    slip[c] += r[p] * faces.m[j][c];
+                }
             }
         }
         if (0..4)
@@ -322,7 +330,7 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
                 }
             }
         }
-        return finish(s, tangent);
+        return finish(s, slip, tangent);
     }
     // No active set satisfied the conditions (degenerate data): fall back on the apex, the one
     // point of the domain that every face reaches, carrying nothing beyond the cut-off.
@@ -331,7 +339,7 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
     } else {
         faces.b[2]
     };
-    finish([n_apex, 0.0, 0.0], [[0.0; 3]; 3])
+    finish([n_apex, 0.0, 0.0], [0.0; 3], [[0.0; 3]; 3])
 }
 
 /// The tangent of a joint whose force `force` lies in the domain, taking as active every face

@@ -500,14 +500,108 @@ def test_input_error_is_a_masonry_error(tmp_path: Path) -> None:
 # --------------------------------------------------------------------------------------------------
 
 
-def test_dynamic_is_accepted_but_not_available(tmp_path: Path) -> None:
-    case = load_text(tmp_path, MINIMAL + "[analysis]\nmethod = 'dynamic'\n")
+DYNAMIC_KEYS = """\
+[analysis]
+method = "dynamic"
+tolerance = 2e-3
+damping = "viscous"
+damping_coefficient = 5
+time_step = 1e-5
+unbalanced_ratio = 1e-4
+threads = 1
+"""
+
+
+def test_dynamic_keys_mapping(tmp_path: Path) -> None:
+    case = load_text(tmp_path, MINIMAL + DYNAMIC_KEYS)
     assert case.method == "dynamic"
-    with pytest.raises(md.MasonryError, match="explicit .*solver is not available yet") as info:
+    assert case.analysis_kwargs == {
+        "control": "load",
+        "steps": 200,
+        "max_displacement": 0.002,
+        "control_block": None,
+        "tolerance": 2e-3,
+    }
+    assert case.dynamic_kwargs == {
+        "damping": "viscous",
+        "damping_coefficient": 5.0,
+        "time_step": 1e-5,
+        "unbalanced_ratio": 1e-4,
+        "threads": 1,
+    }
+    assert isinstance(case.dynamic_kwargs["damping_coefficient"], float)
+    # the static solver gets the common keys (tolerance included), the explicit one all of them
+    assert case.solver_kwargs("static") == case.analysis_kwargs
+    assert case.solver_kwargs("dynamic") == {**case.analysis_kwargs, **case.dynamic_kwargs}
+    assert case.solver_kwargs() == case.solver_kwargs("dynamic")
+
+
+def test_dynamic_keys_are_optional(tmp_path: Path) -> None:
+    case = load_text(tmp_path, MINIMAL + "[analysis]\nmethod = 'dynamic'\n")
+    assert case.dynamic_kwargs == {}
+    assert "tolerance" not in case.analysis_kwargs  # each solver keeps its own default
+    case = load_text(tmp_path, MINIMAL + "[analysis]\ndamping = 'none'\ndamping_coefficient = 3.0\n")
+    assert case.dynamic_kwargs == {"damping": "none", "damping_coefficient": 3.0}
+
+
+@pytest.mark.parametrize(
+    "line, expected",
+    [
+        ("damping = 'cundall'", '[analysis] damping: expected one of "local", "viscous", "none", got "cundall"'),
+        ("damping = 0.8", "[analysis] damping: expected a string, got float"),
+        ("damping_coefficient = -0.1", "[analysis] damping_coefficient: must be >= 0, got -0.1"),
+        ("damping_coefficient = 'high'", "[analysis] damping_coefficient: expected a number, got string"),
+        ("damping_coefficient = 1.0", '[analysis] damping_coefficient: must be < 1 with damping = "local"'),
+        ("damping = 'local'\ndamping_coefficient = 1.5", '[analysis] damping_coefficient: must be < 1 with damping'),
+        ("time_step = 0", "[analysis] time_step: must be > 0, got 0"),
+        ("time_step = -1e-5", "[analysis] time_step: must be > 0, got -1e-05"),
+        ("time_step = inf", "[analysis] time_step: expected a finite number, got inf"),
+        ("time_step = true", "[analysis] time_step: expected a number, got boolean"),
+        ("unbalanced_ratio = 0", "[analysis] unbalanced_ratio: must lie in (0, 1), got 0"),
+        ("unbalanced_ratio = 1", "[analysis] unbalanced_ratio: must lie in (0, 1), got 1"),
+        ("unbalanced_ratio = '1e-5'", "[analysis] unbalanced_ratio: expected a number, got string"),
+        ("threads = -1", "[analysis] threads: must be >= 0, got -1"),
+        ("threads = 2.0", "[analysis] threads: expected an integer, got float"),
+        ("threads = 'all'", "[analysis] threads: expected an integer, got string"),
+        ("tolerance = 0.0", "[analysis] tolerance: must lie in (0, 1), got 0.0"),
+        ("tolerance = 1.5", "[analysis] tolerance: must lie in (0, 1), got 1.5"),
+        ("tolerance = nan", "[analysis] tolerance: expected a finite number, got nan"),
+    ],
+)
+def test_dynamic_keys_validation(tmp_path: Path, line: str, expected: str) -> None:
+    message = input_error(tmp_path, MINIMAL + "[analysis]\n" + line + "\n")
+    assert expected in message, message
+
+
+@pytest.mark.parametrize(
+    "typo, suggestion",
+    [("dampin", "damping"), ("time_stp", "time_step"), ("thread", "threads"), ("tolerence", "tolerance")],
+)
+def test_dynamic_key_typos_are_named(tmp_path: Path, typo: str, suggestion: str) -> None:
+    message = input_error(tmp_path, MINIMAL + f"[analysis]\n{typo} = 1\n")
+    assert f"unknown key '{typo}' in [analysis] (did you mean '{suggestion}'?)" in message
+
+
+def test_dynamic_method_runs_the_explicit_solver(tmp_path: Path) -> None:
+    """method = "dynamic" runs Model.solve_dynamic: the single sliding block collapses at mu = 0.65."""
+    text = (EXAMPLES / "single-block-sliding.toml").read_text().replace('method = "static"', 'method = "dynamic"')
+    case = load_text(tmp_path, text)
+    res = case.run()
+    assert res.method == "dynamic"
+    assert res.status == "collapse", res.error
+    assert res.collapse_multiplier == pytest.approx(0.65, rel=0.02)
+    # the method argument overrides the file's, both ways
+    assert case.run(method="static").method == "static"
+    assert load_case(EXAMPLES / "single-block-sliding.toml").run(method="dynamic").method == "dynamic"
+
+
+def test_core_input_error_in_solver_names_the_file(tmp_path: Path) -> None:
+    """A time step above the stability limit passes the loader but the core refuses it; the message
+    starts with the file name."""
+    case = load_text(tmp_path, MINIMAL + "[analysis]\nmethod = 'dynamic'\ntime_step = 10.0\n")
+    with pytest.raises(md.InputError) as info:
         case.run()
-    assert not isinstance(info.value, md.InputError)
-    with pytest.raises(md.MasonryError, match="not available yet"):
-        load_text(tmp_path, MINIMAL).run(method="dynamic")
+    assert str(info.value).startswith(f"{tmp_path / 'case.toml'}: "), str(info.value)
 
 
 def test_unknown_method_argument(tmp_path: Path) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 import json
 import subprocess
 import sys
@@ -13,6 +14,7 @@ import pytest
 
 import masonry_dem as md
 from masonry_dem import cli
+from masonry_dem import progress as progress_module
 from masonry_dem.case import Case
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -36,6 +38,7 @@ def test_help(tmp_path: Path) -> None:
     proc = masonry_dem("--help", cwd=tmp_path)
     assert proc.returncode == 0
     assert "run" in proc.stdout and "demo" in proc.stdout and "examples:" in proc.stdout
+    assert "compare" in proc.stdout
     proc = masonry_dem("run", "--help", cwd=tmp_path)
     assert proc.returncode == 0
     assert "--method" in proc.stdout and "--json" in proc.stdout and "--plot" in proc.stdout
@@ -127,10 +130,101 @@ def test_core_input_error_is_exit_2(tmp_path: Path) -> None:
     assert line.startswith("masonry-dem: error: overlap.toml: ")
 
 
-def test_dynamic_not_available(tmp_path: Path) -> None:
-    proc = masonry_dem("run", str(EXAMPLES / "single-block-sliding.toml"), "--method", "dynamic", cwd=tmp_path)
-    line = assert_one_line_error(proc, 1)
-    assert "not available yet" in line
+def test_run_dynamic(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """--method dynamic: the explicit solver on the single sliding block, collapse at mu = 0.65."""
+    out = tmp_path / "d.json"
+    status = cli.main(["run", str(EXAMPLES / "single-block-sliding.toml"), "--method", "dynamic", "--json", str(out)])
+    captured = capsys.readouterr()
+    assert status == 0, captured.err
+    assert captured.err == ""  # stderr is not a terminal here: no progress bar
+    assert "method:              dynamic" in captured.out
+    data = json.loads(out.read_text())
+    assert data["method"] == "dynamic" and data["status"] == "collapse"
+    assert abs(data["collapse_multiplier"] - 0.65) <= 0.02 * 0.65
+
+
+def test_compare(tmp_path: Path) -> None:
+    """compare on the single rocking block: both methods at 1/3 within 2%, agreement printed and written."""
+    out, png = tmp_path / "c" / "cmp.json", tmp_path / "c" / "cmp.png"
+    proc = masonry_dem(
+        "compare", str(EXAMPLES / "single-block-rocking.toml"), "--json", str(out), "--plot", str(png), cwd=tmp_path
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == ""
+    text = proc.stdout
+    assert text.startswith("Single block rocking (0.2 x 0.6 m): static and explicit (dynamic) solvers\n")
+    for label in ("status:", "collapse multiplier:", "difference", "failed joints:", "in common, Jaccard index",
+                  "iterations", "time steps", "elapsed:", "dynamic / static ="):
+        assert label in text, label
+    data = json.loads(out.read_text())
+    assert list(data) == ["format", "title", "static", "dynamic", "agreement"]
+    assert data["format"] == 1 and data["title"] == "Single block rocking (0.2 x 0.6 m)"
+    assert data["static"]["method"] == "static" and data["dynamic"]["method"] == "dynamic"
+    for method in ("static", "dynamic"):
+        assert data[method]["status"] == "collapse"
+        assert abs(data[method]["collapse_multiplier"] - 1 / 3) <= 0.02 / 3
+    agree = data["agreement"]
+    lam_s, lam_d = data["static"]["collapse_multiplier"], data["dynamic"]["collapse_multiplier"]
+    assert agree["multiplier_relative_difference"] == pytest.approx((lam_d - lam_s) / lam_s)
+    assert abs(agree["multiplier_relative_difference"]) < 0.02
+    assert 0.0 <= agree["jaccard"] <= 1.0
+    assert agree["failed_common"] <= min(agree["failed_static"], agree["failed_dynamic"])
+    assert agree["failed_static"] == len(agree["failed_interfaces_static"])
+    assert agree["time_steps_dynamic"] > 0 and agree["iterations_static"] > 0
+    assert f"{lam_s:.4f}" in text and f"{lam_d:.4f}" in text
+    assert png.read_bytes().startswith(PNG)
+
+
+def test_compare_bad_input(tmp_path: Path) -> None:
+    proc = masonry_dem("compare", "no-such-case.toml", cwd=tmp_path)
+    assert_one_line_error(proc, 2)
+    text = (EXAMPLES / "single-block-sliding.toml").read_text() + "damping = 'cundall'\n"
+    (tmp_path / "bad.toml").write_text(text)
+    line = assert_one_line_error(masonry_dem("compare", "bad.toml", cwd=tmp_path), 2)
+    assert "[analysis] damping: expected one of" in line
+
+
+class FakeTerminal(io.StringIO):
+    """A stderr that says it is a terminal."""
+
+    def isatty(self) -> bool:
+        return True
+
+
+@pytest.mark.parametrize("quiet", [False, True])
+def test_progress_bar_on_a_terminal(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str],
+                                    quiet: bool) -> None:
+    """A bar on stderr when it is a terminal (fed by the solver's progress callback), none with --quiet."""
+    pytest.importorskip("tqdm")
+    calls: List[tuple] = []
+    real_solve = Case.solve
+
+    def spying_solve(self: Case, model: md.Model, method: object = None, progress: object = None) -> object:
+        calls.append((method, progress))
+        return real_solve(self, model, method, progress)
+
+    monkeypatch.setattr(Case, "solve", spying_solve)
+    monkeypatch.setattr(progress_module, "DEFAULT_INTERVAL", 0.0)  # draw at every call
+    term = FakeTerminal()
+    monkeypatch.setattr(sys, "stderr", term)
+    args = ["run", str(EXAMPLES / "single-block-sliding.toml")] + (["--quiet"] if quiet else [])
+    status = cli.main(args)
+    assert status == 0
+    assert "collapse multiplier:" in capsys.readouterr().out
+    assert len(calls) == 1
+    if quiet:
+        assert calls[0][1] is None
+        assert term.getvalue() == ""
+    else:
+        assert isinstance(calls[0][1], progress_module.ProgressBar)
+        assert calls[0][1].calls >= 1
+        assert "static: λ = " in term.getvalue() and "steps" in term.getvalue()
+
+
+def test_quiet_flag_everywhere(tmp_path: Path) -> None:
+    for command in ("run", "compare", "demo"):
+        proc = masonry_dem(command, "--help", cwd=tmp_path)
+        assert proc.returncode == 0 and "--quiet" in proc.stdout, command
 
 
 def test_bad_arguments(tmp_path: Path) -> None:
@@ -151,8 +245,10 @@ def test_failed_status(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: 
     """A solver failure prints the reason, writes the JSON and the plot, and exits with 1."""
     real_solve = Case.solve
 
-    def failing_solve(self: Case, model: md.Model, method: object = None) -> SimpleNamespace:
-        r = real_solve(self, model, method)
+    def failing_solve(
+        self: Case, model: md.Model, method: object = None, progress: object = None
+    ) -> SimpleNamespace:
+        r = real_solve(self, model, method, progress)
         names: List[str] = [n for n in dir(r) if not n.startswith("_") and not callable(getattr(r, n))]
         fake = SimpleNamespace(**{n: getattr(r, n) for n in names})
         fake.status, fake.error = "failed", "no convergence at step 3"

@@ -1,0 +1,87 @@
+//! The explicit solver in time, no damping: sliding on an inclined plane, Housner's rocking
+//! block, and energy conservation with elastic joints (../shared/benchmarks/README.md).
+
+mod common;
+use common::*;
+use masonry_dem::explicit::{simulate, DynamicOptions};
+use masonry_dem::geometry::Rect;
+use masonry_dem::joint::JointLaw;
+use masonry_dem::model::{JointLaws, Model, ModelSpec};
+
+/// Least-squares slope of y against x.
+fn slope(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
+    sxy / sxx
+}
+
+#[test]
+fn block_slides_down_an_incline_at_g_sin_minus_mu_cos() {
+    // the plane inclined at beta: gravity g cos(beta) normal to the joint and a constant live
+    // load tan(beta) * W along it
+    let (g, beta, mu) = (9.81_f64, 25f64.to_radians(), 0.3);
+    let m = Model::new(ModelSpec {
+        blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175)],
+        gravity: g * beta.cos(),
+        joints: JointLaws::uniform(dry(mu, 0.0, 1e10)),
+        ..ModelSpec::default()
+    })
+    .unwrap();
+    let h = simulate(&m, &DynamicOptions { duration: 0.4, live_multiplier: beta.tan(), record_every: 10, ..Default::default() }).unwrap();
+    let (t, v): (Vec<f64>, Vec<f64>) = h.times.iter().zip(&h.velocities).filter(|(t, _)| **t >= 0.05).map(|(t, v)| (*t, v[0][0])).unzip();
+    let a = slope(&t, &v);
+    assert_close(a, g * (beta.sin() - mu * beta.cos()), 0.01, "sliding acceleration [m/s2]");
+}
+
+#[test]
+fn housner_block_reaches_its_first_impact_at_0_3578_s() {
+    // 0.4 x 1.0 m block released from rest at half its slenderness angle, tilted about its left toe
+    let (b, hgt) = (0.4_f64, 1.0_f64);
+    let m = Model::new(ModelSpec {
+        blocks: vec![Rect::new(0.0, 0.0, b, hgt)],
+        gravity: 9.81,
+        joints: JointLaws::uniform(JointLaw { friction: 2.0, dilatancy: 0.0, ..dry(2.0, 0.0, 1e10) }),
+        ..ModelSpec::default()
+    })
+    .unwrap();
+    let alpha = (b / hgt).atan();
+    let th0 = alpha / 2.0;
+    let r = [b / 2.0, hgt / 2.0]; // centroid from the left toe (0, 0)
+    let (c, s) = (th0.cos(), th0.sin());
+    let u0 = [c * r[0] - s * r[1] - r[0], s * r[0] + c * r[1] - r[1], th0];
+    let h = simulate(
+        &m,
+        &DynamicOptions { duration: 0.5, initial_displacement: Some(vec![u0, [0.0; 3]]), record_every: 1, ..Default::default() },
+    )
+    .unwrap();
+    assert!(h.error.is_none(), "{:?}", h.error);
+    // first time the rotation reaches zero (the impact on the right toe), interpolated
+    let k = h.displacements.iter().position(|d| d[0][2] <= 0.0).expect("no impact within 0.5 s");
+    let (p0, p1) = (h.displacements[k - 1][0][2], h.displacements[k][0][2]);
+    let t1 = h.times[k - 1] + (h.times[k] - h.times[k - 1]) * p0 / (p0 - p1);
+    assert_close(t1, 0.3578, 0.03, "time of the first impact [s]");
+    let w = h.velocities[k][0][2].abs();
+    eprintln!("t1 = {t1:.4} s, angular velocity at impact {w:.3} rad/s (exact 1.209)");
+}
+
+#[test]
+fn energy_is_conserved_with_elastic_joints_and_no_damping() {
+    // wall 1 with joints that never yield, dropped under its own weight onto its joints and
+    // left to vibrate: external work = kinetic + elastic energy; drift over 100,000 steps,
+    // from the mean over the first 2,000 steps to the mean over the last 2,000 (the mean removes
+    // the bounded oscillation of the Verlet energy)
+    let strong = JointLaw { cohesion: 1e15, tensile_strength: 1e15, ..dry(0.65, 0.0, 1e9) };
+    let m = ferris(6, strong);
+    let dt = 0.5 * masonry_dem::explicit::critical_time_step(&m);
+    let h = simulate(&m, &DynamicOptions { duration: 100_000.0 * dt, time_step: Some(dt), large_rotations: false, ..Default::default() }).unwrap();
+    assert!(h.steps >= 100_000);
+    let e: Vec<f64> = h.external_work.iter().zip(&h.kinetic_energy).zip(&h.elastic_energy).map(|((w, k), el)| k + el - w).collect();
+    let scale = h.elastic_energy.iter().cloned().fold(0.0, f64::max);
+    let mean = |s: &[f64]| s.iter().sum::<f64>() / s.len() as f64;
+    let n = e.len();
+    let drift = (mean(&e[n - 2000..]) - mean(&e[1..2001])).abs() / scale;
+    eprintln!("energy drift over {} steps: {:.2e} of the peak elastic energy {scale:.3e} J", h.steps, drift);
+    assert!(drift < 1e-3, "energy drift {drift:.2e} >= 0.1%");
+}
