@@ -666,6 +666,7 @@ fn finish(
     start: Instant,
 ) -> Results {
     let nb = model.n_blocks();
+    let curve_l_len = curve_l.len();
     let mech = mechanism.unwrap_or_else(|| vec![0.0; 3 * nb]);
     let scale = (0..nb).map(|i| mech[3 * i].hypot(mech[3 * i + 1])).fold(0.0, f64::max);
     let work: f64 = mech.iter().zip(model.live_load()).map(|(v, f)| v * f).sum();
@@ -690,7 +691,7 @@ fn finish(
         interface_states: s.flags,
         broken: s.states.iter().map(|st| st.broken).collect(),
         iterations: s.steps,
-        steps: 0,
+        steps: curve_l_len,
         elapsed_s: start.elapsed().as_secs_f64(),
     }
 }

@@ -6,6 +6,7 @@ use crate::geometry::{self, FirstCourse, Rect, RunningBond};
 use crate::joint::JointLaw;
 use crate::model::{JointLaws, LiveLoad, Model, ModelSpec, TopBeam};
 use crate::results::Results;
+use crate::explicit::{self, Damping, DynamicOptions, ExplicitOptions, QsControl, TimeHistory};
 use crate::static_solver::{self, Control, StaticOptions};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
@@ -106,6 +107,55 @@ fn rows3<'py>(py: Python<'py>, v: &[[f64; 3]]) -> Bound<'py, PyArray2<f64>> {
     Array2::from_shape_vec((v.len(), 3), flat)
         .unwrap()
         .into_pyarray(py)
+}
+
+/// Called from a run with the GIL released: takes the GIL, checks for Ctrl-C and calls the
+/// user's progress callback; false stops the run (an exception in the callback stops it too).
+fn report(progress: &Option<Py<PyAny>>, step: usize, multiplier: f64, displacement: f64, fraction: f64) -> bool {
+    Python::attach(|py| {
+        if py.check_signals().is_err() {
+            return false;
+        }
+        match progress {
+            Some(cb) => match cb.call1(py, (step, multiplier, displacement, fraction)) {
+                Ok(_) => true,
+                Err(e) => {
+                    e.print(py);
+                    false
+                }
+            },
+            None => true,
+        }
+    })
+}
+
+fn damping_from(kind: &str, coefficient: f64) -> PyResult<Damping> {
+    match kind {
+        "local" => Ok(Damping::Local(coefficient)),
+        "viscous" => Ok(Damping::Viscous(coefficient)),
+        "none" => Ok(Damping::None),
+        o => Err(InputError::new_err(format!("damping must be \"local\", \"viscous\" or \"none\", got {o:?}"))),
+    }
+}
+
+fn rows3_from(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<Vec<[f64; 3]>>> {
+    let Some(o) = obj.filter(|o| !o.is_none()) else { return Ok(None) };
+    let rows: Vec<Vec<f64>> = if let Ok(a) = o.extract::<PyReadonlyArray2<f64>>() {
+        a.as_array().rows().into_iter().map(|r| r.to_vec()).collect()
+    } else {
+        o.extract().map_err(|_| InputError::new_err(format!("{what}: expected an (n, 3) array of numbers")))?
+    };
+    rows.iter()
+        .enumerate()
+        .map(|(i, r)| {
+            if r.len() == 3 {
+                Ok([r[0], r[1], r[2]])
+            } else {
+                Err(InputError::new_err(format!("{what}[{i}]: expected 3 numbers (u1, u2, phi), got {}", r.len())))
+            }
+        })
+        .collect::<PyResult<Vec<_>>>()
+        .map(Some)
 }
 
 /// Blocks [x0, y0, x1, y1] (shape (n, 4), m) of a running-bond wall standing at y = 0 from x = 0.
@@ -356,7 +406,7 @@ impl PyModel {
 
     /// Static incremental analysis (see _core.pyi). Releases the GIL; Ctrl-C stops it between
     /// steps and returns what was computed (status "failed", error "interrupted by the user").
-    #[pyo3(signature = (control="load", steps=200, max_displacement=0.002, control_block=None, tolerance=1e-4, max_iterations=50))]
+    #[pyo3(signature = (control="load", steps=200, max_displacement=0.002, control_block=None, tolerance=1e-4, max_iterations=50, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_static(
         &self,
@@ -367,6 +417,7 @@ impl PyModel {
         control_block: Option<usize>,
         tolerance: f64,
         max_iterations: i64,
+        progress: Option<Py<PyAny>>,
     ) -> PyResult<PyResults> {
         let control = match control {
             "load" => Control::Load,
@@ -398,12 +449,128 @@ impl PyModel {
         let model = &self.inner;
         let res = py.detach(|| {
             guarded(|| {
-                let mut monitor =
-                    |_: &static_solver::Progress| Python::attach(|py| py.check_signals().is_ok());
+                let mut monitor = |p: &static_solver::Progress| {
+                    report(&progress, p.step, p.multiplier, p.displacement, p.fraction)
+                };
                 static_solver::solve_with(model, &opts, &mut monitor)
             })
         })?;
         Ok(PyResults { inner: res })
+    }
+
+    /// Quasi-static analysis with the explicit solver (see _core.pyi).
+    #[pyo3(signature = (control="load", steps=200, max_displacement=0.002, control_block=None, tolerance=1e-3, unbalanced_ratio=1e-5, damping="local", damping_coefficient=0.8, time_step=None, safety=0.8, threads=0, progress=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn solve_dynamic(
+        &self,
+        py: Python<'_>,
+        control: &str,
+        steps: i64,
+        max_displacement: f64,
+        control_block: Option<usize>,
+        tolerance: f64,
+        unbalanced_ratio: f64,
+        damping: &str,
+        damping_coefficient: f64,
+        time_step: Option<f64>,
+        safety: f64,
+        threads: i64,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<PyResults> {
+        let control = match control {
+            "load" => QsControl::Load,
+            "displacement" => QsControl::Displacement { max_displacement },
+            o => return Err(InputError::new_err(format!("analysis.control must be \"load\" or \"displacement\", got {o:?}"))),
+        };
+        if steps < 1 {
+            return Err(InputError::new_err(format!("analysis.steps must be at least 1, got {steps}")));
+        }
+        if threads < 0 {
+            return Err(InputError::new_err(format!("threads must be >= 0, got {threads}")));
+        }
+        let opts = ExplicitOptions {
+            control,
+            steps: steps as usize,
+            tolerance,
+            unbalanced_ratio,
+            damping: damping_from(damping, damping_coefficient)?,
+            time_step,
+            safety,
+            threads: threads as usize,
+            control_block,
+            ..ExplicitOptions::default()
+        };
+        let model = &self.inner;
+        let res = py.detach(|| {
+            guarded(|| {
+                let mut monitor = |p: &explicit::Progress| report(&progress, p.step, p.multiplier, p.displacement, p.fraction);
+                explicit::solve_with(model, &opts, &mut monitor)
+            })
+        })?;
+        Ok(PyResults { inner: res })
+    }
+
+    /// Time history with the explicit solver (see _core.pyi).
+    #[pyo3(signature = (duration, time_step=None, safety=0.8, damping="none", damping_coefficient=0.0, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=0.0, record_every=1, large_rotations=true, threads=0, progress=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn simulate(
+        &self,
+        py: Python<'_>,
+        duration: f64,
+        time_step: Option<f64>,
+        safety: f64,
+        damping: &str,
+        damping_coefficient: f64,
+        initial_displacements: Option<&Bound<'_, PyAny>>,
+        initial_velocities: Option<&Bound<'_, PyAny>>,
+        base_acceleration: Option<&Bound<'_, PyAny>>,
+        live_multiplier: f64,
+        record_every: i64,
+        large_rotations: bool,
+        threads: i64,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<PyTimeHistory> {
+        if record_every < 1 {
+            return Err(InputError::new_err(format!("record_every must be at least 1, got {record_every}")));
+        }
+        if threads < 0 {
+            return Err(InputError::new_err(format!("threads must be >= 0, got {threads}")));
+        }
+        let base_acceleration = match base_acceleration.filter(|o| !o.is_none()) {
+            None => None,
+            Some(o) => {
+                let (t, a): (Vec<f64>, Vec<f64>) = o.extract().map_err(|_| {
+                    InputError::new_err("base_acceleration: expected (times, accelerations), two sequences of numbers")
+                })?;
+                Some((t, a))
+            }
+        };
+        let opts = DynamicOptions {
+            duration,
+            time_step,
+            safety,
+            damping: damping_from(damping, damping_coefficient)?,
+            initial_displacement: rows3_from(initial_displacements, "initial_displacements")?,
+            initial_velocity: rows3_from(initial_velocities, "initial_velocities")?,
+            base_acceleration,
+            live_multiplier,
+            record_every: record_every as usize,
+            large_rotations,
+            threads: threads as usize,
+        };
+        let model = &self.inner;
+        let h = py.detach(|| {
+            guarded(|| {
+                let mut monitor = |p: &explicit::Progress| report(&progress, p.step, p.multiplier, p.displacement, p.fraction);
+                explicit::simulate_with(model, &opts, &mut monitor)
+            })
+        })?;
+        Ok(PyTimeHistory { inner: h })
+    }
+
+    /// The stability limit of the explicit solver's time step [s].
+    fn critical_time_step(&self) -> f64 {
+        explicit::critical_time_step(&self.inner)
     }
 
     fn __repr__(&self) -> String {
@@ -411,6 +578,80 @@ impl PyModel {
             "Model({} blocks, {} interfaces)",
             self.inner.n_wall(),
             self.inner.interfaces().len()
+        )
+    }
+}
+
+/// A time history of the explicit solver (see _core.pyi).
+#[pyclass(name = "TimeHistory", module = "masonry_dem._core")]
+struct PyTimeHistory {
+    inner: TimeHistory,
+}
+
+fn history3<'py>(py: Python<'py>, v: &[Vec<[f64; 3]>]) -> Bound<'py, numpy::PyArray3<f64>> {
+    let k = v.len();
+    let n = v.first().map_or(0, |r| r.len());
+    let flat: Vec<f64> = v.iter().flat_map(|r| r.iter().flatten().copied()).collect();
+    numpy::ndarray::Array3::from_shape_vec((k, n, 3), flat).unwrap().into_pyarray(py)
+}
+
+#[pymethods]
+impl PyTimeHistory {
+    #[getter]
+    fn status(&self) -> &'static str {
+        self.inner.status.as_str()
+    }
+    #[getter]
+    fn error(&self) -> Option<String> {
+        self.inner.error.clone()
+    }
+    #[getter]
+    fn time_step(&self) -> f64 {
+        self.inner.time_step
+    }
+    #[getter]
+    fn times<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.times.clone().into_pyarray(py)
+    }
+    #[getter]
+    fn displacements<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
+        history3(py, &self.inner.displacements)
+    }
+    #[getter]
+    fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
+        history3(py, &self.inner.velocities)
+    }
+    #[getter]
+    fn kinetic_energy<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.kinetic_energy.clone().into_pyarray(py)
+    }
+    #[getter]
+    fn elastic_energy<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.elastic_energy.clone().into_pyarray(py)
+    }
+    #[getter]
+    fn external_work<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.external_work.clone().into_pyarray(py)
+    }
+    #[getter]
+    fn dissipated<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.dissipated.clone().into_pyarray(py)
+    }
+    #[getter]
+    fn steps(&self) -> usize {
+        self.inner.steps
+    }
+    #[getter]
+    fn elapsed_s(&self) -> f64 {
+        self.inner.elapsed_s
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "TimeHistory(status={:?}, {} steps of {:.3e} s, {} records)",
+            self.inner.status.as_str(),
+            self.inner.steps,
+            self.inner.time_step,
+            self.inner.times.len()
         )
     }
 }
@@ -521,5 +762,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(pattern, m)?)?;
     m.add_class::<PyModel>()?;
     m.add_class::<PyResults>()?;
+    m.add_class::<PyTimeHistory>()?;
     Ok(())
 }
