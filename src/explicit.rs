@@ -445,6 +445,26 @@ enum Level {
     Stopped,
 }
 
+/// The state under the dead loads alone found by damped relaxation (local damping 0.8): the
+/// displacements and the joint histories, or an error if the wall does not settle. The static
+/// solver starts from it where Newton cannot find the dead state from the unloaded wall.
+pub(crate) fn relax_dead_state(model: &Model) -> Result<(Vec<f64>, Vec<JointState>), Error> {
+    let mut s = Integrator::new(model, None, 0.8, Damping::Local(0.8), 1)?;
+    let fd = model.dead_load().to_vec();
+    let mut set_ext = |f: &mut [f64], _: &[f64]| f.copy_from_slice(&fd);
+    let max_steps = 2_000_000;
+    for k in 0..max_steps {
+        s.step(&mut set_ext, None);
+        if k % 16 == 15 && s.unbalanced_ratio(None) <= 1e-7 {
+            return Ok((s.u, s.states));
+        }
+        if s.u.iter().any(|x| !x.is_finite()) {
+            break;
+        }
+    }
+    Err(Error::Mechanism(format!("the wall does not settle under the dead loads alone (explicit relaxation, {max_steps} steps)")))
+}
+
 /// Runs a quasi-static analysis with the explicit solver; same results as the static solver.
 pub fn solve(model: &Model, opts: &ExplicitOptions) -> Result<Results, Error> {
     solve_with(model, opts, &mut |_| true)
