@@ -407,9 +407,11 @@ pub fn tangent_near_limit(
 }
 
 /// The state flags of a force that lies in the domain.
+/// A face counts as reached within 0.1% of the force's size: a relaxed explicit state and a
+/// Newton-converged static state of the same collapse are then classified alike.
 fn flags(faces: &Faces, s: &[f64; 3], sec: &Section) -> u8 {
     let scale = s[0].abs() + s[1].abs() + (s[2] * 2.0 / sec.length).abs() + faces.b[0] + faces.b[2];
-    let tol = 1e-9 * scale + f64::MIN_POSITIVE;
+    let tol = 1e-3 * scale + f64::MIN_POSITIVE;
     let at = |j: usize| faces.f(j, s) >= -tol;
     if at(2) && at(3) {
         OPEN

@@ -205,12 +205,14 @@ fn unloading_from_a_plastic_state_is_elastic() {
     let e1 = [-1e-6, 1e-5, 0.0];
     let r1 = return_map(&law, &SEC, e1, &JointState::default());
     assert_ne!(r1.flags & SLIDING, 0);
-    let e2 = [-1e-6, 1e-5 - 1e-8, 0.0];
+    // back by 1e-7 m of slip (N = -40 N, T = 26 N: T drops by 1.6 N, 6%, beyond the 0.1%
+    // within which a face counts as reached, and short of sliding back)
+    let e2 = [-1e-6, 1e-5 - 1e-7, 0.0];
     let r2 = return_map(&law, &SEC, e2, &r1.state);
     assert_eq!(r2.flags, 0, "unloading must be elastic");
     assert_eq!(r2.state.plastic, r1.state.plastic);
     let k = law.shear_stiffness * SEC.area;
-    assert!((r2.force[1] - (r1.force[1] - k * 1e-8)).abs() < 1e-9 * r1.force[1].abs());
+    assert!((r2.force[1] - (r1.force[1] - k * 1e-7)).abs() < 1e-9 * r1.force[1].abs());
 }
 
 #[test]
