@@ -85,3 +85,26 @@ fn energy_is_conserved_with_elastic_joints_and_no_damping() {
     eprintln!("energy drift over {} steps: {:.2e} of the peak elastic energy {scale:.3e} J", h.steps, drift);
     assert!(drift < 1e-3, "energy drift {drift:.2e} >= 0.1%");
 }
+
+#[test]
+fn base_acceleration_beyond_friction_makes_the_block_slide_back() {
+    // constant horizontal base acceleration a_g = 0.5 g, friction 0.3: relative to the base the
+    // block accelerates at -(a_g - mu g)
+    let (g, mu, ag) = (9.81_f64, 0.3, 0.5 * 9.81);
+    let m = Model::new(ModelSpec {
+        blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175)],
+        gravity: g,
+        joints: JointLaws::uniform(dry(mu, 0.0, 1e10)),
+        ..ModelSpec::default()
+    })
+    .unwrap();
+    let opts = DynamicOptions {
+        duration: 0.4,
+        base_acceleration: Some((vec![0.0, 10.0], vec![ag, ag])),
+        record_every: 10,
+        ..Default::default()
+    };
+    let h = simulate(&m, &opts).unwrap();
+    let (t, v): (Vec<f64>, Vec<f64>) = h.times.iter().zip(&h.velocities).filter(|(t, _)| **t >= 0.05).map(|(t, v)| (*t, v[0][0])).unzip();
+    assert_close(slope(&t, &v), -(ag - mu * g), 0.01, "relative sliding acceleration [m/s2]");
+}

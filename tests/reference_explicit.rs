@@ -60,3 +60,14 @@ fn ferris_wall2_non_associative() {
     assert_close(l, 0.563, 0.02, "wall 2 non-associative (explicit)");
     agrees_with_static(&m, l);
 }
+
+#[test]
+fn displacement_control_of_wall1_peaks_at_the_collapse_multiplier() {
+    use masonry_dem::explicit::QsControl;
+    let m = ferris(6, dry(0.65, 0.65, 1e10));
+    let opts = ExplicitOptions { control: QsControl::Displacement { max_displacement: 0.002 }, steps: 40, threads: 1, ..Default::default() };
+    let r = solve(&m, &opts).unwrap();
+    assert_ne!(r.status, Status::Failed, "{:?}", r.error);
+    assert_close(r.collapse_multiplier, 0.6429, 0.02, "wall 1 peak, explicit displacement control");
+    assert!((r.curve_displacement.last().unwrap() - 0.002).abs() < 1e-9);
+}
