@@ -9,7 +9,12 @@ SI units throughout (m, N, Pa, kg, s). The compiled core (Rust) provides the wal
 >>> results.collapse_multiplier                                 # doctest: +SKIP
 0.6429...
 
-Plots: :func:`masonry_dem.plot.plot_results` (imports matplotlib on first use).
+Two solvers share one model: ``Model.solve_static`` (incremental, Newton) and ``Model.solve_dynamic``
+(explicit, molecular dynamics; ``Model.simulate`` gives time histories). Case files choose one with
+[analysis] method; :mod:`masonry_dem.compare` sets their results side by side.
+
+Plots: :func:`masonry_dem.plot.plot_results` and :func:`masonry_dem.plot.plot_comparison` (import
+matplotlib on first use). Progress bars: :mod:`masonry_dem.progress` (tqdm, optional).
 """
 
 from ._core import (
@@ -19,6 +24,7 @@ from ._core import (
     MechanismError,
     Model,
     Results,
+    TimeHistory,
     __version__,
     pattern,
     running_bond,
@@ -28,6 +34,7 @@ from .case import Case, load_case, parse_case, result_dict, run_case, write_resu
 __all__ = [
     "Model",
     "Results",
+    "TimeHistory",
     "running_bond",
     "pattern",
     "MasonryError",

@@ -7,7 +7,8 @@ The keys are a public contract, described in ``case-format.md``; this module fol
   case raises :class:`masonry_dem.InputError` with a one-line message that starts with the file name
   and names the key with its table path, e.g. ``wall.toml: unknown key 'frictoin' in [joints.bed]``.
 * :class:`Case` maps the case onto the core: ``build_model()`` gives a :class:`masonry_dem.Model`,
-  ``run()`` the :class:`masonry_dem.Results` of the analysis.
+  ``run()`` the :class:`masonry_dem.Results` of the analysis, with the static solver
+  (``Model.solve_static``) or the explicit one (``Model.solve_dynamic``).
 * :func:`result_dict` / :func:`write_result_json` produce the result file.
 
 Units are SI throughout: m, N, Pa, kg, s.
@@ -54,6 +55,11 @@ PathLike = Union[str, "os.PathLike[str]"]
 LAW_KEYS = ("normal_stiffness", "shear_stiffness", "friction", "cohesion", "tensile_strength", "dilatancy")
 FAMILIES = ("bed", "head", "base", "top")
 GEOMETRY_KINDS = ("running_bond", "pattern", "blocks")
+METHODS = ("static", "dynamic")
+# Keys of [analysis]: those of both methods, then those of the explicit solver only.
+ANALYSIS_KEYS = ("method", "control", "control_point", "max_displacement", "steps", "tolerance")
+DYNAMIC_KEYS = ("damping", "damping_coefficient", "time_step", "unbalanced_ratio", "threads")
+DAMPINGS = ("local", "viscous", "none")
 
 
 # --------------------------------------------------------------------------------------------------
@@ -93,6 +99,10 @@ def _positive(x: float) -> Optional[str]:
 
 def _non_negative(x: float) -> Optional[str]:
     return None if x >= 0 else "must be >= 0"
+
+
+def _open_unit(x: float) -> Optional[str]:
+    return None if 0 < x < 1 else "must lie in (0, 1)"
 
 
 class _Table:
@@ -250,8 +260,12 @@ class Case:
         model_kwargs: keyword arguments of :class:`masonry_dem.Model` (``blocks`` as an (n, 4) array
             of rectangles [x0, y0, x1, y1] in m, thickness [m], density [kg/m3], base, top_rotation,
             top_force [N], joints, gravity [m/s2], live).
-        analysis_kwargs: keyword arguments of :meth:`masonry_dem.Model.solve_static` (control, steps,
-            max_displacement [m], control_block).
+        analysis_kwargs: keyword arguments common to :meth:`masonry_dem.Model.solve_static` and
+            :meth:`masonry_dem.Model.solve_dynamic` (control, steps, max_displacement [m],
+            control_block, and tolerance when the case gives it).
+        dynamic_kwargs: keyword arguments of :meth:`masonry_dem.Model.solve_dynamic` only, those the
+            case gives (damping, damping_coefficient, time_step [s], unbalanced_ratio, threads); the
+            static solver ignores them.
         method: "static" or "dynamic".
         source: where the case came from (file name), the first word of every error message.
     """
@@ -261,6 +275,7 @@ class Case:
     analysis_kwargs: Dict[str, Any] = field(default_factory=dict)
     method: str = "static"
     source: str = "<case>"
+    dynamic_kwargs: Dict[str, Any] = field(default_factory=dict)
 
     def build_model(self) -> "_core.Model":
         """Build the model; errors of the core are re-raised with the file name in front."""
@@ -270,39 +285,78 @@ class Case:
             raise type(exc)(f"{self.source}: {exc}") from exc
 
     def check_method(self, method: Optional[str] = None) -> str:
-        """The method to use ("static"), ``method`` overriding the case's; refuse what cannot run.
+        """The method to use, ``method`` ("static" | "dynamic") overriding the case's.
 
         Raises:
             masonry_dem.InputError: an unknown method.
-            masonry_dem.MasonryError: "dynamic": the explicit solver is not available yet.
         """
         method = self.method if method is None else method
-        if method not in ("static", "dynamic"):
+        if method not in METHODS:
             raise InputError(f'{self.source}: method: expected one of "static", "dynamic", got {_quote(method)}')
-        if method == "dynamic":
-            raise MasonryError(
-                f'{self.source}: method "dynamic": the explicit (molecular dynamics) solver is not available '
-                'yet; use method = "static"'
-            )
         return method
 
-    def solve(self, model: "_core.Model", method: Optional[str] = None) -> "_core.Results":
+    def solver_kwargs(self, method: Optional[str] = None) -> Dict[str, Any]:
+        """The keyword arguments of the solver of ``method`` (default: the case's), without ``progress``."""
+        if self.check_method(method) == "dynamic":
+            return {**self.analysis_kwargs, **self.dynamic_kwargs}
+        return dict(self.analysis_kwargs)
+
+    def solve(
+        self,
+        model: "_core.Model",
+        method: Optional[str] = None,
+        progress: Optional[Callable[[int, float, float, float], None]] = None,
+    ) -> "_core.Results":
         """Run the analysis of this case on ``model`` (built by :meth:`build_model`).
 
-        ``method`` overrides the case's [analysis] method. The static solver never raises for a
-        solver failure: check ``Results.status`` and ``Results.error``.
+        ``method`` overrides the case's [analysis] method: "static" calls ``Model.solve_static``,
+        "dynamic" ``Model.solve_dynamic``. ``progress``, if given, is the solvers' progress callback
+        ``(step, multiplier, displacement, fraction)``. The solvers never raise for a solver failure:
+        check ``Results.status`` and ``Results.error``. Errors of the core about the input (e.g. a
+        time_step above the stability limit) are re-raised with the file name in front.
         """
-        self.check_method(method)
-        return model.solve_static(**self.analysis_kwargs)
+        method = self.check_method(method)
+        kwargs = self.solver_kwargs(method)
+        if progress is not None:
+            kwargs["progress"] = progress
+        solver = model.solve_dynamic if method == "dynamic" else model.solve_static
+        try:
+            return solver(**kwargs)
+        except MasonryError as exc:
+            raise type(exc)(f"{self.source}: {exc}") from exc
 
-    def run(self, method: Optional[str] = None) -> "_core.Results":
+    def run(
+        self,
+        method: Optional[str] = None,
+        progress: Optional[Callable[[int, float, float, float], None]] = None,
+    ) -> "_core.Results":
         """Build the model and run the analysis; ``method`` overrides the case's method."""
-        self.check_method(method)
-        return self.solve(self.build_model(), method)
+        method = self.check_method(method)
+        return self.solve(self.build_model(), method, progress)
 
 
 def load_case(path: PathLike) -> Case:
     """Read and check a case file (TOML, format 1).
+
+    The keys are those of ``case-format.md``. [analysis] also takes these optional keys:
+
+    ========================  ===================================================================
+    ``tolerance``             0 < x < 1: relative width of the bracket on the collapse multiplier,
+                              for both methods (default 1e-4 static, 1e-3 dynamic).
+    ``damping``               explicit solver: "local" (Cundall, the default), "viscous"
+                              (mass-proportional) or "none".
+    ``damping_coefficient``   explicit solver, >= 0: alpha in [0, 1) for "local" (default 0.8),
+                              c [1/s] for "viscous".
+    ``time_step``             explicit solver, > 0 [s]: default 0.8 x the stability limit
+                              (``Model.critical_time_step()``); a step above the limit is refused.
+    ``unbalanced_ratio``      explicit solver, 0 < x < 1: a load level is in equilibrium when
+                              |unbalanced forces| <= x |applied forces| (default 1e-5).
+    ``threads``               explicit solver, integer >= 0: threads of the interface loop
+                              (0, the default: all cores).
+    ========================  ===================================================================
+
+    The static solver ignores the explicit solver's keys, so one case runs with either method
+    (``masonry-dem run --method``, ``masonry-dem compare``).
 
     Raises:
         OSError: the file cannot be read.
@@ -431,14 +485,19 @@ def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_titl
             raise loads_t.key_error("live", '"top_horizontal" pushes the top beam: add a [top] table')
 
     # [analysis]
-    an_t = top.table("analysis", ("method", "control", "control_point", "max_displacement", "steps"))
+    an_t = top.table("analysis", ANALYSIS_KEYS + DYNAMIC_KEYS)
     method, control, max_disp, steps = "static", "load", 0.002, 200
+    tolerance: Dict[str, float] = {}
+    dynamic: Dict[str, Any] = {}
     if an_t is not None:
-        method = an_t.string("method", "static", ("static", "dynamic"))
+        method = an_t.string("method", "static", METHODS)
         control = an_t.string("control", "load", ("load", "displacement"))
         an_t.string("control_point", "top", ("top",))
         max_disp = an_t.number("max_displacement", 0.002, _positive)
         steps = an_t.integer("steps", 200, minimum=1)
+        if "tolerance" in an_t:
+            tolerance["tolerance"] = an_t.number("tolerance", check=_open_unit)
+        dynamic = _dynamic_options(an_t)
 
     # All keys are valid: map them onto the core (the generators may still refuse a geometry).
     try:
@@ -463,7 +522,37 @@ def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_titl
         live=live,
     )
     analysis_kwargs: Dict[str, Any] = dict(control=control, steps=steps, max_displacement=max_disp, control_block=None)
-    return Case(title=title, model_kwargs=model_kwargs, analysis_kwargs=analysis_kwargs, method=method, source=source)
+    analysis_kwargs.update(tolerance)
+    return Case(
+        title=title,
+        model_kwargs=model_kwargs,
+        analysis_kwargs=analysis_kwargs,
+        method=method,
+        source=source,
+        dynamic_kwargs=dynamic,
+    )
+
+
+def _dynamic_options(table: _Table) -> Dict[str, Any]:
+    """The explicit solver's keys present in [analysis], checked, as keyword arguments of solve_dynamic."""
+    out: Dict[str, Any] = {}
+    damping = table.string("damping", "local", DAMPINGS)
+    if "damping" in table:
+        out["damping"] = damping
+    if "damping_coefficient" in table:
+        coefficient = table.number("damping_coefficient", check=_non_negative)
+        if damping == "local" and coefficient >= 1:
+            raise table.key_error(
+                "damping_coefficient", f'must be < 1 with damping = "local" (alpha in [0, 1)), got {coefficient}'
+            )
+        out["damping_coefficient"] = coefficient
+    if "time_step" in table:
+        out["time_step"] = table.number("time_step", check=_positive)
+    if "unbalanced_ratio" in table:
+        out["unbalanced_ratio"] = table.number("unbalanced_ratio", check=_open_unit)
+    if "threads" in table:
+        out["threads"] = table.integer("threads", minimum=0)
+    return out
 
 
 def _law(table: _Table) -> Dict[str, float]:
@@ -479,9 +568,17 @@ def _law(table: _Table) -> Dict[str, float]:
     return {key: table.number(key, check=checks[key]) for key in LAW_KEYS if key in table}
 
 
-def run_case(path: PathLike, method: Optional[str] = None) -> "_core.Results":
-    """Load a case file and run it; ``method`` ("static" | "dynamic") overrides the file's."""
-    return load_case(path).run(method)
+def run_case(
+    path: PathLike,
+    method: Optional[str] = None,
+    progress: Optional[Callable[[int, float, float, float], None]] = None,
+) -> "_core.Results":
+    """Load a case file and run it; ``method`` ("static" | "dynamic") overrides the file's.
+
+    ``progress``: the solvers' optional callback ``(step, multiplier, displacement, fraction)``, e.g. a
+    :class:`masonry_dem.progress.ProgressBar`.
+    """
+    return load_case(path).run(method, progress)
 
 
 # --------------------------------------------------------------------------------------------------

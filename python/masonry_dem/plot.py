@@ -10,6 +10,9 @@
 * right, the curve: load multiplier lambda against the horizontal displacement of the control point
   [mm], with the collapse multiplier marked.
 
+:func:`plot_comparison` draws the static and the explicit (dynamic) analyses of one case side by side:
+the two walls with their crack patterns, and the two curves overlaid.
+
 Geometry in m; displacements plotted in mm. Matplotlib is imported when this module is.
 """
 
@@ -31,12 +34,13 @@ from .report import (
     OPEN,
     ROCKING,
     SLIDING,
+    _plural,
     corner_motion,
     deformed_corners,
     interface_jumps,
 )
 
-__all__ = ["plot_results", "interface_categories", "STATE_STYLES"]
+__all__ = ["plot_results", "plot_comparison", "interface_categories", "STATE_STYLES"]
 
 #: Interface categories in drawing order: (name, colour, line width).
 #: Cracked interfaces (a jump across them in the mechanism) are drawn 4 points wide.
@@ -107,16 +111,7 @@ def plot_results(
     Returns:
         The figure.
     """
-    if path is not None:
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-
-        fig = Figure(figsize=(13.0, 6.0), layout="constrained")
-        FigureCanvasAgg(fig)
-    else:
-        import matplotlib.pyplot as plt
-
-        fig = plt.figure(figsize=(13.0, 6.0), layout="constrained")
-
+    fig = _new_figure((13.0, 6.0), path is not None)
     ax_wall, ax_curve = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.45, 1.0]})
     _draw_wall(ax_wall, model, results)
     _draw_curve(ax_curve, results, live)
@@ -134,14 +129,56 @@ def plot_results(
     return fig
 
 
-def _draw_wall(ax: Any, model: Any, results: Any) -> None:
+def _new_figure(size: Tuple[float, float], to_file: bool) -> Figure:
+    """A figure with constrained layout: on the Agg canvas for a file (pyplot's state untouched), else
+    through pyplot (for ``plt.show()`` or a notebook)."""
+    if to_file:
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+        fig = Figure(figsize=size, layout="constrained")
+        FigureCanvasAgg(fig)
+        return fig
+    import matplotlib.pyplot as plt
+
+    return plt.figure(figsize=size, layout="constrained")
+
+
+def _wall_limits(model: Any) -> Tuple[Tuple[float, float], Tuple[float, float]]:
+    """((x_lo, x_hi), (y_lo, y_hi)) [m] of the wall panel: the blocks with room for the mechanism."""
+    rects = np.asarray(model.rects, dtype=np.float64)
+    wall = rects[: int(model.n_blocks)]
+    height = float(wall[:, 3].max() - wall[:, 1].min())
+    width = float(wall[:, 2].max() - wall[:, 0].min())
+    pad = 0.05 * max(width, height) + MECHANISM_FRACTION * height
+    x_lo, y_lo = rects[:, 0].min(), rects[:, 1].min()
+    x_hi, y_hi = rects[:, 2].max(), rects[:, 3].max()
+    return (x_lo - pad, x_hi + pad), (y_lo - 0.05 * height, y_hi + pad)
+
+
+def _state_handles(counts: Optional[dict] = None) -> List[Any]:
+    """Legend entries of the wall panel; with ``counts`` ({category: n, "cracked": n}) the numbers too."""
+
+    def label(name: str, key: str) -> str:
+        return f"{name} ({counts[key]})" if counts is not None else name
+
+    handles: List[Any] = [
+        Line2D([], [], color=color, linewidth=2.5, label=label(name, name)) for name, color, _ in STATE_STYLES
+    ]
+    handles.append(Patch(facecolor="#f4a259", edgecolor="#5a4a3a", label="moving blocks"))
+    handles.append(Line2D([], [], color="#404040", linewidth=0.8, linestyle="--", label="undeformed"))
+    handles.append(Line2D([], [], color="black", linewidth=3.5, label=label("cracked in the mechanism", "cracked")))
+    return handles
+
+
+def _draw_wall(ax: Any, model: Any, results: Any, legend: bool = True, heading: Optional[str] = None) -> None:
+    """The wall panel; ``legend``: the legend under the panel; ``heading``: the panel title (default: the
+    numbers of blocks and interfaces)."""
     rects = np.asarray(model.rects, dtype=np.float64)
     n_wall = int(model.n_blocks)
     base = model.base_index
     beam = model.top_index
     wall = rects[:n_wall]
     height = float(wall[:, 3].max() - wall[:, 1].min())
-    width = float(wall[:, 2].max() - wall[:, 0].min())
 
     mech = np.asarray(results.mechanism, dtype=np.float64)
     have_mech = mech.shape == (len(rects), 3) and np.all(np.isfinite(mech)) and np.any(mech != 0)
@@ -191,9 +228,10 @@ def _draw_wall(ax: Any, model: Any, results: Any) -> None:
         cracked = (np.abs(jumps[:, 0]) > CRACK_TOLERANCE * peak) | (jumps[:, 1] > CRACK_TOLERANCE * peak)
     else:
         cracked = np.zeros(len(geom), dtype=bool)
-    handles: List[Any] = []
+    counts = {"cracked": int(cracked.sum())}
     for name, color, lw in STATE_STYLES:
         idx = [k for k, c in enumerate(cats) if c == name]
+        counts[name] = len(idx)
         for crack in (False, True):
             segs = []
             for k in idx:
@@ -204,24 +242,26 @@ def _draw_wall(ax: Any, model: Any, results: Any) -> None:
             if segs:
                 width = 4.0 if crack else lw
                 ax.add_collection(LineCollection(segs, colors=color, linewidths=width, zorder=3 + crack))
-        handles.append(Line2D([], [], color=color, linewidth=2.5, label=f"{name} ({len(idx)})"))
-    handles.append(Patch(facecolor="#f4a259", edgecolor="#5a4a3a", label="moving blocks"))
-    handles.append(Line2D([], [], color="#404040", linewidth=0.8, linestyle="--", label="undeformed"))
-    handles.append(
-        Line2D([], [], color="black", linewidth=3.5, label=f"cracked in the mechanism ({int(cracked.sum())})")
-    )
 
-    x_lo, y_lo = rects[:, 0].min(), rects[:, 1].min()
-    x_hi, y_hi = rects[:, 2].max(), rects[:, 3].max()
-    pad = 0.05 * max(width, height) + MECHANISM_FRACTION * height
-    ax.set_xlim(x_lo - pad, x_hi + pad)
-    ax.set_ylim(y_lo - 0.05 * height, y_hi + pad)
+    xlim, ylim = _wall_limits(model)
+    ax.set_xlim(*xlim)
+    ax.set_ylim(*ylim)
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     mech_note = "mechanism shape exaggerated" if have_mech else "no mechanism"
-    ax.set_title(f"{n_wall} blocks, {len(geom)} interfaces; {mech_note}", fontsize=10)
-    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=4, fontsize=8, frameon=False)
+    if heading is None:
+        heading = f"{_plural(n_wall, 'block')}, {_plural(len(geom), 'interface')}; {mech_note}"
+    ax.set_title(heading, fontsize=10)
+    if legend:
+        ax.legend(
+            handles=_state_handles(counts),
+            loc="upper center",
+            bbox_to_anchor=(0.5, -0.12),
+            ncol=4,
+            fontsize=8,
+            frameon=False,
+        )
 
 
 def _draw_curve(ax: Any, results: Any, live: str) -> None:
@@ -260,3 +300,128 @@ def _draw_curve(ax: Any, results: Any, live: str) -> None:
             ax.set_ylim(lo, hi + 0.12 * (hi - lo))  # room for the collapse label
     ax.grid(True, alpha=0.3)
     ax.set_title(f"{results.steps} steps, {results.iterations} iterations, {results.elapsed_s:.3g} s", fontsize=10)
+
+
+#: Colour, marker, line width, opacity and drawing order of each method in :func:`plot_comparison`: the
+#: dynamic curve wide and light under the static one, so that both show where they coincide.
+METHOD_STYLES = {"static": ("#1f3b73", "o", 1.2, 1.0, 3), "dynamic": ("#e07b00", "s", 4.0, 0.55, 2)}
+
+
+def plot_comparison(
+    model: Any,
+    static: Any,
+    dynamic: Any,
+    title: Optional[str] = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    live: str = "horizontal_weight",
+    dpi: int = 150,
+) -> Figure:
+    """The static and the explicit (dynamic) analysis of one model side by side; a PNG if ``path`` is given.
+
+    The two walls with their mechanisms and joint states (as in :func:`plot_results`; one above the other
+    for a wide wall, side by side for a tall one) under one legend, and the two curves overlaid, each
+    collapse multiplier marked and given in the legend.
+    The figure title gives the difference of the multipliers and how far the failed-joint patterns
+    agree (see :func:`masonry_dem.compare.agreement`). Arguments as in :func:`plot_results`.
+    """
+    from .compare import agreement, format_difference
+
+    agree = agreement(static, dynamic)
+    (xl, xh), (yl, yh) = _wall_limits(model)
+    aspect = float((xh - xl) / (yh - yl))
+    to_file = path is not None
+    if aspect > 1.1:
+        # a wide wall: the two walls one above the other on the left, the curves on the right
+        a = min(aspect, 4.0)
+        fig = _new_figure((13.0, float(np.clip(2 * 7.0 / a + 2.6, 6.0, 11.0))), to_file)
+        grid = fig.add_gridspec(3, 2, width_ratios=[1.25, 1.0], height_ratios=[1.0, 1.0, 0.09])
+        wall_cells = [grid[0, 0], grid[1, 0]]
+        curve_cell, legend_cell, legend_columns = grid[0:2, 1], grid[2, :], 8
+    else:
+        # a tall wall: the two walls and the curves side by side
+        a = max(aspect, 0.4)
+        fig = _new_figure((14.0, 6.5), to_file)
+        grid = fig.add_gridspec(2, 3, width_ratios=[a, a, 1.7], height_ratios=[1.0, 0.09])
+        wall_cells = [grid[0, 0], grid[0, 1]]
+        curve_cell, legend_cell, legend_columns = grid[0, 2], grid[1, :2], 4
+    name, factor, unit = _multiplier_label(live)
+    symbol = "H" if live == "top_horizontal" else "λ"
+
+    def lam_text(res: Any) -> str:
+        lam = float(res.collapse_multiplier)
+        if not np.isfinite(lam):
+            return f"{symbol}u: none"
+        return f"{symbol}u = {lam * factor:.4g}{unit}" if live == "top_horizontal" else f"{symbol}u = {lam:.4f}"
+
+    for cell, (method, res) in zip(wall_cells, (("static", static), ("dynamic", dynamic))):
+        n_failed = agree[f"failed_{method}"]
+        failed = f"{n_failed} failed joint" + ("" if n_failed == 1 else "s")
+        ax = fig.add_subplot(cell)
+        _draw_wall(ax, model, res, legend=False, heading=f"{method}: {res.status}, {lam_text(res)}\n{failed}")
+
+    ax_curve = fig.add_subplot(curve_cell)
+    _draw_curve_overlay(ax_curve, (("static", static), ("dynamic", dynamic)), live)
+
+    ax_legend = fig.add_subplot(legend_cell)
+    ax_legend.axis("off")
+    ax_legend.legend(handles=_state_handles(), loc="center", ncol=legend_columns, fontsize=8, frameon=False)
+
+    diff = agree["multiplier_relative_difference"]
+    diff_text = f"multipliers differ by {format_difference(diff)}" if diff is not None else "no multiplier to compare"
+    head = f"{title} — " if title else ""
+    fig.suptitle(
+        f"{head}static vs dynamic: {diff_text}; failed joints {agree['failed_static']} and "
+        f"{agree['failed_dynamic']}, {agree['failed_common']} in common (Jaccard {agree['jaccard']:.2f})",
+        fontsize=12,
+    )
+    if path is not None:
+        fig.savefig(path, dpi=dpi)
+    return fig
+
+
+def _draw_curve_overlay(ax: Any, runs: Sequence[Tuple[str, Any]], live: str) -> None:
+    """Several curves on one axis, each with its collapse (or peak) point, labelled by method."""
+    label, factor, unit = _multiplier_label(live)
+    values: List[float] = []
+    for method, res in runs:
+        color, marker, width, alpha, order = METHOD_STYLES.get(method, ("#444444", "^", 1.2, 1.0, 3))
+        lam = np.asarray(res.curve_multiplier, dtype=np.float64) * factor
+        disp = np.asarray(res.curve_displacement, dtype=np.float64) * 1e3
+        lam_u = float(res.collapse_multiplier) * factor
+        if np.isfinite(lam_u):
+            value = f"{lam_u:.4g}{unit}" if live == "top_horizontal" else f"{lam_u:.4f}"
+            head = f"{method}: {'H' if live == 'top_horizontal' else 'λu'} = {value}"
+        else:
+            head = f"{method}: {res.status}"
+        work = f"{res.iterations:,} {'time steps' if method == 'dynamic' else 'iterations'}"
+        text = f"{head} ({work}, {res.elapsed_s:.3g} s)"
+        markevery = max(1, len(lam) // 40)
+        ax.plot(
+            disp,
+            lam,
+            "-",
+            marker=marker,
+            markevery=markevery,
+            color=color,
+            alpha=alpha,
+            markersize=3 if width < 2 else 5,
+            linewidth=width,
+            zorder=order,
+            label=text,
+        )
+        if np.isfinite(lam_u) and np.any(np.isfinite(lam)):
+            k = int(np.nanargmin(np.abs(lam - lam_u)))
+            size = 8 if width < 2 else 12
+            ax.plot([disp[k]], [lam[k]], marker, color=color, markersize=size, markerfacecolor="none", zorder=5)
+        values += [float(v) for v in lam if np.isfinite(v)] + ([lam_u] if np.isfinite(lam_u) else [])
+        if res.status == "failed" and res.error:
+            ax.plot([], [], " ", label=f"{method} failed: {res.error}")
+    if values:
+        lo, hi = min(0.0, min(values)), max(values)
+        if hi > lo:
+            ax.set_ylim(lo, hi + 0.08 * (hi - lo))
+    ax.set_xlabel("horizontal displacement of the control point [mm]")
+    ax.set_ylabel(label)
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="lower right", fontsize=8)
+    ax.set_title("load curves (open marker: collapse or peak)", fontsize=10)

@@ -77,9 +77,11 @@ def test_examples_load() -> None:
         assert case.method == "static"
         blocks = case.model_kwargs["blocks"]
         assert blocks.ndim == 2 and blocks.shape[1] == 4 and len(blocks) >= 1
-        # every example states its reference answer and where it comes from
+        # every example states its reference answer and where it comes from, and lists the optional keys
         text = f.read_text()
-        assert "Reference" in text and "benchmarks/README.md" in text
+        assert "Reference" in text and "/work/shared/benchmarks/" in text, f.name
+        for key in ("tolerance", "damping", "damping_coefficient", "time_step", "unbalanced_ratio", "threads"):
+            assert f"# {key} = " in text, (f.name, key)
 
 
 def test_example_block_counts() -> None:
@@ -552,7 +554,7 @@ def test_dynamic_keys_are_optional(tmp_path: Path) -> None:
         ("damping_coefficient = -0.1", "[analysis] damping_coefficient: must be >= 0, got -0.1"),
         ("damping_coefficient = 'high'", "[analysis] damping_coefficient: expected a number, got string"),
         ("damping_coefficient = 1.0", '[analysis] damping_coefficient: must be < 1 with damping = "local"'),
-        ("damping = 'local'\ndamping_coefficient = 1.5", '[analysis] damping_coefficient: must be < 1 with damping'),
+        ("damping = 'local'\ndamping_coefficient = 1.5", "[analysis] damping_coefficient: must be < 1 with damping"),
         ("time_step = 0", "[analysis] time_step: must be > 0, got 0"),
         ("time_step = -1e-5", "[analysis] time_step: must be > 0, got -1e-05"),
         ("time_step = inf", "[analysis] time_step: expected a finite number, got inf"),
@@ -613,6 +615,7 @@ def test_package_exports() -> None:
     for name in (
         "Model",
         "Results",
+        "TimeHistory",
         "running_bond",
         "pattern",
         "MasonryError",

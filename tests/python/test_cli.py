@@ -8,7 +8,7 @@ import subprocess
 import sys
 from pathlib import Path
 from types import SimpleNamespace
-from typing import List
+from typing import Callable, List, Optional
 
 import pytest
 
@@ -18,6 +18,7 @@ from masonry_dem import progress as progress_module
 from masonry_dem.case import Case
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+Progress = Callable[[int, float, float, float], None]
 PNG = b"\x89PNG\r\n\x1a\n"
 
 
@@ -153,8 +154,17 @@ def test_compare(tmp_path: Path) -> None:
     assert proc.stderr == ""
     text = proc.stdout
     assert text.startswith("Single block rocking (0.2 x 0.6 m): static and explicit (dynamic) solvers\n")
-    for label in ("status:", "collapse multiplier:", "difference", "failed joints:", "in common, Jaccard index",
-                  "iterations", "time steps", "elapsed:", "dynamic / static ="):
+    for label in (
+        "status:",
+        "collapse multiplier:",
+        "difference",
+        "failed joints:",
+        "in common, Jaccard index",
+        "iterations",
+        "time steps",
+        "elapsed:",
+        "dynamic / static =",
+    ):
         assert label in text, label
     data = json.loads(out.read_text())
     assert list(data) == ["format", "title", "static", "dynamic", "agreement"]
@@ -192,14 +202,17 @@ class FakeTerminal(io.StringIO):
 
 
 @pytest.mark.parametrize("quiet", [False, True])
-def test_progress_bar_on_a_terminal(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str],
-                                    quiet: bool) -> None:
+def test_progress_bar_on_a_terminal(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str], quiet: bool
+) -> None:
     """A bar on stderr when it is a terminal (fed by the solver's progress callback), none with --quiet."""
     pytest.importorskip("tqdm")
     calls: List[tuple] = []
     real_solve = Case.solve
 
-    def spying_solve(self: Case, model: md.Model, method: object = None, progress: object = None) -> object:
+    def spying_solve(
+        self: Case, model: md.Model, method: Optional[str] = None, progress: Optional[Progress] = None
+    ) -> object:
         calls.append((method, progress))
         return real_solve(self, model, method, progress)
 
@@ -246,7 +259,7 @@ def test_failed_status(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: 
     real_solve = Case.solve
 
     def failing_solve(
-        self: Case, model: md.Model, method: object = None, progress: object = None
+        self: Case, model: md.Model, method: Optional[str] = None, progress: Optional[Progress] = None
     ) -> SimpleNamespace:
         r = real_solve(self, model, method, progress)
         names: List[str] = [n for n in dir(r) if not n.startswith("_") and not callable(getattr(r, n))]
@@ -264,3 +277,37 @@ def test_failed_status(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: 
     data = json.loads(out.read_text())
     assert data["status"] == "failed" and data["error"] == "no convergence at step 3"
     assert png.read_bytes().startswith(PNG)
+
+
+def interrupted_solve(real_solve, log: List[str]):  # type: ignore[no-untyped-def]
+    """A Case.solve whose static run comes back as the core returns it after Ctrl-C."""
+
+    def solve(self: Case, model: md.Model, method: Optional[str] = None, progress: Optional[Progress] = None) -> object:
+        log.append(str(method))
+        r = real_solve(self, model, method, progress)
+        if method != "static":
+            return r
+        names = [n for n in dir(r) if not n.startswith("_") and not callable(getattr(r, n))]
+        fake = SimpleNamespace(**{n: getattr(r, n) for n in names})
+        fake.status, fake.error = "failed", "interrupted by the user"
+        return fake
+
+    return solve
+
+
+def test_interrupted(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    """Ctrl-C: run prints and writes what was computed and exits with 130; compare does not start the
+    second method."""
+    log: List[str] = []
+    monkeypatch.setattr(Case, "solve", interrupted_solve(Case.solve, log))
+    out = tmp_path / "r.json"
+    case = str(EXAMPLES / "single-block-sliding.toml")
+    assert cli.main(["run", case, "--method", "static", "--json", str(out)]) == 130
+    captured = capsys.readouterr()
+    assert captured.err.strip() == "masonry-dem: error: interrupted"
+    assert "interrupted by the user" in captured.out
+    assert json.loads(out.read_text())["status"] == "failed"
+    log.clear()
+    assert cli.main(["compare", case]) == 130
+    assert log == ["static"]
+    assert capsys.readouterr().err.strip() == "masonry-dem: error: interrupted"

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from masonry_dem import progress as progress_module
-from masonry_dem.compare import agreement, comparison_dict, comparison_text, failed_interfaces
+from masonry_dem.compare import agreement, comparison_dict, comparison_text, failed_interfaces, format_difference
 from masonry_dem.progress import NullProgress, ProgressBar, progress_bar, progress_text
 
 NAN = float("nan")
@@ -29,6 +29,7 @@ def test_progress_text() -> None:
     assert progress_text(7, 0.2, 0.00125, 0.5) == "λ = 0.2000, u = 1.25 mm, 7 steps"
     assert progress_text(3, 56900.0, NAN, NAN, live="top_horizontal") == "H = 56.9 kN, 3 steps"
     assert progress_text(0, NAN, NAN, NAN) == "λ = -, 0 steps"
+    assert progress_text(1, 0.0, -5.7e-23, 0.0) == "λ = 0.0000, u = 0 mm, 1 steps"
 
 
 def test_bar_load_control() -> None:
@@ -55,14 +56,31 @@ def test_bar_with_fraction_shows_a_percentage() -> None:
     assert "static: λ = 0.4000, u = 1.5 mm, 50 steps" in text
 
 
+def test_bar_follows_the_latest_fraction() -> None:
+    """A fraction, then none (e.g. the dead-load state reported as 0 done, then load control): the
+    percentage goes away again."""
+    pytest.importorskip("tqdm")
+    out = io.StringIO()
+    with ProgressBar("static", file=out, interval=0.0) as bar:
+        bar(1, 0.0, 0.0, 0.0)
+        assert " 0%|" in out.getvalue().split("\r")[-1]
+        bar(2, 0.3, 1e-5, NAN)
+        assert out.getvalue().split("\r")[-1].startswith("static: λ = 0.3000, 2 steps [")
+
+
 def test_bar_is_cheap_and_throttled() -> None:
     """The callback only stores the numbers between redraws: a million calls take well under a second."""
     pytest.importorskip("tqdm")
     out = io.StringIO()
     bar = ProgressBar("dynamic", file=out, interval=60.0)
-    draws = []
+    draws: list = []
     original = bar._draw
-    bar._draw = lambda: (draws.append(1), original())[1]  # type: ignore[method-assign]
+
+    def counting_draw() -> None:
+        draws.append(1)
+        original()
+
+    bar._draw = counting_draw  # type: ignore[method-assign]
     n = 200_000
     start = time.perf_counter()
     for i in range(n):
@@ -181,6 +199,14 @@ def test_comparison_text_columns() -> None:
     work = next(line for line in lines if "work:" in line)
     assert "37 iterations" in work and "12,345 time steps" in work
     assert "dynamic / static = 50" in next(line for line in lines if "elapsed:" in line)
-    top = comparison_text(fake("static", 56900.0, [2], 1, 1.0), fake("dynamic", 57000.0, [2], 1, 1.0), MODEL, "J4D",
-                          live="top_horizontal")
+    top = comparison_text(
+        fake("static", 56900.0, [2], 1, 1.0), fake("dynamic", 57000.0, [2], 1, 1.0), MODEL, "J4D", live="top_horizontal"
+    )
     assert "peak horizontal force:" in top and "56.900 kN" in top
+
+
+def test_format_difference() -> None:
+    assert format_difference(None) == "-"
+    assert format_difference(0.0012) == "+0.12%"
+    assert format_difference(-0.0012) == "-0.12%"
+    assert format_difference(-1e-6) == "0.00%"
