@@ -465,6 +465,46 @@ pub(crate) fn relax_dead_state(model: &Model) -> Result<(Vec<f64>, Vec<JointStat
     Err(Error::Mechanism(format!("the wall does not settle under the dead loads alone (explicit relaxation, {max_steps} steps)")))
 }
 
+/// The collapse mechanism from a collapse state: the damped motion (local damping 0.8,
+/// linearized kinematics) of the wall from displacements `u` and joint histories `states`
+/// under `lambda` (a little above the collapse multiplier), until a block has moved 1e-4 of
+/// the wall's size; the increment of `u`, or None if the wall settles. Where several
+/// mechanisms have the same multiplier, the motion picks the one the wall would follow.
+pub(crate) fn runaway_mode(model: &Model, u: &[f64], states: &[JointState], lambda: f64) -> Option<Vec<f64>> {
+    let mut s = Integrator::new(model, None, 0.8, Damping::Local(0.8), 1).ok()?;
+    s.u.copy_from_slice(u);
+    s.states.copy_from_slice(states);
+    let (fd, fl) = (model.dead_load(), model.live_load());
+    let mut set_ext = |f: &mut [f64], _: &[f64]| {
+        for d in 0..f.len() {
+            f[d] = fd[d] + lambda * fl[d];
+        }
+    };
+    let (mut lo, mut hi) = (f64::MAX, f64::MIN);
+    for r in model.rects() {
+        lo = lo.min(r.x0.min(r.y0));
+        hi = hi.max(r.x1.max(r.y1));
+    }
+    let limit = 1e-4 * (hi - lo);
+    let nb = model.n_blocks();
+    for k in 0..500_000 {
+        s.step(&mut set_ext, None);
+        if k % 16 == 15 {
+            let moved = (0..nb).map(|i| (s.u[3 * i] - u[3 * i]).hypot(s.u[3 * i + 1] - u[3 * i + 1])).fold(0.0, f64::max);
+            if !moved.is_finite() {
+                return None;
+            }
+            if moved > limit {
+                return Some(s.u.iter().zip(u).map(|(a, b)| a - b).collect());
+            }
+            if s.unbalanced_ratio(None) <= 1e-7 {
+                return None; // it settled: not a collapse state
+            }
+        }
+    }
+    None
+}
+
 /// Runs a quasi-static analysis with the explicit solver; same results as the static solver.
 pub fn solve(model: &Model, opts: &ExplicitOptions) -> Result<Results, Error> {
     solve_with(model, opts, &mut |_| true)

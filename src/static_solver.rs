@@ -339,16 +339,17 @@ impl<'a> Solver<'a> {
         (rn.sqrt(), fnorm.sqrt())
     }
 
-    /// Adds the interface stiffnesses B^T D_t B to the values of `sys` through `slots`.
+    /// Adds the interface stiffnesses B^T (D_t + eps D) B to the values of `sys` through `slots`
+    /// (`eps`: the Newton stabilization, 0 for the exact tangent).
     fn assemble(
         model: &Model,
+        eps: f64,
         tangents: &[[[f64; 3]; 3]],
         sys: &mut SparseLu,
         slots: &[[u32; 36]],
     ) {
         let vals = sys.values_mut();
         vals.fill(0.0);
-        let eps = NEWTON_STABILIZATION;
         for (k, ((it, dt0), sl)) in model.interfaces().iter().zip(tangents).zip(slots).enumerate() {
             let b = &it.b_mat;
             let mut dt = *dt0;
@@ -421,7 +422,7 @@ impl<'a> Solver<'a> {
             self.iterations += 1;
             if disp {
                 let (sys, slots, lam_slots) = self.disp_sys.as_mut().unwrap();
-                Self::assemble(self.model, &self.tangents, sys, slots);
+                Self::assemble(self.model, NEWTON_STABILIZATION, &self.tangents, sys, slots);
                 let live = self.model.live_load();
                 let vals = sys.values_mut();
                 for &(d, s) in lam_slots.iter() {
@@ -431,7 +432,7 @@ impl<'a> Solver<'a> {
                 sys.solve_in_place(&mut self.rhs)?;
             } else {
                 let (sys, slots) = self.load_sys.as_mut().unwrap();
-                Self::assemble(self.model, &self.tangents, sys, slots);
+                Self::assemble(self.model, NEWTON_STABILIZATION, &self.tangents, sys, slots);
                 sys.factorize()?;
                 sys.solve_in_place(&mut self.rhs)?;
             }
@@ -576,7 +577,12 @@ impl<'a> Solver<'a> {
             e => e,
         })?;
         self.u_prev.copy_from_slice(&self.u);
-        self.commit(monitor, 0.0)
+        // the fraction of the path is known under displacement control only
+        let fraction = match self.opts.control {
+            Control::Load => f64::NAN,
+            Control::Displacement { .. } => 0.0,
+        };
+        self.commit(monitor, fraction)
     }
 
     /// A natural scale of lambda: 1 for the seismic coefficient, the dead loads for a force.
@@ -649,11 +655,14 @@ impl<'a> Solver<'a> {
         )
     }
 
-    /// The collapse mechanism at the last equilibrium (the collapse state): the increment of a
-    /// displacement-controlled step from it; where that step does not converge, the same step
-    /// predicted by the null mode of the tangent in which every joint face within 0.1% of its
-    /// limit is active; then that null mode itself; then the direction in which the last failed
-    /// load step went.
+    /// The collapse mechanism at the last equilibrium (the collapse state): the damped motion
+    /// of the wall under a load 1% above the collapse multiplier (the explicit integrator);
+    /// where the wall does not move off, the null mode of the exact tangent in which every
+    /// joint face within 0.1% of its limit is active; then the increment of a
+    /// displacement-controlled step; then the direction in which the last failed load step
+    /// went. Beyond collapse the increment of a perfectly plastic wall is not unique: on wall 1
+    /// a Newton step lands on a mixture of mechanisms moving all 33 blocks, the null mode
+    /// depends on which joints are within the margin, and the motion is the leeward wedge.
     fn collapse_mechanism(&mut self) -> Option<Vec<f64>> {
         let cd = self.control_dof;
         if self.model.fixed()[cd] || self.ensure_disp_sys().is_err() {
@@ -676,13 +685,18 @@ impl<'a> Solver<'a> {
             s.lambda = lam0;
             out
         };
-        if let Some(v) = step_from(self, None) {
+        let scale = self.lambda_scale();
+        let over = lam0 + 0.01 * lam0.abs().max(1e-3 * scale);
+        if let Some(v) = crate::explicit::runaway_mode(self.model, &u0, &self.committed, over) {
             return Some(v);
         }
         let mode = self.null_mode();
         self.u.copy_from_slice(&u0);
-        let out = mode.as_ref().and_then(|v| step_from(self, Some(v)));
-        out.or(mode).or_else(|| self.diverged.take())
+        self.lambda = lam0;
+        if mode.is_some() {
+            return mode;
+        }
+        step_from(self, None).or_else(|| self.diverged.take())
     }
 
     /// The null mode of the tangent with every joint face within 0.1% of its limit active,
@@ -720,7 +734,7 @@ impl<'a> Solver<'a> {
             }
         }
         let (sys, slots, lam_slots) = self.disp_sys.as_mut().unwrap();
-        Self::assemble(model, &self.tangents, sys, slots);
+        Self::assemble(model, 0.0, &self.tangents, sys, slots);
         let live = model.live_load();
         let vals = sys.values_mut();
         for &(d, s) in lam_slots.iter() {
