@@ -312,24 +312,7 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
         {
             continue;
         }
-        // consistent tangent D - (D M) G^-1 (A D)
-        let mut tangent = elastic_tangent;
-        for col in 0..3 {
-            // G^-1 (A D)[:, col]
-            let mut g1 = g0;
-            let mut rhs = [0.0; 3];
-            for (p, &i) in act.iter().enumerate() {
-                rhs[p] = faces.a[i][col] * d[col];
-            }
-            if !solve_small(&mut g1, &mut rhs, n) {
-                break;
-            }
-            for row in 0..3 {
-                for (p, &j) in act.iter().enumerate() {
-                    tangent[row][col] -= dm[j][row] * rhs[p];
-                }
-            }
-        }
+        let tangent = active_tangent(&faces, &d, &dm, act, &g0).unwrap_or([[0.0; 3]; 3]);
         return finish(s, slip, tangent);
     }
     // No active set satisfied the conditions (degenerate data): fall back on the apex, the one
@@ -367,9 +350,8 @@ pub fn tangent_near_limit(
     let near: Vec<usize> = (0..4)
         .filter(|&j| faces.f(j, force) >= -margin * scale)
         .collect();
-    let mut tangent = [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
     if near.is_empty() {
-        return tangent;
+        return [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
     }
     if near.len() > 3 {
         return [[0.0; 3]; 3]; // the apex: the joint carries nothing more
@@ -381,32 +363,44 @@ pub fn tangent_near_limit(
             d[2] * faces.m[j][2],
         ]
     });
-    let n = near.len();
     let mut g = [[0.0; 3]; 3];
     for (p, &i) in near.iter().enumerate() {
         for (q, &j) in near.iter().enumerate() {
             g[p][q] = dot(&faces.a[i], &dm[j]);
         }
     }
+    active_tangent(&faces, &d, &dm, &near, &g).unwrap_or([[0.0; 3]; 3])
+}
+
+/// The consistent tangent `D - (D M) G^-1 (A D)` of the active faces `act`, with
+/// `G = A D M` (k x k in `g`) and `dm` the columns `D m_j`; None if `G` is singular.
+fn active_tangent(
+    faces: &Faces,
+    d: &[f64; 3],
+    dm: &[[f64; 3]; 4],
+    act: &[usize],
+    g: &[[f64; 3]; 3],
+) -> Option<[[f64; 3]; 3]> {
+    let mut tangent = [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
     for col in 0..3 {
-        let mut g1 = g;
+        // G^-1 (A D)[:, col]
+        let mut g1 = *g;
         let mut rhs = [0.0; 3];
-        for (p, &i) in near.iter().enumerate() {
+        for (p, &i) in act.iter().enumerate() {
             rhs[p] = faces.a[i][col] * d[col];
         }
-        if !solve_small(&mut g1, &mut rhs, n) {
-            return [[0.0; 3]; 3];
+        if !solve_small(&mut g1, &mut rhs, act.len()) {
+            return None;
         }
         for row in 0..3 {
-            for (p, &j) in near.iter().enumerate() {
+            for (p, &j) in act.iter().enumerate() {
                 tangent[row][col] -= dm[j][row] * rhs[p];
             }
         }
     }
-    tangent
+    Some(tangent)
 }
 
-/// The state flags of a force that lies in the domain.
 /// A face counts as reached within 0.1% of the force's size: a relaxed explicit state and a
 /// Newton-converged static state of the same collapse are then classified alike.
 fn flags(faces: &Faces, s: &[f64; 3], sec: &Section) -> u8 {
