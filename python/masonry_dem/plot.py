@@ -1,17 +1,26 @@
-"""Plots of an analysis: the wall with its collapse mechanism and crack pattern, and the load curve.
+"""Plots of an analysis: the wall, its deformed shape, crack pattern and collapse mechanism, and the load curve.
 
-:func:`plot_results` draws one figure with two panels:
+Panels, each drawn on a matplotlib ``Axes`` given by the caller:
 
-* left, the wall: the undeformed block outlines; under them the blocks moved along
-  ``Results.mechanism`` (a displacement increment, drawn exaggerated so that the largest corner
-  motion is a visible fraction of the wall height; rotations about the block centroids), filled;
-  the interfaces coloured by their state at the last converged step (open, sliding, rocking,
-  sliding and rocking, elastic), thick where the mechanism cracks them (a slip or a gap across);
-* right, the curve: load multiplier lambda against the horizontal displacement of the control point
-  [mm], with the collapse multiplier marked.
+* :func:`plot_wall` (ax, model): the block outlines; the base hatched, the top beam grey.
+* :func:`plot_deformed` (ax, model, results, scale=None): the blocks at the last converged step
+  (``Results.displacements``), magnified by ``scale`` (default: the largest displacement drawn as 5% of
+  the wall height; the factor is in the panel title), over the dashed undeformed outlines.
+* :func:`plot_cracks` (ax, model, results): the interfaces coloured by state at the last converged step
+  (open, sliding, rocking, sliding + rocking, elastic; :data:`STATE_STYLES`) with a legend; wide where
+  the mechanism cracks them.
+* :func:`plot_mechanism` (ax, model, results): the blocks moved along ``Results.mechanism`` (the last
+  increment, exaggerated), the moving ones orange, the cracked interfaces black.
+* :func:`plot_curve` (ax, *results, labels=None): load multiplier lambda (or the top-beam force in kN)
+  against the horizontal displacement of the control point [mm]; several results overlaid.
 
-:func:`plot_comparison` draws the static and the explicit (dynamic) analyses of one case side by side:
-the two walls with their crack patterns, and the two curves overlaid.
+Figures (written as PNG with the Agg canvas when a ``path`` is given, else made through pyplot):
+
+* :func:`report_figure`: one page with the crack pattern, the mechanism, the deformed shape and the curve
+  (``masonry-dem run --plot``).
+* :func:`plot_results`: the wall (mechanism and joint states in one panel) and the curve.
+* :func:`plot_comparison`: the static and the explicit (dynamic) analyses of one case side by side: the
+  two walls with their crack patterns, and the two curves overlaid (``masonry-dem compare --plot``).
 
 Geometry in m; displacements plotted in mm. Matplotlib is imported when this module is.
 """
@@ -40,7 +49,18 @@ from .report import (
     interface_jumps,
 )
 
-__all__ = ["plot_results", "plot_comparison", "interface_categories", "STATE_STYLES"]
+__all__ = [
+    "plot_wall",
+    "plot_deformed",
+    "plot_cracks",
+    "plot_mechanism",
+    "plot_curve",
+    "report_figure",
+    "plot_results",
+    "plot_comparison",
+    "interface_categories",
+    "STATE_STYLES",
+]
 
 #: Interface categories in drawing order: (name, colour, line width).
 #: Cracked interfaces (a jump across them in the mechanism) are drawn 4 points wide.
@@ -170,26 +190,19 @@ def _state_handles(counts: Optional[dict] = None) -> List[Any]:
     return handles
 
 
-def _draw_wall(ax: Any, model: Any, results: Any, legend: bool = True, heading: Optional[str] = None) -> None:
-    """The wall panel; ``legend``: the legend under the panel; ``heading``: the panel title (default: the
-    numbers of blocks and interfaces)."""
+def _draw_blocks(
+    ax: Any,
+    model: Any,
+    motion: np.ndarray,
+    scale: float,
+    moving: Optional[np.ndarray] = None,
+    undeformed: bool = True,
+) -> None:
+    """The blocks moved by ``scale`` * ``motion`` ((n_all, 3): u1, u2 [m], phi [rad]), filled; the base
+    hatched where it is; the top beam grey; wall blocks orange where ``moving`` is set, else beige. With
+    ``undeformed`` the undeformed outlines are drawn dashed over the fills."""
     rects = np.asarray(model.rects, dtype=np.float64)
-    n_wall = int(model.n_blocks)
-    base = model.base_index
-    beam = model.top_index
-    wall = rects[:n_wall]
-    height = float(wall[:, 3].max() - wall[:, 1].min())
-
-    mech = np.asarray(results.mechanism, dtype=np.float64)
-    have_mech = mech.shape == (len(rects), 3) and np.all(np.isfinite(mech)) and np.any(mech != 0)
-    if not have_mech:
-        mech = np.zeros((len(rects), 3))
-    motion = corner_motion(rects, mech)
-    peak = float(motion.max()) if have_mech else 0.0
-    scale = MECHANISM_FRACTION * height / peak if peak > 0 else 0.0
-    moving = motion > MOVING_FRACTION * peak if peak > 0 else np.zeros(len(rects), dtype=bool)
-
-    # The deformed (mechanism) shape, filled; the base stays where it is.
+    base, beam = model.base_index, model.top_index
     fills, colors = [], []
     for i, rect in enumerate(rects):
         if i == base:
@@ -206,32 +219,36 @@ def _draw_wall(ax: Any, model: Any, results: Any, legend: bool = True, heading: 
                 )
             )
             continue
-        fills.append(Polygon(deformed_corners(rect, mech[i], scale), closed=True))
+        fills.append(Polygon(deformed_corners(rect, motion[i], scale), closed=True))
         if i == beam:
             colors.append("#7f7f7f")
         else:
-            colors.append("#f4a259" if moving[i] else "#efe3c8")
+            colors.append("#f4a259" if moving is not None and moving[i] else "#efe3c8")
     ax.add_collection(
         PatchCollection(fills, facecolors=colors, edgecolors="#5a4a3a", linewidths=0.6, alpha=0.9, zorder=1)
     )
+    if undeformed:
+        outlines = [_outline(r) for i, r in enumerate(rects) if i != base]
+        ax.add_collection(LineCollection(outlines, colors="#404040", linewidths=0.5, linestyles="--", zorder=2))
 
-    # The undeformed outlines, over the fills.
-    outlines = [_outline(r) for i, r in enumerate(rects) if i != base]
-    ax.add_collection(LineCollection(outlines, colors="#404040", linewidths=0.5, linestyles="--", zorder=2))
 
-    # Interfaces by state, at their undeformed place; those the mechanism cracks (a jump across them) thick.
+def _draw_interfaces(
+    ax: Any, model: Any, results: Any, cracked: Optional[np.ndarray] = None, state_width: Optional[float] = None
+) -> dict:
+    """The interfaces at their undeformed place, coloured by state (:data:`STATE_STYLES`); those set in
+    ``cracked`` 4 points wide; ``state_width``: the width of the non-elastic ones (default: the style's).
+    Returns the count of each category."""
     geom = np.asarray(model.interface_geometry, dtype=np.float64).reshape(-1, 5)
-    states = np.asarray(results.interface_states, dtype=np.int64)
+    states = np.asarray(results.interface_states, dtype=np.int64).reshape(-1)
     cats = interface_categories(states) if len(states) == len(geom) else ["elastic"] * len(geom)
-    if have_mech:
-        jumps = interface_jumps(model, mech)
-        cracked = (np.abs(jumps[:, 0]) > CRACK_TOLERANCE * peak) | (jumps[:, 1] > CRACK_TOLERANCE * peak)
-    else:
+    if cracked is None:
         cracked = np.zeros(len(geom), dtype=bool)
     counts = {"cracked": int(cracked.sum())}
     for name, color, lw in STATE_STYLES:
         idx = [k for k, c in enumerate(cats) if c == name]
         counts[name] = len(idx)
+        if state_width is not None and name != "elastic":
+            lw = state_width
         for crack in (False, True):
             segs = []
             for k in idx:
@@ -242,16 +259,60 @@ def _draw_wall(ax: Any, model: Any, results: Any, legend: bool = True, heading: 
             if segs:
                 width = 4.0 if crack else lw
                 ax.add_collection(LineCollection(segs, colors=color, linewidths=width, zorder=3 + crack))
+    return counts
 
+
+def _wall_axes(ax: Any, model: Any) -> None:
+    """Limits, equal aspect and labels of a wall panel."""
     xlim, ylim = _wall_limits(model)
     ax.set_xlim(*xlim)
     ax.set_ylim(*ylim)
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
+
+
+def _wall_height(model: Any) -> float:
+    """Height of the wall blocks [m] (base and top beam not counted)."""
+    wall = np.asarray(model.rects, dtype=np.float64)[: int(model.n_blocks)]
+    return float(wall[:, 3].max() - wall[:, 1].min())
+
+
+def _mechanism(model: Any, results: Any) -> Tuple[np.ndarray, bool, float, float, np.ndarray]:
+    """(motion, have_mech, peak corner motion, drawing scale, moving) of ``Results.mechanism``; the scale
+    draws the largest corner motion as :data:`MECHANISM_FRACTION` of the wall height."""
+    n = len(np.asarray(model.rects))
+    mech = np.asarray(results.mechanism, dtype=np.float64)
+    have = mech.shape == (n, 3) and bool(np.all(np.isfinite(mech))) and bool(np.any(mech != 0))
+    if not have:
+        mech = np.zeros((n, 3))
+    motion = corner_motion(np.asarray(model.rects, dtype=np.float64), mech)
+    peak = float(motion.max()) if have else 0.0
+    scale = MECHANISM_FRACTION * _wall_height(model) / peak if peak > 0 else 0.0
+    moving = motion > MOVING_FRACTION * peak if peak > 0 else np.zeros(n, dtype=bool)
+    return mech, have, peak, scale, moving
+
+
+def _cracked(model: Any, mech: np.ndarray, have: bool, peak: float) -> np.ndarray:
+    """The interfaces the mechanism cracks: a slip or a gap across them above CRACK_TOLERANCE * peak."""
+    if not have:
+        return np.zeros(len(np.asarray(model.interface_geometry).reshape(-1, 5)), dtype=bool)
+    jumps = interface_jumps(model, mech)
+    return np.asarray((np.abs(jumps[:, 0]) > CRACK_TOLERANCE * peak) | (jumps[:, 1] > CRACK_TOLERANCE * peak))
+
+
+def _draw_wall(ax: Any, model: Any, results: Any, legend: bool = True, heading: Optional[str] = None) -> None:
+    """The wall panel; ``legend``: the legend under the panel; ``heading``: the panel title (default: the
+    numbers of blocks and interfaces)."""
+    n_wall = int(model.n_blocks)
+    mech, have_mech, peak, scale, moving = _mechanism(model, results)
+    _draw_blocks(ax, model, mech, scale, moving)
+    counts = _draw_interfaces(ax, model, results, _cracked(model, mech, have_mech, peak))
+    _wall_axes(ax, model)
+    n_faces = len(np.asarray(model.interface_geometry).reshape(-1, 5))
     mech_note = "mechanism shape exaggerated" if have_mech else "no mechanism"
     if heading is None:
-        heading = f"{_plural(n_wall, 'block')}, {_plural(len(geom), 'interface')}; {mech_note}"
+        heading = f"{_plural(n_wall, 'block')}, {_plural(n_faces, 'interface')}; {mech_note}"
     ax.set_title(heading, fontsize=10)
     if legend:
         ax.legend(
@@ -262,6 +323,180 @@ def _draw_wall(ax: Any, model: Any, results: Any, legend: bool = True, heading: 
             fontsize=8,
             frameon=False,
         )
+
+
+# --- one panel each: the wall, the deformed shape, the crack pattern, the mechanism, the curve ----------------
+
+#: The largest displacement of the deformed shape, as a fraction of the wall height (default scale).
+DEFORMED_FRACTION = 0.05
+
+
+def plot_wall(ax: Any, model: Any) -> None:
+    """Draw the wall on ``ax``: block outlines (wall blocks beige, the base hatched, the top beam grey),
+    coordinates in m, equal aspect."""
+    n = len(np.asarray(model.rects))
+    _draw_blocks(ax, model, np.zeros((n, 3)), 0.0, undeformed=False)
+    _wall_axes(ax, model)
+    n_faces = len(np.asarray(model.interface_geometry).reshape(-1, 5))
+    ax.set_title(f"{_plural(int(model.n_blocks), 'block')}, {_plural(n_faces, 'interface')}", fontsize=10)
+
+
+def plot_deformed(ax: Any, model: Any, results: Any, scale: Optional[float] = None) -> float:
+    """Draw the deformed shape at the last converged step (``Results.displacements``) on ``ax``.
+
+    Each block is moved by ``scale`` * (u1, u2) and turned by ``scale`` * phi about its centroid, over the
+    dashed undeformed outlines. ``scale`` [-]: the magnification; default: the largest corner
+    displacement is drawn as :data:`DEFORMED_FRACTION` (5%) of the wall height. The panel title gives the
+    factor and the largest displacement [mm]. Returns the scale used (0 when nothing moved).
+    """
+    rects = np.asarray(model.rects, dtype=np.float64)
+    disp = np.asarray(results.displacements, dtype=np.float64)
+    if disp.shape != (len(rects), 3) or not np.all(np.isfinite(disp)):
+        disp = np.zeros((len(rects), 3))
+    peak = float(corner_motion(rects, disp).max()) if len(rects) else 0.0
+    if scale is None:
+        scale = DEFORMED_FRACTION * _wall_height(model) / peak if peak > 0 else 0.0
+    _draw_blocks(ax, model, disp, float(scale))
+    _wall_axes(ax, model)
+    factor = f"{scale:,.0f}" if scale >= 100 else f"{scale:.3g}"
+    ax.set_title(f"deformed shape ×{factor}\nlargest displacement {peak * 1e3:.3g} mm", fontsize=10)
+    return float(scale)
+
+
+def plot_cracks(ax: Any, model: Any, results: Any, legend: bool = True, legend_columns: int = 5) -> dict:
+    """Draw the crack pattern on ``ax``: the undeformed wall with every interface coloured by its state at
+    the last converged step (:data:`STATE_STYLES`: open, sliding, rocking, sliding + rocking, elastic);
+    the interfaces that the mechanism cracks (a slip or a gap across them in ``Results.mechanism``) drawn
+    wide, so the crack itself stands out among the joints merely at their limit. With ``legend`` a legend
+    with the count of each state under the panel. Returns the counts ({state: n, "cracked": n})."""
+    n = len(np.asarray(model.rects))
+    _draw_blocks(ax, model, np.zeros((n, 3)), 0.0, undeformed=False)
+    mech, have, peak, _, _ = _mechanism(model, results)
+    counts = _draw_interfaces(ax, model, results, _cracked(model, mech, have, peak), state_width=1.8)
+    _wall_axes(ax, model)
+    ax.set_title(
+        f"crack pattern (joint states)\nwide: cracked in the mechanism ({counts['cracked']})",
+        fontsize=10,
+    )
+    if legend:
+        handles = [
+            Line2D([], [], color=color, linewidth=3.0, label=f"{name} ({counts[name]})")
+            for name, color, _ in STATE_STYLES
+        ]
+        ax.legend(
+            handles=handles,
+            loc="upper center",
+            bbox_to_anchor=(0.5, -0.15 if legend_columns >= 5 else -0.08),
+            ncol=legend_columns,
+            fontsize=8,
+            frameon=False,
+        )
+    return counts
+
+
+def plot_mechanism(ax: Any, model: Any, results: Any) -> bool:
+    """Draw the collapse mechanism on ``ax``: the blocks moved along ``Results.mechanism`` (the last
+    increment; the largest corner motion drawn as :data:`MECHANISM_FRACTION` of the wall height), the
+    moving blocks orange, over the dashed undeformed outlines; the interfaces the mechanism cracks (a slip
+    or a gap across them) drawn black. Returns whether there was a mechanism to draw."""
+    mech, have, peak, scale, moving = _mechanism(model, results)
+    _draw_blocks(ax, model, mech, scale, moving)
+    cracked = _cracked(model, mech, have, peak)
+    geom = np.asarray(model.interface_geometry, dtype=np.float64).reshape(-1, 5)
+    segs = []
+    for cx, cy, nx, ny, length in geom[cracked]:
+        tx, ty = -ny * length / 2, nx * length / 2
+        segs.append([(cx - tx, cy - ty), (cx + tx, cy + ty)])
+    if segs:
+        ax.add_collection(LineCollection(segs, colors="black", linewidths=2.5, zorder=3))
+    _wall_axes(ax, model)
+    if have:
+        n_moving = int(np.sum(moving[: int(model.n_blocks)]))
+        text = (
+            f"mechanism (last increment, exaggerated)\n{_plural(n_moving, 'moving block')}, "
+            f"{_plural(len(segs), 'cracked joint')}"
+        )
+    else:
+        text = "no mechanism\n(no displacement increment)"
+    ax.set_title(text, fontsize=10)
+    return have
+
+
+def plot_curve(
+    ax: Any, *results: Any, labels: Optional[Sequence[str]] = None, live: str = "horizontal_weight"
+) -> None:
+    """Draw the load curve(s) on ``ax``: lambda (or the force on the top beam in kN, ``live =
+    "top_horizontal"``) against the horizontal displacement of the control point [mm], the collapse (or
+    peak) point marked. One result: its curve with the multiplier and the work done; several (e.g. the
+    static and the dynamic run of one case): overlaid, labelled by ``labels`` (default: their methods)."""
+    if not results:
+        raise TypeError("plot_curve needs at least one Results")
+    if len(results) == 1 and labels is None:
+        _draw_curve(ax, results[0], live)
+        return
+    names = list(labels) if labels is not None else [str(r.method) for r in results]
+    if len(names) != len(results):
+        raise ValueError(f"{len(results)} results but {len(names)} labels")
+    _draw_curve_overlay(ax, list(zip(names, results)), live)
+
+
+def _lam_text(results: Any, live: str) -> str:
+    lam = float(results.collapse_multiplier)
+    if live == "top_horizontal":
+        return f"Hu = {lam * 1e-3:.4g} kN" if np.isfinite(lam) else "Hu: none"
+    return f"λu = {lam:.4f}" if np.isfinite(lam) else "λu: none"
+
+
+def report_figure(
+    model: Any,
+    results: Any,
+    title: Optional[str] = None,
+    other: Any = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    live: str = "horizontal_weight",
+    dpi: int = 150,
+) -> Figure:
+    """A one-page report: the crack pattern, the collapse mechanism, the deformed shape and the load curve.
+
+    Args:
+        model: the :class:`masonry_dem.Model` analysed.
+        results: its :class:`masonry_dem.Results` (the wall panels show this one).
+        title: the case title (the figure title adds the method, status and collapse multiplier).
+        other: optionally the result of the other method on the same model: its curve is overlaid.
+        path: output file (PNG), written with the Agg canvas; without it the figure goes through pyplot.
+        live: the live load, "horizontal_weight" or "top_horizontal" (lambda in N, plotted in kN).
+        dpi: resolution of the PNG.
+    Returns:
+        The figure.
+    """
+    (xl, xh), (yl, yh) = _wall_limits(model)
+    aspect = float((xh - xl) / (yh - yl))
+    if aspect > 1.1:
+        # a wide wall: two rows, the crack pattern and the mechanism above, the deformed shape and the curve
+        cell_w = 6.2
+        cell_h = float(np.clip(cell_w / min(aspect, 4.0) + 1.1, 3.6, 8.0))
+        fig = _new_figure((2 * cell_w + 0.6, 2 * cell_h + 0.8), path is not None)
+        grid = fig.add_gridspec(2, 2)
+        cells, columns = [grid[0, 0], grid[0, 1], grid[1, 0], grid[1, 1]], 5
+    else:
+        # a tall wall: the three wall panels and the curve in one row
+        a = max(aspect, 0.6)
+        fig = _new_figure((16.0, 7.0), path is not None)
+        grid = fig.add_gridspec(1, 4, width_ratios=[a, a, a, 1.6])
+        cells, columns = [grid[0, 0], grid[0, 1], grid[0, 2], grid[0, 3]], 2
+    plot_cracks(fig.add_subplot(cells[0]), model, results, legend_columns=columns)
+    plot_mechanism(fig.add_subplot(cells[1]), model, results)
+    plot_deformed(fig.add_subplot(cells[2]), model, results)
+    ax_curve = fig.add_subplot(cells[3])
+    if other is not None:
+        plot_curve(ax_curve, results, other, live=live)
+    else:
+        plot_curve(ax_curve, results, live=live)
+    head = f"{title} — " if title else ""
+    fig.suptitle(f"{head}{results.method}, {results.status}, {_lam_text(results, live)}", fontsize=13)
+    if path is not None:
+        fig.savefig(path, dpi=dpi)
+    return fig
 
 
 def _draw_curve(ax: Any, results: Any, live: str) -> None:
@@ -305,6 +540,13 @@ def _draw_curve(ax: Any, results: Any, live: str) -> None:
 #: Colour, marker, line width, opacity and drawing order of each method in :func:`plot_comparison`: the
 #: dynamic curve wide and light under the static one, so that both show where they coincide.
 METHOD_STYLES = {"static": ("#1f3b73", "o", 1.2, 1.0, 3), "dynamic": ("#e07b00", "s", 4.0, 0.55, 2)}
+
+#: Styles of further curves in an overlay (other labels, or a method drawn twice).
+EXTRA_STYLES: Tuple[Tuple[str, str, float, float, int], ...] = (
+    ("#2ca02c", "^", 1.2, 1.0, 3),
+    ("#9467bd", "v", 1.2, 1.0, 3),
+    ("#8c564b", "D", 1.2, 1.0, 3),
+)
 
 
 def plot_comparison(
@@ -380,11 +622,20 @@ def plot_comparison(
 
 
 def _draw_curve_overlay(ax: Any, runs: Sequence[Tuple[str, Any]], live: str) -> None:
-    """Several curves on one axis, each with its collapse (or peak) point, labelled by method."""
+    """Several curves on one axis, each with its collapse (or peak) point, labelled (by method by default).
+
+    The style of a curve is its label's in :data:`METHOD_STYLES`, else its method's, else (or when that
+    style is taken) one of :data:`EXTRA_STYLES`."""
     label, factor, unit = _multiplier_label(live)
     values: List[float] = []
+    used: List[Tuple[str, str, float, float, int]] = []
+    extra = iter(EXTRA_STYLES * (1 + len(runs)))
     for method, res in runs:
-        color, marker, width, alpha, order = METHOD_STYLES.get(method, ("#444444", "^", 1.2, 1.0, 3))
+        style = METHOD_STYLES.get(method) or METHOD_STYLES.get(str(getattr(res, "method", "")))
+        if style is None or style in used:
+            style = next(extra)
+        used.append(style)
+        color, marker, width, alpha, order = style
         lam = np.asarray(res.curve_multiplier, dtype=np.float64) * factor
         disp = np.asarray(res.curve_displacement, dtype=np.float64) * 1e3
         lam_u = float(res.collapse_multiplier) * factor
@@ -393,7 +644,7 @@ def _draw_curve_overlay(ax: Any, runs: Sequence[Tuple[str, Any]], live: str) -> 
             head = f"{method}: {'H' if live == 'top_horizontal' else 'λu'} = {value}"
         else:
             head = f"{method}: {res.status}"
-        work = f"{res.iterations:,} {'time steps' if method == 'dynamic' else 'iterations'}"
+        work = f"{res.iterations:,} {'time steps' if res.method == 'dynamic' else 'iterations'}"
         text = f"{head} ({work}, {res.elapsed_s:.3g} s)"
         markevery = max(1, len(lam) // 40)
         ax.plot(

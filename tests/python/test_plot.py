@@ -160,3 +160,103 @@ def test_describe_top_beam_only() -> None:
         "only the top beam moves as one part, sliding at +0 deg from +x; "
         "the crack runs through 1 interface: 1 slip (1 top)"
     ), text
+
+
+# --- the panel functions and the one-page report -------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def wall1() -> tuple:
+    case = md.load_case(EXAMPLES / "ferris-tinloi-wall1.toml")
+    model = case.build_model()
+    return case, model, case.solve(model)
+
+
+def _agg_axes(size: tuple = (6.0, 4.0)) -> tuple:
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=size, layout="constrained")
+    FigureCanvasAgg(fig)
+    return fig, fig.add_subplot()
+
+
+def _pixels_near(image: np.ndarray, color: str, tolerance: float = 0.03) -> int:
+    """The number of pixels of ``image`` (RGB(A) floats in [0, 1]) within ``tolerance`` of ``color``."""
+    from matplotlib.colors import to_rgb
+
+    rgb = np.asarray(to_rgb(color))
+    return int(np.sum(np.all(np.abs(image[..., :3] - rgb) <= tolerance, axis=-1)))
+
+
+def test_plot_cracks_colours(tmp_path: Path, wall1: tuple) -> None:
+    """The crack-pattern PNG shows every state present, in its colour."""
+    import matplotlib.image as mpimg
+
+    from masonry_dem.plot import STATE_STYLES, plot_cracks
+
+    _, model, results = wall1
+    fig, ax = _agg_axes((8.0, 5.0))
+    counts = plot_cracks(ax, model, results)
+    path = tmp_path / "cracks.png"
+    fig.savefig(path, dpi=100)
+    image = mpimg.imread(path)
+    cats = interface_categories(results.interface_states)
+    assert {"elastic", "open", "sliding", "rocking"} <= set(cats)  # the wall collapses with joints of every state
+    for name, color, _ in STATE_STYLES:
+        assert counts[name] == cats.count(name)
+        if counts[name]:
+            assert _pixels_near(image, color) > 30, f"no {name} ({color}) pixels in the crack pattern"
+    assert counts["cracked"] > 0
+    # a colour that is not drawn is not found
+    assert _pixels_near(image, "#00ff00") == 0
+
+
+def test_panels(wall1: tuple) -> None:
+    from masonry_dem.plot import plot_curve, plot_deformed, plot_mechanism, plot_wall
+
+    _, model, results = wall1
+    height = float(model.rects[: model.n_blocks, 3].max() - model.rects[: model.n_blocks, 1].min())
+    fig, ax = _agg_axes()
+    plot_wall(ax, model)
+    assert "33 blocks" in ax.get_title()
+    fig, ax = _agg_axes()
+    scale = plot_deformed(ax, model, results)
+    peak = float(corner_motion(model.rects, results.displacements).max())
+    assert scale * peak == pytest.approx(0.05 * height)  # the largest displacement drawn as 5% of the height
+    assert "×" in ax.get_title()
+    fig, ax = _agg_axes()
+    assert plot_deformed(ax, model, results, scale=10.0) == 10.0
+    assert "×10" in ax.get_title()
+    fig, ax = _agg_axes()
+    assert plot_mechanism(ax, model, results)
+    assert "moving block" in ax.get_title()
+    fig, ax = _agg_axes()
+    plot_curve(ax, results)
+    assert len(ax.lines) >= 1
+    fig, ax = _agg_axes()
+    plot_curve(ax, results, results, labels=["static", "again"])
+    texts = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert texts[0].startswith("static") and texts[1].startswith("again")
+    with pytest.raises(ValueError):
+        plot_curve(ax, results, labels=["a", "b"])
+
+
+def test_report_figure(tmp_path: Path, wall1: tuple) -> None:
+    from masonry_dem.plot import report_figure
+
+    case, model, results = wall1
+    path = tmp_path / "report.png"
+    fig = report_figure(model, results, title=case.title, path=path)
+    assert path.read_bytes().startswith(PNG)
+    assert case.title in fig._suptitle.get_text()
+    assert len(fig.axes) == 4
+    # both methods overlaid (here the same result twice) and a tall wall (one row)
+    fig = report_figure(model, results, title=case.title, other=results, path=tmp_path / "two.png")
+    assert len(fig.axes[3].get_legend().get_texts()) == 2
+    mech = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0, 0, 0]])
+    tall, res = synthetic(mech, [0, 2, 1], ["base", "base", "head"])
+    res.displacements = np.zeros((3, 3))
+    tall.rects = np.array([[0.0, 0.0, 0.2, 1.0], [0.2, 0.0, 0.4, 1.0], [0.0, -0.2, 0.4, 0.0]])
+    report_figure(tall, res, title="tall", path=tmp_path / "tall.png", live="top_horizontal")
+    assert (tmp_path / "tall.png").read_bytes().startswith(PNG)
