@@ -13,8 +13,10 @@ Two solvers share one model: ``Model.solve_static`` (incremental, Newton) and ``
 (explicit, molecular dynamics; ``Model.simulate`` gives time histories). Case files choose one with
 [analysis] method; :mod:`masonry_dem.compare` sets their results side by side.
 
-Plots: :func:`masonry_dem.plot.plot_results` and :func:`masonry_dem.plot.plot_comparison` (import
-matplotlib on first use). Progress bars: :mod:`masonry_dem.progress` (tqdm, optional).
+Plots (:mod:`masonry_dem.plot`, matplotlib, imported on first use): panels ``plot_wall``,
+``plot_deformed``, ``plot_cracks``, ``plot_mechanism``, ``plot_curve``, the one-page ``report_figure``,
+and ``plot_results`` / ``plot_comparison``. Exports: :func:`write_vtk` (two .vtu files for ParaView,
+meshio) and :func:`write_curve_csv`. Progress bars: :mod:`masonry_dem.progress` (tqdm, optional).
 """
 
 from ._core import (
@@ -30,6 +32,7 @@ from ._core import (
     running_bond,
 )
 from .case import Case, load_case, parse_case, result_dict, run_case, write_result_json
+from .export import write_curve_csv, write_vtk
 
 __all__ = [
     "Model",
@@ -48,4 +51,6 @@ __all__ = [
     "run_case",
     "result_dict",
     "write_result_json",
+    "write_vtk",
+    "write_curve_csv",
 ]

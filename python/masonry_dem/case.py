@@ -60,6 +60,9 @@ METHODS = ("static", "dynamic")
 ANALYSIS_KEYS = ("method", "control", "control_point", "max_displacement", "steps", "tolerance")
 DYNAMIC_KEYS = ("damping", "damping_coefficient", "time_step", "unbalanced_ratio", "threads")
 DAMPINGS = ("local", "viscous", "none")
+# Keys of the optional [reference] table (a published or exact answer, checked by ``masonry-dem validate``).
+REFERENCE_KEYS = ("collapse_multiplier", "tolerance", "source")
+DEFAULT_REFERENCE_TOLERANCE = 0.01
 
 
 # --------------------------------------------------------------------------------------------------
@@ -268,6 +271,10 @@ class Case:
             static solver ignores them.
         method: "static" or "dynamic".
         source: where the case came from (file name), the first word of every error message.
+        reference: the optional [reference] table, or None: ``{"collapse_multiplier": float,
+            "tolerance": float, "source": str}`` (the multiplier is a force in N with
+            live = "top_horizontal"; tolerance is relative, default 0.01; source may be "").
+            ``masonry-dem validate`` checks the case against it.
     """
 
     title: str
@@ -276,6 +283,7 @@ class Case:
     method: str = "static"
     source: str = "<case>"
     dynamic_kwargs: Dict[str, Any] = field(default_factory=dict)
+    reference: Optional[Dict[str, Any]] = None
 
     def build_model(self) -> "_core.Model":
         """Build the model; errors of the core are re-raised with the file name in front."""
@@ -358,6 +366,10 @@ def load_case(path: PathLike) -> Case:
     The static solver ignores the explicit solver's keys, so one case runs with either method
     (``masonry-dem run --method``, ``masonry-dem compare``).
 
+    An optional [reference] table gives a published or exact answer, checked by ``masonry-dem validate``:
+    ``collapse_multiplier`` (number, required in the table; a force in N with live = "top_horizontal"),
+    ``tolerance`` (relative, 0 < x < 1, default 0.01) and ``source`` (string).
+
     Raises:
         OSError: the file cannot be read.
         masonry_dem.InputError: the file is not valid TOML or not a valid case; the message starts
@@ -386,7 +398,9 @@ def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_titl
 
     Every key is checked before the core is called (the core then generates the geometry).
     """
-    top = _Table(data, "", source, ("format", "title", "geometry", "base", "top", "joints", "loads", "analysis"))
+    top = _Table(
+        data, "", source, ("format", "title", "geometry", "base", "top", "joints", "loads", "analysis", "reference")
+    )
 
     if "format" not in top:
         raise top.error("missing key 'format' at the top level (expected format = 1)")
@@ -499,6 +513,9 @@ def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_titl
             tolerance["tolerance"] = an_t.number("tolerance", check=_open_unit)
         dynamic = _dynamic_options(an_t)
 
+    # [reference]
+    reference = _reference(top.table("reference", REFERENCE_KEYS))
+
     # All keys are valid: map them onto the core (the generators may still refuse a geometry).
     try:
         if kind == "running_bond":
@@ -530,7 +547,19 @@ def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_titl
         method=method,
         source=source,
         dynamic_kwargs=dynamic,
+        reference=reference,
     )
+
+
+def _reference(table: Optional[_Table]) -> Optional[Dict[str, Any]]:
+    """The [reference] table, checked: collapse_multiplier (required), tolerance, source."""
+    if table is None:
+        return None
+    return {
+        "collapse_multiplier": table.number("collapse_multiplier"),
+        "tolerance": table.number("tolerance", DEFAULT_REFERENCE_TOLERANCE, _open_unit),
+        "source": table.string("source", ""),
+    }
 
 
 def _dynamic_options(table: _Table) -> Dict[str, Any]:

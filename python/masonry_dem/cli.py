@@ -1,8 +1,14 @@
 """The ``masonry-dem`` command line.
 
-    masonry-dem run CASE.toml [--method static|dynamic] [--json OUT.json] [--plot OUT.png] [--quiet]
+    masonry-dem run CASE.toml [--method static|dynamic] [--json OUT.json] [--plot OUT.png]
+                    [--vtk PREFIX] [--csv OUT.csv] [--quiet]
     masonry-dem compare CASE.toml [--json OUT.json] [--plot OUT.png] [--quiet]
-    masonry-dem demo [--plot OUT.png] [--json OUT.json] [--quiet]
+    masonry-dem demo [--plot OUT.png] [--json OUT.json] [--vtk PREFIX] [--csv OUT.csv] [--quiet]
+    masonry-dem validate [DIR] [--method static|dynamic|both] [--quiet]
+
+``validate`` runs every case file of DIR (default: the repository's examples/) that carries a [reference]
+table and prints a table of its collapse multipliers against the reference (see :mod:`masonry_dem.validate`);
+it exits 1 if any is outside its tolerance or failed.
 
 ``compare`` runs the static and then the explicit (dynamic) solver on one case and prints them side by
 side (see :mod:`masonry_dem.compare`).
@@ -35,6 +41,8 @@ __all__ = ["main", "build_parser"]
 PROG = "masonry-dem"
 EXIT_OK, EXIT_FAILURE, EXIT_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
 DEMO_PLOT = os.path.join("out", "demo.png")
+#: The default folder of ``masonry-dem validate``: examples/ of the repository holding this package.
+EXAMPLES_DIR = Path(__file__).resolve().parents[2] / "examples"
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -49,7 +57,9 @@ def build_parser() -> argparse.ArgumentParser:
               masonry-dem demo                                  Ferris & Tin-Loi wall 1, plot in out/demo.png
               masonry-dem run examples/ferris-tinloi-wall1.toml --json out/wall1.json --plot out/wall1.png
               masonry-dem run CASE.toml --method dynamic         the explicit (molecular dynamics) solver
+              masonry-dem run CASE.toml --vtk out/w --csv out/curve.csv   ParaView files and the curve
               masonry-dem compare CASE.toml --plot out/compare.png   static and dynamic side by side
+              masonry-dem validate --method static              check examples/ against their reference values
 
             Case files are TOML (format 1, SI units); see examples/*.toml.
             exit status: 0 ok, 1 analysis failed or other error, 2 bad input (case file, arguments)."""
@@ -68,7 +78,10 @@ def build_parser() -> argparse.ArgumentParser:
             """\
             examples:
               masonry-dem run examples/ferris-tinloi-wall1.toml
-              masonry-dem run examples/ferris-tinloi-wall2.toml --json out/wall2.json --plot out/wall2.png"""
+              masonry-dem run examples/ferris-tinloi-wall2.toml --json out/wall2.json --plot out/wall2.png
+              masonry-dem run examples/ferris-tinloi-wall1.toml --vtk out/wall1 --csv out/wall1.csv
+
+            --vtk out/wall1 writes out/wall1-blocks.vtu and out/wall1-interfaces.vtu (open them in ParaView)."""
         ),
     )
     run.add_argument("case", metavar="CASE.toml", help="case file (TOML, format 1)")
@@ -123,6 +136,44 @@ def build_parser() -> argparse.ArgumentParser:
         ),
     )
     _add_outputs(demo, plot_default=DEMO_PLOT)
+
+    validate = sub.add_parser(
+        "validate",
+        help="run every case with a reference value and check it",
+        description=(
+            "Run every case file (*.toml) of DIR that carries a [reference] table with the static and/or the\n"
+            "explicit solver, and print a table: case, reference (with its relative tolerance), static and\n"
+            "explicit collapse multipliers, error (the largest relative error), time of each method, verdict.\n"
+            "Case files without a [reference] table are skipped and listed."
+        ),
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=textwrap.dedent(
+            """\
+            examples:
+              masonry-dem validate                       examples/ of the repository, both solvers
+              masonry-dem validate --method static       the static solver only (a second or so)
+              masonry-dem validate my-cases/ --method dynamic
+
+            [reference] table of a case file:
+              collapse_multiplier = 0.6429   # a force in N with live = "top_horizontal"
+              tolerance = 0.01               # relative, 0 < x < 1 (default 0.01)
+              source = "where the value comes from"
+            exit status: 0 all within tolerance, 1 one is outside its tolerance or failed, 2 bad input."""
+        ),
+    )
+    validate.add_argument(
+        "directory",
+        metavar="DIR",
+        nargs="?",
+        help=f"folder of case files (default: the repository's examples/, {EXAMPLES_DIR})",
+    )
+    validate.add_argument(
+        "--method",
+        choices=("static", "dynamic", "both"),
+        default="both",
+        help="the solvers to run: static, dynamic (explicit) or both (default)",
+    )
+    _add_quiet(validate)
     return parser
 
 
@@ -132,8 +183,17 @@ def _add_outputs(parser: argparse.ArgumentParser, plot_default: Optional[str]) -
         "--plot",
         metavar="OUT.png",
         default=plot_default,
-        help="write a figure: the wall with mechanism and joint states, and the load curve (PNG)"
-        + (f"; default {plot_default}" if plot_default else ""),
+        help="write a one-page report figure: crack pattern (joint states), collapse mechanism, deformed "
+        "shape and load curve (PNG)" + (f"; default {plot_default}" if plot_default else ""),
+    )
+    parser.add_argument(
+        "--vtk",
+        metavar="PREFIX",
+        help="write PREFIX-blocks.vtu (blocks: displacement, rotation, mechanism) and PREFIX-interfaces.vtu "
+        "(interfaces: forces, states) for ParaView",
+    )
+    parser.add_argument(
+        "--csv", metavar="OUT.csv", help="write the load curve (CSV: multiplier,displacement_m)"
     )
     _add_quiet(parser)
 
@@ -184,7 +244,13 @@ def _prepare(path: str) -> None:
 
 
 def _execute(
-    case: Case, method: Optional[str], json_path: Optional[str], plot_path: Optional[str], quiet: bool = False
+    case: Case,
+    method: Optional[str],
+    json_path: Optional[str],
+    plot_path: Optional[str],
+    quiet: bool = False,
+    vtk_prefix: Optional[str] = None,
+    csv_path: Optional[str] = None,
 ) -> int:
     """Build, solve, report and write the outputs; return the exit status (errors are raised)."""
     method = case.check_method(method)
@@ -198,11 +264,21 @@ def _execute(
             _prepare(json_path)
             write_result_json(json_path, results, model, case.title)
             print(f"  wrote {json_path}")
+        if csv_path:
+            from .export import write_curve_csv
+
+            write_curve_csv(results, csv_path)
+            print(f"  wrote {csv_path}")
+        if vtk_prefix:
+            from .export import write_vtk
+
+            for written in write_vtk(model, results, vtk_prefix):
+                print(f"  wrote {written}")
         if plot_path:
-            from .plot import plot_results
+            from .plot import report_figure
 
             _prepare(plot_path)
-            plot_results(model, results, title=case.title, path=plot_path, live=live)
+            report_figure(model, results, title=case.title, path=plot_path, live=live)
             print(f"  wrote {plot_path}")
     except OSError as exc:
         return _error(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}", EXIT_FAILURE)
@@ -249,6 +325,34 @@ def _compare(case: Case, json_path: Optional[str], plot_path: Optional[str], qui
     return EXIT_OK
 
 
+def _validate(directory: Optional[str], method: str, quiet: bool = False) -> int:
+    """``masonry-dem validate``: print the validation table; 1 if a case is outside its tolerance or failed."""
+    from .validate import validate_folder
+
+    folder = Path(directory) if directory else EXAMPLES_DIR
+    if not folder.is_dir():
+        what = "no such folder" if not folder.exists() else "not a folder"
+        hint = "" if directory else " (the default, examples/ of the repository; give DIR)"
+        return _error(f"{what}: {folder}{hint}", EXIT_INPUT)
+
+    def solve(case: Case, model: Any, method: str) -> Any:
+        results = _solve(case, model, method, quiet)
+        if _interrupted(results):
+            raise KeyboardInterrupt
+        return results
+
+    def echo(line: str) -> None:
+        print(line, flush=True)
+
+    from .validate import collect
+
+    cases, _skipped = collect(folder)  # reads and checks every case file before running any
+    if not cases:
+        return _error(f"no case file with a [reference] table in {folder}", EXIT_INPUT)
+    rows, _ = validate_folder(folder, method, solve=solve, echo=echo)
+    return EXIT_OK if all(row.passed for row in rows) else EXIT_FAILURE
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     """Run the command line with ``argv`` (default: ``sys.argv[1:]``); return the exit status."""
     args = build_parser().parse_args(argv)
@@ -260,10 +364,12 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                 return _error(f"cannot read {args.case}: {exc.strerror or exc}", EXIT_INPUT)
             if args.command == "compare":
                 return _compare(case, args.json, args.plot, args.quiet)
-            return _execute(case, args.method, args.json, args.plot, args.quiet)
+            return _execute(case, args.method, args.json, args.plot, args.quiet, args.vtk, args.csv)
+        if args.command == "validate":
+            return _validate(args.directory, args.method, args.quiet)
         from .default_case import default_case
 
-        return _execute(default_case(), None, args.json, args.plot, args.quiet)
+        return _execute(default_case(), None, args.json, args.plot, args.quiet, args.vtk, args.csv)
     except InputError as exc:
         return _error(str(exc), EXIT_INPUT)
     except MasonryError as exc:

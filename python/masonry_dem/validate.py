@@ -1,0 +1,266 @@
+"""Validation against reference answers: ``masonry-dem validate``.
+
+Every case file of a folder that carries a ``[reference]`` table (see :mod:`masonry_dem.case`) is run with
+the static solver, the explicit (dynamic) one, or both, and its collapse multiplier is compared with the
+reference::
+
+    relative error = |lambda - lambda_ref| / |lambda_ref|
+
+A case *passes* when every method run on it ended without failure, gave a finite multiplier, and its
+relative error is within the case's tolerance. Case files without a ``[reference]`` table are skipped
+(and listed as such).
+
+:func:`collect` reads the folder, :func:`validate_case` runs one case, :func:`table_header`,
+:func:`table_row` and :func:`table_footer` print the table row by row (so a long run shows its progress),
+:func:`validate_folder` does it all and returns the rows.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+
+from .case import Case, load_case
+
+__all__ = [
+    "METHOD_CHOICES",
+    "ValidationRow",
+    "collect",
+    "methods_of",
+    "validate_case",
+    "validate_folder",
+    "table_header",
+    "table_row",
+    "table_footer",
+]
+
+PathLike = Union[str, "os.PathLike[str]"]
+#: The values of ``--method``: which solvers validate runs.
+METHOD_CHOICES = ("static", "dynamic", "both")
+#: A solver call: (case, model, method) -> Results.
+Solve = Callable[[Case, Any, str], Any]
+
+
+def methods_of(choice: str) -> Tuple[str, ...]:
+    """The methods run for a ``--method`` choice: "static", "dynamic" or "both"."""
+    if choice not in METHOD_CHOICES:
+        raise ValueError(f"method: expected one of static, dynamic, both, got {choice!r}")
+    return ("static", "dynamic") if choice == "both" else (choice,)
+
+
+@dataclass
+class ValidationRow:
+    """The validation of one case.
+
+    Attributes:
+        name: the case file name without ``.toml``.
+        title: the case title.
+        reference: the reference collapse multiplier (a force in N with live = "top_horizontal").
+        tolerance: the relative tolerance.
+        live: the live load of the case ("horizontal_weight" or "top_horizontal").
+        multipliers: {method: collapse multiplier} of the methods run (NaN when none).
+        elapsed: {method: elapsed_s} [s].
+        errors: {method: relative error} (NaN when the multiplier is not finite).
+        failures: {method: reason} for the runs whose status is "failed".
+    """
+
+    name: str
+    title: str
+    reference: float
+    tolerance: float
+    live: str = "horizontal_weight"
+    multipliers: Dict[str, float] = field(default_factory=dict)
+    elapsed: Dict[str, float] = field(default_factory=dict)
+    errors: Dict[str, float] = field(default_factory=dict)
+    failures: Dict[str, str] = field(default_factory=dict)
+
+    @property
+    def error(self) -> float:
+        """The largest relative error of the methods run (NaN if one of them has none)."""
+        values = list(self.errors.values())
+        if not values or any(not math.isfinite(e) for e in values):
+            return math.nan
+        return max(values)
+
+    @property
+    def passed(self) -> bool:
+        """True when every method ran without failure and within the tolerance."""
+        return bool(self.errors) and not self.failures and math.isfinite(self.error) and self.error <= self.tolerance
+
+    def verdict(self) -> str:
+        """ "pass", or "FAIL" with the reason (a failed run, or outside the tolerance)."""
+        if self.passed:
+            return "pass"
+        if self.failures:
+            return "FAIL (" + "; ".join(f"{m} failed" for m in self.failures) + ")"
+        if not math.isfinite(self.error):
+            return "FAIL (no collapse multiplier)"
+        return f"FAIL (> {_percent(self.tolerance)})"
+
+
+def collect(directory: PathLike) -> Tuple[List[Tuple[Path, Case]], List[Path]]:
+    """The case files (``*.toml``, sorted by name) of ``directory``: those with a [reference], and the others.
+
+    Raises:
+        FileNotFoundError / NotADirectoryError: no such folder.
+        masonry_dem.InputError: a case file is invalid (the message names the file and the key).
+    """
+    folder = Path(directory)
+    if not folder.exists():
+        raise FileNotFoundError(f"no such folder: {folder}")
+    if not folder.is_dir():
+        raise NotADirectoryError(f"not a folder: {folder}")
+    with_reference: List[Tuple[Path, Case]] = []
+    without: List[Path] = []
+    for path in sorted(folder.glob("*.toml")):
+        case = load_case(path)
+        if case.reference is None:
+            without.append(path)
+        else:
+            with_reference.append((path, case))
+    return with_reference, without
+
+
+def _default_solve(case: Case, model: Any, method: str) -> Any:
+    return case.solve(model, method)
+
+
+def _relative_error(value: float, reference: float) -> float:
+    if not math.isfinite(value):
+        return math.nan
+    return abs(value - reference) / abs(reference) if reference != 0 else abs(value)
+
+
+def validate_case(
+    path: PathLike, case: Case, methods: Sequence[str] = ("static", "dynamic"), solve: Optional[Solve] = None
+) -> ValidationRow:
+    """Run ``case`` (which has a reference) with each of ``methods`` and compare it with its reference.
+
+    ``solve(case, model, method)`` runs one analysis (default: :meth:`Case.solve`; the command line passes
+    one that draws a progress bar).
+    """
+    assert case.reference is not None, f"{case.source}: no [reference] table"
+    solve = solve or _default_solve
+    ref = case.reference
+    row = ValidationRow(
+        name=Path(path).stem,
+        title=case.title,
+        reference=float(ref["collapse_multiplier"]),
+        tolerance=float(ref["tolerance"]),
+        live=str(case.model_kwargs.get("live", "horizontal_weight")),
+    )
+    model = case.build_model()
+    for method in methods:
+        results = solve(case, model, method)
+        lam = float(results.collapse_multiplier)
+        row.multipliers[method] = lam
+        row.elapsed[method] = float(results.elapsed_s)
+        row.errors[method] = _relative_error(lam, row.reference)
+        if results.status == "failed":
+            row.failures[method] = str(results.error or "unknown reason")
+    return row
+
+
+# --------------------------------------------------------------------------------------------------
+# The table
+# --------------------------------------------------------------------------------------------------
+
+_HEAD = ("case", "reference", "static", "explicit", "error", "time", "verdict")
+
+
+def _percent(x: float) -> str:
+    if not math.isfinite(x):
+        return "-"
+    return f"{100 * x:.2f}%" if x < 0.1 else f"{100 * x:.1f}%"
+
+
+def _value(x: Optional[float], live: str) -> str:
+    if x is None:
+        return "-"
+    if not math.isfinite(x):
+        return "none"
+    return f"{x / 1000:.2f} kN" if live == "top_horizontal" else f"{x:.4f}"
+
+
+def _time(row: ValidationRow, methods: Sequence[str]) -> str:
+    return " / ".join(_seconds(row.elapsed[m]) for m in methods if m in row.elapsed)
+
+
+def _seconds(t: float) -> str:
+    if not math.isfinite(t):
+        return "-"
+    return f"{t:.3f} s" if t < 1 else f"{t:.1f} s"
+
+
+def _widths(names: Sequence[str], methods: Sequence[str]) -> List[int]:
+    time_width = 9 * len(methods) + 3 * (len(methods) - 1)
+    return [max([len(_HEAD[0])] + [len(n) for n in names]), 16, 10, 10, 8, max(time_width, 4), 7]
+
+
+def table_header(names: Sequence[str], methods: Sequence[str]) -> str:
+    """The header of the table (two lines) for cases named ``names`` run with ``methods``."""
+    widths = _widths(names, methods)
+    time_head = "time (" + " / ".join("static" if m == "static" else "explicit" for m in methods) + ")"
+    head = list(_HEAD)
+    head[5] = time_head
+    widths[5] = max(widths[5], len(time_head))
+    line = "  ".join(h.ljust(w) for h, w in zip(head, widths)).rstrip()
+    return line + "\n" + "-" * len(line)
+
+
+def table_row(row: ValidationRow, names: Sequence[str], methods: Sequence[str]) -> str:
+    """One line of the table: case, reference (± tolerance), static, explicit, error, time, verdict."""
+    widths = _widths(names, methods)
+    time_head = "time (" + " / ".join("static" if m == "static" else "explicit" for m in methods) + ")"
+    widths[5] = max(widths[5], len(time_head))
+    cells = [
+        row.name,
+        f"{_value(row.reference, row.live)} ±{_percent(row.tolerance)}",
+        _value(row.multipliers.get("static"), row.live),
+        _value(row.multipliers.get("dynamic"), row.live),
+        _percent(row.error),
+        _time(row, methods),
+        row.verdict(),
+    ]
+    return "  ".join(c.ljust(w) for c, w in zip(cells, widths)).rstrip()
+
+
+def table_footer(rows: Sequence[ValidationRow], skipped: Sequence[Path]) -> str:
+    """The closing lines: how many passed, the failures' reasons, the skipped files."""
+    passed = sum(r.passed for r in rows)
+    lines = [f"{len(rows)} case{'s' if len(rows) != 1 else ''} with a reference: {passed} passed, "
+             f"{len(rows) - passed} failed"]
+    for r in rows:
+        for method, reason in r.failures.items():
+            lines.append(f"  {r.name}: {method} failed: {' '.join(reason.split())}")
+    for path in skipped:
+        lines.append(f"  skipped {path.name}: no [reference] table")
+    return "\n".join(lines)
+
+
+def validate_folder(
+    directory: PathLike,
+    method: str = "both",
+    solve: Optional[Solve] = None,
+    echo: Optional[Callable[[str], None]] = None,
+) -> Tuple[List[ValidationRow], List[Path]]:
+    """Validate every case of ``directory`` that has a [reference]; return the rows and the skipped files.
+
+    ``method``: "static", "dynamic" or "both". ``echo`` (e.g. ``print``) receives the table line by line
+    as the cases run.
+    """
+    methods = methods_of(method)
+    cases, skipped = collect(directory)
+    names = [p.stem for p, _ in cases]
+    out = echo or (lambda _line: None)
+    out(table_header(names, methods))
+    rows = []
+    for path, case in cases:
+        row = validate_case(path, case, methods, solve)
+        rows.append(row)
+        out(table_row(row, names, methods))
+    out(table_footer(rows, skipped))
+    return rows, skipped
