@@ -56,6 +56,13 @@ pub struct JointLaw {
     pub tensile_strength: f64,
     /// tan(psi) [-], between 0 and `friction`; equal to `friction` means associative flow.
     pub dilatancy: f64,
+    /// Mode-I fracture energy G_f^I [N/m]; with `fracture_energy_shear` > 0 the tensile strength
+    /// softens as `ft exp(-ft w / G_f^I)` with the accumulated plastic opening w. 0: brittle
+    /// (cohesion and tensile strength are lost at the first failure).
+    pub fracture_energy_tension: f64,
+    /// Mode-II fracture energy G_f^II [N/m]; the cohesion softens as `c exp(-c s / G_f^II)` with
+    /// the accumulated plastic slip s. 0: brittle.
+    pub fracture_energy_shear: f64,
 }
 
 impl Default for JointLaw {
@@ -67,6 +74,8 @@ impl Default for JointLaw {
             cohesion: 0.0,
             tensile_strength: 0.0,
             dilatancy: 0.0,
+            fracture_energy_tension: 0.0,
+            fracture_energy_shear: 0.0,
         }
     }
 }
@@ -89,6 +98,14 @@ impl JointLaw {
         non_negative(&format!("{what}.cohesion"), self.cohesion)?;
         non_negative(&format!("{what}.tensile_strength"), self.tensile_strength)?;
         non_negative(&format!("{what}.dilatancy"), self.dilatancy)?;
+        non_negative(&format!("{what}.fracture_energy_tension"), self.fracture_energy_tension)?;
+        non_negative(&format!("{what}.fracture_energy_shear"), self.fracture_energy_shear)?;
+        if (self.fracture_energy_tension > 0.0) != (self.fracture_energy_shear > 0.0) {
+            return Err(Error::input(format!(
+                "{what}.fracture_energy_tension and {what}.fracture_energy_shear must both be 0 (brittle joints) or both > 0 (softening), got {} and {}",
+                self.fracture_energy_tension, self.fracture_energy_shear
+            )));
+        }
         if self.dilatancy > self.friction * (1.0 + 1e-12) {
             return Err(Error::input(format!(
                 "{what}.dilatancy = {} exceeds {what}.friction = {}: tan(psi) must lie between 0 and tan(phi)",
@@ -96,6 +113,29 @@ impl JointLaw {
             )));
         }
         Ok(())
+    }
+
+    /// Whether the joint has strength to lose (cohesion or tensile strength).
+    pub fn is_strong(&self) -> bool {
+        self.cohesion > 0.0 || self.tensile_strength > 0.0
+    }
+
+    /// Whether cohesion and tensile strength soften with the fracture energies.
+    pub fn is_softening(&self) -> bool {
+        self.is_strong() && self.fracture_energy_tension > 0.0 && self.fracture_energy_shear > 0.0
+    }
+
+    /// Current (cohesion [Pa], tensile strength [Pa]) of a joint with history `state`.
+    pub fn strengths(&self, state: &JointState) -> (f64, f64) {
+        if !self.is_strong() || (state.broken && !self.is_softening()) {
+            (0.0, 0.0)
+        } else if self.is_softening() {
+            let c = self.cohesion * (-self.cohesion * state.slip / self.fracture_energy_shear).exp();
+            let ft = self.tensile_strength * (-self.tensile_strength * state.opening / self.fracture_energy_tension).exp();
+            (c, ft)
+        } else {
+            (self.cohesion, self.tensile_strength)
+        }
     }
 }
 
@@ -126,8 +166,14 @@ impl Section {
 pub struct JointState {
     /// Plastic jumps (dN, dT, dphi).
     pub plastic: [f64; 3],
-    /// The joint has failed once and lost its cohesion and tensile strength.
+    /// The joint has lost its cohesion and tensile strength (at its first failure if brittle;
+    /// once both have softened below 0.1% of their initial values otherwise).
     pub broken: bool,
+    /// Largest plastic opening (gap) reached on the cut-off and rocking faces [m] (drives the
+    /// softening of the tensile strength).
+    pub opening: f64,
+    /// Accumulated plastic slip [m] (drives softening).
+    pub slip: f64,
 }
 
 /// What the return mapping gives back.
@@ -152,12 +198,8 @@ struct Faces {
 }
 
 impl Faces {
-    fn new(law: &JointLaw, sec: &Section, dry: bool) -> Self {
-        let (c, ft) = if dry {
-            (0.0, 0.0)
-        } else {
-            (law.cohesion, law.tensile_strength)
-        };
+    /// The faces with cohesion `c` and tensile strength `ft` [Pa].
+    fn new(law: &JointLaw, sec: &Section, c: f64, ft: f64) -> Self {
         let (mu, tp) = (law.friction, law.dilatancy);
         let k = 2.0 / sec.length;
         let a = [
@@ -238,29 +280,41 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
     let k = 2.0 / sec.length;
     let scale = trial[0].abs() + trial[1].abs() + (trial[2] * k).abs();
     let mut broken = committed.broken;
-    let strong = law.cohesion > 0.0 || law.tensile_strength > 0.0;
-    if strong && !broken {
-        let intact = Faces::new(law, sec, false);
+    let softening = law.is_softening();
+    if law.is_strong() && !broken && !softening {
+        // brittle: the first failure takes cohesion and tensile strength at once
+        let intact = Faces::new(law, sec, law.cohesion, law.tensile_strength);
         let tol = 1e-12 * (scale + intact.b[0] + intact.b[2]);
         broken = (0..4).any(|j| intact.f(j, &trial) > tol);
     }
-    let faces = Faces::new(law, sec, broken || !strong);
+    // softening: the strengths of the committed history hold within the step
+    let (c_now, ft_now) = law.strengths(&JointState { broken, ..*committed });
+    let faces = Faces::new(law, sec, c_now, ft_now);
     let tol = 1e-12 * (scale + faces.b[0] + faces.b[2]) + f64::MIN_POSITIVE;
     let elastic_tangent = [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
     // Only the Coulomb flow (slip and its dilatancy) is history: an opening or a rocking gap
     // closes again without resistance (no-tension contact), so the rocking faces' flow is not
     // stored. Within a step the mapping, and so its tangent, is the same.
-    let finish = |force: [f64; 3], slip: [f64; 3], tangent: [[f64; 3]; 3]| -> Response {
+    let finish = |force: [f64; 3], slip: [f64; 3], dk: [f64; 2], tangent: [[f64; 3]; 3]| -> Response {
         let plastic = [ep[0] + slip[0], ep[1] + slip[1], ep[2] + slip[2]];
+        // the opening is recoverable, so dk[0] is the whole current plastic gap: the crack is
+        // measured by the largest gap reached; the slip is history, so dk[1] is an increment
+        let (opening, slip_acc) = (committed.opening.max(dk[0]), committed.slip + dk[1]);
+        let broken = if softening {
+            let (c, ft) = law.strengths(&JointState { plastic, broken: false, opening, slip: slip_acc });
+            c <= 1e-3 * law.cohesion && ft <= 1e-3 * law.tensile_strength
+        } else {
+            broken
+        };
         Response {
             force,
-            state: JointState { plastic, broken },
+            state: JointState { plastic, broken, opening, slip: slip_acc },
             flags: flags(&faces, &force, sec),
             tangent,
         }
     };
     if (0..4).all(|j| faces.f(j, &trial) <= tol) {
-        return finish(trial, [0.0; 3], elastic_tangent);
+        return finish(trial, [0.0; 3], [0.0; 2], elastic_tangent);
     }
     // D m_j for every face
     let dm: [[f64; 3]; 4] = std::array::from_fn(|j| {
@@ -298,6 +352,8 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
         }
         let mut s = trial;
         let mut slip = [0.0; 3];
+        // plastic opening (cut-off and rocking faces) and slip increment (Coulomb faces)
+        let mut dk = [0.0; 2];
         for (p, &j) in act.iter().enumerate() {
             for c in 0..3 {
                 s[c] -= r[p] * dm[j][c];
@@ -305,6 +361,7 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
                     slip[c] += r[p] * faces.m[j][c];
                 }
             }
+            dk[if j < 2 { 1 } else { 0 }] += r[p];
         }
         if (0..4)
             .filter(|j| mask & (1 << j) == 0)
@@ -313,7 +370,7 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
             continue;
         }
         let tangent = active_tangent(&faces, &d, &dm, act, &g0).unwrap_or([[0.0; 3]; 3]);
-        return finish(s, slip, tangent);
+        return finish(s, slip, dk, tangent);
     }
     // No active set satisfied the conditions (degenerate data): fall back on the apex, the one
     // point of the domain that every face reaches, carrying nothing beyond the cut-off.
@@ -322,7 +379,7 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
     } else {
         faces.b[2]
     };
-    finish([n_apex, 0.0, 0.0], [0.0; 3], [[0.0; 3]; 3])
+    finish([n_apex, 0.0, 0.0], [0.0; 3], [0.0; 2], [[0.0; 3]; 3])
 }
 
 /// The tangent of a joint whose force `force` lies in the domain, taking as active every face
@@ -332,7 +389,7 @@ pub fn tangent_near_limit(
     law: &JointLaw,
     sec: &Section,
     force: &[f64; 3],
-    broken: bool,
+    state: &JointState,
     margin: f64,
 ) -> [[f64; 3]; 3] {
     let d = [
@@ -340,8 +397,8 @@ pub fn tangent_near_limit(
         law.shear_stiffness * sec.area,
         law.normal_stiffness * sec.inertia,
     ];
-    let strong = law.cohesion > 0.0 || law.tensile_strength > 0.0;
-    let faces = Faces::new(law, sec, broken || !strong);
+    let (c, ft) = law.strengths(state);
+    let faces = Faces::new(law, sec, c, ft);
     let scale = force[0].abs()
         + force[1].abs()
         + (force[2] * 2.0 / sec.length).abs()
@@ -421,10 +478,10 @@ fn flags(faces: &Faces, s: &[f64; 3], sec: &Section) -> u8 {
     }
 }
 
-/// Whether a force (N, T, M) lies in the domain of `law` (dry if `broken`), each face
-/// satisfied to within `tol` newtons (rocking faces are measured as N + 2|M|/l).
-pub fn admissible(law: &JointLaw, sec: &Section, force: &[f64; 3], broken: bool, tol: f64) -> bool {
-    let strong = law.cohesion > 0.0 || law.tensile_strength > 0.0;
-    let faces = Faces::new(law, sec, broken || !strong);
+/// Whether a force (N, T, M) lies in the domain of `law` with the strengths of history
+/// `state`, each face satisfied to within `tol` newtons (rocking faces measured as N + 2|M|/l).
+pub fn admissible(law: &JointLaw, sec: &Section, force: &[f64; 3], state: &JointState, tol: f64) -> bool {
+    let (c, ft) = law.strengths(state);
+    let faces = Faces::new(law, sec, c, ft);
     (0..4).all(|j| faces.f(j, force) <= tol)
 }

@@ -711,7 +711,7 @@ impl<'a> Solver<'a> {
                 model.law(k),
                 &model.sections()[k],
                 &self.forces[k],
-                self.trial[k].broken,
+                &self.trial[k],
                 1e-3,
             );
         }

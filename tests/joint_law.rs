@@ -70,7 +70,7 @@ fn result_lies_in_the_domain() {
             // round-off is measured against the size of the trial force
             let tol = 1e-12 * trial_size(&law, &e);
             assert!(
-                admissible(&law, &SEC, &r.force, r.state.broken, tol),
+                admissible(&law, &SEC, &r.force, &r.state, tol),
                 "{law:?} e={e:?} -> {:?}",
                 r.force
             );
@@ -238,4 +238,54 @@ fn a_failed_mortar_joint_has_lost_cohesion_and_tensile_strength() {
         "broken joint carried N = {}",
         r2.force[0]
     );
+}
+
+/// A softening joint driven in small committed increments (as the explicit solver does): the
+/// work beyond friction over a long slip is the mode-II fracture energy times the area, and the
+/// work of the tension over a long opening the mode-I energy times the area.
+#[test]
+fn softening_dissipates_the_fracture_energies() {
+    let (gf1, gf2) = (18.0, 125.0); // N/m (J4D's mortar)
+    let law = JointLaw {
+        normal_stiffness: 82e9,
+        shear_stiffness: 36e9,
+        friction: 0.75,
+        cohesion: 0.35e6,
+        tensile_strength: 0.25e6,
+        dilatancy: 0.0,
+        fracture_energy_tension: gf1,
+        fracture_energy_shear: gf2,
+    };
+    let a = SEC.area;
+    // mode II: slip under a fixed compression of 10 kN
+    let en = -1e4 / (law.normal_stiffness * a);
+    let mut st = JointState::default();
+    let (mut work, mut last_slip) = (0.0, 0.0);
+    let n = 20_000;
+    for k in 1..=n {
+        let e = [en, 2e-2 * k as f64 / n as f64, 0.0];
+        let r = return_map(&law, &SEC, e, &st);
+        let ds = r.state.slip - last_slip;
+        work += (r.force[1].abs() - law.friction * r.force[0].abs()) * ds;
+        last_slip = r.state.slip;
+        st = r.state;
+    }
+    assert_close(work, gf2 * a, 0.01, "mode II work beyond friction [J]");
+    assert!(st.broken || law.strengths(&st).0 < 1e-3 * law.cohesion);
+    // mode I: pure opening
+    let mut st = JointState::default();
+    let (mut work, mut last_open) = (0.0, 0.0);
+    for k in 1..=n {
+        let e = [2e-3 * k as f64 / n as f64, 0.0, 0.0];
+        let r = return_map(&law, &SEC, e, &st);
+        work += r.force[0] * (r.state.opening - last_open);
+        last_open = r.state.opening;
+        st = r.state;
+    }
+    assert_close(work, gf1 * a, 0.01, "mode I work [J]");
+}
+
+/// |got - want| <= rel * |want|
+fn assert_close(got: f64, want: f64, rel: f64, what: &str) {
+    assert!((got - want).abs() <= rel * want.abs(), "{what}: got {got:.6e}, expected {want:.6e}");
 }

@@ -52,7 +52,16 @@ FORMAT = 1
 PathLike = Union[str, "os.PathLike[str]"]
 
 # Keys of a joint law, in the order of case-format.md, and the interface families that may override them.
-LAW_KEYS = ("normal_stiffness", "shear_stiffness", "friction", "cohesion", "tensile_strength", "dilatancy")
+LAW_KEYS = (
+    "normal_stiffness",
+    "shear_stiffness",
+    "friction",
+    "cohesion",
+    "tensile_strength",
+    "dilatancy",
+    "fracture_energy_tension",
+    "fracture_energy_shear",
+)
 FAMILIES = ("bed", "head", "base", "top")
 GEOMETRY_KINDS = ("running_bond", "pattern", "blocks")
 METHODS = ("static", "dynamic")
@@ -593,6 +602,8 @@ def _law(table: _Table) -> Dict[str, float]:
         "cohesion": _non_negative,
         "tensile_strength": _non_negative,
         "dilatancy": _non_negative,
+        "fracture_energy_tension": _non_negative,
+        "fracture_energy_shear": _non_negative,
     }
     return {key: table.number(key, check=checks[key]) for key in LAW_KEYS if key in table}
 

@@ -212,13 +212,15 @@ fn pattern<'py>(
     Ok(rects_to_py(py, &blocks))
 }
 
-const LAW_KEYS: [&str; 6] = [
+const LAW_KEYS: [&str; 8] = [
     "normal_stiffness",
     "shear_stiffness",
     "friction",
     "cohesion",
     "tensile_strength",
     "dilatancy",
+    "fracture_energy_tension",
+    "fracture_energy_shear",
 ];
 
 fn law_from(d: &Bound<'_, PyAny>, base: JointLaw, what: &str) -> PyResult<JointLaw> {
@@ -245,6 +247,8 @@ fn law_from(d: &Bound<'_, PyAny>, base: JointLaw, what: &str) -> PyResult<JointL
             "cohesion" => law.cohesion = x,
             "tensile_strength" => law.tensile_strength = x,
             "dilatancy" => law.dilatancy = x,
+            "fracture_energy_tension" => law.fracture_energy_tension = x,
+            "fracture_energy_shear" => law.fracture_energy_shear = x,
             _ => {
                 return Err(InputError::new_err(format!(
                     "{what}: unknown key {key:?} (expected one of {})",
