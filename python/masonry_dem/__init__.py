@@ -33,6 +33,16 @@ from ._core import (
 )
 from .case import Case, load_case, parse_case, result_dict, run_case, write_result_json
 from .export import write_curve_csv, write_vtk
+from .api import (
+    curve_columns,
+    dry_joint,
+    interface_columns,
+    interfaces_dataframe,
+    mortar_joint,
+    to_dataframe,
+    to_dict,
+    to_json,
+)
 
 __all__ = [
     "Model",
@@ -53,4 +63,12 @@ __all__ = [
     "write_result_json",
     "write_vtk",
     "write_curve_csv",
+    "mortar_joint",
+    "dry_joint",
+    "to_dict",
+    "to_json",
+    "to_dataframe",
+    "interfaces_dataframe",
+    "curve_columns",
+    "interface_columns",
 ]

@@ -1,0 +1,334 @@
+"""Joint-law helpers and conversions of a :class:`masonry_dem.Results`. SI units: m, N, Pa, s.
+
+Joint laws (dicts for ``Model(joints={family: law})``):
+
+* :func:`mortar_joint` derives the interface stiffnesses of a mortar joint from the mortar's Young's
+  modulus E [Pa], its shear modulus G [Pa] (or Poisson's ratio nu) and the joint thickness e [m]:
+  normal_stiffness = E / e and shear_stiffness = G / e [N/m3], with G = E / (2 (1 + nu)).
+* :func:`dry_joint` is a dry (cohesionless, no tensile strength) joint with one stiffness.
+
+>>> import masonry_dem as md
+>>> law = md.mortar_joint(young=1.0e9, thickness=0.01, poisson=0.25, cohesion=0.1e6)
+>>> law["normal_stiffness"], law["shear_stiffness"]
+(100000000000.0, 40000000000.0)
+
+Conversions (the compiled ``Results`` cannot be subclassed, so these are plain functions):
+
+* :func:`to_dict`: everything in a Results as plain Python (lists, ints, floats; NaN becomes None), ready
+  for ``json.dumps``; with the model also the block rectangles and the interface geometry and families.
+* :func:`to_json`: the result file of case-format.md (:func:`masonry_dem.result_dict`), written under a
+  temporary name and renamed.
+* :func:`to_dataframe` / :func:`interfaces_dataframe`: pandas DataFrames of the curve and of the
+  interfaces, when pandas is installed (it is not a dependency of masonry-dem; without it they raise
+  ImportError). :func:`curve_columns` / :func:`interface_columns` give the same columns as NumPy arrays.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import numbers
+import os
+from typing import Any, Dict, List, Optional, Union
+
+import numpy as np
+
+from ._core import InputError
+from .case import JOINT_STATE_KEYS, result_dict
+from .export import _atomic_write
+
+__all__ = [
+    "mortar_joint",
+    "dry_joint",
+    "to_dict",
+    "to_json",
+    "to_dataframe",
+    "interfaces_dataframe",
+    "curve_columns",
+    "interface_columns",
+    "CURVE_COLUMNS",
+    "INTERFACE_COLUMNS",
+]
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+#: Columns of :func:`to_dataframe` (lambda, or the force in N for live = "top_horizontal"; m).
+CURVE_COLUMNS = ("multiplier", "displacement_m")
+
+#: Columns of :func:`interfaces_dataframe`.
+INTERFACE_COLUMNS = (
+    "a", "b", "family", "x", "y", "nx", "ny", "length_m", "N_N", "T_N", "M_Nm", "state", "broken",
+)
+
+
+# --------------------------------------------------------------------------------------------------
+# Joint laws
+# --------------------------------------------------------------------------------------------------
+
+
+def _number(func: str, name: str, value: Any, minimum: Optional[float] = None, strict: bool = False,
+            maximum: Optional[float] = None, unit: str = "") -> float:
+    """``value`` as a finite float, checked against bounds; InputError naming ``func`` and ``name``."""
+    bounds = []
+    if minimum is not None:
+        bounds.append(f"{'>' if strict else '>='} {minimum:g}")
+    if maximum is not None:
+        bounds.append(f"<= {maximum:g}")
+    want = "a finite number" + (" " + " and ".join(bounds) if bounds else "") + (f" [{unit}]" if unit else "")
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise InputError(f"{func}: {name} must be {want}, got {type(value).__name__} {value!r}")
+    x = float(value)
+    ok = math.isfinite(x)
+    if ok and minimum is not None:
+        ok = x > minimum if strict else x >= minimum
+    if ok and maximum is not None:
+        ok = x <= maximum
+    if not ok:
+        raise InputError(f"{func}: {name} must be {want}, got {x!r}")
+    return x
+
+
+def mortar_joint(
+    young: float,
+    thickness: float,
+    shear: Optional[float] = None,
+    poisson: Optional[float] = None,
+    friction: float = 0.75,
+    cohesion: float = 0.0,
+    tensile_strength: float = 0.0,
+    dilatancy: float = 0.0,
+) -> Dict[str, float]:
+    """The joint law of a mortar joint, for ``Model(joints={family: law})``.
+
+    The mortar layer of thickness e is lumped into a zero-thickness interface with
+    ``normal_stiffness = E / e`` and ``shear_stiffness = G / e`` [N/m3].
+
+    young: Young's modulus E of the mortar [Pa], > 0.
+    thickness: joint thickness e [m], > 0.
+    shear: shear modulus G of the mortar [Pa], > 0; or
+    poisson: Poisson's ratio nu of the mortar [-], -1 < nu <= 0.5, giving G = E / (2 (1 + nu)).
+        Give exactly one of shear and poisson.
+    friction: friction coefficient mu = tan(phi) [-], >= 0.
+    cohesion: c [Pa], >= 0. tensile_strength: f_t [Pa], >= 0. dilatancy: tan(psi) [-], >= 0.
+
+    Returns a dict with the six keys of a joint law (normal_stiffness, shear_stiffness, friction,
+    cohesion, tensile_strength, dilatancy). Raises InputError naming the argument on bad input.
+    """
+    f = "mortar_joint"
+    e_mod = _number(f, "young", young, 0.0, strict=True, unit="Pa")
+    e = _number(f, "thickness", thickness, 0.0, strict=True, unit="m")
+    if (shear is None) == (poisson is None):
+        raise InputError(f"{f}: give exactly one of shear [Pa] and poisson [-], got "
+                         + ("neither" if shear is None else "both"))
+    if shear is not None:
+        g_mod = _number(f, "shear", shear, 0.0, strict=True, unit="Pa")
+    else:
+        nu = _number(f, "poisson", poisson, -1.0, strict=True, maximum=0.5)
+        g_mod = e_mod / (2.0 * (1.0 + nu))
+    law = {
+        "normal_stiffness": e_mod / e,
+        "shear_stiffness": g_mod / e,
+        "friction": _number(f, "friction", friction, 0.0),
+        "cohesion": _number(f, "cohesion", cohesion, 0.0, unit="Pa"),
+        "tensile_strength": _number(f, "tensile_strength", tensile_strength, 0.0, unit="Pa"),
+        "dilatancy": _number(f, "dilatancy", dilatancy, 0.0),
+    }
+    for key, name in (("normal_stiffness", "young"), ("shear_stiffness", "shear" if shear is not None else "young")):
+        if not (math.isfinite(law[key]) and law[key] > 0.0):
+            raise InputError(f"{f}: {key} = {name} / thickness is {law[key]!r}; check {name} and thickness")
+    return law
+
+
+def dry_joint(friction: float, stiffness: float = 1e10, dilatancy: float = 0.0) -> Dict[str, float]:
+    """A dry joint: no cohesion, no tensile strength, the same normal and shear stiffness.
+
+    friction: mu = tan(phi) [-], >= 0. stiffness: normal and shear stiffness [N/m3], > 0.
+    dilatancy: tan(psi) [-], >= 0. Raises InputError naming the argument on bad input.
+    """
+    f = "dry_joint"
+    k = _number(f, "stiffness", stiffness, 0.0, strict=True, unit="N/m3")
+    return {
+        "normal_stiffness": k,
+        "shear_stiffness": k,
+        "friction": _number(f, "friction", friction, 0.0),
+        "cohesion": 0.0,
+        "tensile_strength": 0.0,
+        "dilatancy": _number(f, "dilatancy", dilatancy, 0.0),
+    }
+
+
+# --------------------------------------------------------------------------------------------------
+# Conversions of a Results
+# --------------------------------------------------------------------------------------------------
+
+
+def _float(x: Any) -> Optional[float]:
+    """A float, or None when not finite (JSON has no NaN)."""
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def _floats(a: Any) -> List[Any]:
+    """A float array as nested lists, non-finite entries as None."""
+    arr = np.asarray(a, dtype=float)
+    if arr.ndim == 0:
+        return _float(arr)  # type: ignore[return-value]
+    return [_floats(row) if arr.ndim > 1 else _float(row) for row in arr]
+
+
+def _check_model(func: str, results: Any, model: Any) -> None:
+    """InputError when ``model`` does not match ``results`` (numbers of blocks and interfaces)."""
+    n_all = len(np.asarray(model.rects))
+    m = int(model.n_interfaces)
+    disp = np.asarray(results.displacements)
+    forces = np.asarray(results.interface_forces)
+    if len(disp) != n_all or len(forces) != m:
+        raise InputError(
+            f"{func}: model does not match results: the model has {n_all} blocks (with base and top beam) "
+            f"and {m} interfaces, the results {len(disp)} blocks and {len(forces)} interfaces"
+        )
+
+
+def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dict[str, Any]:
+    """Everything in a Results as plain Python values (lists, ints, floats, str, None), for json.dumps.
+
+    Keys: method, status, error (None unless failed), collapse_multiplier (None if NaN), curve
+    {multiplier, displacement [m]}, control_block, displacements ((n_all, 3) u1 [m], u2 [m], phi [rad]),
+    mechanism ((n_all, 3)), interface_forces ((m, 3) N [N], T [N], M [N m]), interface_states (bit flags:
+    1 open, 2 sliding, 4 rocking; 0 elastic), broken, joint_states {elastic, sliding, rocking, open},
+    iterations, steps, elapsed_s [s]; title when given. With ``model`` also: blocks and interfaces
+    (counts, as in the result file), base_index, top_index, block_rects ((n_all, 4) [x0, y0, x1, y1] m),
+    weights [N], interface_blocks ((m, 2) a, b), interface_geometry ((m, 5) x, y [m], nx, ny, l [m]),
+    interface_family. Non-finite numbers become None.
+    """
+    states = getattr(results, "joint_states", None) or {}
+    out: Dict[str, Any] = {}
+    if title is not None:
+        out["title"] = str(title)
+    out.update({
+        "method": str(results.method),
+        "status": str(results.status),
+        "error": str(results.error) if results.error else None,
+        "collapse_multiplier": _float(results.collapse_multiplier),
+        "curve": {
+            "multiplier": _floats(results.curve_multiplier),
+            "displacement": _floats(results.curve_displacement),
+        },
+        "control_block": int(results.control_block),
+        "displacements": _floats(results.displacements),
+        "mechanism": _floats(results.mechanism),
+        "interface_forces": _floats(results.interface_forces),
+        "interface_states": [int(s) for s in np.asarray(results.interface_states)],
+        "broken": [bool(b) for b in np.asarray(results.broken)],
+        "joint_states": {key: int(states.get(key, 0)) for key in JOINT_STATE_KEYS},
+        "iterations": int(results.iterations),
+        "steps": int(results.steps),
+        "elapsed_s": _float(results.elapsed_s),
+    })
+    if model is not None:
+        _check_model("to_dict", results, model)
+        out.update({
+            "blocks": int(model.n_blocks),
+            "interfaces": int(model.n_interfaces),
+            "base_index": None if model.base_index is None else int(model.base_index),
+            "top_index": None if model.top_index is None else int(model.top_index),
+            "block_rects": _floats(model.rects),
+            "weights": _floats(model.weights),
+            "interface_blocks": [[int(a), int(b)] for a, b in np.asarray(model.interface_blocks).reshape(-1, 2)],
+            "interface_geometry": _floats(np.asarray(model.interface_geometry).reshape(-1, 5)),
+            "interface_family": [str(s) for s in model.interface_family],
+        })
+    return out
+
+
+def to_json(results: Any, path: PathLike, model: Any, title: Optional[str] = None) -> Dict[str, Any]:
+    """Write the result file of case-format.md (see :func:`masonry_dem.result_dict`) to ``path``.
+
+    ``model`` is the Model the results came from (numbers of blocks and interfaces); ``title`` defaults
+    to "untitled". The file is written under a temporary name in its folder, then renamed. Returns the
+    dict written.
+    """
+    data = result_dict(results, model, "untitled" if title is None else str(title))
+    text = json.dumps(data, indent=2, allow_nan=False) + "\n"
+
+    def write(tmp: str) -> None:
+        with open(tmp, "x", encoding="utf-8", newline="\n") as f:
+            f.write(text)
+
+    _atomic_write(path, write, ".json")
+    return data
+
+
+def _pandas(func: str, alternative: str) -> Any:
+    try:
+        import pandas
+    except ImportError as exc:
+        raise ImportError(
+            f"masonry_dem.{func} needs pandas, which is not installed (it is not a dependency of "
+            f"masonry-dem): pip install pandas; or use masonry_dem.{alternative} "
+            f"for the same columns as NumPy arrays"
+        ) from exc
+    return pandas
+
+
+def curve_columns(results: Any) -> Dict[str, np.ndarray]:
+    """The curve as columns: multiplier (lambda, or the force [N] for live = "top_horizontal") and
+    displacement_m (horizontal displacement of the control point [m]), one entry per converged step."""
+    return {
+        "multiplier": np.asarray(results.curve_multiplier, dtype=float).copy(),
+        "displacement_m": np.asarray(results.curve_displacement, dtype=float).copy(),
+    }
+
+
+def interface_columns(results: Any, model: Any) -> Dict[str, np.ndarray]:
+    """One entry per interface: a, b (block indices; the normal points from a to b), family, x, y
+    (centroid [m]), nx, ny (normal), length_m [m], N_N (normal force [N], tension > 0), T_N (shear force
+    [N]), M_Nm (moment [N m]), state (bit flags: 1 open, 2 sliding, 4 rocking; 0 elastic), broken."""
+    _check_model("interface_columns", results, model)
+    m = int(model.n_interfaces)
+    ab = np.asarray(model.interface_blocks, dtype=np.int64).reshape(m, 2)
+    geo = np.asarray(model.interface_geometry, dtype=float).reshape(m, 5)
+    forces = np.asarray(results.interface_forces, dtype=float).reshape(m, 3)
+    return {
+        "a": ab[:, 0].copy(),
+        "b": ab[:, 1].copy(),
+        "family": np.asarray([str(s) for s in model.interface_family], dtype=object),
+        "x": geo[:, 0].copy(),
+        "y": geo[:, 1].copy(),
+        "nx": geo[:, 2].copy(),
+        "ny": geo[:, 3].copy(),
+        "length_m": geo[:, 4].copy(),
+        "N_N": forces[:, 0].copy(),
+        "T_N": forces[:, 1].copy(),
+        "M_Nm": forces[:, 2].copy(),
+        "state": np.asarray(results.interface_states, dtype=np.int64).copy(),
+        "broken": np.asarray(results.broken, dtype=bool).copy(),
+    }
+
+
+def to_dataframe(results: Any, model: Any = None) -> Any:
+    """The curve as a pandas DataFrame with columns multiplier and displacement_m [m] (see
+    :func:`curve_columns`), one row per converged step. ``df.attrs`` holds method, status and
+    collapse_multiplier, and with ``model`` the numbers of blocks and interfaces.
+
+    Raises ImportError (naming pandas) when pandas is not installed."""
+    pd = _pandas("to_dataframe", "curve_columns")
+    df = pd.DataFrame(curve_columns(results), columns=list(CURVE_COLUMNS))
+    df.attrs.update({
+        "method": str(results.method),
+        "status": str(results.status),
+        "collapse_multiplier": _float(results.collapse_multiplier),
+    })
+    if model is not None:
+        _check_model("to_dataframe", results, model)
+        df.attrs.update({"blocks": int(model.n_blocks), "interfaces": int(model.n_interfaces)})
+    return df
+
+
+def interfaces_dataframe(results: Any, model: Any) -> Any:
+    """The interfaces as a pandas DataFrame, one row per interface, with the columns of
+    :func:`interface_columns` (a, b, family, x, y, nx, ny, length_m, N_N, T_N, M_Nm, state, broken).
+
+    Raises ImportError (naming pandas) when pandas is not installed."""
+    pd = _pandas("interfaces_dataframe", "interface_columns")
+    return pd.DataFrame(interface_columns(results, model), columns=list(INTERFACE_COLUMNS))
