@@ -55,8 +55,10 @@ class Model:
         highest blocks and spanning the wall; top_force: dead force [Fx, Fy] on it [N].
     joints: {family: law} with family in "default", "bed", "head", "base", "top"; a law is a dict
         with keys normal_stiffness [N/m3], shear_stiffness [N/m3], friction [-], cohesion [Pa],
-        tensile_strength [Pa], dilatancy [-] (tan psi). Missing keys of a family law fall back to
-        "default"; missing keys of "default" fall back to 1e10, 1e10, 0.65, 0, 0, 0.
+        tensile_strength [Pa], dilatancy [-] (tan psi), fracture_energy_tension and
+        fracture_energy_shear [N/m] (both 0: brittle, cohesion and tensile strength lost at the
+        first failure; both > 0: exponential softening). Missing keys of a family law fall back
+        to "default"; missing keys of "default" fall back to 1e10, 1e10, 0.65, 0, 0, 0, 0, 0.
     gravity [m/s2]; live: "horizontal_weight" (lambda * W_i on every block towards +x) or
         "top_horizontal" (lambda newtons on the top beam towards +x).
     Raises InputError naming the key, block or interface on bad input.
