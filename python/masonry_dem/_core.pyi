@@ -14,6 +14,7 @@ FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
 
 __version__: str
+JOINT_LAW_KEYS: list[str]  # the keys of a joint-law dict (and of [joints] tables)
 
 class MasonryError(Exception):
     """Base class of every error raised by masonry_dem."""

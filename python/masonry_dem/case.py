@@ -52,16 +52,8 @@ FORMAT = 1
 PathLike = Union[str, "os.PathLike[str]"]
 
 # Keys of a joint law, in the order of case-format.md, and the interface families that may override them.
-LAW_KEYS = (
-    "normal_stiffness",
-    "shear_stiffness",
-    "friction",
-    "cohesion",
-    "tensile_strength",
-    "dilatancy",
-    "fracture_energy_tension",
-    "fracture_energy_shear",
-)
+# the joint-law keys come from the core, which defines the law
+LAW_KEYS = tuple(_core.JOINT_LAW_KEYS)
 FAMILIES = ("bed", "head", "base", "top")
 GEOMETRY_KINDS = ("running_bond", "pattern", "blocks")
 METHODS = ("static", "dynamic")
@@ -595,17 +587,13 @@ def _dynamic_options(table: _Table) -> Dict[str, Any]:
 
 def _law(table: _Table) -> Dict[str, float]:
     """The joint-law keys present in a [joints] or [joints.<family>] table."""
-    checks: Dict[str, Callable[[float], Optional[str]]] = {
-        "normal_stiffness": _positive,
-        "shear_stiffness": _positive,
-        "friction": _non_negative,
-        "cohesion": _non_negative,
-        "tensile_strength": _non_negative,
-        "dilatancy": _non_negative,
-        "fracture_energy_tension": _non_negative,
-        "fracture_energy_shear": _non_negative,
+    # stiffnesses must be positive, every other parameter non-negative (the core checks the rest)
+    positive = ("normal_stiffness", "shear_stiffness")
+    return {
+        key: table.number(key, check=_positive if key in positive else _non_negative)
+        for key in LAW_KEYS
+        if key in table
     }
-    return {key: table.number(key, check=checks[key]) for key in LAW_KEYS if key in table}
 
 
 def run_case(

@@ -212,6 +212,7 @@ fn pattern<'py>(
     Ok(rects_to_py(py, &blocks))
 }
 
+/// The keys of a joint law, for both the bindings and the case-file loader (`JOINT_LAW_KEYS`).
 const LAW_KEYS: [&str; 8] = [
     "normal_stiffness",
     "shear_stiffness",
@@ -758,6 +759,7 @@ impl PyResults {
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("JOINT_LAW_KEYS", LAW_KEYS.to_vec())?;
     m.add("MasonryError", py.get_type::<MasonryError>())?;
     m.add("InputError", py.get_type::<InputError>())?;
     m.add("ConvergenceError", py.get_type::<ConvergenceError>())?;
