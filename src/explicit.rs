@@ -132,9 +132,13 @@ pub struct TimeHistory {
     pub error: Option<String>,
     pub time_step: f64,
     pub times: Vec<f64>,
-    /// (u1, u2, phi) of every block at each recorded time (record-major).
-    pub displacements: Vec<Vec<[f64; 3]>>,
-    pub velocities: Vec<Vec<[f64; 3]>>,
+    /// Blocks in each record.
+    pub n_blocks: usize,
+    /// (u1, u2, phi) of every block at each recorded time, flat and record-major: record k is
+    /// `displacements[k * n_blocks..(k + 1) * n_blocks]` (see [`TimeHistory::displacement`]).
+    pub displacements: Vec<[f64; 3]>,
+    /// Velocities, laid out as `displacements`.
+    pub velocities: Vec<[f64; 3]>,
     /// Kinetic energy [J] at each recorded time.
     pub kinetic_energy: Vec<f64>,
     /// Elastic energy stored in the joints [J].
@@ -145,6 +149,17 @@ pub struct TimeHistory {
     pub dissipated: Vec<f64>,
     pub steps: usize,
     pub elapsed_s: f64,
+}
+
+impl TimeHistory {
+    /// (u1, u2, phi) of every block at record `k`.
+    pub fn displacement(&self, k: usize) -> &[[f64; 3]] {
+        &self.displacements[k * self.n_blocks..(k + 1) * self.n_blocks]
+    }
+    /// Velocities of every block at record `k`.
+    pub fn velocity(&self, k: usize) -> &[[f64; 3]] {
+        &self.velocities[k * self.n_blocks..(k + 1) * self.n_blocks]
+    }
 }
 
 /// Progress reported to a monitor; it returns false to stop the run.
@@ -863,8 +878,10 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
         error: None,
         time_step: s.dt,
         times: Vec::with_capacity(cap),
-        displacements: Vec::with_capacity(cap),
-        velocities: Vec::with_capacity(cap),
+        n_blocks: nb,
+        // reserved once: recording does not allocate inside the time loop
+        displacements: Vec::with_capacity(cap * nb),
+        velocities: Vec::with_capacity(cap * nb),
         kinetic_energy: Vec::with_capacity(cap),
         elastic_energy: Vec::with_capacity(cap),
         external_work: Vec::with_capacity(cap),
@@ -878,8 +895,8 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
     let mut u_prev = s.u.clone();
     let record = |h: &mut TimeHistory, s: &Integrator, t: f64, work: f64| {
         h.times.push(t);
-        h.displacements.push((0..nb).map(|i| [s.u[3 * i], s.u[3 * i + 1], s.u[3 * i + 2]]).collect());
-        h.velocities.push((0..nb).map(|i| [s.v[3 * i], s.v[3 * i + 1], s.v[3 * i + 2]]).collect());
+        h.displacements.extend((0..nb).map(|i| [s.u[3 * i], s.u[3 * i + 1], s.u[3 * i + 2]]));
+        h.velocities.extend((0..nb).map(|i| [s.v[3 * i], s.v[3 * i + 1], s.v[3 * i + 2]]));
         let ke = s.kinetic_energy();
         let ee = s.elastic_energy();
         h.kinetic_energy.push(ke);

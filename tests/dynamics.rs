@@ -30,7 +30,7 @@ fn block_slides_down_an_incline_at_g_sin_minus_mu_cos() {
     })
     .unwrap();
     let h = simulate(&m, &DynamicOptions { duration: 0.4, live_multiplier: beta.tan(), record_every: 10, ..Default::default() }).unwrap();
-    let (t, v): (Vec<f64>, Vec<f64>) = h.times.iter().zip(&h.velocities).filter(|(t, _)| **t >= 0.05).map(|(t, v)| (*t, v[0][0])).unzip();
+    let (t, v): (Vec<f64>, Vec<f64>) = h.times.iter().enumerate().filter(|(_, t)| **t >= 0.05).map(|(k, t)| (*t, h.velocity(k)[0][0])).unzip();
     let a = slope(&t, &v);
     assert_close(a, g * (beta.sin() - mu * beta.cos()), 0.01, "sliding acceleration [m/s2]");
 }
@@ -58,11 +58,11 @@ fn housner_block_reaches_its_first_impact_at_0_3578_s() {
     .unwrap();
     assert!(h.error.is_none(), "{:?}", h.error);
     // first time the rotation reaches zero (the impact on the right toe), interpolated
-    let k = h.displacements.iter().position(|d| d[0][2] <= 0.0).expect("no impact within 0.5 s");
-    let (p0, p1) = (h.displacements[k - 1][0][2], h.displacements[k][0][2]);
+    let k = (0..h.times.len()).position(|k| h.displacement(k)[0][2] <= 0.0).expect("no impact within 0.5 s");
+    let (p0, p1) = (h.displacement(k - 1)[0][2], h.displacement(k)[0][2]);
     let t1 = h.times[k - 1] + (h.times[k] - h.times[k - 1]) * p0 / (p0 - p1);
     assert_close(t1, 0.3578, 0.03, "time of the first impact [s]");
-    let w = h.velocities[k][0][2].abs();
+    let w = h.velocity(k)[0][2].abs();
     eprintln!("t1 = {t1:.4} s, angular velocity at impact {w:.3} rad/s (exact 1.209)");
 }
 
@@ -105,6 +105,6 @@ fn base_acceleration_beyond_friction_makes_the_block_slide_back() {
         ..Default::default()
     };
     let h = simulate(&m, &opts).unwrap();
-    let (t, v): (Vec<f64>, Vec<f64>) = h.times.iter().zip(&h.velocities).filter(|(t, _)| **t >= 0.05).map(|(t, v)| (*t, v[0][0])).unzip();
+    let (t, v): (Vec<f64>, Vec<f64>) = h.times.iter().enumerate().filter(|(_, t)| **t >= 0.05).map(|(k, t)| (*t, h.velocity(k)[0][0])).unzip();
     assert_close(slope(&t, &v), -(ag - mu * g), 0.01, "relative sliding acceleration [m/s2]");
 }

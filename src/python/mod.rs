@@ -593,11 +593,10 @@ struct PyTimeHistory {
     inner: TimeHistory,
 }
 
-fn history3<'py>(py: Python<'py>, v: &[Vec<[f64; 3]>]) -> Bound<'py, numpy::PyArray3<f64>> {
-    let k = v.len();
-    let n = v.first().map_or(0, |r| r.len());
-    let flat: Vec<f64> = v.iter().flat_map(|r| r.iter().flatten().copied()).collect();
-    numpy::ndarray::Array3::from_shape_vec((k, n, 3), flat).unwrap().into_pyarray(py)
+fn history3<'py>(py: Python<'py>, v: &[[f64; 3]], n_blocks: usize) -> Bound<'py, numpy::PyArray3<f64>> {
+    let k = if n_blocks == 0 { 0 } else { v.len() / n_blocks };
+    let flat: Vec<f64> = v.iter().flatten().copied().collect();
+    numpy::ndarray::Array3::from_shape_vec((k, n_blocks, 3), flat).unwrap().into_pyarray(py)
 }
 
 #[pymethods]
@@ -620,11 +619,11 @@ impl PyTimeHistory {
     }
     #[getter]
     fn displacements<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
-        history3(py, &self.inner.displacements)
+        history3(py, &self.inner.displacements, self.inner.n_blocks)
     }
     #[getter]
     fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
-        history3(py, &self.inner.velocities)
+        history3(py, &self.inner.velocities, self.inner.n_blocks)
     }
     #[getter]
     fn kinetic_energy<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
