@@ -312,6 +312,16 @@ impl<'a> Integrator<'a> {
         })
     }
 
+    /// Fixes the dofs the model holds once the dead loads are on, where they are now.
+    fn hold(&mut self) {
+        for &d in self.model.held_after_dead() {
+            self.free[d] = false;
+            self.inv_mass[d] = 0.0;
+            self.v[d] = 0.0;
+            self.a[d] = 0.0;
+        }
+    }
+
     /// Interface forces at the current `u` from the committed histories, which are updated
     /// (each time step is an increment), then gathered into `f_int`.
     fn interface_forces(&mut self) {
@@ -490,6 +500,7 @@ pub(crate) fn runaway_mode(model: &Model, u: &[f64], states: &[JointState], lamb
     let mut s = Integrator::new(model, None, 0.8, Damping::Local(0.8), 1).ok()?;
     s.u.copy_from_slice(u);
     s.states.copy_from_slice(states);
+    s.hold();
     let (fd, fl) = (model.dead_load(), model.live_load());
     let mut set_ext = |f: &mut [f64], _: &[f64]| {
         for d in 0..f.len() {
@@ -520,6 +531,54 @@ pub(crate) fn runaway_mode(model: &Model, u: &[f64], states: &[JointState], lamb
         }
     }
     None
+}
+
+/// An equilibrium state with dof `cd` held at `target`, found by damped relaxation (local
+/// damping 0.8) from displacements `u` and joint histories `states` (the dofs held after the
+/// dead state held too), with lambda from the equation of `cd`: the displacements, the joint
+/// histories and lambda. The static solver's displacement control crosses a snap-back with it:
+/// where the equilibrium path turns back in the control displacement, no state near the last
+/// converged one exists at the next displacement, and the wall jumps (dynamically, in a test)
+/// to a state of lower force; the relaxation follows that jump.
+pub(crate) fn relax_at_displacement(
+    model: &Model,
+    u: &[f64],
+    states: &[JointState],
+    cd: usize,
+    target: f64,
+) -> Result<(Vec<f64>, Vec<JointState>, f64), Error> {
+    let mut s = Integrator::new(model, None, 0.8, Damping::Local(0.8), 1)?;
+    s.u.copy_from_slice(u);
+    s.states.copy_from_slice(states);
+    s.hold();
+    let (fd, fl) = (model.dead_load(), model.live_load());
+    if fl[cd] == 0.0 {
+        return Err(Error::input("the control dof carries no live load"));
+    }
+    let lam = std::cell::Cell::new(0.0);
+    let mut set_ext = |f: &mut [f64], fint: &[f64]| {
+        let l = (fint[cd] - fd[cd]) / fl[cd];
+        lam.set(l);
+        for d in 0..f.len() {
+            f[d] = fd[d] + l * fl[d];
+        }
+    };
+    // bounded: a by-product of one static step (J4D's jumps settle in a few thousand steps)
+    let max_steps = 200_000;
+    for k in 0..max_steps {
+        s.step(&mut set_ext, Some((cd, target)));
+        if k % 16 == 15 {
+            if s.u.iter().any(|x| !x.is_finite()) {
+                break;
+            }
+            if s.unbalanced_ratio(Some(cd)) <= 1e-7 {
+                return Ok((s.u, s.states, lam.get()));
+            }
+        }
+    }
+    Err(Error::Convergence(format!(
+        "no equilibrium at the control displacement {target:.4e} m by dynamic relaxation either ({max_steps} steps)"
+    )))
 }
 
 /// Runs a quasi-static analysis with the explicit solver; same results as the static solver.
@@ -625,6 +684,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
     }
     let dead_steps = s.steps - steps_before;
     s.v.fill(0.0);
+    s.hold();
     curve_l.push(0.0);
     curve_u.push(s.u[cd]);
     // displacements beyond 20 x the settlement under dead load (at least 1e-4 of the wall) are
@@ -823,6 +883,11 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
         }
     }
     model.check_supports()?;
+    if !model.held_after_dead().is_empty() {
+        return Err(Error::input(
+            "top.vertical = \"held\" is for quasi-static analyses (held once the dead loads are on); a time history loads the beam with its force: use top.vertical = \"free\"",
+        ));
+    }
     let mut s = Integrator::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
     s.large = opts.large_rotations;
     let fixed = model.fixed();

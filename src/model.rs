@@ -64,6 +64,10 @@ pub struct TopBeam {
     pub rotation_fixed: bool,
     /// Dead force [Fx, Fy] on the beam [N].
     pub force: [f64; 2],
+    /// Whether the beam's vertical position is held once the dead loads are on (the vertical
+    /// force on it is then a reaction that changes with the live load); false: the vertical
+    /// force stays `force[1]` and the beam is free to rise.
+    pub vertical_held: bool,
 }
 
 /// Everything needed to build a [`Model`]. SI units.
@@ -120,6 +124,7 @@ pub struct Model {
     prescribed: Vec<f64>,
     f_dead: Vec<f64>,
     f_live: Vec<f64>,
+    held: Vec<usize>,
 }
 
 impl Model {
@@ -236,8 +241,12 @@ impl Model {
         for i in 0..n_wall {
             f_dead[3 * i + 1] = -weight[i];
         }
+        let mut held = vec![];
         if let (Some(t), Some(tb)) = (top, &spec.top) {
             fixed[3 * t + 2] = tb.rotation_fixed;
+            if tb.vertical_held {
+                held.push(3 * t + 1);
+            }
             f_dead[3 * t] = tb.force[0];
             f_dead[3 * t + 1] = tb.force[1];
         }
@@ -264,7 +273,14 @@ impl Model {
             prescribed: vec![0.0; 3 * nb],
             f_dead,
             f_live,
+            held,
         })
+    }
+
+    /// Dofs held, at the position they reach under the dead loads, from then on (the top beam's
+    /// vertical dof when it is held). Both solvers fix them once the dead state is found.
+    pub fn held_after_dead(&self) -> &[usize] {
+        &self.held
     }
 
     /// Fixes dof `dof` (0: u1, 1: u2, 2: phi) of block `block` at `value` [m or rad].

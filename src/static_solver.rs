@@ -576,6 +576,7 @@ impl<'a> Solver<'a> {
             )),
             e => e,
         })?;
+        self.hold();
         self.u_prev.copy_from_slice(&self.u);
         // the fraction of the path is known under displacement control only
         let fraction = match self.opts.control {
@@ -583,6 +584,27 @@ impl<'a> Solver<'a> {
             Control::Displacement { .. } => 0.0,
         };
         self.commit(monitor, fraction)
+    }
+
+    /// Fixes the dofs the model holds once the dead loads are on, where they are: they leave
+    /// the system of equations, which is renumbered.
+    fn hold(&mut self) {
+        let held = self.model.held_after_dead();
+        if held.is_empty() {
+            return;
+        }
+        for &d in held {
+            self.eq[d] = None;
+        }
+        let mut n = 0;
+        for e in self.eq.iter_mut().flatten() {
+            *e = n;
+            n += 1;
+        }
+        self.n_eq = n;
+        self.rhs = vec![0.0; n];
+        self.load_sys = None;
+        self.disp_sys = None;
     }
 
     /// A natural scale of lambda: 1 for the seismic coefficient, the dead loads for a force.
@@ -752,6 +774,26 @@ impl<'a> Solver<'a> {
         None
     }
 
+    /// Crosses a snap-back: the equilibrium at control displacement `target` that the damped
+    /// motion of the wall reaches from the converged state, refined by Newton. On success `u`,
+    /// `lambda` and `trial` hold it.
+    fn jump(&mut self, target: f64) -> Result<(), Error> {
+        let cd = self.control_dof;
+        let (u, states, lam) =
+            crate::explicit::relax_at_displacement(self.model, &self.u, &self.committed, cd, target)?;
+        let saved = self.committed.clone();
+        self.u.copy_from_slice(&u);
+        self.lambda = lam;
+        self.committed.copy_from_slice(&states);
+        match self.newton_disp() {
+            Ok(_) => Ok(()),
+            Err(e) => {
+                self.committed.copy_from_slice(&saved);
+                Err(e)
+            }
+        }
+    }
+
     fn displacement_control(
         &mut self,
         max_disp: f64,
@@ -818,8 +860,31 @@ impl<'a> Solver<'a> {
                     streak = 0;
                     step *= 0.5;
                     if step.abs() < min_step {
-                        self.evaluate();
-                        return (Status::Failed, Some(e));
+                        // a snap-back: no equilibrium near the converged state at the next
+                        // displacement; follow the wall's jump by dynamic relaxation, then refine
+                        match self.jump(u_conv[cd] + base_step) {
+                            Ok(()) => {
+                                last = None;
+                                self.u_prev.copy_from_slice(&u_conv);
+                                u_conv.copy_from_slice(&self.u);
+                                lam_conv = self.lambda;
+                                let frac = (u_conv[cd] - u_start) / max_disp;
+                                if let Err(e) = self.commit(monitor, frac) {
+                                    return (Status::Failed, Some(e));
+                                }
+                                step = base_step;
+                                continue;
+                            }
+                            Err(Error::Interrupted) => {
+                                return (Status::Failed, Some(Error::Interrupted))
+                            }
+                            Err(_) => {
+                                self.u.copy_from_slice(&u_conv);
+                                self.lambda = lam_conv;
+                                self.evaluate();
+                                return (Status::Failed, Some(e));
+                            }
+                        }
                     }
                 }
             }

@@ -54,6 +54,9 @@ class Model:
     base: True puts a fixed rigid foundation under the lowest blocks, spanning the wall.
     top_rotation: None (no top beam), "fixed" or "free": a rigid, weightless beam resting on the
         highest blocks and spanning the wall; top_force: dead force [Fx, Fy] on it [N].
+    top_vertical: "free" (the vertical force on the beam stays top_force[1]; the beam may rise) or
+        "held" (the beam's vertical position is held once the dead loads are on, so the vertical
+        force becomes a reaction that changes with the live load; quasi-static analyses only).
     joints: {family: law} with family in "default", "bed", "head", "base", "top"; a law is a dict
         with keys normal_stiffness [N/m3], shear_stiffness [N/m3], friction [-], cohesion [Pa],
         tensile_strength [Pa], dilatancy [-] (tan psi), fracture_energy_tension and
@@ -76,6 +79,7 @@ class Model:
         joints: Optional[dict[str, dict[str, float]]] = None,
         gravity: float = 9.81,
         live: Literal["horizontal_weight", "top_horizontal"] = "horizontal_weight",
+        top_vertical: Literal["free", "held"] = "free",
     ) -> None: ...
     def fix(self, block: int, dof: Literal[0, 1, 2], value: float = 0.0) -> None:
         """Fix dof (0: u1 [m], 1: u2 [m], 2: phi [rad]) of a block at a prescribed value."""

@@ -469,11 +469,13 @@ def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_titl
     base = True if base_t is None else base_t.string("kind", "fixed", ("fixed", "none")) == "fixed"
 
     # [top]
-    top_t = top.table("top", ("rotation", "force"))
+    top_t = top.table("top", ("rotation", "force", "vertical"))
     top_rotation: Optional[str] = None
     top_force = [0.0, 0.0]
+    top_vertical = "free"
     if top_t is not None:
         top_rotation = top_t.string("rotation", "fixed", ("fixed", "free"))
+        top_vertical = top_t.string("vertical", "free", ("free", "held"))
         force = top_t.array("force", required=False)
         if force is not None:
             top_force = top_t.numbers(top_t.where("force"), force, 2, " [Fx, Fy]")
@@ -538,6 +540,7 @@ def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_titl
         joints=joints or None,
         gravity=gravity,
         live=live,
+        top_vertical=top_vertical,
     )
     analysis_kwargs: Dict[str, Any] = dict(control=control, steps=steps, max_displacement=max_disp, control_block=None)
     analysis_kwargs.update(tolerance)

@@ -270,7 +270,7 @@ struct PyModel {
 #[pymethods]
 impl PyModel {
     #[new]
-    #[pyo3(signature = (blocks, thickness=1.0, density=1000.0, base=true, top_rotation=None, top_force=vec![0.0, 0.0], joints=None, gravity=9.81, live="horizontal_weight"))]
+    #[pyo3(signature = (blocks, thickness=1.0, density=1000.0, base=true, top_rotation=None, top_force=vec![0.0, 0.0], joints=None, gravity=9.81, live="horizontal_weight", top_vertical="free"))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         blocks: &Bound<'_, PyAny>,
@@ -282,6 +282,7 @@ impl PyModel {
         joints: Option<&Bound<'_, PyDict>>,
         gravity: f64,
         live: &str,
+        top_vertical: &str,
     ) -> PyResult<Self> {
         let blocks = rects_from(blocks, "blocks")?;
         if top_force.len() != 2 {
@@ -290,16 +291,26 @@ impl PyModel {
                 top_force.len()
             )));
         }
-        let top_force = (top_force[0], top_force[1]);
+        let vertical_held = match top_vertical {
+            "free" => false,
+            "held" => true,
+            o => {
+                return Err(InputError::new_err(format!(
+                    "top.vertical must be \"free\" or \"held\", got {o:?}"
+                )))
+            }
+        };
+        if vertical_held && top_rotation.is_none() {
+            return Err(InputError::new_err(
+                "top.vertical = \"held\" needs a top beam (top.rotation)",
+            ));
+        }
         let top = match top_rotation {
             None => None,
-            Some("fixed") => Some(TopBeam {
-                rotation_fixed: true,
-                force: [top_force.0, top_force.1],
-            }),
-            Some("free") => Some(TopBeam {
-                rotation_fixed: false,
-                force: [top_force.0, top_force.1],
+            Some(r @ ("fixed" | "free")) => Some(TopBeam {
+                rotation_fixed: r == "fixed",
+                force: [top_force[0], top_force[1]],
+                vertical_held,
             }),
             Some(o) => {
                 return Err(InputError::new_err(format!(

@@ -88,6 +88,8 @@ def test_example_block_counts() -> None:
     assert len(load_case(EXAMPLES / "ferris-tinloi-wall1.toml").model_kwargs["blocks"]) == 33
     assert len(load_case(EXAMPLES / "ferris-tinloi-wall2.toml").model_kwargs["blocks"]) == 55
     assert len(load_case(EXAMPLES / "stack-3-blocks.toml").model_kwargs["blocks"]) == 3
+    # J4D: 16 courses of 4.5 blocks, each course one half block and four whole ones
+    assert len(load_case(EXAMPLES / "j4d-shear-wall.toml").model_kwargs["blocks"]) == 80
 
 
 def test_default_case_is_wall1() -> None:
@@ -635,3 +637,21 @@ def test_run_case(tmp_path: Path) -> None:
     results = md.run_case(EXAMPLES / "single-block-sliding.toml")
     assert results.method == "static"
     assert results.status in ("collapse", "completed", "failed")
+
+
+def test_top_vertical(tmp_path: Path) -> None:
+    top = '\n[top]\nrotation = "fixed"\nforce = [0.0, -1000.0]\n'
+    assert load_text(tmp_path, MINIMAL + top).model_kwargs["top_vertical"] == "free"
+    case = load_text(tmp_path, MINIMAL + top + 'vertical = "held"\n')
+    assert case.model_kwargs["top_vertical"] == "held"
+    case.build_model()  # accepted by the core
+    message = input_error(tmp_path, MINIMAL + top + 'vertical = "fixed"\n')
+    assert "vertical" in message and "held" in message, message
+
+
+def test_held_beam_needs_a_beam_and_no_time_history() -> None:
+    with pytest.raises(md.InputError, match="top.vertical"):
+        md.Model([[0, 0, 1, 1]], top_vertical="held")
+    model = md.Model([[0, 0, 1, 1]], top_rotation="fixed", top_force=(0, -1e3), top_vertical="held")
+    with pytest.raises(md.InputError, match="held"):
+        model.simulate(duration=0.01)

@@ -90,6 +90,7 @@ def test_examples_carry_their_references() -> None:
         "stack-3-blocks": (0.2, 0.005),
         "ferris-tinloi-wall1": (0.6429, 0.01),
         "ferris-tinloi-wall2": (0.5800, 0.01),
+        "j4d-shear-wall": (57000.0, 0.15),
     }
     cases, skipped = validate.collect(EXAMPLES)
     found = {p.stem: (c.reference["collapse_multiplier"], c.reference["tolerance"]) for p, c in cases}
@@ -153,13 +154,14 @@ def test_validate_examples_static() -> None:
         "stack-3-blocks",
         "ferris-tinloi-wall1",
         "ferris-tinloi-wall2",
+        "j4d-shear-wall",
     }
     for name, cells in rows.items():
         assert cells[-1] == "pass", cells
         assert cells[3] == "-", cells  # the explicit solver was not run
     assert float(rows["ferris-tinloi-wall1"][2]) == pytest.approx(0.6429, rel=0.01)
     assert float(rows["ferris-tinloi-wall2"][2]) == pytest.approx(0.5800, rel=0.01)
-    assert "5 cases with a reference: 5 passed, 0 failed" in proc.stdout
+    assert "6 cases with a reference: 6 passed, 0 failed" in proc.stdout
     assert "skipped lact3-tilting-wall.toml: no [reference] table" in proc.stdout
 
 
