@@ -4,12 +4,12 @@ VENV := .venv
 PY := $(VENV)/bin/python
 export VIRTUAL_ENV := $(abspath $(VENV))
 
-.PHONY: demo test develop rust-test py-test bench clean
+.PHONY: demo test develop rust-test py-test fuzz fuzz-short bench clean
 
 $(VENV)/.deps: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install -q --upgrade pip
-	$(PY) -m pip install -q "maturin>=1.5,<2" "numpy>=1.21" "matplotlib>=3.5" "tqdm>=4.60" "meshio>=5" "pytest>=7"
+	$(PY) -m pip install -q "maturin>=1.5,<2" "numpy>=1.21" "matplotlib>=3.5" "tqdm>=4.60" "meshio>=5" "pytest>=7" "atheris>=2.3"
 	touch $@
 
 # Release build of the extension, installed into .venv (python sources are linked, not copied).
@@ -24,6 +24,20 @@ rust-test:
 
 py-test: develop
 	$(PY) -m pytest -q tests/python
+	$(MAKE) fuzz-short
+
+# Fuzzing of the case-file reader and model building (tests/fuzz/fuzz_case.py, atheris). The corpus grows
+# in out/fuzz-corpus (seeded with examples/); findings are written as out/fuzz/crash-* (or timeout-*, oom-*).
+FUZZ_TIME ?= 600
+FUZZ_FLAGS = -timeout=60 -rss_limit_mb=3072 -max_len=16384 -artifact_prefix=out/fuzz/
+fuzz: develop
+	mkdir -p out/fuzz out/fuzz-corpus
+	$(PY) tests/fuzz/fuzz_case.py out/fuzz-corpus examples tests/fuzz/seeds $(FUZZ_FLAGS) -max_total_time=$(FUZZ_TIME) -print_final_stats=1
+
+# 20 seconds, part of `make test`: a fresh corpus from examples/ only, so the run does not depend on earlier ones.
+fuzz-short: develop
+	rm -rf out/fuzz-short-corpus && mkdir -p out/fuzz out/fuzz-short-corpus
+	$(PY) tests/fuzz/fuzz_case.py out/fuzz-short-corpus examples tests/fuzz/seeds $(FUZZ_FLAGS) -max_total_time=20 -print_final_stats=1
 
 test: rust-test py-test
 

@@ -48,3 +48,21 @@ pub(crate) fn non_negative(what: &str, value: f64) -> Result<f64> {
         )))
     }
 }
+
+/// The largest number of increments (`analysis.steps`) a solver accepts. Each step stores a point
+/// of the curve and costs at least one solve; larger requests are refused before anything is
+/// allocated.
+pub const MAX_STEPS: usize = 1_000_000;
+
+/// Check that `analysis.steps` lies in `1..=MAX_STEPS`.
+pub(crate) fn check_steps(steps: usize) -> Result<()> {
+    if steps == 0 {
+        return Err(Error::input("analysis.steps must be at least 1"));
+    }
+    if steps > MAX_STEPS {
+        return Err(Error::input(format!(
+            "analysis.steps = {steps} is more than the limit of {MAX_STEPS} increments"
+        )));
+    }
+    Ok(())
+}

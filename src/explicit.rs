@@ -20,7 +20,7 @@
 //! interfaces with rayon (each interface writes only its own slot; the gather onto blocks is
 //! a separate pass).
 
-use crate::error::Error;
+use crate::error::{check_steps, Error};
 use crate::joint::{return_map, JointLaw, JointState, Section};
 use crate::model::{LiveLoad, Model};
 use crate::results::{Results, Status};
@@ -43,6 +43,14 @@ pub enum QsControl {
     Load,
     Displacement { max_displacement: f64 },
 }
+
+/// The largest number of threads of the interface loop (`analysis.threads`).
+pub const MAX_THREADS: usize = 1024;
+/// The largest number of time steps of one time history ([`simulate`]).
+pub const MAX_TIME_STEPS: usize = 1_000_000_000_000;
+/// The largest number of values a time history may record (displacements and velocities: 6 per
+/// block and record, 8 bytes each); larger requests are refused before allocating.
+pub const MAX_RECORDED_VALUES: usize = 250_000_000;
 
 /// Options of the quasi-static explicit analysis.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -240,11 +248,11 @@ impl<'a> Integrator<'a> {
         let dt = match dt {
             Some(dt) => {
                 if !(dt.is_finite() && dt > 0.0) {
-                    return Err(Error::input(format!("time_step must be a finite number > 0, got {dt}")));
+                    return Err(Error::input(format!("analysis.time_step must be a finite number > 0, got {dt}")));
                 }
                 if dt > crit {
                     return Err(Error::input(format!(
-                        "time_step = {dt:.3e} s exceeds the stability limit of this model, {crit:.3e} s"
+                        "analysis.time_step = {dt:.3e} s exceeds the stability limit of this model, {crit:.3e} s"
                     )));
                 }
                 dt
@@ -261,12 +269,15 @@ impl<'a> Integrator<'a> {
         };
         match damping {
             Damping::Local(a) if !(0.0..1.0).contains(&a) => {
-                return Err(Error::input(format!("local damping coefficient must lie in [0, 1), got {a}")))
+                return Err(Error::input(format!("analysis.damping_coefficient (local damping) must lie in [0, 1), got {a}")))
             }
             Damping::Viscous(c) if !(c.is_finite() && c >= 0.0) => {
-                return Err(Error::input(format!("viscous damping coefficient must be finite and >= 0, got {c}")))
+                return Err(Error::input(format!("analysis.damping_coefficient (viscous damping) must be finite and >= 0, got {c}")))
             }
             _ => {}
+        }
+        if threads > MAX_THREADS {
+            return Err(Error::input(format!("analysis.threads = {threads} is more than the limit of {MAX_THREADS}")));
         }
         let nb = model.n_blocks();
         let m = model.interfaces().len();
@@ -589,14 +600,15 @@ pub fn solve(model: &Model, opts: &ExplicitOptions) -> Result<Results, Error> {
 /// As [`solve`], calling `monitor` after each settled level (return false to stop).
 pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut(&Progress) -> bool) -> Result<Results, Error> {
     let start = Instant::now();
-    if opts.steps == 0 {
-        return Err(Error::input("analysis.steps must be at least 1"));
-    }
+    check_steps(opts.steps)?;
     if !(opts.tolerance > 0.0 && opts.tolerance < 1.0) {
-        return Err(Error::input(format!("tolerance must lie in (0, 1), got {}", opts.tolerance)));
+        return Err(Error::input(format!("analysis.tolerance must lie in (0, 1), got {}", opts.tolerance)));
     }
     if !(opts.unbalanced_ratio > 0.0 && opts.unbalanced_ratio < 1.0) {
-        return Err(Error::input(format!("unbalanced_ratio must lie in (0, 1), got {}", opts.unbalanced_ratio)));
+        return Err(Error::input(format!("analysis.unbalanced_ratio must lie in (0, 1), got {}", opts.unbalanced_ratio)));
+    }
+    if opts.max_steps_per_level == 0 {
+        return Err(Error::input("max_steps_per_level must be at least 1"));
     }
     model.check_supports()?;
     let nb = model.n_blocks();
@@ -936,8 +948,23 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
     ext(&mut s.f_ext, 0.0);
     s.interface_forces();
     s.accelerations();
-    let n_steps = (opts.duration / s.dt).ceil() as usize;
+    let n_steps_f = (opts.duration / s.dt).ceil();
+    if !(n_steps_f <= MAX_TIME_STEPS as f64) {
+        return Err(Error::input(format!(
+            "duration = {} s with a time step of {:.3e} s is {n_steps_f:.0} time steps, more than the limit of {MAX_TIME_STEPS}",
+            opts.duration, s.dt
+        )));
+    }
+    let n_steps = n_steps_f as usize;
     let cap = n_steps / opts.record_every + 2;
+    // two histories (displacements, velocities) of 3 values per block and record
+    let stored = 6.0 * cap as f64 * nb as f64;
+    if stored > MAX_RECORDED_VALUES as f64 {
+        return Err(Error::input(format!(
+            "recording {cap} states of {nb} blocks (duration {} s, time step {:.3e} s, record_every {}) stores {stored:.0} numbers, more than the limit of {MAX_RECORDED_VALUES}: raise record_every or shorten the duration",
+            opts.duration, s.dt, opts.record_every
+        )));
+    }
     let mut h = TimeHistory {
         status: Status::Completed,
         error: None,

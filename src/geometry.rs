@@ -42,22 +42,43 @@ impl Rect {
     pub fn contains_strictly(&self, p: [f64; 2]) -> bool {
         p[0] > self.x0 && p[0] < self.x1 && p[1] > self.y0 && p[1] < self.y1
     }
+    /// "[x0, y0, x1, y1]" for messages, very large or small coordinates in exponent notation.
+    pub fn label(&self) -> String {
+        format!(
+            "[{}, {}, {}, {}]",
+            coord(self.x0),
+            coord(self.y0),
+            coord(self.x1),
+            coord(self.y1)
+        )
+    }
     /// Checks that the corners are finite and the sizes positive; `what` names the block.
     pub fn validate(&self, what: &str) -> Result<()> {
         for v in [self.x0, self.y0, self.x1, self.y1] {
             if !v.is_finite() {
                 return Err(Error::input(format!(
-                    "{what}: coordinate {v} is not finite"
+                    "{what} {}: coordinate {v} is not finite",
+                    self.label()
                 )));
             }
         }
         if self.x1 <= self.x0 || self.y1 <= self.y0 {
             return Err(Error::input(format!(
-                "{what}: [{}, {}, {}, {}] has zero or negative size (need x0 < x1 and y0 < y1)",
-                self.x0, self.y0, self.x1, self.y1
+                "{what} {} has zero or negative size (need x0 < x1 and y0 < y1)",
+                self.label()
             )));
         }
         Ok(())
+    }
+}
+
+/// A coordinate for messages: as written for ordinary numbers (`0.175`), in exponent notation
+/// beyond 1e15 or below 1e-4 (`1e300`, not three hundred digits).
+fn coord(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e15).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
     }
 }
 
@@ -89,14 +110,15 @@ pub(crate) const REL_TOL: f64 = 1e-9;
 /// Courses alternate between a half-block start and a whole-block start; a block that
 /// would cross the end of the wall is cut there.
 pub fn running_bond(p: &RunningBond) -> Result<Vec<Rect>> {
-    positive("running_bond.block_length", p.block_length)?;
-    positive("running_bond.block_height", p.block_height)?;
-    positive("running_bond.length", p.length)?;
+    positive("geometry.running_bond.block_length", p.block_length)?;
+    positive("geometry.running_bond.block_height", p.block_height)?;
+    positive("geometry.running_bond.length", p.length)?;
     if p.courses == 0 {
-        return Err(Error::input("running_bond.courses must be at least 1"));
+        return Err(Error::input("geometry.running_bond.courses must be at least 1"));
     }
     let estimate = (p.length / p.block_length + 2.0) * p.courses as f64;
-    check_count("running_bond", estimate)?;
+    check_count("geometry.running_bond", estimate)?;
+    check_height("geometry.running_bond", p.block_height, p.courses)?;
     let tol = REL_TOL * p.length.max(p.block_length);
     let mut out = Vec::with_capacity(estimate as usize);
     for k in 0..p.courses {
@@ -121,20 +143,21 @@ pub fn running_bond(p: &RunningBond) -> Result<Vec<Rect>> {
             x = x1;
         }
     }
-    remove_openings(out, &p.openings, "running_bond")
+    remove_openings(out, &p.openings, "geometry.running_bond")
 }
 
 /// The blocks of a wall given course by course, bottom to top. Each entry is a length in units
 /// of `block_length`; a negative entry is a gap of that length.
 pub fn pattern(block_length: f64, block_height: f64, rows: &[Vec<f64>]) -> Result<Vec<Rect>> {
-    positive("pattern.block_length", block_length)?;
-    positive("pattern.block_height", block_height)?;
+    positive("geometry.pattern.block_length", block_length)?;
+    positive("geometry.pattern.block_height", block_height)?;
     if rows.is_empty() {
         return Err(Error::input(
-            "pattern.rows is empty: give at least one course",
+            "geometry.pattern.rows is empty: give at least one course",
         ));
     }
-    check_count("pattern", rows.iter().map(|r| r.len() as f64).sum())?;
+    check_count("geometry.pattern", rows.iter().map(|r| r.len() as f64).sum())?;
+    check_height("geometry.pattern", block_height, rows.len())?;
     let mut out = Vec::new();
     for (k, row) in rows.iter().enumerate() {
         let y0 = k as f64 * block_height;
@@ -142,10 +165,15 @@ pub fn pattern(block_length: f64, block_height: f64, rows: &[Vec<f64>]) -> Resul
         for (j, &e) in row.iter().enumerate() {
             if !e.is_finite() || e == 0.0 {
                 return Err(Error::input(format!(
-                    "pattern.rows[{k}][{j}] must be a finite non-zero length, got {e}"
+                    "geometry.pattern.rows[{k}][{j}] must be a finite non-zero length, got {e}"
                 )));
             }
             let w = e.abs() * block_length;
+            if !(x + w).is_finite() {
+                return Err(Error::input(format!(
+                    "geometry.pattern.rows[{k}][{j}]: course {k} is longer than the largest finite number"
+                )));
+            }
             if e > 0.0 {
                 out.push(Rect::new(x, y0, x + w, y0 + block_height));
             }
@@ -167,6 +195,16 @@ fn remove_openings(blocks: Vec<Rect>, openings: &[Rect], what: &str) -> Result<V
 
 /// The largest number of blocks a model may have; larger requests are refused before allocating.
 pub const MAX_BLOCKS: usize = 20_000_000;
+
+/// Refuses walls whose height `courses * block_height` is not a finite number.
+fn check_height(what: &str, block_height: f64, courses: usize) -> Result<()> {
+    if !(block_height * courses as f64).is_finite() {
+        return Err(Error::input(format!(
+            "{what}: {courses} courses of block_height {block_height} m make a wall higher than the largest finite number"
+        )));
+    }
+    Ok(())
+}
 
 fn check_count(what: &str, estimate: f64) -> Result<()> {
     if !(estimate <= MAX_BLOCKS as f64) {

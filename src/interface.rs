@@ -215,7 +215,20 @@ pub fn detect(
     let tol = REL_TOL * scale.max(1.0) * 10.0;
     let nb = rects.len() as f64;
     // Cells about twice the mean block size: a few blocks a cell.
-    let cell = (2.0 * (sw / nb).max(sh / nb)).max(tol * 10.0);
+    let mut cell = (2.0 * (sw / nb).max(sh / nb)).max(tol * 10.0);
+    // A few blocks much larger than the mean (a long lintel over thousands of small blocks) would
+    // each cover millions of cells: coarsen the grid until it holds O(n) entries, so that memory
+    // stays linear in the number of blocks whatever their sizes.
+    let entries = |cell: f64| -> f64 {
+        let span = |a: f64, b: f64| ((b + tol) / cell).floor() - ((a - tol) / cell).floor() + 1.0;
+        rects
+            .iter()
+            .map(|r| span(r.x0 - xmin, r.x1 - xmin) * span(r.y0 - ymin, r.y1 - ymin))
+            .sum()
+    };
+    while entries(cell) > 16.0 * nb + 1024.0 {
+        cell *= 2.0;
+    }
     let cell_of = |x: f64, lo: f64| ((x - lo) / cell).floor() as i64;
     let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::with_capacity(rects.len());
     for (i, r) in rects.iter().enumerate() {

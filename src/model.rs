@@ -221,6 +221,7 @@ impl Model {
             .zip(&mass)
             .map(|(r, m)| m * (r.width().powi(2) + r.height().powi(2)) / 12.0)
             .collect();
+        check_masses(&mass, &inertia, |i| block_name(i, n_wall, base, top, &rects))?;
         // the base and the top beam carry no self-weight: the beam's load is its `force`
         let weight: Vec<f64> = (0..nb)
             .map(|i| {
@@ -231,6 +232,14 @@ impl Model {
                 }
             })
             .collect();
+        if let Some(i) = weight.iter().position(|w| !w.is_finite()) {
+            return Err(Error::input(format!(
+                "{}: its weight (mass {:e} kg times loads.gravity = {} m/s2) is not finite",
+                block_name(i, n_wall, base, top, &rects),
+                mass[i],
+                spec.gravity
+            )));
+        }
         let sections = interfaces.iter().map(|it| Section::new(it.l, s)).collect();
         let mut fixed = vec![false; 3 * nb];
         if let Some(b) = base {
@@ -448,6 +457,20 @@ impl Model {
     }
 }
 
+/// Refuses a block whose mass or rotary inertia is zero (it underflowed) or not finite (it
+/// overflowed): the explicit solver divides by them and the weights are loads.
+fn check_masses(mass: &[f64], inertia: &[f64], name: impl Fn(usize) -> String) -> Result<()> {
+    for (i, (&m, &j)) in mass.iter().zip(inertia).enumerate() {
+        if !(m.is_finite() && m > 0.0 && j.is_finite() && j > 0.0) {
+            return Err(Error::input(format!(
+                "{}: its mass ({m:e} kg) or rotary inertia ({j:e} kg m2) is zero or not finite: check geometry.density, geometry.thickness and the block's size",
+                name(i)
+            )));
+        }
+    }
+    Ok(())
+}
+
 fn block_name(
     i: usize,
     n_wall: usize,
@@ -460,8 +483,7 @@ fn block_name(
     } else if Some(i) == top {
         "the top beam".into()
     } else if i < n_wall {
-        let r = &rects[i];
-        format!("block {i} [{}, {}, {}, {}]", r.x0, r.y0, r.x1, r.y1)
+        format!("block {i} {}", rects[i].label())
     } else {
         format!("block {i}")
     }

@@ -16,7 +16,7 @@
 //!
 //! Joint histories are committed only at converged steps, so a failed step leaves no trace.
 
-use crate::error::Error;
+use crate::error::{check_steps, Error};
 use crate::joint::{return_map, tangent_near_limit, JointState};
 use crate::linalg::SparseLu;
 use crate::model::{LiveLoad, Model};
@@ -132,6 +132,9 @@ struct Solver<'a> {
 
 const NONE: u32 = u32::MAX;
 
+/// The largest `max_iterations` accepted (Newton iterations of one step before it is cut).
+pub const MAX_ITERATIONS: usize = 100_000;
+
 /// Fraction of the elastic joint stiffness added to every joint's tangent in the Newton matrix
 /// (never to the residual, so converged states are exact). Joints that carry nothing (open)
 /// have a zero tangent; on a wall with openings and corbels (LACT3) the unstabilized matrix
@@ -142,12 +145,10 @@ const NEWTON_STABILIZATION: f64 = 1e-6;
 
 impl<'a> Solver<'a> {
     fn new(model: &'a Model, opts: &StaticOptions) -> Result<Self, Error> {
-        if opts.steps == 0 {
-            return Err(Error::input("analysis.steps must be at least 1"));
-        }
+        check_steps(opts.steps)?;
         if !(opts.tolerance > 0.0 && opts.tolerance < 1.0) {
             return Err(Error::input(format!(
-                "analysis tolerance must lie in (0, 1), got {}",
+                "analysis.tolerance must lie in (0, 1), got {}",
                 opts.tolerance
             )));
         }
@@ -159,6 +160,12 @@ impl<'a> Solver<'a> {
         }
         if opts.max_iterations == 0 {
             return Err(Error::input("max_iterations must be at least 1"));
+        }
+        if opts.max_iterations > MAX_ITERATIONS {
+            return Err(Error::input(format!(
+                "max_iterations = {} is more than the limit of {MAX_ITERATIONS}",
+                opts.max_iterations
+            )));
         }
         if let Control::Displacement { max_displacement } = opts.control {
             if !(max_displacement.is_finite() && max_displacement != 0.0) {

@@ -191,3 +191,139 @@ fn generators_give_the_documented_walls() {
         b[2]
     );
 }
+
+#[test]
+fn blocks_name_their_coordinates() {
+    refused(one(vec![Rect::new(0.0, 0.0, 0.0, 1.0)]), "block 0 [0, 0, 0, 1]");
+    refused(
+        one(vec![Rect::new(0.0, 0.0, 1.0, 1.0), Rect::new(0.0, 1.0, f64::INFINITY, 2.0)]),
+        "block 1 [0, 1, inf, 2]",
+    );
+}
+
+#[test]
+fn masses_that_overflow_or_underflow_are_refused() {
+    // density * area * thickness overflows
+    refused(
+        ModelSpec {
+            density: 1e300,
+            thickness: 1e10,
+            ..one(vec![Rect::new(0.0, 0.0, 1.0, 1.0)])
+        },
+        "block 0",
+    );
+    // a block of 1e-170 m: its area underflows to zero
+    refused(one(vec![Rect::new(0.0, 0.0, 1e-170, 1e-170)]), "block 0");
+    // the weight overflows
+    refused(
+        ModelSpec {
+            gravity: 1e305,
+            density: 1e10,
+            ..one(vec![Rect::new(0.0, 0.0, 1.0, 1.0)])
+        },
+        "loads.gravity",
+    );
+}
+
+fn a_model() -> Model {
+    Model::new(one(vec![Rect::new(0.0, 0.0, 0.4, 0.2)])).unwrap()
+}
+
+fn input_message<T: std::fmt::Debug>(r: Result<T, Error>) -> String {
+    match r {
+        Err(Error::Input(m)) => m,
+        other => panic!("expected an input error, got {other:?}"),
+    }
+}
+
+#[test]
+fn absurd_step_counts_are_refused_before_running() {
+    use masonry_dem::error::MAX_STEPS;
+    use masonry_dem::explicit::{self, ExplicitOptions};
+    let m = a_model();
+    for steps in [0usize, MAX_STEPS + 1, 1_000_000_000_000] {
+        let msg = input_message(solve(&m, &StaticOptions { steps, ..StaticOptions::default() }));
+        assert!(msg.contains("analysis.steps"), "{msg}");
+        let msg = input_message(explicit::solve(&m, &ExplicitOptions { steps, ..ExplicitOptions::default() }));
+        assert!(msg.contains("analysis.steps"), "{msg}");
+    }
+    let msg = input_message(solve(&m, &StaticOptions { steps: 1_000_000_000_000, ..StaticOptions::default() }));
+    assert!(msg.contains("1000000000000"), "the message names the count: {msg}");
+}
+
+#[test]
+fn solver_options_name_their_key() {
+    use masonry_dem::explicit::{self, Damping, ExplicitOptions};
+    use masonry_dem::static_solver::Control;
+    let m = a_model();
+    let st = |o: StaticOptions| input_message(solve(&m, &o));
+    let d = StaticOptions::default();
+    assert!(st(StaticOptions { tolerance: 0.0, ..d }).contains("analysis.tolerance"));
+    assert!(st(StaticOptions { tolerance: f64::NAN, ..d }).contains("analysis.tolerance"));
+    for x in [0.0, f64::NAN, f64::INFINITY] {
+        let o = StaticOptions { control: Control::Displacement { max_displacement: x }, ..d };
+        assert!(st(o).contains("analysis.max_displacement"));
+    }
+    let ex = |o: ExplicitOptions| input_message(explicit::solve(&m, &o));
+    let e = ExplicitOptions::default();
+    for dt in [0.0, -1.0, f64::NAN, 1e9] {
+        assert!(ex(ExplicitOptions { time_step: Some(dt), ..e }).contains("analysis.time_step"));
+    }
+    assert!(ex(ExplicitOptions { damping: Damping::Local(1.0), ..e }).contains("analysis.damping_coefficient"));
+    assert!(ex(ExplicitOptions { damping: Damping::Viscous(-1.0), ..e }).contains("analysis.damping_coefficient"));
+    assert!(ex(ExplicitOptions { unbalanced_ratio: 2.0, ..e }).contains("analysis.unbalanced_ratio"));
+    assert!(ex(ExplicitOptions { threads: 1 << 30, ..e }).contains("analysis.threads"));
+}
+
+#[test]
+fn a_time_history_too_large_to_record_is_refused_before_allocating() {
+    use masonry_dem::explicit::{simulate, DynamicOptions};
+    let m = a_model();
+    // about 1e16 time steps: refused by count
+    let msg = input_message(simulate(&m, &DynamicOptions { duration: 1e12, ..DynamicOptions::default() }));
+    assert!(msg.contains("time steps"), "{msg}");
+    // recording every step of a long run would store too many numbers
+    let dt = masonry_dem::explicit::critical_time_step(&m) * 0.5;
+    let msg = input_message(simulate(
+        &m,
+        &DynamicOptions { duration: 1e9 * dt, time_step: Some(dt), ..DynamicOptions::default() },
+    ));
+    assert!(msg.contains("record_every"), "{msg}");
+}
+
+#[test]
+fn generator_keys_are_case_file_keys() {
+    let p = RunningBond {
+        block_length: 0.4,
+        block_height: f64::NAN,
+        courses: 2,
+        length: 2.0,
+        first_course: FirstCourse::Half,
+        openings: vec![],
+    };
+    assert!(matches!(running_bond(&p), Err(Error::Input(m)) if m.contains("geometry.running_bond.block_height")));
+    let tall = RunningBond { block_height: 1e300, courses: 1_000_000_000, length: 0.4, ..p.clone() };
+    assert!(matches!(running_bond(&tall), Err(Error::Input(m)) if m.contains("geometry.running_bond")));
+    let bad_opening = RunningBond { block_height: 0.2, openings: vec![Rect::new(1.0, 0.0, 0.0, 1.0)], ..p.clone() };
+    assert!(matches!(running_bond(&bad_opening), Err(Error::Input(m)) if m.contains("geometry.running_bond.openings[0]")));
+    // 10^9 blocks: refused by count before allocating
+    let huge = RunningBond { block_height: 0.2, length: 4e8, courses: 1000, ..p };
+    assert!(matches!(running_bond(&huge), Err(Error::Input(m)) if m.contains("blocks") && m.contains("limit")));
+    assert!(
+        matches!(pattern(0.4, 0.2, &[vec![1e308; 5]]), Err(Error::Input(m)) if m.contains("geometry.pattern.rows[0][4]"))
+    );
+}
+
+#[test]
+fn one_huge_block_over_many_small_ones_builds_in_linear_memory() {
+    // 20,000 blocks of 1 mm under one block of 10 km: on a grid of cells the size of the mean
+    // block, the large block alone would cover about 10^8 cells.
+    let mut blocks: Vec<Rect> = (0..20_000)
+        .map(|i| Rect::new(i as f64 * 1e-3, 0.0, (i + 1) as f64 * 1e-3, 1e-3))
+        .collect();
+    blocks.push(Rect::new(0.0, 1e-3, 1e4, 1e4));
+    let start = std::time::Instant::now();
+    let m = Model::new(one(blocks)).unwrap();
+    assert_eq!(m.n_wall(), 20_001);
+    assert!(start.elapsed().as_secs_f64() < 30.0, "{:?}", start.elapsed());
+}

@@ -97,6 +97,25 @@ def _quote(value: Any) -> str:
     return json.dumps(value) if isinstance(value, str) else repr(value)
 
 
+def _int_text(value: int) -> str:
+    """An integer for a message: its digits, or how many there are when it is long."""
+    return str(value) if abs(value) < 10**30 else f"an integer of {len(str(abs(value)))} digits"
+
+
+def _got(value: Any) -> str:
+    """'got <type> <value>' for a type error: the TOML type, and the value itself when it is short."""
+    name = _type_name(value)
+    if isinstance(value, (str, bool)) or (_is_number(value) and not isinstance(value, int)):
+        shown = _quote(value) if not isinstance(value, bool) else ("true" if value else "false")
+    elif isinstance(value, int):
+        shown = _int_text(value)
+    else:
+        return f"got {name}"
+    if len(shown) > 40:
+        shown = shown[:37] + "..."
+    return f"got {name} {shown}"
+
+
 def _positive(x: float) -> Optional[str]:
     return None if x > 0 else "must be > 0"
 
@@ -135,8 +154,8 @@ class _Table:
         return InputError(f"{self.source}: {message}")
 
     def where(self, key: str) -> str:
-        """'[path] key' (or just 'key' at the top level), the prefix of a message about one value."""
-        return f"[{self.path}] {key}" if self.path else key
+        """The dotted key, 'path.key' (or just 'key' at the top level), the prefix of a message about one value."""
+        return f"{self.path}.{key}" if self.path else key
 
     def key_error(self, key: str, message: str) -> InputError:
         return self.error(f"{self.where(key)}: {message}")
@@ -171,14 +190,17 @@ class _Table:
 
     def _number_value(self, label: str, value: Any, check: Optional[Callable[[float], Optional[str]]] = None) -> float:
         if not _is_number(value):
-            raise self.error(f"{label}: expected a number, got {_type_name(value)}")
-        x = float(value)
+            raise self.error(f"{label}: expected a number, {_got(value)}")
+        try:
+            x = float(value)
+        except OverflowError:  # an integer beyond the range of a float
+            raise self.error(f"{label}: expected a finite number, {_got(value)}") from None
         if not math.isfinite(x):
             raise self.error(f"{label}: expected a finite number, got {value}")
         if check is not None:
             problem = check(x)
             if problem:
-                raise self.error(f"{label}: {problem}, got {value}")
+                raise self.error(f"{label}: {problem}, got {_int_text(value) if isinstance(value, int) else value}")
         return x
 
     def integer(
@@ -189,11 +211,11 @@ class _Table:
         if value is None:
             return int(default)  # type: ignore[arg-type]
         if isinstance(value, bool) or not isinstance(value, int):
-            raise self.key_error(key, f"expected an integer, got {_type_name(value)}")
+            raise self.key_error(key, f"expected an integer, {_got(value)}")
         if minimum is not None and value < minimum:
-            raise self.key_error(key, f"must be >= {minimum}, got {value}")
+            raise self.key_error(key, f"must be >= {minimum}, got {_int_text(value)}")
         if value > maximum:
-            raise self.key_error(key, f"must be <= {maximum}, got {value}")
+            raise self.key_error(key, f"must be <= {maximum}, got {_int_text(value)}")
         return value
 
     def string(self, key: str, default: Optional[str] = None, choices: Optional[Sequence[str]] = None) -> str:
@@ -202,7 +224,7 @@ class _Table:
         if value is None:
             return str(default)
         if not isinstance(value, str):
-            raise self.key_error(key, f"expected a string, got {_type_name(value)}")
+            raise self.key_error(key, f"expected a string, {_got(value)}")
         if choices is not None and value not in choices:
             options = ", ".join(_quote(c) for c in choices)
             raise self.key_error(key, f"expected one of {options}, got {_quote(value)}")
@@ -391,6 +413,10 @@ def parse_case(text: str, source: str = "<string>", default_title: str = "untitl
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"{source}: invalid TOML: {exc}") from None
+    except ValueError as exc:  # tomllib lets int() refuse integers of more than 4300 digits
+        raise InputError(f"{source}: invalid TOML: {exc}") from None
+    except RecursionError:  # arrays or inline tables nested a thousand deep
+        raise InputError(f"{source}: invalid TOML: arrays or tables nested too deep") from None
     return case_from_dict(data, source=source, default_title=default_title)
 
 
@@ -528,7 +554,7 @@ def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_titl
         else:
             blocks = np.asarray(geometry["blocks"], dtype=np.float64)
     except MasonryError as exc:
-        raise type(exc)(f"{source}: [geometry.{kind}] {exc}") from exc
+        raise type(exc)(f"{source}: {exc}") from exc  # the core names the key (geometry.<kind>.<key>)
 
     model_kwargs: Dict[str, Any] = dict(
         blocks=blocks,

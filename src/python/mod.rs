@@ -175,17 +175,17 @@ fn running_bond<'py>(
         "full" => FirstCourse::Full,
         o => {
             return Err(InputError::new_err(format!(
-                "running_bond.first_course must be \"half\" or \"full\", got {o:?}"
+                "geometry.running_bond.first_course must be \"half\" or \"full\", got {o:?}"
             )))
         }
     };
     if courses < 1 {
         return Err(InputError::new_err(format!(
-            "running_bond.courses must be at least 1, got {courses}"
+            "geometry.running_bond.courses must be at least 1, got {courses}"
         )));
     }
     let openings = match openings {
-        Some(o) if !o.is_none() => rects_from(o, "running_bond.openings")?,
+        Some(o) if !o.is_none() => rects_from(o, "geometry.running_bond.openings")?,
         _ => vec![],
     };
     let p = RunningBond {

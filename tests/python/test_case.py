@@ -269,18 +269,18 @@ def test_unknown_key_suggests(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     "old, new, expected",
     [
-        ("courses = 6", 'courses = "6"', "[geometry.running_bond] courses: expected an integer, got string"),
-        ("courses = 6", "courses = 6.0", "[geometry.running_bond] courses: expected an integer, got float"),
-        ("courses = 6", "courses = true", "[geometry.running_bond] courses: expected an integer, got boolean"),
-        ("length = 2.0", "length = true", "[geometry.running_bond] length: expected a number, got boolean"),
-        ("length = 2.0", 'length = "2.0"', "[geometry.running_bond] length: expected a number, got string"),
-        ("length = 2.0", "length = [2.0]", "[geometry.running_bond] length: expected a number, got array"),
-        ("thickness = 1.0", "thickness = {a = 1}", "[geometry] thickness: expected a number, got table"),
-        ("density = 1000.0", "density = 1979-05-27", "[geometry] density: expected a number, got date"),
+        ("courses = 6", 'courses = "6"', "geometry.running_bond.courses: expected an integer, got string"),
+        ("courses = 6", "courses = 6.0", "geometry.running_bond.courses: expected an integer, got float"),
+        ("courses = 6", "courses = true", "geometry.running_bond.courses: expected an integer, got boolean"),
+        ("length = 2.0", "length = true", "geometry.running_bond.length: expected a number, got boolean"),
+        ("length = 2.0", 'length = "2.0"', "geometry.running_bond.length: expected a number, got string"),
+        ("length = 2.0", "length = [2.0]", "geometry.running_bond.length: expected a number, got array"),
+        ("thickness = 1.0", "thickness = {a = 1}", "geometry.thickness: expected a number, got table"),
+        ("density = 1000.0", "density = 1979-05-27", "geometry.density: expected a number, got date"),
         (
             'first_course = "half"',
             "first_course = 1",
-            "[geometry.running_bond] first_course: expected a string, got integer",
+            "geometry.running_bond.first_course: expected a string, got integer",
         ),
         ('title = "wall"', "title = 3", "title: expected a string, got integer"),
         ("format = 1", 'format = "1"', "format: expected an integer, got string"),
@@ -296,18 +296,18 @@ def test_wrong_type_is_named(tmp_path: Path, old: str, new: str, expected: str) 
 @pytest.mark.parametrize(
     "extra, expected",
     [
-        ("[joints]\nfriction = true\n", "[joints] friction: expected a number, got boolean"),
-        ("[joints.head]\ncohesion = '0'\n", "[joints.head] cohesion: expected a number, got string"),
-        ("[joints]\nbed = 0.5\n", "[joints] bed: expected a table, got float"),
-        ("[loads]\ngravity = false\n", "[loads] gravity: expected a number, got boolean"),
-        ("[loads]\nlive = 1\n", "[loads] live: expected a string, got integer"),
-        ("[analysis]\nsteps = 10.5\n", "[analysis] steps: expected an integer, got float"),
-        ("[analysis]\nmax_displacement = '2mm'\n", "[analysis] max_displacement: expected a number, got string"),
-        ("[analysis]\nmethod = true\n", "[analysis] method: expected a string, got boolean"),
-        ("[base]\nkind = false\n", "[base] kind: expected a string, got boolean"),
-        ("[top]\nforce = 5.0\n", "[top] force: expected an array, got float"),
-        ("[top]\nforce = [1.0]\n", "[top] force: expected 2 numbers [Fx, Fy], got 1"),
-        ("[top]\nforce = [1.0, 'a']\n", "[top] force[1]: expected a number, got string"),
+        ("[joints]\nfriction = true\n", "joints.friction: expected a number, got boolean"),
+        ("[joints.head]\ncohesion = '0'\n", "joints.head.cohesion: expected a number, got string"),
+        ("[joints]\nbed = 0.5\n", "joints.bed: expected a table, got float"),
+        ("[loads]\ngravity = false\n", "loads.gravity: expected a number, got boolean"),
+        ("[loads]\nlive = 1\n", "loads.live: expected a string, got integer"),
+        ("[analysis]\nsteps = 10.5\n", "analysis.steps: expected an integer, got float"),
+        ("[analysis]\nmax_displacement = '2mm'\n", "analysis.max_displacement: expected a number, got string"),
+        ("[analysis]\nmethod = true\n", "analysis.method: expected a string, got boolean"),
+        ("[base]\nkind = false\n", "base.kind: expected a string, got boolean"),
+        ("[top]\nforce = 5.0\n", "top.force: expected an array, got float"),
+        ("[top]\nforce = [1.0]\n", "top.force: expected 2 numbers [Fx, Fy], got 1"),
+        ("[top]\nforce = [1.0, 'a']\n", "top.force[1]: expected a number, got string"),
     ],
 )
 def test_wrong_type_in_tables(tmp_path: Path, extra: str, expected: str) -> None:
@@ -319,7 +319,7 @@ def test_top_level_table_type(tmp_path: Path) -> None:
     message = input_error(tmp_path, "format = 1\ngeometry = 3\n")
     assert "geometry: expected a table, got integer" in message
     message = input_error(tmp_path, "format = 1\n[geometry]\nrunning_bond = 3\n")
-    assert "[geometry] running_bond: expected a table, got integer" in message
+    assert "geometry.running_bond: expected a table, got integer" in message
     message = input_error(tmp_path, "loads = [1]\n" + MINIMAL)
     assert "loads: expected a table, got array" in message
 
@@ -327,17 +327,17 @@ def test_top_level_table_type(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     "blocks, expected",
     [
-        ("blocks = 1", "[geometry] blocks: expected an array, got integer"),
-        ("blocks = []", "[geometry] blocks: expected at least one block"),
-        ("blocks = [[0, 0, 1]]", "[geometry] blocks[0]: expected 4 numbers [x0, y0, x1, y1], got 3"),
+        ("blocks = 1", "geometry.blocks: expected an array, got integer"),
+        ("blocks = []", "geometry.blocks: expected at least one block"),
+        ("blocks = [[0, 0, 1]]", "geometry.blocks[0]: expected 4 numbers [x0, y0, x1, y1], got 3"),
         (
             "blocks = [[0, 0, 1, 1], 5]",
-            "[geometry] blocks[1]: expected an array of 4 numbers [x0, y0, x1, y1], got integer",
+            "geometry.blocks[1]: expected an array of 4 numbers [x0, y0, x1, y1], got integer",
         ),
-        ("blocks = [[0, 0, 1, 1], [1, 0, 2, true]]", "[geometry] blocks[1][3]: expected a number, got boolean"),
-        ("blocks = [[0, 0, 1, 'a']]", "[geometry] blocks[0][3]: expected a number, got string"),
-        ("blocks = [[1, 0, 0, 1]]", "[geometry] blocks[0]: expected x1 > x0 and y1 > y0"),
-        ("blocks = [[0, 0, 1, nan]]", "[geometry] blocks[0][3]: expected a finite number, got nan"),
+        ("blocks = [[0, 0, 1, 1], [1, 0, 2, true]]", "geometry.blocks[1][3]: expected a number, got boolean"),
+        ("blocks = [[0, 0, 1, 'a']]", "geometry.blocks[0][3]: expected a number, got string"),
+        ("blocks = [[1, 0, 0, 1]]", "geometry.blocks[0]: expected x1 > x0 and y1 > y0"),
+        ("blocks = [[0, 0, 1, nan]]", "geometry.blocks[0][3]: expected a finite number, got nan"),
     ],
 )
 def test_explicit_blocks(tmp_path: Path, blocks: str, expected: str) -> None:
@@ -347,18 +347,18 @@ def test_explicit_blocks(tmp_path: Path, blocks: str, expected: str) -> None:
 
 def test_openings_and_rows(tmp_path: Path) -> None:
     message = input_error(tmp_path, RUNNING_BOND + "openings = [[0.6, 0.5, 1.0]]\n")
-    assert "[geometry.running_bond] openings[0]: expected 4 numbers [x0, y0, x1, y1], got 3" in message
+    assert "geometry.running_bond.openings[0]: expected 4 numbers [x0, y0, x1, y1], got 3" in message
     message = input_error(tmp_path, RUNNING_BOND + "openings = 'none'\n")
-    assert "[geometry.running_bond] openings: expected an array, got string" in message
+    assert "geometry.running_bond.openings: expected an array, got string" in message
     pattern = MINIMAL.replace(
         "blocks = [[0.0, 0.0, 0.4, 0.175]]", "[geometry.pattern]\nblock_length = 0.4\nblock_height = 0.2\nrows = ROWS"
     )
     message = input_error(tmp_path, pattern.replace("ROWS", "[[1, 'x']]"))
-    assert "[geometry.pattern] rows[0][1]: expected a number, got string" in message
+    assert "geometry.pattern.rows[0][1]: expected a number, got string" in message
     message = input_error(tmp_path, pattern.replace("ROWS", "[1, 2]"))
-    assert "[geometry.pattern] rows[0]: expected an array of numbers, got integer" in message
+    assert "geometry.pattern.rows[0]: expected an array of numbers, got integer" in message
     message = input_error(tmp_path, pattern.replace("ROWS", "[[1, 0]]"))
-    assert "[geometry.pattern] rows[0][1]: must not be 0" in message
+    assert "geometry.pattern.rows[0][1]: must not be 0" in message
     message = input_error(tmp_path, pattern.replace("rows = ROWS", ""))
     assert "missing key 'rows' in [geometry.pattern]" in message
 
@@ -411,16 +411,16 @@ def test_bad_format(tmp_path: Path, text: str, expected: str) -> None:
 @pytest.mark.parametrize(
     "extra, expected",
     [
-        ("[base]\nkind = 'free'\n", '[base] kind: expected one of "fixed", "none", got "free"'),
-        ("[top]\nrotation = 'pinned'\n", '[top] rotation: expected one of "fixed", "free", got "pinned"'),
-        ("[loads]\nlive = 'wind'\n", '[loads] live: expected one of "horizontal_weight", "top_horizontal", got "wind"'),
-        ("[analysis]\nmethod = 'explicit'\n", '[analysis] method: expected one of "static", "dynamic", got "explicit"'),
+        ("[base]\nkind = 'free'\n", 'base.kind: expected one of "fixed", "none", got "free"'),
+        ("[top]\nrotation = 'pinned'\n", 'top.rotation: expected one of "fixed", "free", got "pinned"'),
+        ("[loads]\nlive = 'wind'\n", 'loads.live: expected one of "horizontal_weight", "top_horizontal", got "wind"'),
+        ("[analysis]\nmethod = 'explicit'\n", 'analysis.method: expected one of "static", "dynamic", got "explicit"'),
         (
             "[analysis]\ncontrol = 'arc-length'\n",
-            '[analysis] control: expected one of "load", "displacement", got "arc-length"',
+            'analysis.control: expected one of "load", "displacement", got "arc-length"',
         ),
-        ("[analysis]\ncontrol_point = 'middle'\n", '[analysis] control_point: expected one of "top", got "middle"'),
-        ("[analysis]\ncontrol_point = 3\n", "[analysis] control_point: expected a string, got integer"),
+        ("[analysis]\ncontrol_point = 'middle'\n", 'analysis.control_point: expected one of "top", got "middle"'),
+        ("[analysis]\ncontrol_point = 3\n", "analysis.control_point: expected a string, got integer"),
     ],
 )
 def test_bad_enum(tmp_path: Path, extra: str, expected: str) -> None:
@@ -429,18 +429,18 @@ def test_bad_enum(tmp_path: Path, extra: str, expected: str) -> None:
 
 def test_bad_first_course(tmp_path: Path) -> None:
     message = input_error(tmp_path, RUNNING_BOND.replace('first_course = "half"', 'first_course = "Half"'))
-    assert '[geometry.running_bond] first_course: expected one of "half", "full", got "Half"' in message
+    assert 'geometry.running_bond.first_course: expected one of "half", "full", got "Half"' in message
 
 
 @pytest.mark.parametrize(
     "old, new, expected",
     [
-        ("thickness = 1.0", "thickness = 0", "[geometry] thickness: must be > 0, got 0"),
-        ("density = 1000.0", "density = -1.0", "[geometry] density: must be > 0, got -1.0"),
-        ("courses = 6", "courses = 0", "[geometry.running_bond] courses: must be >= 1, got 0"),
-        ("courses = 6", "courses = 100000000000", "[geometry.running_bond] courses: must be <= 2147483647"),
-        ("length = 2.0", "length = inf", "[geometry.running_bond] length: expected a finite number, got inf"),
-        ("block_height = 0.175", "block_height = -0.175", "[geometry.running_bond] block_height: must be > 0"),
+        ("thickness = 1.0", "thickness = 0", "geometry.thickness: must be > 0, got 0"),
+        ("density = 1000.0", "density = -1.0", "geometry.density: must be > 0, got -1.0"),
+        ("courses = 6", "courses = 0", "geometry.running_bond.courses: must be >= 1, got 0"),
+        ("courses = 6", "courses = 100000000000", "geometry.running_bond.courses: must be <= 2147483647"),
+        ("length = 2.0", "length = inf", "geometry.running_bond.length: expected a finite number, got inf"),
+        ("block_height = 0.175", "block_height = -0.175", "geometry.running_bond.block_height: must be > 0"),
     ],
 )
 def test_out_of_range(tmp_path: Path, old: str, new: str, expected: str) -> None:
@@ -450,12 +450,12 @@ def test_out_of_range(tmp_path: Path, old: str, new: str, expected: str) -> None
 @pytest.mark.parametrize(
     "extra, expected",
     [
-        ("[joints]\nfriction = -0.1\n", "[joints] friction: must be >= 0, got -0.1"),
-        ("[joints.bed]\nnormal_stiffness = 0\n", "[joints.bed] normal_stiffness: must be > 0, got 0"),
-        ("[joints]\ncohesion = nan\n", "[joints] cohesion: expected a finite number, got nan"),
-        ("[analysis]\nsteps = 0\n", "[analysis] steps: must be >= 1, got 0"),
-        ("[analysis]\nmax_displacement = 0.0\n", "[analysis] max_displacement: must be > 0, got 0.0"),
-        ("[loads]\ngravity = -9.81\n", "[loads] gravity: must be >= 0, got -9.81"),
+        ("[joints]\nfriction = -0.1\n", "joints.friction: must be >= 0, got -0.1"),
+        ("[joints.bed]\nnormal_stiffness = 0\n", "joints.bed.normal_stiffness: must be > 0, got 0"),
+        ("[joints]\ncohesion = nan\n", "joints.cohesion: expected a finite number, got nan"),
+        ("[analysis]\nsteps = 0\n", "analysis.steps: must be >= 1, got 0"),
+        ("[analysis]\nmax_displacement = 0.0\n", "analysis.max_displacement: must be > 0, got 0.0"),
+        ("[loads]\ngravity = -9.81\n", "loads.gravity: must be >= 0, got -9.81"),
     ],
 )
 def test_out_of_range_in_tables(tmp_path: Path, extra: str, expected: str) -> None:
@@ -464,7 +464,7 @@ def test_out_of_range_in_tables(tmp_path: Path, extra: str, expected: str) -> No
 
 def test_top_horizontal_needs_top(tmp_path: Path) -> None:
     message = input_error(tmp_path, MINIMAL + "[loads]\nlive = 'top_horizontal'\n")
-    assert '[loads] live: "top_horizontal" pushes the top beam: add a [top] table' in message
+    assert 'loads.live: "top_horizontal" pushes the top beam: add a [top] table' in message
 
 
 def test_invalid_toml(tmp_path: Path) -> None:
@@ -551,25 +551,25 @@ def test_dynamic_keys_are_optional(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     "line, expected",
     [
-        ("damping = 'cundall'", '[analysis] damping: expected one of "local", "viscous", "none", got "cundall"'),
-        ("damping = 0.8", "[analysis] damping: expected a string, got float"),
-        ("damping_coefficient = -0.1", "[analysis] damping_coefficient: must be >= 0, got -0.1"),
-        ("damping_coefficient = 'high'", "[analysis] damping_coefficient: expected a number, got string"),
-        ("damping_coefficient = 1.0", '[analysis] damping_coefficient: must be < 1 with damping = "local"'),
-        ("damping = 'local'\ndamping_coefficient = 1.5", "[analysis] damping_coefficient: must be < 1 with damping"),
-        ("time_step = 0", "[analysis] time_step: must be > 0, got 0"),
-        ("time_step = -1e-5", "[analysis] time_step: must be > 0, got -1e-05"),
-        ("time_step = inf", "[analysis] time_step: expected a finite number, got inf"),
-        ("time_step = true", "[analysis] time_step: expected a number, got boolean"),
-        ("unbalanced_ratio = 0", "[analysis] unbalanced_ratio: must lie in (0, 1), got 0"),
-        ("unbalanced_ratio = 1", "[analysis] unbalanced_ratio: must lie in (0, 1), got 1"),
-        ("unbalanced_ratio = '1e-5'", "[analysis] unbalanced_ratio: expected a number, got string"),
-        ("threads = -1", "[analysis] threads: must be >= 0, got -1"),
-        ("threads = 2.0", "[analysis] threads: expected an integer, got float"),
-        ("threads = 'all'", "[analysis] threads: expected an integer, got string"),
-        ("tolerance = 0.0", "[analysis] tolerance: must lie in (0, 1), got 0.0"),
-        ("tolerance = 1.5", "[analysis] tolerance: must lie in (0, 1), got 1.5"),
-        ("tolerance = nan", "[analysis] tolerance: expected a finite number, got nan"),
+        ("damping = 'cundall'", 'analysis.damping: expected one of "local", "viscous", "none", got "cundall"'),
+        ("damping = 0.8", "analysis.damping: expected a string, got float"),
+        ("damping_coefficient = -0.1", "analysis.damping_coefficient: must be >= 0, got -0.1"),
+        ("damping_coefficient = 'high'", "analysis.damping_coefficient: expected a number, got string"),
+        ("damping_coefficient = 1.0", 'analysis.damping_coefficient: must be < 1 with damping = "local"'),
+        ("damping = 'local'\ndamping_coefficient = 1.5", "analysis.damping_coefficient: must be < 1 with damping"),
+        ("time_step = 0", "analysis.time_step: must be > 0, got 0"),
+        ("time_step = -1e-5", "analysis.time_step: must be > 0, got -1e-05"),
+        ("time_step = inf", "analysis.time_step: expected a finite number, got inf"),
+        ("time_step = true", "analysis.time_step: expected a number, got boolean"),
+        ("unbalanced_ratio = 0", "analysis.unbalanced_ratio: must lie in (0, 1), got 0"),
+        ("unbalanced_ratio = 1", "analysis.unbalanced_ratio: must lie in (0, 1), got 1"),
+        ("unbalanced_ratio = '1e-5'", "analysis.unbalanced_ratio: expected a number, got string"),
+        ("threads = -1", "analysis.threads: must be >= 0, got -1"),
+        ("threads = 2.0", "analysis.threads: expected an integer, got float"),
+        ("threads = 'all'", "analysis.threads: expected an integer, got string"),
+        ("tolerance = 0.0", "analysis.tolerance: must lie in (0, 1), got 0.0"),
+        ("tolerance = 1.5", "analysis.tolerance: must lie in (0, 1), got 1.5"),
+        ("tolerance = nan", "analysis.tolerance: expected a finite number, got nan"),
     ],
 )
 def test_dynamic_keys_validation(tmp_path: Path, line: str, expected: str) -> None:

@@ -191,7 +191,7 @@ def test_compare_bad_input(tmp_path: Path) -> None:
     text = (EXAMPLES / "single-block-sliding.toml").read_text() + "damping = 'cundall'\n"
     (tmp_path / "bad.toml").write_text(text)
     line = assert_one_line_error(masonry_dem("compare", "bad.toml", cwd=tmp_path), 2)
-    assert "[analysis] damping: expected one of" in line
+    assert "analysis.damping: expected one of" in line
 
 
 class FakeTerminal(io.StringIO):

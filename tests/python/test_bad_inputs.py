@@ -1,0 +1,230 @@
+"""A table of bad case files: each is refused by ``masonry-dem run`` with exit status 2 and one line on
+stderr (no traceback) that names the key, block or interface at fault.
+
+Each case starts from a small valid wall (``BASE``) and changes one thing. Some are caught by the case
+loader (types, unknown keys), the others by the Rust core (ranges, geometry, solver options), so the
+table checks that both paths reach the user the same way.
+"""
+
+from __future__ import annotations
+
+import copy
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
+
+import pytest
+
+
+class Raw(str):
+    """A TOML value written as is (nan, inf, a 400-digit integer)."""
+
+
+BASE: Dict[str, Any] = {
+    "format": 1,
+    "title": "bad input",
+    "geometry": {
+        "thickness": 1.0,
+        "density": 1000.0,
+        "running_bond": {"block_length": 0.4, "block_height": 0.2, "courses": 2, "length": 0.8},
+    },
+    "joints": {"friction": 0.6},
+    "analysis": {"steps": 10},
+}
+
+
+def _value(v: Any) -> str:
+    if isinstance(v, Raw):
+        return str(v)
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, str):
+        return '"' + v + '"'
+    if isinstance(v, (int, float)):
+        return repr(v)
+    if isinstance(v, list):
+        return "[" + ", ".join(_value(x) for x in v) + "]"
+    raise TypeError(v)
+
+
+def to_toml(data: Dict[str, Any], path: str = "") -> str:
+    """A small TOML writer: scalars and arrays first, then sub-tables."""
+    lines = [f"[{path}]"] if path else []
+    for key, v in data.items():
+        if not isinstance(v, dict):
+            lines.append(f"{key} = {_value(v)}")
+    text = "\n".join(lines) + "\n"
+    for key, v in data.items():
+        if isinstance(v, dict):
+            text += "\n" + to_toml(v, f"{path}.{key}" if path else key)
+    return text
+
+
+Edit = Callable[[Dict[str, Any]], None]
+
+
+def setting(dotted: str, value: Any) -> Edit:
+    """Set (or, with value None, delete) the key ``a.b.c`` of the case."""
+
+    def edit(case: Dict[str, Any]) -> None:
+        *tables, key = dotted.split(".")
+        t = case
+        for name in tables:
+            t = t.setdefault(name, {})
+        if value is None:
+            del t[key]
+        else:
+            t[key] = value
+
+    return edit
+
+
+def blocks(rects: List[List[Any]]) -> Edit:
+    def edit(case: Dict[str, Any]) -> None:
+        case["geometry"].pop("running_bond")
+        case["geometry"]["blocks"] = rects
+
+    return edit
+
+
+def pattern(rows: List[List[Any]]) -> Edit:
+    def edit(case: Dict[str, Any]) -> None:
+        case["geometry"].pop("running_bond")
+        case["geometry"]["pattern"] = {"block_length": 0.4, "block_height": 0.2, "rows": rows}
+
+    return edit
+
+
+def several(*edits: Edit) -> Edit:
+    def edit(case: Dict[str, Any]) -> None:
+        for e in edits:
+            e(case)
+
+    return edit
+
+
+# (id, an edit of BASE or the file's whole text or bytes, words the message must contain)
+CASES: List[Tuple[str, Union[Edit, str, bytes], Tuple[str, ...]]] = [
+    # [geometry]
+    ("thickness-zero", setting("geometry.thickness", 0), ("geometry.thickness",)),
+    ("thickness-negative", setting("geometry.thickness", -0.3), ("geometry.thickness",)),
+    ("density-nan", setting("geometry.density", Raw("nan")), ("geometry.density",)),
+    ("density-string", setting("geometry.density", "heavy"), ("geometry.density", "number")),
+    ("density-overflows-mass", several(setting("geometry.density", 1e300), setting("geometry.thickness", 1e10)), ("block 0",)),
+    ("block-length-zero", setting("geometry.running_bond.block_length", 0.0), ("geometry.running_bond.block_length",)),
+    ("block-height-inf", setting("geometry.running_bond.block_height", Raw("inf")), ("geometry.running_bond.block_height",)),
+    ("courses-zero", setting("geometry.running_bond.courses", 0), ("geometry.running_bond.courses",)),
+    ("courses-string", setting("geometry.running_bond.courses", "ten"), ("geometry.running_bond.courses", "integer")),
+    ("courses-float", setting("geometry.running_bond.courses", 2.5), ("geometry.running_bond.courses", "integer")),
+    ("billion-blocks", setting("geometry.running_bond.length", 4e8), ("geometry.running_bond",)),
+    ("wall-too-high", several(setting("geometry.running_bond.block_height", 1e305), setting("geometry.running_bond.courses", 10**4)), ("geometry.running_bond",)),
+    ("first-course-unknown", setting("geometry.running_bond.first_course", "third"), ("geometry.running_bond.first_course",)),
+    ("opening-inverted", setting("geometry.running_bond.openings", [[1.0, 0.0, 0.0, 1.0]]), ("geometry.running_bond.openings[0]",)),
+    ("running-bond-typo", setting("geometry.running_bond.block_lenght", 0.4), ("block_lenght",)),
+    ("two-geometries", setting("geometry.blocks", [[0, 0, 1, 1]]), ("running_bond", "blocks")),
+    ("no-geometry", setting("geometry.running_bond", None), ("geometry",)),
+    ("pattern-zero-entry", pattern([[1, 0]]), ("geometry.pattern.rows[0][1]",)),
+    ("pattern-overflow", pattern([[1e308] * 5]), ("geometry.pattern.rows[0][4]",)),
+    ("blocks-overlap", blocks([[0, 0, 1, 1], [0.5, 0.5, 1.5, 1.5]]), ("block 0 [0, 0, 1, 1]", "block 1 [0.5, 0.5, 1.5, 1.5]")),
+    ("block-touches-nothing", blocks([[0, 0, 1, 1], [0, 2, 1, 3]]), ("block 1 [0, 2, 1, 3]",)),
+    ("block-zero-width", blocks([[0, 0, 0, 1]]), ("geometry.blocks[0]",)),
+    ("block-three-numbers", blocks([[0, 0, 1]]), ("geometry.blocks[0]",)),
+    ("block-huge-integer", blocks([[0, 0, Raw("1" + "0" * 400), 1]]), ("geometry.blocks[0][2]",)),
+    ("block-area-underflows", blocks([[0, 0, 1e-170, 1e-170]]), ("block 0",)),
+    # [base], [top]
+    ("no-support", setting("base.kind", "none"), ("no support",)),
+    ("base-kind-unknown", setting("base.kind", "floating"), ("base.kind",)),
+    ("top-rotation-unknown", setting("top.rotation", "pinned"), ("top.rotation",)),
+    ("top-force-nan", setting("top.force", [0.0, Raw("nan")]), ("top.force[1]",)),
+    ("top-force-one-number", setting("top.force", [1.0]), ("top.force",)),
+    # [joints]
+    ("friction-negative", setting("joints.friction", -0.1), ("joints.friction",)),
+    ("bed-normal-stiffness-zero", setting("joints.bed.normal_stiffness", 0), ("joints.bed.normal_stiffness",)),
+    ("base-shear-stiffness-inf", setting("joints.base.shear_stiffness", Raw("inf")), ("joints.base.shear_stiffness",)),
+    ("head-dilatancy-above-friction", setting("joints.head.dilatancy", 0.9), ("joints.head.dilatancy",)),
+    ("cohesion-negative", setting("joints.cohesion", -1.0), ("joints.cohesion",)),
+    ("tensile-strength-string", setting("joints.tensile_strength", "strong"), ("joints.tensile_strength", "number")),
+    ("fracture-energy-alone", setting("joints.fracture_energy_tension", 10.0), ("joints.fracture_energy_tension",)),
+    ("joints-typo", setting("joints.frictoin", 0.6), ("frictoin",)),
+    ("joints-unknown-family", setting("joints.corner", {"friction": 0.5}), ("corner",)),
+    # [loads]
+    ("gravity-negative", setting("loads.gravity", -9.81), ("loads.gravity",)),
+    ("gravity-zero-with-weight-load", setting("loads.gravity", 0.0), ("gravity",)),
+    ("gravity-overflows-weight", several(setting("loads.gravity", 1e305), setting("geometry.density", 1e10)), ("loads.gravity",)),
+    ("live-top-without-beam", setting("loads.live", "top_horizontal"), ("loads.live",)),
+    # [analysis]
+    ("steps-zero", setting("analysis.steps", 0), ("analysis.steps",)),
+    ("steps-string", setting("analysis.steps", "ten"), ("analysis.steps", "integer")),
+    ("steps-trillion", setting("analysis.steps", 10**12), ("analysis.steps",)),
+    ("steps-above-core-limit", setting("analysis.steps", 2_000_000), ("analysis.steps",)),
+    ("max-displacement-zero", setting("analysis.max_displacement", 0.0), ("analysis.max_displacement",)),
+    ("method-unknown", setting("analysis.method", "fem"), ("analysis.method",)),
+    ("control-unknown", setting("analysis.control", "arc-length"), ("analysis.control",)),
+    ("tolerance-above-one", setting("analysis.tolerance", 1.5), ("analysis.tolerance",)),
+    ("time-step-unstable", several(setting("analysis.method", "dynamic"), setting("analysis.time_step", 10.0)), ("analysis.time_step",)),
+    ("threads-absurd", several(setting("analysis.method", "dynamic"), setting("analysis.threads", 100_000)), ("analysis.threads",)),
+    ("local-damping-one", several(setting("analysis.method", "dynamic"), setting("analysis.damping_coefficient", 1.5)), ("analysis.damping_coefficient",)),
+    ("unbalanced-ratio-zero", setting("analysis.unbalanced_ratio", 0.0), ("analysis.unbalanced_ratio",)),
+    # the file as a whole
+    ("format-two", setting("format", 2), ("format",)),
+    ("format-missing", setting("format", None), ("format",)),
+    ("title-number", setting("title", 5), ("title",)),
+    ("unknown-table", setting("loading.gravity", 9.81), ("loading",)),
+    ("reference-tolerance", several(setting("reference.collapse_multiplier", 0.5), setting("reference.tolerance", 2.0)), ("reference.tolerance",)),
+    ("invalid-toml", "format = 1\n[geometry\n", ("invalid TOML",)),
+    ("nested-too-deep", "format = 1\nx = " + "[" * 5000 + "]" * 5000 + "\n", ("invalid TOML",)),
+    ("integer-too-long", "format = 1\nx = " + "9" * 5000 + "\n", ("invalid TOML",)),
+    ("not-utf8", b"format = 1\ntitle = \"caf\xe9\"\n", ("UTF-8",)),
+]
+
+
+def run_cli(*args: str, cwd: Path) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-m", "masonry_dem.cli", *args], cwd=cwd, capture_output=True, text=True, timeout=300
+    )
+
+
+def write_case(tmp_path: Path, source: Union[Edit, str, bytes]) -> Path:
+    path = tmp_path / "bad.toml"
+    if isinstance(source, bytes):
+        path.write_bytes(source)
+    elif isinstance(source, str):
+        path.write_text(source)
+    else:
+        case = copy.deepcopy(BASE)
+        source(case)
+        path.write_text(to_toml(case))
+    return path
+
+
+def test_the_table_is_long_enough() -> None:
+    assert len(CASES) >= 30
+    assert len({name for name, _, _ in CASES}) == len(CASES)
+
+
+def test_the_base_case_runs(tmp_path: Path) -> None:
+    """The cases differ from BASE by one thing, so BASE itself must be good."""
+    path = write_case(tmp_path, lambda case: None)
+    proc = run_cli("run", str(path), "--quiet", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+
+
+@pytest.mark.parametrize("source, needles", [(s, n) for _, s, n in CASES], ids=[name for name, _, _ in CASES])
+def test_bad_input_is_refused(tmp_path: Path, source: Union[Edit, str, bytes], needles: Tuple[str, ...]) -> None:
+    path = write_case(tmp_path, source)
+    proc = run_cli("run", str(path), "--quiet", cwd=tmp_path)
+    assert proc.returncode == 2, (proc.returncode, proc.stdout, proc.stderr)
+    assert "Traceback" not in proc.stderr, proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1, proc.stderr
+    assert lines[0].startswith("masonry-dem: error: "), lines[0]
+    for needle in needles:
+        assert needle in lines[0], f"{needle!r} not named in {lines[0]!r}"
+
+
+def test_a_missing_file_is_named(tmp_path: Path) -> None:
+    proc = run_cli("run", "no-such-case.toml", cwd=tmp_path)
+    assert proc.returncode == 2
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and "no-such-case.toml" in lines[0] and "Traceback" not in proc.stderr
