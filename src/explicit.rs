@@ -484,18 +484,45 @@ enum Level {
 /// The state under the dead loads alone found by damped relaxation (local damping 0.8): the
 /// displacements and the joint histories, or an error if the wall does not settle. The static
 /// solver starts from it where Newton cannot find the dead state from the unloaded wall.
-pub(crate) fn relax_dead_state(model: &Model) -> Result<(Vec<f64>, Vec<JointState>), Error> {
+/// A block moving more than 1% of the wall's size (or the wall's motion ceasing to be finite)
+/// means the wall does not stand: the relaxation stops there instead of running its step limit.
+/// `monitor` is called every 4,096 steps (return false to stop: `Error::Interrupted`).
+pub(crate) fn relax_dead_state(
+    model: &Model,
+    monitor: &mut dyn FnMut(&Progress) -> bool,
+) -> Result<(Vec<f64>, Vec<JointState>), Error> {
     let mut s = Integrator::new(model, None, 0.8, Damping::Local(0.8), 1)?;
     let fd = model.dead_load().to_vec();
     let mut set_ext = |f: &mut [f64], _: &[f64]| f.copy_from_slice(&fd);
+    let (mut lo, mut hi) = (f64::MAX, f64::MIN);
+    for r in model.rects() {
+        lo = lo.min(r.x0.min(r.y0));
+        hi = hi.max(r.x1.max(r.y1));
+    }
+    let limit = 1e-2 * (hi - lo);
+    let nb = model.n_blocks();
     let max_steps = 2_000_000;
     for k in 0..max_steps {
         s.step(&mut set_ext, None);
-        if k % 16 == 15 && s.unbalanced_ratio(None) <= 1e-7 {
-            return Ok((s.u, s.states));
+        if k % 16 == 15 {
+            if s.unbalanced_ratio(None) <= 1e-7 {
+                return Ok((s.u, s.states));
+            }
+            let (i, moved) = (0..nb)
+                .map(|i| (i, s.u[3 * i].hypot(s.u[3 * i + 1])))
+                .fold((0, 0.0), |a, b| if b.1 > a.1 || b.1.is_nan() { b } else { a });
+            if !(moved <= limit) {
+                return Err(Error::Mechanism(format!(
+                    "the wall does not stand under the dead loads alone: {} moves off (explicit relaxation)",
+                    model.block_name(i)
+                )));
+            }
         }
-        if s.u.iter().any(|x| !x.is_finite()) {
-            break;
+        if k % 4096 == 4095 {
+            let p = Progress { step: k + 1, multiplier: 0.0, displacement: f64::NAN, fraction: f64::NAN };
+            if !monitor(&p) {
+                return Err(Error::Interrupted);
+            }
         }
     }
     Err(Error::Mechanism(format!("the wall does not settle under the dead loads alone (explicit relaxation, {max_steps} steps)")))

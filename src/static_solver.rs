@@ -571,10 +571,19 @@ impl<'a> Solver<'a> {
             // Newton from the unloaded wall cycles between the states of joints that start with
             // no force (a corbel that only stands by arching, say): start from the explicit
             // solver's damped relaxation, and refine
-            if let Ok((u, states)) = crate::explicit::relax_dead_state(self.model) {
-                self.u.copy_from_slice(&u);
-                self.committed.copy_from_slice(&states);
-                outcome = self.newton_load();
+            let steps = self.steps;
+            let mut relay = |_: &crate::explicit::Progress| {
+                monitor(&Progress { step: steps, multiplier: 0.0, displacement: f64::NAN, fraction: f64::NAN })
+            };
+            match crate::explicit::relax_dead_state(self.model, &mut relay) {
+                Ok((u, states)) => {
+                    self.u.copy_from_slice(&u);
+                    self.committed.copy_from_slice(&states);
+                    outcome = self.newton_load();
+                }
+                // the wall moves off, or the user stopped: that is the answer
+                Err(e @ (Error::Mechanism(_) | Error::Interrupted)) => outcome = Err(e),
+                Err(_) => {}
             }
         }
         outcome.map_err(|e| match e {
