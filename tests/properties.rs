@@ -633,9 +633,18 @@ fn f_translating_a_wall_by_any_vector_changes_nothing() {
     translation((wall_strategy(), -50.0f64..50.0, -50.0f64..50.0));
 }
 
+/// Associative joints only. FINDING (static solver): with psi = 0 the equilibrium path is not
+/// unique and Newton's choice follows round-off, even where u_limit is unchanged: a 3-block
+/// wall (k = 3.94e9, mu = 0.4, fixed-rotation top beam with 123 N) shifted by (-47.8, -47.8) m
+/// failed under displacement control ("no equilibrium after 50 iterations") where the wall at
+/// the origin collapsed; through Python a wall shifted by (1, 1) m did the same under load
+/// control. The ignored test above draws psi = 0 walls too.
 #[test]
 fn f_translating_a_wall_changes_nothing() {
-    translation((wall_strategy(), -50.0f64..50.0).prop_map(|(w, t)| (w, t, t)));
+    translation((wall_strategy(), -50.0f64..50.0).prop_map(|(mut w, t)| {
+        w.law.dilatancy = w.law.friction;
+        (w, t, t)
+    }));
 }
 
 fn translation(strategy: impl Strategy<Value = (WallCase, f64, f64)>) {
