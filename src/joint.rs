@@ -369,7 +369,21 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
         {
             continue;
         }
-        let tangent = active_tangent(&faces, &d, &dm, act, &g0).unwrap_or([[0.0; 3]; 3]);
+        // Both faces of a pair active (the rocking pair: N = ft A, M = 0; the Coulomb pair:
+        // T = 0, N = c A / mu) with a face of the other pair reached as well: the point is the
+        // apex, and this set's region is degenerate (with c = ft = 0 the rocking pair holds only
+        // where the trial slip is exactly 0, e.g. a pure opening). Any trial nearby returns to
+        // the apex too, so the derivative is the apex's, zero; the set's own tangent would
+        // give the free direction (the shear of an open joint) its elastic stiffness.
+        let pair = |m: u8| mask & m == m;
+        let reached = |j: usize| faces.f(j, &s) > -tol;
+        let apex = (pair(0b1100) && (reached(0) || reached(1)))
+            || (pair(0b0011) && (reached(2) || reached(3)));
+        let tangent = if apex {
+            [[0.0; 3]; 3]
+        } else {
+            active_tangent(&faces, &d, &dm, act, &g0).unwrap_or([[0.0; 3]; 3])
+        };
         return finish(s, slip, dk, tangent);
     }
     // No active set satisfied the conditions (degenerate data): fall back on the apex, the one
