@@ -494,12 +494,7 @@ pub(crate) fn relax_dead_state(
     let mut s = Integrator::new(model, None, 0.8, Damping::Local(0.8), 1)?;
     let fd = model.dead_load().to_vec();
     let mut set_ext = |f: &mut [f64], _: &[f64]| f.copy_from_slice(&fd);
-    let (mut lo, mut hi) = (f64::MAX, f64::MIN);
-    for r in model.rects() {
-        lo = lo.min(r.x0.min(r.y0));
-        hi = hi.max(r.x1.max(r.y1));
-    }
-    let limit = 1e-2 * (hi - lo);
+    let limit = 1e-2 * model.size();
     let nb = model.n_blocks();
     let max_steps = 2_000_000;
     for k in 0..max_steps {
@@ -545,12 +540,7 @@ pub(crate) fn runaway_mode(model: &Model, u: &[f64], states: &[JointState], lamb
             f[d] = fd[d] + lambda * fl[d];
         }
     };
-    let (mut lo, mut hi) = (f64::MAX, f64::MIN);
-    for r in model.rects() {
-        lo = lo.min(r.x0.min(r.y0));
-        hi = hi.max(r.x1.max(r.y1));
-    }
-    let limit = 1e-4 * (hi - lo);
+    let limit = 1e-4 * model.size();
     let nb = model.n_blocks();
     // a by-product of the static analysis: bounded (wall 2 moves off in about 15,000 steps)
     for k in 0..100_000 {
@@ -656,12 +646,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
         }
     }
     let mut s = Integrator::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
-    let (mut lo, mut hi) = (f64::MAX, f64::MIN);
-    for r in model.rects() {
-        lo = lo.min(r.x0.min(r.y0));
-        hi = hi.max(r.x1.max(r.y1));
-    }
-    let size = hi - lo;
+    let size = model.size();
     let mut curve_l = vec![];
     let mut curve_u = vec![];
     let fd = model.dead_load().to_vec();
@@ -820,11 +805,11 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
                     return Ok(finish(model, s, Status::Failed, Some(Error::Interrupted), curve_l, curve_u, Some(mech), control_block, start));
                 }
                 if k == stages {
-                    let peak = curve_l.iter().cloned().fold(f64::MIN, f64::max);
+                    let peak = crate::results::peak(&curve_l);
                     let n = curve_l.len();
                     let k0 = (curve_l[1] - curve_l[0]) / (curve_u[1] - curve_u[0]);
                     let kl = (curve_l[n - 1] - curve_l[n - 2]) / (curve_u[n - 1] - curve_u[n - 2]);
-                    let collapsed = lam < peak * (1.0 - 1e-3) || (kl / k0).abs() < 1e-2;
+                    let collapsed = lam.abs() < peak.abs() * (1.0 - 1e-3) || (kl / k0).abs() < 1e-2;
                     let status = if collapsed { Status::Collapse } else { Status::Completed };
                     return Ok(finish(model, s, status, None, curve_l, curve_u, Some(mech), control_block, start));
                 }
@@ -856,7 +841,7 @@ fn finish(
     let collapse_multiplier = if status == Status::Completed && mechanism_is_none(&mech) {
         f64::NAN
     } else {
-        curve_l.iter().cloned().fold(f64::NAN, f64::max)
+        crate::results::peak(&curve_l)
     };
     Results {
         method: "dynamic",

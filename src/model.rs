@@ -369,6 +369,18 @@ impl Model {
     pub fn rects(&self) -> &[Rect] {
         &self.rects
     }
+    /// The size of the model [m]: the larger side of the box around every block (base and top
+    /// beam included). It does not depend on where the wall stands.
+    pub fn size(&self) -> f64 {
+        let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+        for r in &self.rects {
+            x0 = x0.min(r.x0);
+            y0 = y0.min(r.y0);
+            x1 = x1.max(r.x1);
+            y1 = y1.max(r.y1);
+        }
+        (x1 - x0).max(y1 - y0)
+    }
     pub fn kinds(&self) -> &[BlockKind] {
         &self.kinds
     }

@@ -88,3 +88,9 @@ impl Results {
         c
     }
 }
+
+/// The peak of a load curve: the multiplier of largest magnitude, with its sign (a wall pushed
+/// towards -x under displacement control has negative multipliers). NaN for an empty curve.
+pub fn peak(curve: &[f64]) -> f64 {
+    curve.iter().cloned().fold(f64::NAN, |p, x| if p.is_nan() || x.abs() > p.abs() { x } else { p })
+}

@@ -128,6 +128,8 @@ struct Solver<'a> {
     /// fraction of the dead loads applied (1 but while the dead state is being found)
     dead_factor: f64,
     u_limit: f64,
+    /// some joint has cohesion or tensile strength (it can lose strength: snap-backs)
+    can_lose_strength: bool,
 }
 
 const NONE: u32 = u32::MAX;
@@ -206,13 +208,7 @@ impl<'a> Solver<'a> {
             ));
         }
         let m = model.interfaces().len();
-        let r = model.rects();
-        let (mut lo, mut hi) = (f64::MAX, f64::MIN);
-        for b in r {
-            lo = lo.min(b.x0.min(b.y0));
-            hi = hi.max(b.x1.max(b.y1));
-        }
-        let mut u_limit = 0.1 * (hi - lo);
+        let mut u_limit = 0.1 * model.size();
         if let Control::Displacement { max_displacement } = opts.control {
             u_limit = u_limit.max(10.0 * max_displacement.abs());
         }
@@ -242,6 +238,10 @@ impl<'a> Solver<'a> {
             diverged: None,
             dead_factor: 1.0,
             u_limit,
+            can_lose_strength: (0..m).any(|k| {
+                let l = model.law(k);
+                l.cohesion > 0.0 || l.tensile_strength > 0.0
+            }),
         })
     }
 
@@ -877,8 +877,15 @@ impl<'a> Solver<'a> {
                     step *= 0.5;
                     if step.abs() < min_step {
                         // a snap-back: no equilibrium near the converged state at the next
-                        // displacement; follow the wall's jump by dynamic relaxation, then refine
-                        match self.jump(u_conv[cd] + base_step) {
+                        // displacement; follow the wall's jump by dynamic relaxation, then
+                        // refine. Only joints with cohesion or tensile strength can lose
+                        // strength suddenly; in a dry wall the failure is Newton's, reported.
+                        let jumped = if self.can_lose_strength {
+                            self.jump(u_conv[cd] + base_step)
+                        } else {
+                            Err(e.clone())
+                        };
+                        match jumped {
                             Ok(()) => {
                                 last = None;
                                 self.u_prev.copy_from_slice(&u_conv);
@@ -906,8 +913,8 @@ impl<'a> Solver<'a> {
             }
         }
         self.evaluate();
-        let peak = self.curve_l.iter().cloned().fold(f64::MIN, f64::max);
-        let softened = lam_conv < peak * (1.0 - 1e-3);
+        let peak = crate::results::peak(&self.curve_l);
+        let softened = lam_conv.abs() < peak.abs() * (1.0 - 1e-3);
         let flat = match k0 {
             Some(k0) if k0 != 0.0 => (k_last / k0).abs() < 1e-3,
             _ => false,
@@ -943,7 +950,7 @@ impl<'a> Solver<'a> {
         };
         let collapse_multiplier = match self.opts.control {
             Control::Load => self.curve_l.last().copied().unwrap_or(f64::NAN),
-            Control::Displacement { .. } => self.curve_l.iter().cloned().fold(f64::NAN, f64::max),
+            Control::Displacement { .. } => crate::results::peak(&self.curve_l),
         };
         Results {
             method: "static",

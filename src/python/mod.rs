@@ -10,6 +10,7 @@ use crate::explicit::{self, Damping, DynamicOptions, ExplicitOptions, QsControl,
 use crate::static_solver::{self, Control, StaticOptions};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
+use std::sync::Mutex;
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
@@ -110,8 +111,16 @@ fn rows3<'py>(py: Python<'py>, v: &[[f64; 3]]) -> Bound<'py, PyArray2<f64>> {
 }
 
 /// Called from a run with the GIL released: takes the GIL, checks for Ctrl-C and calls the
-/// user's progress callback; false stops the run (an exception in the callback stops it too).
-fn report(progress: &Option<Py<PyAny>>, step: usize, multiplier: f64, displacement: f64, fraction: f64) -> bool {
+/// user's progress callback; false stops the run. An exception raised by the callback stops
+/// it too and is kept in `raised`, to be raised again once the run has stopped.
+fn report(
+    progress: &Option<Py<PyAny>>,
+    raised: &Mutex<Option<PyErr>>,
+    step: usize,
+    multiplier: f64,
+    displacement: f64,
+    fraction: f64,
+) -> bool {
     Python::attach(|py| {
         if py.check_signals().is_err() {
             return false;
@@ -120,13 +129,21 @@ fn report(progress: &Option<Py<PyAny>>, step: usize, multiplier: f64, displaceme
             Some(cb) => match cb.call1(py, (step, multiplier, displacement, fraction)) {
                 Ok(_) => true,
                 Err(e) => {
-                    e.print(py);
+                    *raised.lock().unwrap_or_else(|p| p.into_inner()) = Some(e);
                     false
                 }
             },
             None => true,
         }
     })
+}
+
+/// The callback's exception, if it raised one, else `value`.
+fn or_raised<T>(value: T, raised: Mutex<Option<PyErr>>) -> PyResult<T> {
+    match raised.into_inner().unwrap_or_else(|p| p.into_inner()) {
+        Some(e) => Err(e),
+        None => Ok(value),
+    }
 }
 
 fn damping_from(kind: &str, coefficient: f64) -> PyResult<Damping> {
@@ -463,15 +480,16 @@ impl PyModel {
             ..StaticOptions::default()
         };
         let model = &self.inner;
+        let raised = Mutex::new(None);
         let res = py.detach(|| {
             guarded(|| {
                 let mut monitor = |p: &static_solver::Progress| {
-                    report(&progress, p.step, p.multiplier, p.displacement, p.fraction)
+                    report(&progress, &raised, p.step, p.multiplier, p.displacement, p.fraction)
                 };
                 static_solver::solve_with(model, &opts, &mut monitor)
             })
         })?;
-        Ok(PyResults { inner: res })
+        or_raised(PyResults { inner: res }, raised)
     }
 
     /// Quasi-static analysis with the explicit solver (see _core.pyi).
@@ -517,13 +535,15 @@ impl PyModel {
             ..ExplicitOptions::default()
         };
         let model = &self.inner;
+        let raised = Mutex::new(None);
         let res = py.detach(|| {
             guarded(|| {
-                let mut monitor = |p: &explicit::Progress| report(&progress, p.step, p.multiplier, p.displacement, p.fraction);
+                let mut monitor =
+                    |p: &explicit::Progress| report(&progress, &raised, p.step, p.multiplier, p.displacement, p.fraction);
                 explicit::solve_with(model, &opts, &mut monitor)
             })
         })?;
-        Ok(PyResults { inner: res })
+        or_raised(PyResults { inner: res }, raised)
     }
 
     /// Time history with the explicit solver (see _core.pyi).
@@ -575,13 +595,15 @@ impl PyModel {
             threads: threads as usize,
         };
         let model = &self.inner;
+        let raised = Mutex::new(None);
         let h = py.detach(|| {
             guarded(|| {
-                let mut monitor = |p: &explicit::Progress| report(&progress, p.step, p.multiplier, p.displacement, p.fraction);
+                let mut monitor =
+                    |p: &explicit::Progress| report(&progress, &raised, p.step, p.multiplier, p.displacement, p.fraction);
                 explicit::simulate_with(model, &opts, &mut monitor)
             })
         })?;
-        Ok(PyTimeHistory { inner: h })
+        or_raised(PyTimeHistory { inner: h }, raised)
     }
 
     /// The stability limit of the explicit solver's time step [s].

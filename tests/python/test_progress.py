@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 import pytest
 
+import masonry_dem as md
 from masonry_dem import progress as progress_module
 from masonry_dem.compare import agreement, comparison_dict, comparison_text, failed_interfaces, format_difference
 from masonry_dem.progress import NullProgress, ProgressBar, progress_bar, progress_text
@@ -210,3 +211,25 @@ def test_format_difference() -> None:
     assert format_difference(0.0012) == "+0.12%"
     assert format_difference(-0.0012) == "-0.12%"
     assert format_difference(-1e-6) == "0.00%"
+
+
+def test_an_exception_in_the_callback_is_raised_again() -> None:
+    """A bug in the user's callback surfaces as its own exception, not as an interrupted run."""
+    model = md.Model(md.running_bond(0.4, 0.175, 3, 1.2), gravity=10.0)
+
+    def wrong_signature(step):  # the callback receives 4 arguments
+        return None
+
+    class Stop(Exception):
+        pass
+
+    def stop(*args):
+        raise Stop("from the callback")
+
+    for solve in (model.solve_static, model.solve_dynamic):
+        with pytest.raises(TypeError):
+            solve(progress=wrong_signature)
+        with pytest.raises(Stop, match="from the callback"):
+            solve(progress=stop)
+    with pytest.raises(Stop):
+        model.simulate(duration=0.5, progress=stop)  # the monitor runs every 4,096 steps
