@@ -527,7 +527,7 @@ pub(crate) fn relax_dead_state(
 /// linearized kinematics) of the wall from displacements `u` and joint histories `states`
 /// under `lambda` (a little above the collapse multiplier), until a block has moved 1e-4 of
 /// the wall's size; the increment of `u`, or None if the wall settles or has not moved off
-/// within 100,000 steps. Where several
+/// within 100,000 steps or 2e7 interface updates. Where several
 /// mechanisms have the same multiplier, the motion picks the one the wall would follow.
 pub(crate) fn runaway_mode(model: &Model, u: &[f64], states: &[JointState], lambda: f64) -> Option<Vec<f64>> {
     let mut s = Integrator::new(model, None, 0.8, Damping::Local(0.8), 1).ok()?;
@@ -542,8 +542,11 @@ pub(crate) fn runaway_mode(model: &Model, u: &[f64], states: &[JointState], lamb
     };
     let limit = 1e-4 * model.size();
     let nb = model.n_blocks();
-    // a by-product of the static analysis: bounded (wall 2 moves off in about 15,000 steps)
-    for k in 0..100_000 {
+    // a by-product of the static analysis: bounded by 100,000 steps (wall 2 moves off in about
+    // 15,000) and by 2e7 interface updates (a few seconds), after which the static solver falls
+    // back on the tangent's null mode
+    let max_steps = (20_000_000 / model.interfaces().len().max(1)).min(100_000);
+    for k in 0..max_steps {
         s.step(&mut set_ext, None);
         if k % 16 == 15 {
             let moved = (0..nb).map(|i| (s.u[3 * i] - u[3 * i]).hypot(s.u[3 * i + 1] - u[3 * i + 1])).fold(0.0, f64::max);
