@@ -987,3 +987,41 @@ impl<'a> Solver<'a> {
         }
     }
 }
+
+/// The stages of a static analysis, one at a time, for benchmarks (`benches/static_scaling.rs`).
+/// Not a stable API.
+#[doc(hidden)]
+pub mod stages {
+    use super::*;
+
+    /// A static solver on `model` at rest (every joint elastic), with its load system built
+    /// (pattern and slots; the symbolic analysis comes with the first factorization).
+    pub struct Stages<'a>(Solver<'a>);
+
+    impl<'a> Stages<'a> {
+        pub fn new(model: &'a Model) -> Result<Self, Error> {
+            let mut s = Solver::new(model, &StaticOptions::default())?;
+            s.ensure_load_sys()?;
+            s.evaluate();
+            Ok(Stages(s))
+        }
+        /// Joint forces, histories and tangents of every interface, and the internal forces.
+        pub fn evaluate(&mut self) {
+            self.0.evaluate();
+        }
+        /// The tangent's values into the sparse matrix.
+        pub fn assemble(&mut self) {
+            let s = &mut self.0;
+            let (sys, slots) = s.load_sys.as_mut().unwrap();
+            Solver::assemble(s.model, NEWTON_STABILIZATION, &s.tangents, sys, slots);
+        }
+        /// The numeric factorization of the assembled matrix.
+        pub fn factorize(&mut self) -> Result<(), Error> {
+            self.0.load_sys.as_mut().unwrap().0.factorize()
+        }
+        /// The number of equations.
+        pub fn n_eq(&self) -> usize {
+            self.0.n_eq
+        }
+    }
+}
