@@ -21,7 +21,7 @@
 //! a separate pass).
 
 use crate::error::Error;
-use crate::joint::{return_map, JointLaw, JointState, Section};
+use crate::joint::{return_map_forces, JointLaw, JointState, Section};
 use crate::model::{LiveLoad, Model};
 use crate::results::{Results, Status};
 use rayon::prelude::*;
@@ -343,13 +343,13 @@ impl<'a> Integrator<'a> {
                 // the normal force's eccentricity at the previous step, within the interface
                 let ecc = if f[0] < 0.0 { (f[2] / f[0]).clamp(-0.5 * it.l, 0.5 * it.l) } else { 0.0 };
                 let kin = it.large_kinematics(g[a], g[b], &u[3 * a..3 * a + 3], &u[3 * b..3 * b + 3], cs[a], cs[b], ecc);
-                let r = return_map(&laws[k], &sections[k], kin.jumps, st);
+                let r = return_map_forces(&laws[k], &sections[k], kin.jumps, st);
                 *st = r.state;
                 *f = r.force;
                 *fl = r.flags;
                 *fe = kin.forces(r.force);
             } else {
-                let r = return_map(&laws[k], &sections[k], it.jumps(u), st);
+                let r = return_map_forces(&laws[k], &sections[k], it.jumps(u), st);
                 *st = r.state;
                 *f = r.force;
                 *fl = r.flags;

@@ -228,34 +228,52 @@ const SUBSETS: [u8; 14] = [1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14];
 
 /// Solves the k x k system (k <= 3) in place by Gaussian elimination with partial pivoting;
 /// returns false if it is singular relative to its scale.
+#[inline]
 fn solve_small(g: &mut [[f64; 3]; 3], r: &mut [f64; 3], k: usize) -> bool {
-    let scale = (0..k)
-        .flat_map(|i| (0..k).map(move |j| (i, j)))
-        .map(|(i, j)| g[i][j].abs())
-        .fold(0.0, f64::max);
+    // one unrolled copy per size: the return mapping calls this up to 14 times per plastic update
+    match k {
+        1 => solve_k::<1>(g, r),
+        2 => solve_k::<2>(g, r),
+        3 => solve_k::<3>(g, r),
+        _ => unreachable!("at most 3 active faces"),
+    }
+}
+
+#[inline(always)]
+fn solve_k<const K: usize>(g: &mut [[f64; 3]; 3], r: &mut [f64; 3]) -> bool {
+    let mut scale: f64 = 0.0;
+    for row in g.iter().take(K) {
+        for x in row.iter().take(K) {
+            scale = scale.max(x.abs());
+        }
+    }
     if scale == 0.0 {
         return false;
     }
-    for col in 0..k {
-        let p = (col..k)
-            .max_by(|&x, &y| g[x][col].abs().total_cmp(&g[y][col].abs()))
-            .unwrap();
+    for col in 0..K {
+        // the last row of largest magnitude, as `Iterator::max_by` picks it
+        let mut p = col;
+        for x in col + 1..K {
+            if g[p][col].abs().total_cmp(&g[x][col].abs()) != std::cmp::Ordering::Greater {
+                p = x;
+            }
+        }
         if g[p][col].abs() <= 1e-12 * scale {
             return false;
         }
         g.swap(col, p);
         r.swap(col, p);
-        for row in col + 1..k {
+        for row in col + 1..K {
             let f = g[row][col] / g[col][col];
-            for c2 in col..k {
+            for c2 in col..K {
                 g[row][c2] -= f * g[col][c2];
             }
             r[row] -= f * r[col];
         }
     }
-    for col in (0..k).rev() {
+    for col in (0..K).rev() {
         let mut s = r[col];
-        for c2 in col + 1..k {
+        for c2 in col + 1..K {
             s -= g[col][c2] * r[c2];
         }
         r[col] = s / g[col][col];
@@ -266,6 +284,19 @@ fn solve_small(g: &mut [[f64; 3]; 3], r: &mut [f64; 3], k: usize) -> bool {
 /// The return mapping: forces, updated history, state flags and consistent tangent for the total
 /// jumps `e`, starting from the committed history `committed`.
 pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState) -> Response {
+    map(law, sec, e, committed, true)
+}
+
+/// The same return mapping as [`return_map`] without its consistent tangent
+/// (`Response::tangent` is left zero): for the explicit solver, which needs the forces only.
+/// Forces, history and flags are those of [`return_map`], bit for bit.
+#[inline]
+pub fn return_map_forces(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState) -> Response {
+    map(law, sec, e, committed, false)
+}
+
+#[inline(always)]
+fn map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, want_tangent: bool) -> Response {
     let d = [
         law.normal_stiffness * sec.area,
         law.shear_stiffness * sec.area,
@@ -291,7 +322,7 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
     let (c_now, ft_now) = law.strengths(&JointState { broken, ..*committed });
     let faces = Faces::new(law, sec, c_now, ft_now);
     let tol = 1e-12 * (scale + faces.b[0] + faces.b[2]) + f64::MIN_POSITIVE;
-    let elastic_tangent = [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
+    let elastic_tangent = if want_tangent { [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]] } else { [[0.0; 3]; 3] };
     // Only the Coulomb flow (slip and its dilatancy) is history: an opening or a rocking gap
     // closes again without resistance (no-tension contact), so the rocking faces' flow is not
     // stored. Within a step the mapping, and so its tangent, is the same.
@@ -325,6 +356,15 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
         ]
     });
     for &mask in SUBSETS.iter() {
+        if mask.count_ones() == 1 {
+            // a single face whose multiplier f_j(trial) / (a_j . D m_j) is negative is rejected
+            // below: skip it without the elimination (most plastic updates end on one face or
+            // two, so most single faces are skipped)
+            let j = mask.trailing_zeros() as usize;
+            if faces.f(j, &trial) / dot(&faces.a[j], &dm[j]) < 0.0 {
+                continue;
+            }
+        }
         let mut act_buf = [0usize; 3];
         let mut n = 0;
         for j in 0..4 {
@@ -369,7 +409,7 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
         {
             continue;
         }
-        let tangent = active_tangent(&faces, &d, &dm, act, &g0).unwrap_or([[0.0; 3]; 3]);
+        let tangent = if want_tangent { active_tangent(&faces, &d, &dm, act, &g0).unwrap_or([[0.0; 3]; 3]) } else { [[0.0; 3]; 3] };
         return finish(s, slip, dk, tangent);
     }
     // No active set satisfied the conditions (degenerate data): fall back on the apex, the one
