@@ -228,7 +228,7 @@ const SUBSETS: [u8; 14] = [1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14];
 
 /// Solves the k x k system (k <= 3) in place by Gaussian elimination with partial pivoting;
 /// returns false if it is singular relative to its scale.
-#[inline]
+#[inline(always)]
 fn solve_small(g: &mut [[f64; 3]; 3], r: &mut [f64; 3], k: usize) -> bool {
     // one unrolled copy per size: the return mapping calls this up to 14 times per plastic update
     match k {
@@ -355,13 +355,17 @@ fn map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, want_
             d[2] * faces.m[j][2],
         ]
     });
+    // the values on the trial force and the products a_i . D m_j of every face, once: each
+    // active set below picks its entries (the same numbers as computing them per set)
+    let f_trial: [f64; 4] = std::array::from_fn(|j| faces.f(j, &trial));
+    let g_all: [[f64; 4]; 4] = std::array::from_fn(|i| std::array::from_fn(|j| dot(&faces.a[i], &dm[j])));
     for &mask in SUBSETS.iter() {
         if mask.count_ones() == 1 {
             // a single face whose multiplier f_j(trial) / (a_j . D m_j) is negative is rejected
             // below: skip it without the elimination (most plastic updates end on one face or
             // two, so most single faces are skipped)
             let j = mask.trailing_zeros() as usize;
-            if faces.f(j, &trial) / dot(&faces.a[j], &dm[j]) < 0.0 {
+            if f_trial[j] / g_all[j][j] < 0.0 {
                 continue;
             }
         }
@@ -377,9 +381,9 @@ fn map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, want_
         let mut g = [[0.0; 3]; 3];
         let mut r = [0.0; 3];
         for (p, &i) in act.iter().enumerate() {
-            r[p] = faces.f(i, &trial);
+            r[p] = f_trial[i];
             for (q, &j) in act.iter().enumerate() {
-                g[p][q] = dot(&faces.a[i], &dm[j]);
+                g[p][q] = g_all[i][j];
             }
         }
         let g0 = g;
