@@ -253,10 +253,11 @@ fn family_index(f: Family) -> u8 {
 
 /// The integrator's state and work arrays (flat, allocated once).
 ///
-/// Per interface: the packed geometry (56 bytes), the family (1), the history (56), the force
-/// (24), the flags (1), the six generalized forces on the two blocks (48) and two entries of the
-/// block-to-interface incidence (8); sections and laws are read from the model (a table of four
-/// laws, one per family). One step is: a pass over the blocks (velocity half-step and
+/// Per interface: the packed geometry (56 bytes), the family (1), the history (48), the force
+/// (24), the flags (1) and two entries of the block-to-interface incidence (8); sections and
+/// laws are read from the model (a table of four laws, one per family). With finite rotations
+/// also the six generalized forces on the two blocks (48), and per block the centroid and the
+/// rotation's (cos, sin). One step is: a pass over the blocks (velocity half-step and
 /// positions), a pass over the interfaces (return mapping, element forces), a pass over the
 /// blocks gathering their interfaces' forces (in interface order, so the sums do not depend on
 /// the number of threads), the external forces, and a pass over the blocks (accelerations and
@@ -388,16 +389,28 @@ impl<'a> Integrator<'a> {
             states: vec![JointState::default(); m],
             forces: vec![[0.0; 3]; m],
             flags: vec![0; m],
-            fe: vec![[0.0; 6]; m],
+            fe: vec![],
             dt,
             damping,
             pool,
             par,
             steps: 0,
             large: false,
-            centroids: model.rects().iter().map(|r| r.centroid()).collect(),
-            cs: vec![[1.0, 0.0]; nb],
+            centroids: vec![],
+            cs: vec![],
         })
+    }
+
+    /// Finite rotations (time histories) or the linearized kinematics (the default); the
+    /// arrays only the finite rotations need are allocated here.
+    fn set_large(&mut self, large: bool) {
+        self.large = large;
+        if large && self.fe.is_empty() {
+            let (m, nb) = (self.model.interfaces().len(), self.model.n_blocks());
+            self.fe = vec![[0.0; 6]; m];
+            self.centroids = self.model.rects().iter().map(|r| r.centroid()).collect();
+            self.cs = vec![[1.0, 0.0]; nb];
+        }
     }
 
     /// Fixes the dofs the model holds once the dead loads are on, where they are now.
@@ -447,8 +460,9 @@ impl<'a> Integrator<'a> {
         let sections = model.sections();
         let (u, geo, family, laws) = (&self.u, &self.geo, &self.family, &self.laws);
         let (large, g, cs) = (self.large, &self.centroids, &self.cs);
+        // fe: the generalized forces on the blocks, with finite rotations only (empty otherwise)
         let work = |k0: usize, st: &mut [JointState], f: &mut [[f64; 3]], fl: &mut [u8], fe: &mut [[f64; 6]]| {
-            for (i, (((st, f), fl), fe)) in st.iter_mut().zip(f.iter_mut()).zip(fl.iter_mut()).zip(fe.iter_mut()).enumerate() {
+            for (i, ((st, f), fl)) in st.iter_mut().zip(f.iter_mut()).zip(fl.iter_mut()).enumerate() {
                 let k = k0 + i;
                 let law = &laws[family[k] as usize];
                 if large {
@@ -461,7 +475,7 @@ impl<'a> Integrator<'a> {
                     *st = r.state;
                     *f = r.force;
                     *fl = r.flags;
-                    *fe = kin.forces(r.force);
+                    fe[i] = kin.forces(r.force);
                 } else {
                     let gk = &geo[k];
                     let (a, b) = (3 * gk.a as usize, 3 * gk.b as usize);
@@ -473,14 +487,11 @@ impl<'a> Integrator<'a> {
                     *st = r.state;
                     *f = r.force;
                     *fl = r.flags;
-                    for j in 0..6 {
-                        fe[j] = bm[0][j] * r.force[0] + bm[1][j] * r.force[1] + bm[2][j] * r.force[2];
-                    }
                 }
             }
         };
-        if par {
-            const G: usize = GRAIN_INTERFACES;
+        const G: usize = GRAIN_INTERFACES;
+        if par && large {
             self.states
                 .par_chunks_mut(G)
                 .zip(self.forces.par_chunks_mut(G))
@@ -488,22 +499,38 @@ impl<'a> Integrator<'a> {
                 .zip(self.fe.par_chunks_mut(G))
                 .enumerate()
                 .for_each(|(c, (((st, f), fl), fe))| work(c * G, st, f, fl, fe));
+        } else if par {
+            self.states
+                .par_chunks_mut(G)
+                .zip(self.forces.par_chunks_mut(G))
+                .zip(self.flags.par_chunks_mut(G))
+                .enumerate()
+                .for_each(|(c, ((st, f), fl))| work(c * G, st, f, fl, &mut []));
         } else {
             work(0, &mut self.states, &mut self.forces, &mut self.flags, &mut self.fe);
         }
         // the gather: each block sums its interfaces' forces in increasing k, as a serial
-        // scatter in interface order would
-        let (start, inc, fe) = (&self.incidence_start, &self.incidence, &self.fe);
+        // scatter in interface order would; with the linearized kinematics the generalized
+        // forces B^T s are formed here (not stored: 48 bytes an interface less)
+        let (start, inc, fe, forces) = (&self.incidence_start, &self.incidence, &self.fe, &self.forces);
         let gather = |i0: usize, out: &mut [f64]| {
             for (i, out) in out.chunks_exact_mut(3).enumerate() {
                 let i = i0 + i;
                 let mut acc = [0.0; 3];
                 for &e in &inc[start[i] as usize..start[i + 1] as usize] {
                     let (k, side) = ((e >> 1) as usize, 3 * (e & 1) as usize);
-                    let x = &fe[k][side..side + 3];
-                    acc[0] += x[0];
-                    acc[1] += x[1];
-                    acc[2] += x[2];
+                    if large {
+                        let x = &fe[k][side..side + 3];
+                        acc[0] += x[0];
+                        acc[1] += x[1];
+                        acc[2] += x[2];
+                    } else {
+                        let (bm, s) = (geo[k].b_mat(), &forces[k]);
+                        for c in 0..3 {
+                            let j = side + c;
+                            acc[c] += bm[0][j] * s[0] + bm[1][j] * s[1] + bm[2][j] * s[2];
+                        }
+                    }
                 }
                 out.copy_from_slice(&acc);
             }
@@ -664,7 +691,7 @@ impl<'a> Stepper<'a> {
     /// threads (0: all cores).
     pub fn new(model: &'a Model, live_multiplier: f64, damping: Damping, large_rotations: bool, threads: usize) -> Result<Self, Error> {
         let mut s = Integrator::new(model, None, 0.8, damping, threads)?;
-        s.large = large_rotations;
+        s.set_large(large_rotations);
         let f: Vec<f64> = model.dead_load().iter().zip(model.live_load()).map(|(d, l)| d + live_multiplier * l).collect();
         s.f_ext.copy_from_slice(&f);
         s.interface_forces();
@@ -1126,7 +1153,7 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
         ));
     }
     let mut s = Integrator::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
-    s.large = opts.large_rotations;
+    s.set_large(opts.large_rotations);
     let fixed = model.fixed();
     if let Some(u0) = &opts.initial_displacement {
         for i in 0..nb {
