@@ -191,30 +191,45 @@ pub struct Response {
 
 /// The four faces of the domain, each `a . sigma <= b`, with flow direction `m`.
 /// Order: Coulomb +T, Coulomb -T, rocking +M, rocking -M (rocking faces divided by l/2).
+/// The rows `a` and `m` are formed where they are used, not stored: the elastic check, the
+/// common case, reads only `a` and `b`.
 struct Faces {
-    a: [[f64; 3]; 4],
-    m: [[f64; 3]; 4],
+    /// mu, tan(psi), 2 / l
+    mu: f64,
+    tp: f64,
+    k: f64,
     b: [f64; 4],
 }
 
 impl Faces {
     /// The faces with cohesion `c` and tensile strength `ft` [Pa].
+    #[inline(always)]
     fn new(law: &JointLaw, sec: &Section, c: f64, ft: f64) -> Self {
-        let (mu, tp) = (law.friction, law.dilatancy);
-        let k = 2.0 / sec.length;
-        let a = [
-            [mu, 1.0, 0.0],
-            [mu, -1.0, 0.0],
-            [1.0, 0.0, k],
-            [1.0, 0.0, -k],
-        ];
-        let m = [[tp, 1.0, 0.0], [tp, -1.0, 0.0], a[2], a[3]];
         let b = [c * sec.area, c * sec.area, ft * sec.area, ft * sec.area];
-        Faces { a, m, b }
+        Faces { mu: law.friction, tp: law.dilatancy, k: 2.0 / sec.length, b }
     }
-    #[inline]
+    /// The normal of face `j`.
+    #[inline(always)]
+    fn a(&self, j: usize) -> [f64; 3] {
+        match j {
+            0 => [self.mu, 1.0, 0.0],
+            1 => [self.mu, -1.0, 0.0],
+            2 => [1.0, 0.0, self.k],
+            _ => [1.0, 0.0, -self.k],
+        }
+    }
+    /// The flow direction of face `j`.
+    #[inline(always)]
+    fn m(&self, j: usize) -> [f64; 3] {
+        match j {
+            0 => [self.tp, 1.0, 0.0],
+            1 => [self.tp, -1.0, 0.0],
+            _ => self.a(j),
+        }
+    }
+    #[inline(always)]
     fn f(&self, j: usize, s: &[f64; 3]) -> f64 {
-        dot(&self.a[j], s) - self.b[j]
+        dot(&self.a(j), s) - self.b[j]
     }
 }
 
@@ -350,15 +365,15 @@ fn map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, want_
     // D m_j for every face
     let dm: [[f64; 3]; 4] = std::array::from_fn(|j| {
         [
-            d[0] * faces.m[j][0],
-            d[1] * faces.m[j][1],
-            d[2] * faces.m[j][2],
+            d[0] * faces.m(j)[0],
+            d[1] * faces.m(j)[1],
+            d[2] * faces.m(j)[2],
         ]
     });
     // the values on the trial force and the products a_i . D m_j of every face, once: each
     // active set below picks its entries (the same numbers as computing them per set)
     let f_trial: [f64; 4] = std::array::from_fn(|j| faces.f(j, &trial));
-    let g_all: [[f64; 4]; 4] = std::array::from_fn(|i| std::array::from_fn(|j| dot(&faces.a[i], &dm[j])));
+    let g_all: [[f64; 4]; 4] = std::array::from_fn(|i| std::array::from_fn(|j| dot(&faces.a(i), &dm[j])));
     for &mask in SUBSETS.iter() {
         if mask.count_ones() == 1 {
             // a single face whose multiplier f_j(trial) / (a_j . D m_j) is negative is rejected
@@ -402,7 +417,7 @@ fn map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, want_
             for c in 0..3 {
                 s[c] -= r[p] * dm[j][c];
                 if j < 2 {
-                    slip[c] += r[p] * faces.m[j][c];
+                    slip[c] += r[p] * faces.m(j)[c];
                 }
             }
             dk[if j < 2 { 1 } else { 0 }] += r[p];
@@ -418,8 +433,8 @@ fn map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, want_
     }
     // No active set satisfied the conditions (degenerate data): fall back on the apex, the one
     // point of the domain that every face reaches, carrying nothing beyond the cut-off.
-    let n_apex = if faces.a[0][0] > 0.0 {
-        faces.b[2].min(faces.b[0] / faces.a[0][0])
+    let n_apex = if faces.a(0)[0] > 0.0 {
+        faces.b[2].min(faces.b[0] / faces.a(0)[0])
     } else {
         faces.b[2]
     };
@@ -459,15 +474,15 @@ pub fn tangent_near_limit(
     }
     let dm: [[f64; 3]; 4] = std::array::from_fn(|j| {
         [
-            d[0] * faces.m[j][0],
-            d[1] * faces.m[j][1],
-            d[2] * faces.m[j][2],
+            d[0] * faces.m(j)[0],
+            d[1] * faces.m(j)[1],
+            d[2] * faces.m(j)[2],
         ]
     });
     let mut g = [[0.0; 3]; 3];
     for (p, &i) in near.iter().enumerate() {
         for (q, &j) in near.iter().enumerate() {
-            g[p][q] = dot(&faces.a[i], &dm[j]);
+            g[p][q] = dot(&faces.a(i), &dm[j]);
         }
     }
     active_tangent(&faces, &d, &dm, &near, &g).unwrap_or([[0.0; 3]; 3])
@@ -488,7 +503,7 @@ fn active_tangent(
         let mut g1 = *g;
         let mut rhs = [0.0; 3];
         for (p, &i) in act.iter().enumerate() {
-            rhs[p] = faces.a[i][col] * d[col];
+            rhs[p] = faces.a(i)[col] * d[col];
         }
         if !solve_small(&mut g1, &mut rhs, act.len()) {
             return None;
