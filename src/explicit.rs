@@ -21,7 +21,8 @@
 //! a separate pass).
 
 use crate::error::{check_steps, Error};
-use crate::joint::{return_map, JointLaw, JointState, Section};
+use crate::interface::{Family, Interface};
+use crate::joint::{return_map_forces, JointLaw, JointState};
 use crate::model::{LiveLoad, Model};
 use crate::results::{Results, Status};
 use rayon::prelude::*;
@@ -214,11 +215,70 @@ pub fn critical_time_step(model: &Model) -> f64 {
     }
 }
 
+/// Interfaces per parallel task of the interface pass, and blocks per task of the block passes:
+/// a few hundred microseconds of work per task at most, over a hundred tasks at 10^5 blocks.
+const GRAIN_INTERFACES: usize = 1024;
+const GRAIN_BLOCKS: usize = 1024;
+/// Below this many interfaces a step runs on one thread whatever is asked: the two hand-offs to
+/// the pool per step (some 10-20 us each) cost more than the second thread gives back.
+const PAR_MIN_INTERFACES: usize = 2048;
+
+/// What the linearized interface loop reads of an interface, packed in 56 bytes (the model's
+/// [`crate::interface::Interface`] takes 208): the two blocks and the four entries of `B` that
+/// are not +-n, +-t or +-1. `B`'s rows are (-n, -n.ra, n, n.rb), (-t, -t.ra, t, t.rb) and
+/// (0, 0, -1, 0, 0, 1), with t = (n_y, -n_x); [`Geo::b_mat`] rebuilds them bit for bit.
+#[derive(Debug, Clone, Copy)]
+struct Geo {
+    a: u32,
+    b: u32,
+    n: [f64; 2],
+    /// b_mat[0][2], b_mat[0][5], b_mat[1][2], b_mat[1][5]
+    r: [f64; 4],
+}
+
+impl Geo {
+    fn new(it: &Interface) -> Self {
+        let b = &it.b_mat;
+        Geo { a: it.a as u32, b: it.b as u32, n: it.n, r: [b[0][2], b[0][5], b[1][2], b[1][5]] }
+    }
+
+    #[inline(always)]
+    fn b_mat(&self) -> [[f64; 6]; 3] {
+        let ([n0, n1], r) = (self.n, self.r);
+        [[-n0, -n1, r[0], n0, n1, r[1]], [-n1, n0, r[2], n1, -n0, r[3]], [0.0, 0.0, -1.0, 0.0, 0.0, 1.0]]
+    }
+}
+
+/// Index of a family in the integrator's table of four laws.
+fn family_index(f: Family) -> u8 {
+    match f {
+        Family::Bed => 0,
+        Family::Head => 1,
+        Family::Base => 2,
+        Family::Top => 3,
+    }
+}
+
 /// The integrator's state and work arrays (flat, allocated once).
+///
+/// Per interface: the packed geometry (56 bytes), the family (1), the history (48), the force
+/// (24), the flags (1) and two entries of the block-to-interface incidence (8); sections and
+/// laws are read from the model (a table of four laws, one per family). With finite rotations
+/// also the six generalized forces on the two blocks (48), and per block the centroid and the
+/// rotation's (cos, sin). One step is: a pass over the blocks (velocity half-step and
+/// positions), a pass over the interfaces (return mapping, element forces), a pass over the
+/// blocks gathering their interfaces' forces (in interface order, so the sums do not depend on
+/// the number of threads), the external forces, and a pass over the blocks (accelerations and
+/// velocity half-step). Each pass is split into independent chunks on the thread pool.
 struct Integrator<'a> {
     model: &'a Model,
-    laws: Vec<JointLaw>,
-    sections: Vec<Section>,
+    geo: Vec<Geo>,
+    family: Vec<u8>,
+    laws: [JointLaw; 4],
+    /// interfaces of block i: `incidence[incidence_start[i]..incidence_start[i + 1]]`, each
+    /// `2 k + side` (side 0: the block is the interface's a, 1: its b), increasing in k
+    incidence_start: Vec<u32>,
+    incidence: Vec<u32>,
     inv_mass: Vec<f64>,
     mass: Vec<f64>,
     free: Vec<bool>,
@@ -233,7 +293,9 @@ struct Integrator<'a> {
     fe: Vec<[f64; 6]>,
     dt: f64,
     damping: Damping,
-    pool: rayon::ThreadPool,
+    pool: std::sync::Arc<rayon::ThreadPool>,
+    /// whether the passes go to the pool (more than one thread and enough interfaces)
+    par: bool,
     steps: usize,
     /// finite rotations (time histories) or the linearized kinematics of the static solver
     large: bool,
@@ -281,6 +343,9 @@ impl<'a> Integrator<'a> {
         }
         let nb = model.n_blocks();
         let m = model.interfaces().len();
+        if nb >= u32::MAX as usize || 2 * m >= u32::MAX as usize {
+            return Err(Error::input(format!("{nb} blocks and {m} interfaces: the explicit solver takes fewer than 2^31 interfaces")));
+        }
         let fixed = model.fixed();
         let mut mass = vec![0.0; 3 * nb];
         let mut inv_mass = vec![0.0; 3 * nb];
@@ -293,14 +358,37 @@ impl<'a> Integrator<'a> {
                 }
             }
         }
+        // incidence, by counting sort: interfaces in increasing k within each block
+        let mut incidence_start = vec![0u32; nb + 1];
+        for it in model.interfaces() {
+            incidence_start[it.a + 1] += 1;
+            incidence_start[it.b + 1] += 1;
+        }
+        for i in 0..nb {
+            incidence_start[i + 1] += incidence_start[i];
+        }
+        let mut next: Vec<u32> = incidence_start[..nb].to_vec();
+        let mut incidence = vec![0u32; 2 * m];
+        for (k, it) in model.interfaces().iter().enumerate() {
+            for (side, blk) in [(0, it.a), (1, it.b)] {
+                incidence[next[blk] as usize] = (2 * k + side) as u32;
+                next[blk] += 1;
+            }
+        }
+        let laws = model.laws();
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
             .map_err(|e| Error::input(format!("cannot start {threads} threads: {e}")))?;
+        let par = pool.current_num_threads() > 1 && m >= PAR_MIN_INTERFACES;
+        let pool = std::sync::Arc::new(pool);
         Ok(Integrator {
             model,
-            laws: (0..m).map(|k| *model.law(k)).collect(),
-            sections: model.sections().to_vec(),
+            geo: model.interfaces().iter().map(Geo::new).collect(),
+            family: model.interfaces().iter().map(|it| family_index(it.family)).collect(),
+            laws: [Family::Bed, Family::Head, Family::Base, Family::Top].map(|f| *laws.of(f)),
+            incidence_start,
+            incidence,
             inv_mass,
             mass,
             free: fixed.iter().map(|f| !f).collect(),
@@ -312,15 +400,28 @@ impl<'a> Integrator<'a> {
             states: vec![JointState::default(); m],
             forces: vec![[0.0; 3]; m],
             flags: vec![0; m],
-            fe: vec![[0.0; 6]; m],
+            fe: vec![],
             dt,
             damping,
             pool,
+            par,
             steps: 0,
             large: false,
-            centroids: model.rects().iter().map(|r| r.centroid()).collect(),
-            cs: vec![[1.0, 0.0]; nb],
+            centroids: vec![],
+            cs: vec![],
         })
+    }
+
+    /// Finite rotations (time histories) or the linearized kinematics (the default); the
+    /// arrays only the finite rotations need are allocated here.
+    fn set_large(&mut self, large: bool) {
+        self.large = large;
+        if large && self.fe.is_empty() {
+            let (m, nb) = (self.model.interfaces().len(), self.model.n_blocks());
+            self.fe = vec![[0.0; 6]; m];
+            self.centroids = self.model.rects().iter().map(|r| r.centroid()).collect();
+            self.cs = vec![[1.0, 0.0]; nb];
+        }
     }
 
     /// Fixes the dofs the model holds once the dead loads are on, where they are now.
@@ -333,111 +434,212 @@ impl<'a> Integrator<'a> {
         }
     }
 
+    /// The law of interface `k`.
+    #[inline(always)]
+    fn law(&self, k: usize) -> &JointLaw {
+        &self.laws[self.family[k] as usize]
+    }
+
     /// Interface forces at the current `u` from the committed histories, which are updated
     /// (each time step is an increment), then gathered into `f_int`.
     fn interface_forces(&mut self) {
-        let model = self.model;
-        let u = &self.u;
-        let laws = &self.laws;
-        let sections = &self.sections;
+        if self.par {
+            let pool = self.pool.clone();
+            pool.install(|| self.interface_forces_in(true));
+        } else {
+            self.interface_forces_in(false);
+        }
+    }
+
+    /// [`Integrator::interface_forces`], on the current rayon pool if `par`.
+    fn interface_forces_in(&mut self, par: bool) {
         if self.large {
-            for (i, cs) in self.cs.iter_mut().enumerate() {
-                let (s, c) = u[3 * i + 2].sin_cos();
-                *cs = [c, s];
+            let u = &self.u;
+            let rot = |i0: usize, cs: &mut [[f64; 2]]| {
+                for (i, cs) in cs.iter_mut().enumerate() {
+                    let (s, c) = u[3 * (i0 + i) + 2].sin_cos();
+                    *cs = [c, s];
+                }
+            };
+            if par {
+                self.cs.par_chunks_mut(GRAIN_BLOCKS).enumerate().for_each(|(c, cs)| rot(c * GRAIN_BLOCKS, cs));
+            } else {
+                rot(0, &mut self.cs);
             }
         }
+        let model = self.model;
+        let sections = model.sections();
+        let (u, geo, family, laws) = (&self.u, &self.geo, &self.family, &self.laws);
         let (large, g, cs) = (self.large, &self.centroids, &self.cs);
-        let work = |(k, ((st, f), (fl, fe))): (usize, ((&mut JointState, &mut [f64; 3]), (&mut u8, &mut [f64; 6])))| {
-            let it = &model.interfaces()[k];
-            if large {
-                let (a, b) = (it.a, it.b);
-                // the normal force's eccentricity at the previous step, within the interface
-                let ecc = if f[0] < 0.0 { (f[2] / f[0]).clamp(-0.5 * it.l, 0.5 * it.l) } else { 0.0 };
-                let kin = it.large_kinematics(g[a], g[b], &u[3 * a..3 * a + 3], &u[3 * b..3 * b + 3], cs[a], cs[b], ecc);
-                let r = return_map(&laws[k], &sections[k], kin.jumps, st);
-                *st = r.state;
-                *f = r.force;
-                *fl = r.flags;
-                *fe = kin.forces(r.force);
-            } else {
-                let r = return_map(&laws[k], &sections[k], it.jumps(u), st);
-                *st = r.state;
-                *f = r.force;
-                *fl = r.flags;
-                let b = &it.b_mat;
-                for j in 0..6 {
-                    fe[j] = b[0][j] * r.force[0] + b[1][j] * r.force[1] + b[2][j] * r.force[2];
+        // fe: the generalized forces on the blocks, with finite rotations only (empty otherwise)
+        let work = |k0: usize, st: &mut [JointState], f: &mut [[f64; 3]], fl: &mut [u8], fe: &mut [[f64; 6]]| {
+            for (i, ((st, f), fl)) in st.iter_mut().zip(f.iter_mut()).zip(fl.iter_mut()).enumerate() {
+                let k = k0 + i;
+                let law = &laws[family[k] as usize];
+                if large {
+                    let it = &model.interfaces()[k];
+                    let (a, b) = (it.a, it.b);
+                    // the normal force's eccentricity at the previous step, within the interface
+                    let ecc = if f[0] < 0.0 { (f[2] / f[0]).clamp(-0.5 * it.l, 0.5 * it.l) } else { 0.0 };
+                    let kin = it.large_kinematics(g[a], g[b], &u[3 * a..3 * a + 3], &u[3 * b..3 * b + 3], cs[a], cs[b], ecc);
+                    let r = return_map_forces(law, &sections[k], kin.jumps, st);
+                    *st = r.state;
+                    *f = r.force;
+                    *fl = r.flags;
+                    fe[i] = kin.forces(r.force);
+                } else {
+                    let gk = &geo[k];
+                    let (a, b) = (3 * gk.a as usize, 3 * gk.b as usize);
+                    let q = [u[a], u[a + 1], u[a + 2], u[b], u[b + 1], u[b + 2]];
+                    let bm = gk.b_mat();
+                    // as Interface::jumps, term by term
+                    let e: [f64; 3] = std::array::from_fn(|r| (0..6).map(|j| bm[r][j] * q[j]).sum());
+                    let r = return_map_forces(law, &sections[k], e, st);
+                    *st = r.state;
+                    *f = r.force;
+                    *fl = r.flags;
                 }
             }
         };
-        if self.pool.current_num_threads() > 1 && self.fe.len() >= 512 {
-            let par = self
-                .states
-                .par_iter_mut()
-                .zip(self.forces.par_iter_mut())
-                .zip(self.flags.par_iter_mut().zip(self.fe.par_iter_mut()))
-                .enumerate();
-            self.pool.install(|| par.with_min_len(256).for_each(work));
+        const G: usize = GRAIN_INTERFACES;
+        if par && large {
+            self.states
+                .par_chunks_mut(G)
+                .zip(self.forces.par_chunks_mut(G))
+                .zip(self.flags.par_chunks_mut(G))
+                .zip(self.fe.par_chunks_mut(G))
+                .enumerate()
+                .for_each(|(c, (((st, f), fl), fe))| work(c * G, st, f, fl, fe));
+        } else if par {
+            self.states
+                .par_chunks_mut(G)
+                .zip(self.forces.par_chunks_mut(G))
+                .zip(self.flags.par_chunks_mut(G))
+                .enumerate()
+                .for_each(|(c, ((st, f), fl))| work(c * G, st, f, fl, &mut []));
         } else {
-            let iter = self.states.iter_mut().zip(self.forces.iter_mut()).zip(self.flags.iter_mut().zip(self.fe.iter_mut()));
-            iter.enumerate().for_each(work);
+            work(0, &mut self.states, &mut self.forces, &mut self.flags, &mut self.fe);
         }
-        self.f_int.fill(0.0);
-        for (it, fe) in model.interfaces().iter().zip(&self.fe) {
-            let d = it.dofs();
-            for j in 0..6 {
-                self.f_int[d[j]] += fe[j];
+        // the gather: each block sums its interfaces' forces in increasing k, as a serial
+        // scatter in interface order would; with the linearized kinematics the generalized
+        // forces B^T s are formed here (not stored: 48 bytes an interface less)
+        let (start, inc, fe, forces) = (&self.incidence_start, &self.incidence, &self.fe, &self.forces);
+        let gather = |i0: usize, out: &mut [f64]| {
+            for (i, out) in out.chunks_exact_mut(3).enumerate() {
+                let i = i0 + i;
+                let mut acc = [0.0; 3];
+                for &e in &inc[start[i] as usize..start[i + 1] as usize] {
+                    let (k, side) = ((e >> 1) as usize, 3 * (e & 1) as usize);
+                    if large {
+                        let x = &fe[k][side..side + 3];
+                        acc[0] += x[0];
+                        acc[1] += x[1];
+                        acc[2] += x[2];
+                    } else {
+                        let (bm, s) = (geo[k].b_mat(), &forces[k]);
+                        for c in 0..3 {
+                            let j = side + c;
+                            acc[c] += bm[0][j] * s[0] + bm[1][j] * s[1] + bm[2][j] * s[2];
+                        }
+                    }
+                }
+                out.copy_from_slice(&acc);
             }
+        };
+        if par {
+            self.f_int.par_chunks_mut(3 * GRAIN_BLOCKS).enumerate().for_each(|(c, out)| gather(c * GRAIN_BLOCKS, out));
+        } else {
+            gather(0, &mut self.f_int);
+        }
+    }
+
+    /// Accelerations from the current forces, with damping against the current velocity; then,
+    /// with `kick`, the velocity half-step `v += kick * a` on the free dofs.
+    fn accelerations_kick(&mut self, kick: Option<f64>) {
+        let damping = self.damping;
+        let (f_ext, f_int, free, inv_mass, mass) = (&self.f_ext, &self.f_int, &self.free, &self.inv_mass, &self.mass);
+        let work = |d0: usize, a: &mut [f64], v: &mut [f64]| {
+            for (i, (a, v)) in a.iter_mut().zip(v.iter_mut()).enumerate() {
+                let d = d0 + i;
+                if !free[d] {
+                    *a = 0.0;
+                    continue;
+                }
+                let mut f = f_ext[d] - f_int[d];
+                let vd = *v;
+                let fd = match damping {
+                    Damping::None => 0.0,
+                    Damping::Local(alpha) => {
+                        if vd != 0.0 {
+                            -alpha * f.abs() * vd.signum()
+                        } else {
+                            0.0
+                        }
+                    }
+                    Damping::Viscous(c) => -c * mass[d] * vd,
+                };
+                f += fd;
+                *a = f * inv_mass[d];
+                if let Some(h) = kick {
+                    *v += h * *a;
+                }
+            }
+        };
+        if self.par {
+            const G: usize = 3 * GRAIN_BLOCKS;
+            let (a, v) = (&mut self.a, &mut self.v);
+            self.pool.install(|| a.par_chunks_mut(G).zip(v.par_chunks_mut(G)).enumerate().for_each(|(c, (a, v))| work(c * G, a, v)));
+        } else {
+            work(0, &mut self.a, &mut self.v);
         }
     }
 
     /// Accelerations from the current forces, with damping against the current velocity.
     fn accelerations(&mut self) {
-        for d in 0..self.u.len() {
-            if !self.free[d] {
-                self.a[d] = 0.0;
-                continue;
-            }
-            let mut f = self.f_ext[d] - self.f_int[d];
-            let v = self.v[d];
-            let fd = match self.damping {
-                Damping::None => 0.0,
-                Damping::Local(alpha) => {
-                    if v != 0.0 {
-                        -alpha * f.abs() * v.signum()
-                    } else {
-                        0.0
-                    }
+        self.accelerations_kick(None);
+    }
+
+    /// The first half of a velocity-Verlet step: `v += dt/2 a`, `u += dt v` on the free dofs,
+    /// then the prescribed dof; on the current rayon pool if `par`.
+    fn drift_in(&mut self, prescribed: Option<(usize, f64)>, par: bool) {
+        let dt = self.dt;
+        let (a, free) = (&self.a, &self.free);
+        let drift = |d0: usize, u: &mut [f64], v: &mut [f64]| {
+            for (i, (u, v)) in u.iter_mut().zip(v.iter_mut()).enumerate() {
+                if free[d0 + i] {
+                    *v += 0.5 * dt * a[d0 + i];
+                    *u += dt * *v;
                 }
-                Damping::Viscous(c) => -c * self.mass[d] * v,
-            };
-            f += fd;
-            self.a[d] = f * self.inv_mass[d];
+            }
+        };
+        if par {
+            const G: usize = 3 * GRAIN_BLOCKS;
+            self.u.par_chunks_mut(G).zip(self.v.par_chunks_mut(G)).enumerate().for_each(|(c, (u, v))| drift(c * G, u, v));
+        } else {
+            drift(0, &mut self.u, &mut self.v);
+        }
+        if let Some((d, val)) = prescribed {
+            self.v[d] = (val - self.u[d]) / dt;
+            self.u[d] = val;
         }
     }
 
     /// One velocity-Verlet step; `f_ext` must hold the external forces at the new time.
     /// `prescribed`: dof driven to a value (displacement control).
     fn step(&mut self, set_ext: &mut dyn FnMut(&mut [f64], &[f64]), prescribed: Option<(usize, f64)>) {
-        let dt = self.dt;
-        for d in 0..self.u.len() {
-            if self.free[d] {
-                self.v[d] += 0.5 * dt * self.a[d];
-                self.u[d] += dt * self.v[d];
-            }
+        if self.par {
+            // one hand-off to the pool for the positions and the interface forces
+            let pool = self.pool.clone();
+            pool.install(|| {
+                self.drift_in(prescribed, true);
+                self.interface_forces_in(true);
+            });
+        } else {
+            self.drift_in(prescribed, false);
+            self.interface_forces_in(false);
         }
-        if let Some((d, val)) = prescribed {
-            self.v[d] = (val - self.u[d]) / dt;
-            self.u[d] = val;
-        }
-        self.interface_forces();
         set_ext(&mut self.f_ext, &self.f_int);
-        self.accelerations();
-        for d in 0..self.u.len() {
-            if self.free[d] {
-                self.v[d] += 0.5 * dt * self.a[d];
-            }
-        }
+        self.accelerations_kick(Some(0.5 * self.dt));
         if let Some((d, _)) = prescribed {
             self.a[d] = 0.0;
         }
@@ -464,13 +666,75 @@ impl<'a> Integrator<'a> {
     fn elastic_energy(&self) -> f64 {
         let mut e = 0.0;
         for (k, f) in self.forces.iter().enumerate() {
-            let (law, s) = (&self.laws[k], &self.sections[k]);
+            let (law, s) = (self.law(k), &self.model.sections()[k]);
             e += 0.5
                 * (f[0] * f[0] / (law.normal_stiffness * s.area)
                     + f[1] * f[1] / (law.shear_stiffness * s.area)
                     + f[2] * f[2] / (law.normal_stiffness * s.inertia));
         }
         e
+    }
+}
+
+/// A bare time stepper over the integrator of [`simulate`], for benchmarks and profiling (not
+/// part of the supported API): the model under its dead loads plus `live_multiplier` times its
+/// live loads, from rest, with the automatic time step (safety 0.8). [`Stepper::run`] does
+/// `k` time steps and nothing else: no records, no energy, no checks.
+///
+/// ```
+/// use masonry_dem::explicit::{Damping, Stepper};
+/// use masonry_dem::geometry::Rect;
+/// use masonry_dem::model::{Model, ModelSpec};
+/// let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2)], ..ModelSpec::default() }).unwrap();
+/// let mut s = Stepper::new(&model, 0.0, Damping::Local(0.8), false, 1).unwrap();
+/// s.run(10);
+/// assert_eq!(s.n_interfaces(), 1);
+/// assert!(s.displacements()[1] < 0.0); // the block settles onto the base
+/// ```
+#[doc(hidden)]
+pub struct Stepper<'a> {
+    s: Integrator<'a>,
+    f: Vec<f64>,
+}
+
+impl<'a> Stepper<'a> {
+    /// The integrator of `model` (linearized kinematics unless `large_rotations`) on `threads`
+    /// threads (0: all cores).
+    pub fn new(model: &'a Model, live_multiplier: f64, damping: Damping, large_rotations: bool, threads: usize) -> Result<Self, Error> {
+        let mut s = Integrator::new(model, None, 0.8, damping, threads)?;
+        s.set_large(large_rotations);
+        let f: Vec<f64> = model.dead_load().iter().zip(model.live_load()).map(|(d, l)| d + live_multiplier * l).collect();
+        s.f_ext.copy_from_slice(&f);
+        s.interface_forces();
+        s.accelerations();
+        Ok(Stepper { s, f })
+    }
+
+    /// `k` time steps.
+    pub fn run(&mut self, k: usize) {
+        let f = &self.f;
+        let mut set_ext = |fe: &mut [f64], _: &[f64]| fe.copy_from_slice(f);
+        for _ in 0..k {
+            self.s.step(&mut set_ext, None);
+        }
+    }
+
+    pub fn n_interfaces(&self) -> usize {
+        self.s.model.interfaces().len()
+    }
+
+    pub fn time_step(&self) -> f64 {
+        self.s.dt
+    }
+
+    /// (u1, u2, phi) of every block, flat.
+    pub fn displacements(&self) -> &[f64] {
+        &self.s.u
+    }
+
+    /// The interface forces (N, T, M) of the last step.
+    pub fn interface_forces(&self) -> &[[f64; 3]] {
+        &self.s.forces
     }
 }
 
@@ -916,7 +1180,7 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
         ));
     }
     let mut s = Integrator::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
-    s.large = opts.large_rotations;
+    s.set_large(opts.large_rotations);
     let fixed = model.fixed();
     if let Some(u0) = &opts.initial_displacement {
         for i in 0..nb {
@@ -1041,4 +1305,33 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
     h.steps = s.steps;
     h.elapsed_s = start.elapsed().as_secs_f64();
     Ok(h)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{running_bond, FirstCourse, RunningBond};
+    use crate::model::ModelSpec;
+
+    #[test]
+    fn packed_geometry_rebuilds_b_bit_for_bit() {
+        let blocks = running_bond(&RunningBond {
+            block_length: 0.4,
+            block_height: 0.175,
+            courses: 5,
+            length: 2.0,
+            first_course: FirstCourse::Half,
+            openings: vec![],
+        })
+        .unwrap();
+        let model = Model::new(ModelSpec { blocks, ..ModelSpec::default() }).unwrap();
+        for it in model.interfaces() {
+            let b = Geo::new(it).b_mat();
+            for r in 0..3 {
+                for j in 0..6 {
+                    assert_eq!(b[r][j].to_bits(), it.b_mat[r][j].to_bits(), "{it:?} B[{r}][{j}]");
+                }
+            }
+        }
+    }
 }

@@ -191,30 +191,45 @@ pub struct Response {
 
 /// The four faces of the domain, each `a . sigma <= b`, with flow direction `m`.
 /// Order: Coulomb +T, Coulomb -T, rocking +M, rocking -M (rocking faces divided by l/2).
+/// The rows `a` and `m` are formed where they are used, not stored: the elastic check, the
+/// common case, reads only `a` and `b`.
 struct Faces {
-    a: [[f64; 3]; 4],
-    m: [[f64; 3]; 4],
+    /// mu, tan(psi), 2 / l
+    mu: f64,
+    tp: f64,
+    k: f64,
     b: [f64; 4],
 }
 
 impl Faces {
     /// The faces with cohesion `c` and tensile strength `ft` [Pa].
+    #[inline(always)]
     fn new(law: &JointLaw, sec: &Section, c: f64, ft: f64) -> Self {
-        let (mu, tp) = (law.friction, law.dilatancy);
-        let k = 2.0 / sec.length;
-        let a = [
-            [mu, 1.0, 0.0],
-            [mu, -1.0, 0.0],
-            [1.0, 0.0, k],
-            [1.0, 0.0, -k],
-        ];
-        let m = [[tp, 1.0, 0.0], [tp, -1.0, 0.0], a[2], a[3]];
         let b = [c * sec.area, c * sec.area, ft * sec.area, ft * sec.area];
-        Faces { a, m, b }
+        Faces { mu: law.friction, tp: law.dilatancy, k: 2.0 / sec.length, b }
     }
-    #[inline]
+    /// The normal of face `j`.
+    #[inline(always)]
+    fn a(&self, j: usize) -> [f64; 3] {
+        match j {
+            0 => [self.mu, 1.0, 0.0],
+            1 => [self.mu, -1.0, 0.0],
+            2 => [1.0, 0.0, self.k],
+            _ => [1.0, 0.0, -self.k],
+        }
+    }
+    /// The flow direction of face `j`.
+    #[inline(always)]
+    fn m(&self, j: usize) -> [f64; 3] {
+        match j {
+            0 => [self.tp, 1.0, 0.0],
+            1 => [self.tp, -1.0, 0.0],
+            _ => self.a(j),
+        }
+    }
+    #[inline(always)]
     fn f(&self, j: usize, s: &[f64; 3]) -> f64 {
-        dot(&self.a[j], s) - self.b[j]
+        dot(&self.a(j), s) - self.b[j]
     }
 }
 
@@ -228,34 +243,52 @@ const SUBSETS: [u8; 14] = [1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14];
 
 /// Solves the k x k system (k <= 3) in place by Gaussian elimination with partial pivoting;
 /// returns false if it is singular relative to its scale.
+#[inline(always)]
 fn solve_small(g: &mut [[f64; 3]; 3], r: &mut [f64; 3], k: usize) -> bool {
-    let scale = (0..k)
-        .flat_map(|i| (0..k).map(move |j| (i, j)))
-        .map(|(i, j)| g[i][j].abs())
-        .fold(0.0, f64::max);
+    // one unrolled copy per size: the return mapping calls this up to 14 times per plastic update
+    match k {
+        1 => solve_k::<1>(g, r),
+        2 => solve_k::<2>(g, r),
+        3 => solve_k::<3>(g, r),
+        _ => unreachable!("at most 3 active faces"),
+    }
+}
+
+#[inline(always)]
+fn solve_k<const K: usize>(g: &mut [[f64; 3]; 3], r: &mut [f64; 3]) -> bool {
+    let mut scale: f64 = 0.0;
+    for row in g.iter().take(K) {
+        for x in row.iter().take(K) {
+            scale = scale.max(x.abs());
+        }
+    }
     if scale == 0.0 {
         return false;
     }
-    for col in 0..k {
-        let p = (col..k)
-            .max_by(|&x, &y| g[x][col].abs().total_cmp(&g[y][col].abs()))
-            .unwrap();
+    for col in 0..K {
+        // the last row of largest magnitude, as `Iterator::max_by` picks it
+        let mut p = col;
+        for x in col + 1..K {
+            if g[p][col].abs().total_cmp(&g[x][col].abs()) != std::cmp::Ordering::Greater {
+                p = x;
+            }
+        }
         if g[p][col].abs() <= 1e-12 * scale {
             return false;
         }
         g.swap(col, p);
         r.swap(col, p);
-        for row in col + 1..k {
+        for row in col + 1..K {
             let f = g[row][col] / g[col][col];
-            for c2 in col..k {
+            for c2 in col..K {
                 g[row][c2] -= f * g[col][c2];
             }
             r[row] -= f * r[col];
         }
     }
-    for col in (0..k).rev() {
+    for col in (0..K).rev() {
         let mut s = r[col];
-        for c2 in col + 1..k {
+        for c2 in col + 1..K {
             s -= g[col][c2] * r[c2];
         }
         r[col] = s / g[col][col];
@@ -266,6 +299,19 @@ fn solve_small(g: &mut [[f64; 3]; 3], r: &mut [f64; 3], k: usize) -> bool {
 /// The return mapping: forces, updated history, state flags and consistent tangent for the total
 /// jumps `e`, starting from the committed history `committed`.
 pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState) -> Response {
+    map(law, sec, e, committed, true)
+}
+
+/// The same return mapping as [`return_map`] without its consistent tangent
+/// (`Response::tangent` is left zero): for the explicit solver, which needs the forces only.
+/// Forces, history and flags are those of [`return_map`], bit for bit.
+#[inline]
+pub fn return_map_forces(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState) -> Response {
+    map(law, sec, e, committed, false)
+}
+
+#[inline(always)]
+fn map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, want_tangent: bool) -> Response {
     let d = [
         law.normal_stiffness * sec.area,
         law.shear_stiffness * sec.area,
@@ -291,7 +337,7 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
     let (c_now, ft_now) = law.strengths(&JointState { broken, ..*committed });
     let faces = Faces::new(law, sec, c_now, ft_now);
     let tol = 1e-12 * (scale + faces.b[0] + faces.b[2]) + f64::MIN_POSITIVE;
-    let elastic_tangent = [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
+    let elastic_tangent = if want_tangent { [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]] } else { [[0.0; 3]; 3] };
     // Only the Coulomb flow (slip and its dilatancy) is history: an opening or a rocking gap
     // closes again without resistance (no-tension contact), so the rocking faces' flow is not
     // stored. Within a step the mapping, and so its tangent, is the same.
@@ -319,12 +365,25 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
     // D m_j for every face
     let dm: [[f64; 3]; 4] = std::array::from_fn(|j| {
         [
-            d[0] * faces.m[j][0],
-            d[1] * faces.m[j][1],
-            d[2] * faces.m[j][2],
+            d[0] * faces.m(j)[0],
+            d[1] * faces.m(j)[1],
+            d[2] * faces.m(j)[2],
         ]
     });
+    // the values on the trial force and the products a_i . D m_j of every face, once: each
+    // active set below picks its entries (the same numbers as computing them per set)
+    let f_trial: [f64; 4] = std::array::from_fn(|j| faces.f(j, &trial));
+    let g_all: [[f64; 4]; 4] = std::array::from_fn(|i| std::array::from_fn(|j| dot(&faces.a(i), &dm[j])));
     for &mask in SUBSETS.iter() {
+        if mask.count_ones() == 1 {
+            // a single face whose multiplier f_j(trial) / (a_j . D m_j) is negative is rejected
+            // below: skip it without the elimination (most plastic updates end on one face or
+            // two, so most single faces are skipped)
+            let j = mask.trailing_zeros() as usize;
+            if f_trial[j] / g_all[j][j] < 0.0 {
+                continue;
+            }
+        }
         let mut act_buf = [0usize; 3];
         let mut n = 0;
         for j in 0..4 {
@@ -337,9 +396,9 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
         let mut g = [[0.0; 3]; 3];
         let mut r = [0.0; 3];
         for (p, &i) in act.iter().enumerate() {
-            r[p] = faces.f(i, &trial);
+            r[p] = f_trial[i];
             for (q, &j) in act.iter().enumerate() {
-                g[p][q] = dot(&faces.a[i], &dm[j]);
+                g[p][q] = g_all[i][j];
             }
         }
         let g0 = g;
@@ -358,7 +417,7 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
             for c in 0..3 {
                 s[c] -= r[p] * dm[j][c];
                 if j < 2 {
-                    slip[c] += r[p] * faces.m[j][c];
+                    slip[c] += r[p] * faces.m(j)[c];
                 }
             }
             dk[if j < 2 { 1 } else { 0 }] += r[p];
@@ -379,7 +438,7 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
         let reached = |j: usize| faces.f(j, &s) > -tol;
         let apex = (pair(0b1100) && (reached(0) || reached(1)))
             || (pair(0b0011) && (reached(2) || reached(3)));
-        let tangent = if apex {
+        let tangent = if apex || !want_tangent {
             [[0.0; 3]; 3]
         } else {
             active_tangent(&faces, &d, &dm, act, &g0).unwrap_or([[0.0; 3]; 3])
@@ -388,8 +447,8 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
     }
     // No active set satisfied the conditions (degenerate data): fall back on the apex, the one
     // point of the domain that every face reaches, carrying nothing beyond the cut-off.
-    let n_apex = if faces.a[0][0] > 0.0 {
-        faces.b[2].min(faces.b[0] / faces.a[0][0])
+    let n_apex = if faces.a(0)[0] > 0.0 {
+        faces.b[2].min(faces.b[0] / faces.a(0)[0])
     } else {
         faces.b[2]
     };
@@ -429,15 +488,15 @@ pub fn tangent_near_limit(
     }
     let dm: [[f64; 3]; 4] = std::array::from_fn(|j| {
         [
-            d[0] * faces.m[j][0],
-            d[1] * faces.m[j][1],
-            d[2] * faces.m[j][2],
+            d[0] * faces.m(j)[0],
+            d[1] * faces.m(j)[1],
+            d[2] * faces.m(j)[2],
         ]
     });
     let mut g = [[0.0; 3]; 3];
     for (p, &i) in near.iter().enumerate() {
         for (q, &j) in near.iter().enumerate() {
-            g[p][q] = dot(&faces.a[i], &dm[j]);
+            g[p][q] = dot(&faces.a(i), &dm[j]);
         }
     }
     active_tangent(&faces, &d, &dm, &near, &g).unwrap_or([[0.0; 3]; 3])
@@ -458,7 +517,7 @@ fn active_tangent(
         let mut g1 = *g;
         let mut rhs = [0.0; 3];
         for (p, &i) in act.iter().enumerate() {
-            rhs[p] = faces.a[i][col] * d[col];
+            rhs[p] = faces.a(i)[col] * d[col];
         }
         if !solve_small(&mut g1, &mut rhs, act.len()) {
             return None;
