@@ -643,7 +643,10 @@ impl<'a> Solver<'a> {
         let scale = self.lambda_scale();
         let max_lambda = 1e3 * scale;
         let mut dl = 4.0 * scale / self.opts.steps as f64;
-        let mut cut = false; // a step has failed: no more growth
+        // after a failed step, growth only after a run of easy steps (a wall that needed a cut
+        // early, e.g. on a joint that closes, would otherwise crawl to collapse in thousands of
+        // steps; near collapse steps take many iterations and never count as easy)
+        let mut easy = usize::MAX;
         let mut u_conv = self.u.clone();
         let mut lam_conv = 0.0;
         let max_attempts = 100 * self.opts.steps + 1000;
@@ -657,8 +660,13 @@ impl<'a> Solver<'a> {
                     if let Err(e) = self.commit(monitor, f64::NAN) {
                         return (Status::Failed, Some(e));
                     }
-                    if !cut && iters <= 3 {
-                        dl *= 1.5;
+                    if iters <= 3 {
+                        easy = easy.saturating_add(1);
+                        if easy >= 4 {
+                            dl *= 1.5;
+                        }
+                    } else {
+                        easy = 0;
                     }
                     if lam_conv > max_lambda {
                         return (Status::Completed, None);
@@ -673,7 +681,7 @@ impl<'a> Solver<'a> {
                     self.u.copy_from_slice(&u_conv);
                     self.lambda = lam_conv;
                     dl *= 0.5;
-                    cut = true;
+                    easy = 0;
                     // collapse: no equilibrium even a bracket-width above the last one
                     if 2.0 * dl <= self.opts.tolerance * lam_conv.abs().max(1e-3 * scale) {
                         self.mechanism = self.collapse_mechanism();

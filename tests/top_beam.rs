@@ -106,3 +106,40 @@ fn the_explicit_solver_holds_the_beam_too() {
     // quasi-static to the unbalanced-force ratio 1e-5 of the explicit solver
     assert_close(*r.curve_multiplier.last().unwrap(), 0.5 * (n + 800.0), 0.01, "sliding force under the held beam, explicit [N]");
 }
+
+/// Found by a property test: three 1 m courses (blocks of 0.25, 0.5, 0.25 and 0.5, 0.5 m wide,
+/// 0.5 m high), mu = 0.5, psi = 0, under a free beam of 1 N. The first load step fails; the
+/// load stepping then never let the step grow again and crawled (steps = 30: "no collapse
+/// bracket after 4,000 attempts"; steps = 200: 6,626 steps to a premature 0.2593). Static load
+/// control must find the collapse that the explicit solver finds, independently, within 1%.
+#[test]
+fn load_steps_grow_again_after_an_early_cut() {
+    use masonry_dem::explicit::{solve as solve_explicit, ExplicitOptions};
+    let r = |x0: f64, y0: f64, x1: f64, y1: f64| Rect::new(x0, y0, x1, y1);
+    let blocks = vec![
+        r(0.0, 0.0, 0.25, 0.5),
+        r(0.25, 0.0, 0.75, 0.5),
+        r(0.75, 0.0, 1.0, 0.5),
+        r(0.0, 0.5, 0.5, 1.0),
+        r(0.5, 0.5, 1.0, 1.0),
+        r(0.0, 1.0, 0.25, 1.5),
+        r(0.25, 1.0, 0.75, 1.5),
+        r(0.75, 1.0, 1.0, 1.5),
+    ];
+    let m = Model::new(ModelSpec {
+        blocks,
+        gravity: 9.81,
+        top: Some(TopBeam { rotation_fixed: false, force: [0.0, -1.0], vertical_held: false }),
+        joints: JointLaws::uniform(dry(0.5, 0.0, 1e10)),
+        ..ModelSpec::default()
+    })
+    .unwrap();
+    let e = solve_explicit(&m, &ExplicitOptions::default()).unwrap();
+    assert_eq!(e.status, Status::Collapse, "{:?}", e.error);
+    for steps in [30, 200] {
+        let s = solve(&m, &StaticOptions { steps, ..Default::default() }).unwrap();
+        assert_eq!(s.status, Status::Collapse, "steps = {steps}: {:?}", s.error);
+        assert!(s.steps < 3000, "steps = {steps}: {} load steps", s.steps);
+        assert_close(s.collapse_multiplier, e.collapse_multiplier, 0.01, "static against explicit collapse multiplier");
+    }
+}
