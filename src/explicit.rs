@@ -171,6 +171,18 @@ impl TimeHistory {
     }
 }
 
+/// Whether the monitor is due at step `k`: every 4,096 steps, or when 0.1 s of wall time have
+/// passed since it was last called (on a large wall 4,096 steps take minutes, and Ctrl-C must
+/// stop a run within half a second).
+fn monitor_due(k: usize, last: &mut Instant) -> bool {
+    if k % 4096 == 4095 || last.elapsed().as_secs_f64() >= 0.1 {
+        *last = Instant::now();
+        true
+    } else {
+        false
+    }
+}
+
 /// Progress reported to a monitor; it returns false to stop the run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Progress {
@@ -750,7 +762,7 @@ enum Level {
 /// solver starts from it where Newton cannot find the dead state from the unloaded wall.
 /// A block moving more than 1% of the wall's size (or the wall's motion ceasing to be finite)
 /// means the wall does not stand: the relaxation stops there instead of running its step limit.
-/// `monitor` is called every 4,096 steps (return false to stop: `Error::Interrupted`).
+/// `monitor` is called every 4,096 steps or 0.1 s (return false to stop: `Error::Interrupted`).
 pub(crate) fn relax_dead_state(
     model: &Model,
     monitor: &mut dyn FnMut(&Progress) -> bool,
@@ -761,6 +773,7 @@ pub(crate) fn relax_dead_state(
     let limit = 1e-2 * model.size();
     let nb = model.n_blocks();
     let max_steps = 2_000_000;
+    let mut last = Instant::now();
     for k in 0..max_steps {
         s.step(&mut set_ext, None);
         if k % 16 == 15 {
@@ -777,7 +790,7 @@ pub(crate) fn relax_dead_state(
                 )));
             }
         }
-        if k % 4096 == 4095 {
+        if monitor_due(k, &mut last) {
             let p = Progress { step: k + 1, multiplier: 0.0, displacement: f64::NAN, fraction: f64::NAN };
             if !monitor(&p) {
                 return Err(Error::Interrupted);
@@ -939,6 +952,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
                 f[d] = fd[d] + l * fl[d];
             }
         };
+        let mut last = Instant::now();
         for k in 0..opts.max_steps_per_level {
             s.step(&mut set_ext, drive.map(|x| (cd, x)));
             *lam = lam_cell.get();
@@ -951,7 +965,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
                     return Level::RanAway;
                 }
             }
-            if k % 4096 == 4095 {
+            if monitor_due(k, &mut last) {
                 let p = Progress { step: s.steps, multiplier: *lam, displacement: s.u[cd], fraction: f64::NAN };
                 if !monitor(&p) {
                     return Level::Stopped;
@@ -1276,6 +1290,7 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
         h.dissipated.push(work - ke - ee);
     };
     record(&mut h, &s, 0.0, 0.0);
+    let mut last = Instant::now();
     for n in 1..=n_steps {
         let t = n as f64 * s.dt;
         let mut set_ext = |f: &mut [f64], _: &[f64]| ext(f, t);
@@ -1293,7 +1308,7 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
         if n % opts.record_every == 0 || n == n_steps {
             record(&mut h, &s, t, work);
         }
-        if n % 4096 == 0 {
+        if monitor_due(n - 1, &mut last) {
             let p = Progress { step: n, multiplier: lam, displacement: f64::NAN, fraction: n as f64 / n_steps as f64 };
             if !monitor(&p) {
                 h.status = Status::Failed;

@@ -70,7 +70,14 @@ pub struct Progress {
     pub displacement: f64,
     /// Fraction of the requested path done, in [0, 1] (displacement control), or NaN.
     pub fraction: f64,
+    /// True for a poll during a long computation (at most every 0.1 s, between Newton
+    /// iterations), which repeats the figures of the last converged step: a display may skip
+    /// it; returning false stops the run all the same.
+    pub poll: bool,
 }
+
+/// The shortest wall time between two polls of the monitor within a step [s].
+const POLL_INTERVAL: f64 = 0.1;
 
 /// Runs a static analysis. Bad options or an unsupported model are an `Err`; a solver failure
 /// is a `Results` with status `Failed`, its reason and the converged part of the curve.
@@ -85,12 +92,10 @@ pub fn solve_with(
     monitor: &mut dyn FnMut(&Progress) -> bool,
 ) -> Result<Results, Error> {
     let start = Instant::now();
-    let mut s = Solver::new(model, opts)?;
+    let mut s = Solver::new(model, opts, Box::new(|p: &Progress| monitor(p)))?;
     let outcome = match opts.control {
-        Control::Load => s.load_control(monitor),
-        Control::Displacement { max_displacement } => {
-            s.displacement_control(max_displacement, monitor)
-        }
+        Control::Load => s.load_control(),
+        Control::Displacement { max_displacement } => s.displacement_control(max_displacement),
     };
     Ok(s.finish(outcome, start))
 }
@@ -98,8 +103,13 @@ pub fn solve_with(
 /// Outcome of a run: status, and the reason when it failed.
 type Outcome = (Status, Option<Error>);
 
-struct Solver<'a> {
+struct Solver<'a, 'm> {
     model: &'a Model,
+    /// called after each converged step, and polled between Newton iterations
+    monitor: Box<dyn FnMut(&Progress) -> bool + 'm>,
+    last_report: Instant,
+    /// the monitor asked to stop: every later poll stops too
+    interrupted: bool,
     opts: StaticOptions,
     control_dof: usize,
     /// equation of each dof (None: fixed)
@@ -145,8 +155,12 @@ pub const MAX_ITERATIONS: usize = 100_000;
 /// multiplier by more than 0.1%.
 const NEWTON_STABILIZATION: f64 = 1e-6;
 
-impl<'a> Solver<'a> {
-    fn new(model: &'a Model, opts: &StaticOptions) -> Result<Self, Error> {
+impl<'a, 'm> Solver<'a, 'm> {
+    fn new(
+        model: &'a Model,
+        opts: &StaticOptions,
+        monitor: Box<dyn FnMut(&Progress) -> bool + 'm>,
+    ) -> Result<Self, Error> {
         check_steps(opts.steps)?;
         if !(opts.tolerance > 0.0 && opts.tolerance < 1.0) {
             return Err(Error::input(format!(
@@ -214,6 +228,9 @@ impl<'a> Solver<'a> {
         }
         Ok(Solver {
             model,
+            monitor,
+            last_report: Instant::now(),
+            interrupted: false,
             opts: *opts,
             control_dof,
             eq,
@@ -426,6 +443,7 @@ impl<'a> Solver<'a> {
             if rn <= self.opts.residual_tolerance * fnorm.max(f64::MIN_POSITIVE) {
                 return Ok(it);
             }
+            self.poll()?;
             self.iterations += 1;
             if disp {
                 let (sys, slots, lam_slots) = self.disp_sys.as_mut().unwrap();
@@ -513,11 +531,7 @@ impl<'a> Solver<'a> {
         )))
     }
 
-    fn commit(
-        &mut self,
-        monitor: &mut dyn FnMut(&Progress) -> bool,
-        fraction: f64,
-    ) -> Result<(), Error> {
+    fn commit(&mut self, fraction: f64) -> Result<(), Error> {
         self.committed.copy_from_slice(&self.trial);
         self.curve_l.push(self.lambda);
         self.curve_u.push(self.u[self.control_dof]);
@@ -527,16 +541,40 @@ impl<'a> Solver<'a> {
             multiplier: self.lambda,
             displacement: self.u[self.control_dof],
             fraction,
+            poll: false,
         };
-        if monitor(&p) {
-            Ok(())
-        } else {
-            Err(Error::Interrupted)
+        self.report(&p)
+    }
+
+    fn report(&mut self, p: &Progress) -> Result<(), Error> {
+        self.last_report = Instant::now();
+        if self.interrupted || !(self.monitor)(p) {
+            self.interrupted = true;
+            return Err(Error::Interrupted);
         }
+        Ok(())
+    }
+
+    /// Polls the monitor if 0.1 s have passed since it was last called (Ctrl-C from Python).
+    fn poll(&mut self) -> Result<(), Error> {
+        if self.interrupted {
+            return Err(Error::Interrupted);
+        }
+        if self.last_report.elapsed().as_secs_f64() < POLL_INTERVAL {
+            return Ok(());
+        }
+        let p = Progress {
+            step: self.steps,
+            multiplier: self.curve_l.last().copied().unwrap_or(0.0),
+            displacement: self.curve_u.last().copied().unwrap_or(f64::NAN),
+            fraction: f64::NAN,
+            poll: true,
+        };
+        self.report(&p)
     }
 
     /// The state under dead load alone.
-    fn dead_state(&mut self, monitor: &mut dyn FnMut(&Progress) -> bool) -> Result<(), Error> {
+    fn dead_state(&mut self) -> Result<(), Error> {
         self.lambda = 0.0;
         // all at once; where Newton cannot take the whole self-weight in one step (many joints
         // change state at once), in growing fractions of it, each step committed
@@ -567,15 +605,22 @@ impl<'a> Solver<'a> {
             }
             self.dead_factor = 1.0;
         }
+        if self.interrupted {
+            return Err(Error::Interrupted);
+        }
         if outcome.is_err() {
             // Newton from the unloaded wall cycles between the states of joints that start with
             // no force (a corbel that only stands by arching, say): start from the explicit
             // solver's damped relaxation, and refine
-            let steps = self.steps;
+            let (steps, model) = (self.steps, self.model);
+            let monitor = &mut self.monitor;
+            let interrupted = &mut self.interrupted;
             let mut relay = |_: &crate::explicit::Progress| {
-                monitor(&Progress { step: steps, multiplier: 0.0, displacement: f64::NAN, fraction: f64::NAN })
+                let p = Progress { step: steps, multiplier: 0.0, displacement: f64::NAN, fraction: f64::NAN, poll: true };
+                *interrupted |= !monitor(&p);
+                !*interrupted
             };
-            match crate::explicit::relax_dead_state(self.model, &mut relay) {
+            match crate::explicit::relax_dead_state(model, &mut relay) {
                 Ok((u, states)) => {
                     self.u.copy_from_slice(&u);
                     self.committed.copy_from_slice(&states);
@@ -599,7 +644,7 @@ impl<'a> Solver<'a> {
             Control::Load => f64::NAN,
             Control::Displacement { .. } => 0.0,
         };
-        self.commit(monitor, fraction)
+        self.commit(fraction)
     }
 
     /// Fixes the dofs the model holds once the dead loads are on, where they are: they leave
@@ -636,8 +681,8 @@ impl<'a> Solver<'a> {
         }
     }
 
-    fn load_control(&mut self, monitor: &mut dyn FnMut(&Progress) -> bool) -> Outcome {
-        if let Err(e) = self.dead_state(monitor) {
+    fn load_control(&mut self) -> Outcome {
+        if let Err(e) = self.dead_state() {
             return (Status::Failed, Some(e));
         }
         let scale = self.lambda_scale();
@@ -657,7 +702,7 @@ impl<'a> Solver<'a> {
                     self.u_prev.copy_from_slice(&u_conv);
                     u_conv.copy_from_slice(&self.u);
                     lam_conv = self.lambda;
-                    if let Err(e) = self.commit(monitor, f64::NAN) {
+                    if let Err(e) = self.commit(f64::NAN) {
                         return (Status::Failed, Some(e));
                     }
                     if iters <= 3 {
@@ -685,6 +730,9 @@ impl<'a> Solver<'a> {
                     // collapse: no equilibrium even a bracket-width above the last one
                     if 2.0 * dl <= self.opts.tolerance * lam_conv.abs().max(1e-3 * scale) {
                         self.mechanism = self.collapse_mechanism();
+                        if self.interrupted {
+                            return (Status::Failed, Some(Error::Interrupted));
+                        }
                         self.u.copy_from_slice(&u_conv);
                         self.lambda = lam_conv;
                         self.evaluate();
@@ -821,9 +869,8 @@ impl<'a> Solver<'a> {
     fn displacement_control(
         &mut self,
         max_disp: f64,
-        monitor: &mut dyn FnMut(&Progress) -> bool,
     ) -> Outcome {
-        if let Err(e) = self.dead_state(monitor) {
+        if let Err(e) = self.dead_state() {
             return (Status::Failed, Some(e));
         }
         let cd = self.control_dof;
@@ -866,7 +913,7 @@ impl<'a> Solver<'a> {
                     u_conv.copy_from_slice(&self.u);
                     lam_conv = self.lambda;
                     let frac = (u_conv[cd] - u_start) / max_disp;
-                    if let Err(e) = self.commit(monitor, frac) {
+                    if let Err(e) = self.commit(frac) {
                         return (Status::Failed, Some(e));
                     }
                     // grow back only after a run of successes: on a plateau a step that has
@@ -900,7 +947,7 @@ impl<'a> Solver<'a> {
                                 u_conv.copy_from_slice(&self.u);
                                 lam_conv = self.lambda;
                                 let frac = (u_conv[cd] - u_start) / max_disp;
-                                if let Err(e) = self.commit(monitor, frac) {
+                                if let Err(e) = self.commit(frac) {
                                     return (Status::Failed, Some(e));
                                 }
                                 step = base_step;
@@ -1004,11 +1051,11 @@ pub mod stages {
 
     /// A static solver on `model` at rest (every joint elastic), with its load system built
     /// (pattern and slots; the symbolic analysis comes with the first factorization).
-    pub struct Stages<'a>(Solver<'a>);
+    pub struct Stages<'a>(Solver<'a, 'static>);
 
     impl<'a> Stages<'a> {
         pub fn new(model: &'a Model) -> Result<Self, Error> {
-            let mut s = Solver::new(model, &StaticOptions::default())?;
+            let mut s = Solver::new(model, &StaticOptions::default(), Box::new(|_: &Progress| true))?;
             s.ensure_load_sys()?;
             s.evaluate();
             Ok(Stages(s))

@@ -121,9 +121,25 @@ fn report(
     displacement: f64,
     fraction: f64,
 ) -> bool {
+    report_or_poll(progress, raised, step, multiplier, displacement, fraction, false)
+}
+
+/// As [`report`]; a poll (`poll`: a check within a long step) only checks for Ctrl-C.
+fn report_or_poll(
+    progress: &Option<Py<PyAny>>,
+    raised: &Mutex<Option<PyErr>>,
+    step: usize,
+    multiplier: f64,
+    displacement: f64,
+    fraction: f64,
+    poll: bool,
+) -> bool {
     Python::attach(|py| {
         if py.check_signals().is_err() {
             return false;
+        }
+        if poll {
+            return true;
         }
         match progress {
             Some(cb) => match cb.call1(py, (step, multiplier, displacement, fraction)) {
@@ -484,7 +500,7 @@ impl PyModel {
         let res = py.detach(|| {
             guarded(|| {
                 let mut monitor = |p: &static_solver::Progress| {
-                    report(&progress, &raised, p.step, p.multiplier, p.displacement, p.fraction)
+                    report_or_poll(&progress, &raised, p.step, p.multiplier, p.displacement, p.fraction, p.poll)
                 };
                 static_solver::solve_with(model, &opts, &mut monitor)
             })

@@ -232,4 +232,4 @@ def test_an_exception_in_the_callback_is_raised_again() -> None:
         with pytest.raises(Stop, match="from the callback"):
             solve(progress=stop)
     with pytest.raises(Stop):
-        model.simulate(duration=0.5, progress=stop)  # the monitor runs every 4,096 steps
+        model.simulate(duration=0.5, progress=stop)  # the monitor runs every 4,096 steps or 0.1 s
