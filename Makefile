@@ -13,8 +13,11 @@ $(VENV)/.deps: pyproject.toml
 	touch $@
 
 # Release build of the extension, installed into .venv (python sources are linked, not copied).
+# pip lists every satisfied requirement while maturin installs the package: the log is kept in
+# .venv/develop.log and shown only if the build fails.
 develop: $(VENV)/.deps
-	$(VENV)/bin/maturin develop --release -q
+	@echo "building the extension (release; a few minutes the first time)..."
+	@$(VENV)/bin/maturin develop --release -q > $(VENV)/develop.log 2>&1 || { cat $(VENV)/develop.log; exit 1; }
 
 demo: develop
 	$(VENV)/bin/masonry-dem demo --plot out/demo.png
