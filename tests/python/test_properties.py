@@ -34,7 +34,7 @@ SETTINGS = settings(max_examples=8, deadline=None, suppress_health_check=[Health
 @st.composite
 def walls(draw: st.DrawFn) -> dict:
     """Small running-bond walls of dry joints: 1-3 courses of 1-3.5 blocks, optionally under a
-    free top beam with a precompression."""
+    free top beam with a precompression of 100 N to 5 kN."""
     bl = draw(st.floats(0.2, 0.5))
     n = draw(st.integers(1, 3)) + draw(st.sampled_from([0.0, 0.5]))
     blocks = md.running_bond(
@@ -51,7 +51,10 @@ def walls(draw: st.DrawFn) -> dict:
         "blocks": np.asarray(blocks),
         "joints": {"default": law},
         "top_rotation": "free" if top else None,
-        "top_force": (0.0, -draw(st.floats(0.0, 5e3))) if top else (0.0, 0.0),
+        # at least 100 N on a beam: a weightless beam under no force is the default control
+        # point of displacement control, yet nothing ties it to the wall; the answer is then
+        # arbitrary (found: a shift of 1e-5 m moved the first step from 0.3853 to 0.3736)
+        "top_force": (0.0, -draw(st.floats(100.0, 5e3))) if top else (0.0, 0.0),
     }
 
 
@@ -70,17 +73,16 @@ def mirrored(blocks: np.ndarray) -> np.ndarray:
 
 
 @SETTINGS
-@given(walls(), st.floats(-50.0, 50.0))
-def test_translation_invariance(w: dict, t: float) -> None:
-    # Along the diagonal (t, t) only: the static solver's displacement limit is 0.1 (max(x1, y1)
-    # - min(x0, y0)) over absolute coordinates, so other shifts change it and, with psi = 0,
-    # the result (a known finding, see tests/properties.rs); a diagonal shift leaves it as it is.
+@given(walls(), st.floats(-50.0, 50.0), st.floats(-50.0, 50.0))
+def test_translation_invariance(w: dict, dx: float, dy: float) -> None:
+    # Any shift: the static solver's displacement limit was 0.1 (max(x1, y1) - min(x0, y0)) over
+    # absolute coordinates, so only diagonal shifts left it as it was; it is now 0.1 of the
+    # wall's size (Model::size in the core).
     # Associative joints only: with psi = 0 the equilibrium path is not unique, and Newton's
     # choice follows round-off: a wall shifted by (1, 1) m collapsed in one run and failed
     # ("no equilibrium after 50 iterations") in the other, and displacement-control peaks moved
     # by 4e-6 (a finding, reported; the Rust tests cover psi = 0 with softer joints).
     w = dict(w, joints={"default": dict(w["joints"]["default"], dilatancy=w["joints"]["default"]["friction"])})
-    dx = dy = t
     a = model(w).solve_static(steps=50)
     b = model(w, shifted(w["blocks"], dx, dy)).solve_static(steps=50)
     assert a.status == b.status == "collapse", (a.error, b.error)
@@ -105,6 +107,10 @@ def test_mirror_symmetry(w: dict) -> None:
     # The live load only pushes towards +x and load control only raises lambda, but displacement
     # control takes a negative max_displacement: the wall pushed towards -x and its mirror image
     # pushed towards +x (the same, mirrored, control block) follow mirrored curves.
+    # Associative joints only: with psi = 0 the path follows round-off (as for translation).
+    # Found: a 9-block wall (0.24 x 0.12 m blocks, mu = 0.71875, psi = 0) pushed towards -x
+    # failed at step 5 at -0.4709 while its mirror image failed at step 4 at 0.6331.
+    w = dict(w, joints={"default": dict(w["joints"]["default"], dilatancy=w["joints"]["default"]["friction"])})
     m, mm = model(w), model(w, mirrored(w["blocks"]))
     cb = m.solve_static(control="displacement", steps=1).control_block  # the default control block
     a = m.solve_static(control="displacement", max_displacement=-2e-3, steps=30, control_block=cb)
