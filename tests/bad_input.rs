@@ -327,3 +327,28 @@ fn one_huge_block_over_many_small_ones_builds_in_linear_memory() {
     assert_eq!(m.n_wall(), 20_001);
     assert!(start.elapsed().as_secs_f64() < 30.0, "{:?}", start.elapsed());
 }
+
+#[test]
+fn driving_an_unloaded_top_beam_is_refused() {
+    use masonry_dem::model::TopBeam;
+    use masonry_dem::static_solver::Control;
+    let model = Model::new(ModelSpec {
+        blocks: vec![Rect::new(0.0, 0.0, 0.5, 0.5)],
+        top: Some(TopBeam { rotation_fixed: false, force: [0.0, 0.0], vertical_held: false }),
+        ..ModelSpec::default()
+    })
+    .unwrap();
+    let opts = StaticOptions { control: Control::Displacement { max_displacement: 1e-3 }, ..Default::default() };
+    match solve(&model, &opts) {
+        Err(Error::Input(m)) => assert!(m.contains("top beam") && m.contains("top.force"), "{m}"),
+        other => panic!("expected an input error, got {other:?}"),
+    }
+    // with a force on it the beam is tied to the wall by friction: accepted
+    let loaded = Model::new(ModelSpec {
+        blocks: vec![Rect::new(0.0, 0.0, 0.5, 0.5)],
+        top: Some(TopBeam { rotation_fixed: false, force: [0.0, -1000.0], vertical_held: false }),
+        ..ModelSpec::default()
+    })
+    .unwrap();
+    assert!(solve(&loaded, &opts).is_ok());
+}

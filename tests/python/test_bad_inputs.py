@@ -138,6 +138,11 @@ CASES: List[Tuple[str, Union[Edit, str, bytes], Tuple[str, ...]]] = [
     ("top-rotation-unknown", setting("top.rotation", "pinned"), ("top.rotation",)),
     ("top-force-nan", setting("top.force", [0.0, Raw("nan")]), ("top.force[1]",)),
     ("top-force-one-number", setting("top.force", [1.0]), ("top.force",)),
+    (
+        "driven-beam-without-load",
+        several(setting("top.rotation", "free"), setting("analysis.control", "displacement")),
+        ("top beam", "top.force"),
+    ),
     # [joints]
     ("friction-negative", setting("joints.friction", -0.1), ("joints.friction",)),
     ("bed-normal-stiffness-zero", setting("joints.bed.normal_stiffness", 0), ("joints.bed.normal_stiffness",)),
