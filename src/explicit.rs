@@ -436,6 +436,17 @@ impl<'a> Integrator<'a> {
         }
     }
 
+    /// A damped integrator (local damping 0.8, one thread) started from a static state: the
+    /// displacements `u` and joint histories `states` of a state past the dead loads, with the
+    /// dofs held after them held. The static solver's explicit by-products start from it.
+    fn damped_from(model: &'a Model, u: &[f64], states: &[JointState]) -> Result<Self, Error> {
+        let mut s = Integrator::new(model, None, 0.8, Damping::Local(0.8), 1)?;
+        s.u.copy_from_slice(u);
+        s.states.copy_from_slice(states);
+        s.hold();
+        Ok(s)
+    }
+
     /// Fixes the dofs the model holds once the dead loads are on, where they are now.
     fn hold(&mut self) {
         for &d in self.model.held_after_dead() {
@@ -807,10 +818,7 @@ pub(crate) fn relax_dead_state(
 /// within 100,000 steps or 2e7 interface updates. Where several
 /// mechanisms have the same multiplier, the motion picks the one the wall would follow.
 pub(crate) fn runaway_mode(model: &Model, u: &[f64], states: &[JointState], lambda: f64) -> Option<Vec<f64>> {
-    let mut s = Integrator::new(model, None, 0.8, Damping::Local(0.8), 1).ok()?;
-    s.u.copy_from_slice(u);
-    s.states.copy_from_slice(states);
-    s.hold();
+    let mut s = Integrator::damped_from(model, u, states).ok()?;
     let (fd, fl) = (model.dead_load(), model.live_load());
     let mut set_ext = |f: &mut [f64], _: &[f64]| {
         for d in 0..f.len() {
@@ -855,10 +863,7 @@ pub(crate) fn relax_at_displacement(
     cd: usize,
     target: f64,
 ) -> Result<(Vec<f64>, Vec<JointState>, f64), Error> {
-    let mut s = Integrator::new(model, None, 0.8, Damping::Local(0.8), 1)?;
-    s.u.copy_from_slice(u);
-    s.states.copy_from_slice(states);
-    s.hold();
+    let mut s = Integrator::damped_from(model, u, states)?;
     let (fd, fl) = (model.dead_load(), model.live_load());
     if fl[cd] == 0.0 {
         return Err(Error::input("the control dof carries no live load"));

@@ -14,7 +14,7 @@ use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
 };
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, Par, Side};
 
 /// A sparse square matrix with a fixed pattern and its factorization.
@@ -54,6 +54,13 @@ enum Factor {
     Llt,
 }
 
+/// The value slot of entry (row, col) of a pattern with sorted row indices, if it is there.
+fn slot_of(p: SymbolicSparseColMatRef<'_, usize>, row: usize, col: usize) -> Option<usize> {
+    let start = p.col_ptr()[col];
+    let rows = &p.row_idx()[start..p.col_ptr()[col + 1]];
+    rows.binary_search(&row).ok().map(|k| start + k)
+}
+
 fn out_of_memory(n: usize, what: &str) -> Error {
     Error::input(format!("out of memory for the {what} of a {n} x {n} matrix"))
 }
@@ -81,28 +88,26 @@ impl SparseLu {
         }
         let nnz = row_idx.len();
         let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        let mut this = SparseLu {
+        // the slot of the transposed entry of every slot; None if the pattern is not symmetric
+        let p = pattern.as_ref();
+        let transpose = (0..n)
+            .flat_map(|c| (p.col_ptr()[c]..p.col_ptr()[c + 1]).map(move |s| (p.row_idx()[s], c)))
+            .map(|(r, c)| slot_of(p, c, r))
+            .collect();
+        let this = SparseLu {
             n,
             pattern,
             values: vec![0.0; nnz],
-            transpose: None,
+            transpose,
             lu: None,
             llt: None,
             factorized: Factor::None,
         };
-        let transpose: Option<Vec<usize>> = (0..n)
-            .flat_map(|c| {
-                let p = this.pattern.as_ref();
-                let (a, b) = (p.col_ptr()[c], p.col_ptr()[c + 1]);
-                p.row_idx()[a..b].iter().map(move |&r| (r, c)).collect::<Vec<_>>()
-            })
-            .map(|(r, c)| this.slot(c, r))
-            .collect();
-        this.transpose = transpose;
         Ok(this)
     }
 
-    fn lu_parts(&mut self) -> Result<&mut LuParts> {
+    /// The LU's symbolic analysis and buffers, made on first use.
+    fn ensure_lu(&mut self) -> Result<()> {
         if self.lu.is_none() {
             let n = self.n;
             let symbolic = factorize_symbolic_lu(self.pattern.as_ref(), Default::default()).map_err(|e| {
@@ -115,10 +120,11 @@ impl SparseLu {
                 .map_err(|_| out_of_memory(n, "solve"))?;
             self.lu = Some(LuParts { symbolic, numeric: NumericLu::new(), factor_buf, solve_buf });
         }
-        Ok(self.lu.as_mut().unwrap())
+        Ok(())
     }
 
-    fn llt_parts(&mut self) -> Result<&mut LltParts> {
+    /// The Cholesky's lower-triangle pattern, symbolic analysis and buffers, made on first use.
+    fn ensure_llt(&mut self) -> Result<()> {
         if self.llt.is_none() {
             let n = self.n;
             let p = self.pattern.as_ref();
@@ -152,7 +158,7 @@ impl SparseLu {
             let lower_values = vec![0.0; lower_src.len()];
             self.llt = Some(LltParts { symbolic, lower, lower_src, lower_values, l_values, factor_buf, solve_buf });
         }
-        Ok(self.llt.as_mut().unwrap())
+        Ok(())
     }
 
     /// Whether the values are symmetric to round-off: each pair within 1e-12 of the largest
@@ -169,10 +175,7 @@ impl SparseLu {
 
     /// The value slot of entry (row, col), if it is in the pattern.
     pub fn slot(&self, row: usize, col: usize) -> Option<usize> {
-        let p = self.pattern.as_ref();
-        let start = p.col_ptr()[col];
-        let rows = &p.row_idx()[start..p.col_ptr()[col + 1]];
-        rows.binary_search(&row).ok().map(|k| start + k)
+        slot_of(self.pattern.as_ref(), row, col)
     }
 
     /// The values, in slot order; zero them and add contributions before `factorize`.
@@ -191,10 +194,10 @@ impl SparseLu {
         }
         self.factorized = Factor::None;
         if self.symmetric() {
-            let values = std::mem::take(&mut self.values);
-            let parts = self.llt_parts()?;
+            self.ensure_llt()?;
+            let parts = self.llt.as_mut().unwrap();
             for (v, &s) in parts.lower_values.iter_mut().zip(&parts.lower_src) {
-                *v = values[s];
+                *v = self.values[s];
             }
             let mat = SparseColMatRef::new(parts.lower.as_ref(), &parts.lower_values);
             let ok = parts
@@ -209,13 +212,12 @@ impl SparseLu {
                     Default::default(),
                 )
                 .is_ok();
-            self.values = values;
             if ok {
                 self.factorized = Factor::Llt;
                 return Ok(());
             }
         }
-        self.lu_parts()?;
+        self.ensure_lu()?;
         let parts = self.lu.as_mut().unwrap();
         let mat = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
         let r = parts

@@ -141,8 +141,6 @@ struct Solver<'a, 'm> {
     /// fraction of the dead loads applied (1 but while the dead state is being found)
     dead_factor: f64,
     u_limit: f64,
-    /// some joint has cohesion or tensile strength (it can lose strength: snap-backs)
-    can_lose_strength: bool,
 }
 
 const NONE: u32 = u32::MAX;
@@ -271,10 +269,6 @@ impl<'a, 'm> Solver<'a, 'm> {
             diverged: None,
             dead_factor: 1.0,
             u_limit,
-            can_lose_strength: (0..m).any(|k| {
-                let l = model.law(k);
-                l.cohesion > 0.0 || l.tensile_strength > 0.0
-            }),
         })
     }
 
@@ -880,6 +874,15 @@ impl<'a, 'm> Solver<'a, 'm> {
         None
     }
 
+    /// Whether some joint has cohesion or tensile strength: it can lose strength suddenly, and
+    /// the equilibrium path can snap back.
+    fn can_lose_strength(&self) -> bool {
+        (0..self.model.interfaces().len()).any(|k| {
+            let l = self.model.law(k);
+            l.cohesion > 0.0 || l.tensile_strength > 0.0
+        })
+    }
+
     /// Crosses a snap-back: the equilibrium at control displacement `target` that the damped
     /// motion of the wall reaches from the converged state, refined by Newton. On success `u`,
     /// `lambda` and `trial` hold it.
@@ -937,68 +940,59 @@ impl<'a, 'm> Solver<'a, 'm> {
                 self.lambda = lam_conv + r * (lam_conv - lam_prev);
             }
             self.u[cd] = u_conv[cd] + h;
-            match self.newton_disp() {
-                Ok(_) => {
-                    last = Some((h, lam_conv));
-                    let k = (self.lambda - lam_conv) / h;
-                    k0.get_or_insert(k);
-                    k_last = k;
-                    self.u_prev.copy_from_slice(&u_conv);
-                    u_conv.copy_from_slice(&self.u);
-                    lam_conv = self.lambda;
-                    let frac = (u_conv[cd] - u_start) / max_disp;
-                    if let Err(e) = self.commit(frac) {
-                        return (Status::Failed, Some(e));
-                    }
-                    // grow back only after a run of successes: on a plateau a step that has
-                    // just failed tends to fail again
-                    streak += 1;
-                    if step.abs() < base_step.abs() && streak >= 4 {
-                        step *= 2.0;
-                        streak = 0;
-                    }
-                }
+            let jumped = match self.newton_disp() {
+                Ok(_) => false,
                 Err(Error::Interrupted) => return (Status::Failed, Some(Error::Interrupted)),
                 Err(e) => {
                     self.u.copy_from_slice(&u_conv);
                     self.lambda = lam_conv;
                     streak = 0;
                     step *= 0.5;
-                    if step.abs() < min_step {
-                        // a snap-back: no equilibrium near the converged state at the next
-                        // displacement; follow the wall's jump by dynamic relaxation, then
-                        // refine. Only joints with cohesion or tensile strength can lose
-                        // strength suddenly; in a dry wall the failure is Newton's, reported.
-                        let jumped = if self.can_lose_strength {
-                            self.jump(u_conv[cd] + base_step)
-                        } else {
-                            Err(e.clone())
-                        };
-                        match jumped {
-                            Ok(()) => {
-                                last = None;
-                                self.u_prev.copy_from_slice(&u_conv);
-                                u_conv.copy_from_slice(&self.u);
-                                lam_conv = self.lambda;
-                                let frac = (u_conv[cd] - u_start) / max_disp;
-                                if let Err(e) = self.commit(frac) {
-                                    return (Status::Failed, Some(e));
-                                }
-                                step = base_step;
-                                continue;
-                            }
-                            Err(Error::Interrupted) => {
-                                return (Status::Failed, Some(Error::Interrupted))
-                            }
-                            Err(_) => {
-                                self.u.copy_from_slice(&u_conv);
-                                self.lambda = lam_conv;
-                                self.evaluate();
-                                return (Status::Failed, Some(e));
-                            }
+                    if step.abs() >= min_step {
+                        continue;
+                    }
+                    // a snap-back: no equilibrium near the converged state at the next
+                    // displacement; follow the wall's jump by dynamic relaxation, then refine.
+                    // Only joints with cohesion or tensile strength can lose strength suddenly;
+                    // in a dry wall the failure is Newton's, and reported.
+                    let next = if base_step.abs() < remaining.abs() { base_step } else { remaining };
+                    match self.can_lose_strength().then(|| self.jump(u_conv[cd] + next)) {
+                        Some(Ok(())) => true,
+                        Some(Err(Error::Interrupted)) => {
+                            return (Status::Failed, Some(Error::Interrupted))
+                        }
+                        _ => {
+                            self.u.copy_from_slice(&u_conv);
+                            self.lambda = lam_conv;
+                            self.evaluate();
+                            return (Status::Failed, Some(e));
                         }
                     }
                 }
+            };
+            if jumped {
+                // a jump is no increment to extrapolate, nor a slope
+                last = None;
+                step = base_step;
+            } else {
+                last = Some((h, lam_conv));
+                let k = (self.lambda - lam_conv) / h;
+                k0.get_or_insert(k);
+                k_last = k;
+                // grow back only after a run of successes: on a plateau a step that has just
+                // failed tends to fail again
+                streak += 1;
+                if step.abs() < base_step.abs() && streak >= 4 {
+                    step *= 2.0;
+                    streak = 0;
+                }
+            }
+            self.u_prev.copy_from_slice(&u_conv);
+            u_conv.copy_from_slice(&self.u);
+            lam_conv = self.lambda;
+            let frac = (u_conv[cd] - u_start) / max_disp;
+            if let Err(e) = self.commit(frac) {
+                return (Status::Failed, Some(e));
             }
         }
         self.evaluate();

@@ -110,22 +110,11 @@ fn rows3<'py>(py: Python<'py>, v: &[[f64; 3]]) -> Bound<'py, PyArray2<f64>> {
         .into_pyarray(py)
 }
 
-/// Called from a run with the GIL released: takes the GIL, checks for Ctrl-C and calls the
-/// user's progress callback; false stops the run. An exception raised by the callback stops
-/// it too and is kept in `raised`, to be raised again once the run has stopped.
+/// Called from a run with the GIL released: takes the GIL, checks for Ctrl-C and, unless the
+/// call is a poll (a check within a long step), calls the user's progress callback; false stops
+/// the run. An exception raised by the callback stops it too and is kept in `raised`, to be
+/// raised again once the run has stopped.
 fn report(
-    progress: &Option<Py<PyAny>>,
-    raised: &Mutex<Option<PyErr>>,
-    step: usize,
-    multiplier: f64,
-    displacement: f64,
-    fraction: f64,
-) -> bool {
-    report_or_poll(progress, raised, step, multiplier, displacement, fraction, false)
-}
-
-/// As [`report`]; a poll (`poll`: a check within a long step) only checks for Ctrl-C.
-fn report_or_poll(
     progress: &Option<Py<PyAny>>,
     raised: &Mutex<Option<PyErr>>,
     step: usize,
@@ -500,7 +489,7 @@ impl PyModel {
         let res = py.detach(|| {
             guarded(|| {
                 let mut monitor = |p: &static_solver::Progress| {
-                    report_or_poll(&progress, &raised, p.step, p.multiplier, p.displacement, p.fraction, p.poll)
+                    report(&progress, &raised, p.step, p.multiplier, p.displacement, p.fraction, p.poll)
                 };
                 static_solver::solve_with(model, &opts, &mut monitor)
             })
@@ -555,7 +544,7 @@ impl PyModel {
         let res = py.detach(|| {
             guarded(|| {
                 let mut monitor =
-                    |p: &explicit::Progress| report(&progress, &raised, p.step, p.multiplier, p.displacement, p.fraction);
+                    |p: &explicit::Progress| report(&progress, &raised, p.step, p.multiplier, p.displacement, p.fraction, false);
                 explicit::solve_with(model, &opts, &mut monitor)
             })
         })?;
@@ -615,7 +604,7 @@ impl PyModel {
         let h = py.detach(|| {
             guarded(|| {
                 let mut monitor =
-                    |p: &explicit::Progress| report(&progress, &raised, p.step, p.multiplier, p.displacement, p.fraction);
+                    |p: &explicit::Progress| report(&progress, &raised, p.step, p.multiplier, p.displacement, p.fraction, false);
                 explicit::simulate_with(model, &opts, &mut monitor)
             })
         })?;
