@@ -811,44 +811,6 @@ pub(crate) fn relax_dead_state(
     Err(Error::Mechanism(format!("the wall does not settle under the dead loads alone (explicit relaxation, {max_steps} steps)")))
 }
 
-/// The collapse mechanism from a collapse state: the damped motion (local damping 0.8,
-/// linearized kinematics) of the wall from displacements `u` and joint histories `states`
-/// under `lambda` (a little above the collapse multiplier), until a block has moved 1e-4 of
-/// the wall's size; the increment of `u`, or None if the wall settles or has not moved off
-/// within 100,000 steps or 2e7 interface updates. Where several
-/// mechanisms have the same multiplier, the motion picks the one the wall would follow.
-pub(crate) fn runaway_mode(model: &Model, u: &[f64], states: &[JointState], lambda: f64) -> Option<Vec<f64>> {
-    let mut s = Integrator::damped_from(model, u, states).ok()?;
-    let (fd, fl) = (model.dead_load(), model.live_load());
-    let mut set_ext = |f: &mut [f64], _: &[f64]| {
-        for d in 0..f.len() {
-            f[d] = fd[d] + lambda * fl[d];
-        }
-    };
-    let limit = 1e-4 * model.size();
-    let nb = model.n_blocks();
-    // a by-product of the static analysis: bounded by 100,000 steps (wall 2 moves off in about
-    // 15,000) and by 2e7 interface updates (a few seconds), after which the static solver falls
-    // back on the tangent's null mode
-    let max_steps = (20_000_000 / model.interfaces().len().max(1)).min(100_000);
-    for k in 0..max_steps {
-        s.step(&mut set_ext, None);
-        if k % 16 == 15 {
-            let moved = (0..nb).map(|i| (s.u[3 * i] - u[3 * i]).hypot(s.u[3 * i + 1] - u[3 * i + 1])).fold(0.0, f64::max);
-            if !moved.is_finite() {
-                return None;
-            }
-            if moved > limit {
-                return Some(s.u.iter().zip(u).map(|(a, b)| a - b).collect());
-            }
-            if s.unbalanced_ratio(None) <= 1e-7 {
-                return None; // it settled: not a collapse state
-            }
-        }
-    }
-    None
-}
-
 /// An equilibrium state with dof `cd` held at `target`, found by damped relaxation (local
 /// damping 0.8) from displacements `u` and joint histories `states` (the dofs held after the
 /// dead state held too), with lambda from the equation of `cd`: the displacements, the joint

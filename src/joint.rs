@@ -455,53 +455,6 @@ fn map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, want_
     finish([n_apex, 0.0, 0.0], [0.0; 3], [0.0; 2], [[0.0; 3]; 3])
 }
 
-/// The tangent of a joint whose force `force` lies in the domain, taking as active every face
-/// within `margin` (relative) of its limit: the tangent the joint will have once the load has
-/// brought it to the limit. Used to find the collapse mechanism from the last equilibrium.
-pub fn tangent_near_limit(
-    law: &JointLaw,
-    sec: &Section,
-    force: &[f64; 3],
-    state: &JointState,
-    margin: f64,
-) -> [[f64; 3]; 3] {
-    let d = [
-        law.normal_stiffness * sec.area,
-        law.shear_stiffness * sec.area,
-        law.normal_stiffness * sec.inertia,
-    ];
-    let (c, ft) = law.strengths(state);
-    let faces = Faces::new(law, sec, c, ft);
-    let scale = force[0].abs()
-        + force[1].abs()
-        + (force[2] * 2.0 / sec.length).abs()
-        + faces.b[0]
-        + faces.b[2];
-    let near: Vec<usize> = (0..4)
-        .filter(|&j| faces.f(j, force) >= -margin * scale)
-        .collect();
-    if near.is_empty() {
-        return [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
-    }
-    if near.len() > 3 {
-        return [[0.0; 3]; 3]; // the apex: the joint carries nothing more
-    }
-    let dm: [[f64; 3]; 4] = std::array::from_fn(|j| {
-        [
-            d[0] * faces.m(j)[0],
-            d[1] * faces.m(j)[1],
-            d[2] * faces.m(j)[2],
-        ]
-    });
-    let mut g = [[0.0; 3]; 3];
-    for (p, &i) in near.iter().enumerate() {
-        for (q, &j) in near.iter().enumerate() {
-            g[p][q] = dot(&faces.a(i), &dm[j]);
-        }
-    }
-    active_tangent(&faces, &d, &dm, &near, &g).unwrap_or([[0.0; 3]; 3])
-}
-
 /// The consistent tangent `D - (D M) G^-1 (A D)` of the active faces `act`, with
 /// `G = A D M` (k x k in `g`) and `dm` the columns `D m_j`; None if `G` is singular.
 fn active_tangent(

@@ -7,9 +7,10 @@
 //! and factorized by sparse LU: symbolic analysis once per analysis, numeric refactorization at
 //! each iteration.
 //!
-//! - **Load control** raises lambda; a step that does not converge (or meets a singular tangent)
-//!   is halved, and the collapse multiplier is bracketed between the last converged and the
-//!   first failed multiplier until the bracket is `tolerance` (relative) wide.
+//! - **Load control** raises lambda until collapse, following the equilibrium path in steps of
+//!   the live load's work (an arc length; lambda is the unknown in its place, solved by two
+//!   solves with one factorization of the tangent). Steps grow as the wall approaches its
+//!   mechanism; collapse is the peak or the plateau of lambda, to `tolerance` (relative).
 //! - **Displacement control** prescribes the horizontal displacement of the control block and
 //!   takes lambda as the unknown in its place (the matrix gets a column `-f_live`), so the path is
 //!   followed through the peak and after it.
@@ -17,7 +18,7 @@
 //! Joint histories are committed only at converged steps, so a failed step leaves no trace.
 
 use crate::error::{check_steps, Error};
-use crate::joint::{return_map, tangent_near_limit, JointState};
+use crate::joint::{return_map, JointState};
 use crate::linalg::SparseLu;
 use crate::model::{LiveLoad, Model};
 use crate::results::{Results, Status};
@@ -38,7 +39,9 @@ pub struct StaticOptions {
     pub control: Control,
     /// Number of increments (a hint: the solver cuts steps where needed).
     pub steps: usize,
-    /// Relative width of the bracket on the collapse multiplier (load control).
+    /// Relative precision of the collapse multiplier (load control): a peak is located within
+    /// it, and a plateau is reached when the multiplier would rise by less than this fraction
+    /// over as much work of the live load again.
     pub tolerance: f64,
     /// Newton iterations before a step is cut.
     pub max_iterations: usize,
@@ -78,6 +81,10 @@ pub struct Progress {
 
 /// Newton stops when the residual has not fallen for this many iterations in a row.
 const FLAT_ITERATIONS: usize = 5;
+
+/// Along the work path (load control), Newton stops when the residual has not halved in this
+/// many iterations.
+const STALL_ITERATIONS: usize = 8;
 
 /// The shortest wall time between two polls of the monitor within a step [s].
 const POLL_INTERVAL: f64 = 0.1;
@@ -135,6 +142,8 @@ struct Solver<'a, 'm> {
     curve_l: Vec<f64>,
     curve_u: Vec<f64>,
     u_prev: Vec<f64>,
+    /// the reference state of the live load's work (the dead state)
+    u_ref: Vec<f64>,
     mechanism: Option<Vec<f64>>,
     /// how far the last failed load step had gone from the converged state
     diverged: Option<Vec<f64>>,
@@ -145,16 +154,46 @@ struct Solver<'a, 'm> {
 
 const NONE: u32 = u32::MAX;
 
+/// A converged state of the load-control path.
+struct Saved {
+    u: Vec<f64>,
+    committed: Vec<JointState>,
+    lambda: f64,
+    /// the live load's work from the dead state
+    work: f64,
+    /// length of the curve up to this state
+    curve: usize,
+}
+
+/// What Newton holds fixed besides the dead loads.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Drive {
+    /// lambda
+    Load,
+    /// the horizontal displacement of the control block (lambda unknown)
+    Disp,
+    /// the work of the live load from the reference state (lambda unknown)
+    Work(f64),
+}
+
 /// The largest `max_iterations` accepted (Newton iterations of one step before it is cut).
 pub const MAX_ITERATIONS: usize = 100_000;
 
 /// Fraction of the elastic joint stiffness added to every joint's tangent in the Newton matrix
 /// (never to the residual, so converged states are exact). Joints that carry nothing (open)
 /// have a zero tangent; on a wall with openings and corbels (LACT3) the unstabilized matrix
-/// reads as a mechanism from the dead-load state and every load step failed. 1e-4 slows
-/// Newton enough that load control stops early (wall 2: -5%); 1e-6 changes no reference
-/// multiplier by more than 0.1%.
-const NEWTON_STABILIZATION: f64 = 1e-6;
+/// reads as a mechanism from the dead-load state and every load step failed. Near collapse
+/// the wall's softest modes are as soft as the stabilization, and Newton converges only
+/// linearly: on the work path of load control, at 1e-6, at 0.77 per iteration on a 1,040-block
+/// wall (30 iterations a step, 4,425 in all, 20.7 s); at 1e-8, 1,194 iterations and 6.9 s, the
+/// same multiplier. Displacement control and Newton at fixed lambda keep
+/// [`NEWTON_STABILIZATION_FIXED`].
+const NEWTON_STABILIZATION: f64 = 1e-8;
+
+/// The stabilization of displacement control and of Newton at a fixed lambda (the dead state,
+/// the first load step, the search above a stalled path): 1e-6 changes no reference multiplier
+/// by more than 0.1%, and the paths of displacement control were measured with it.
+const NEWTON_STABILIZATION_FIXED: f64 = 1e-6;
 
 impl<'a, 'm> Solver<'a, 'm> {
     fn new(
@@ -265,6 +304,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             curve_l: vec![],
             curve_u: vec![],
             u_prev: model.prescribed().to_vec(),
+            u_ref: model.prescribed().to_vec(),
             mechanism: None,
             diverged: None,
             dead_factor: 1.0,
@@ -428,88 +468,155 @@ impl<'a, 'm> Solver<'a, 'm> {
         Ok(())
     }
 
-    /// Newton iterations at fixed lambda (load control). `u` and `trial` hold the result.
+    /// Newton iterations at fixed lambda. `u` and `trial` hold the result.
     fn newton_load(&mut self) -> Result<usize, Error> {
         self.ensure_load_sys()?;
-        self.newton(false)
+        self.newton(Drive::Load)
     }
 
     /// Newton iterations with the control dof prescribed and lambda unknown.
     fn newton_disp(&mut self) -> Result<usize, Error> {
         self.ensure_disp_sys()?;
-        self.newton(true)
+        self.newton(Drive::Disp)
+    }
+
+    /// Newton iterations with the work of the live load prescribed, `f_live . (u - u_ref) =
+    /// work`, and lambda unknown (load control).
+    fn newton_work(&mut self, work: f64) -> Result<usize, Error> {
+        self.ensure_load_sys()?;
+        self.newton(Drive::Work(work))
+    }
+
+    /// The work of the live load on the displacements from the reference state.
+    fn work(&self) -> f64 {
+        let fl = self.model.live_load();
+        self.eq
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| e.is_some())
+            .map(|(d, _)| fl[d] * (self.u[d] - self.u_ref[d]))
+            .sum()
     }
 
     /// Newton on the consistent tangent with a backtracking line search on the residual norm
     /// (the law is piecewise linear: full steps can cycle between active sets near a mechanism).
-    fn newton(&mut self, disp: bool) -> Result<usize, Error> {
+    ///
+    /// Under [`Drive::Work`] each iteration solves the tangent twice, `K a = r` and `K b =
+    /// f_live`, and takes `du = a + dlambda b` with dlambda such that the work constraint holds
+    /// (a bordered system by two solves with one factorization: the tangent keeps its symmetry,
+    /// and a symmetric one goes to Cholesky). An iteration that starts off the constraint (the
+    /// first, from a tangent predictor) takes its full step; every later one keeps the
+    /// constraint, so the line search does too.
+    fn newton(&mut self, drive: Drive) -> Result<usize, Error> {
+        let disp = drive == Drive::Disp;
         let cd = self.control_dof;
         let lam_eq = self.eq[cd].unwrap_or(usize::MAX);
         self.evaluate();
         let (mut rn, mut fnorm) = self.residual();
         let mut u0 = vec![0.0; self.u.len()];
         let mut delta = vec![0.0; self.n_eq];
+        let live_eq: Vec<f64> = match drive {
+            Drive::Work(_) => {
+                let fl = self.model.live_load();
+                let mut g = vec![0.0; self.n_eq];
+                for (d, e) in self.eq.iter().enumerate() {
+                    if let Some(k) = *e {
+                        g[k] = fl[d];
+                    }
+                }
+                g
+            }
+            _ => vec![],
+        };
         let mut flat = 0;
+        let mut history = vec![rn];
         for it in 0..self.opts.max_iterations {
-            if rn <= self.opts.residual_tolerance * fnorm.max(f64::MIN_POSITIVE) {
+            let off = match drive {
+                Drive::Work(w) => {
+                    let c = w - self.work();
+                    (c.abs() > 1e-12 * w.abs().max(f64::MIN_POSITIVE)).then_some(c)
+                }
+                _ => None,
+            };
+            if off.is_none() && rn <= self.opts.residual_tolerance * fnorm.max(f64::MIN_POSITIVE) {
                 return Ok(it);
             }
             self.poll()?;
             self.iterations += 1;
-            if disp {
-                let (sys, slots, lam_slots) = self.disp_sys.as_mut().unwrap();
-                Self::assemble(self.model, NEWTON_STABILIZATION, &self.tangents, sys, slots);
-                let live = self.model.live_load();
-                let vals = sys.values_mut();
-                for &(d, s) in lam_slots.iter() {
-                    vals[s as usize] -= live[d];
+            let mut dlam = 0.0;
+            match drive {
+                Drive::Disp => {
+                    let (sys, slots, lam_slots) = self.disp_sys.as_mut().unwrap();
+                    Self::assemble(self.model, NEWTON_STABILIZATION_FIXED, &self.tangents, sys, slots);
+                    let live = self.model.live_load();
+                    let vals = sys.values_mut();
+                    for &(d, s) in lam_slots.iter() {
+                        vals[s as usize] -= live[d];
+                    }
+                    sys.factorize()?;
+                    sys.solve_in_place(&mut self.rhs)?;
+                    dlam = self.rhs[lam_eq];
                 }
-                sys.factorize()?;
-                sys.solve_in_place(&mut self.rhs)?;
-            } else {
-                let (sys, slots) = self.load_sys.as_mut().unwrap();
-                Self::assemble(self.model, NEWTON_STABILIZATION, &self.tangents, sys, slots);
-                sys.factorize()?;
-                sys.solve_in_place(&mut self.rhs)?;
+                Drive::Load => {
+                    let (sys, slots) = self.load_sys.as_mut().unwrap();
+                    Self::assemble(self.model, NEWTON_STABILIZATION_FIXED, &self.tangents, sys, slots);
+                    sys.factorize()?;
+                    sys.solve_in_place(&mut self.rhs)?;
+                }
+                Drive::Work(_) => {
+                    let (sys, slots) = self.load_sys.as_mut().unwrap();
+                    Self::assemble(self.model, NEWTON_STABILIZATION, &self.tangents, sys, slots);
+                    sys.factorize()?;
+                    sys.solve_in_place(&mut self.rhs)?;
+                    let mut b = live_eq.clone();
+                    sys.solve_in_place(&mut b)?;
+                    let fb: f64 = live_eq.iter().zip(&b).map(|(f, b)| f * b).sum();
+                    let fa: f64 = live_eq.iter().zip(&self.rhs).map(|(f, a)| f * a).sum();
+                    if !(fb.abs() > 0.0) {
+                        return Err(Error::Convergence(
+                            "the live load does no work on the tangent's displacements".into(),
+                        ));
+                    }
+                    dlam = (off.unwrap_or(0.0) - fa) / fb;
+                    for (a, b) in self.rhs.iter_mut().zip(&b) {
+                        *a += dlam * b;
+                    }
+                }
             }
             delta.copy_from_slice(&self.rhs);
             u0.copy_from_slice(&self.u);
             let lam0 = self.lambda;
+            let moves = |d: usize| !(disp && d == cd);
             // keep a single iterate within a tenth of the displacement limit
             let big = self
                 .eq
                 .iter()
                 .enumerate()
-                .filter_map(|(d, e)| {
-                    e.filter(|_| d % 3 != 2 && !(disp && d == cd))
-                        .map(|k| delta[k].abs())
-                })
+                .filter_map(|(d, e)| e.filter(|_| d % 3 != 2 && moves(d)).map(|k| delta[k].abs()))
                 .fold(0.0, f64::max);
-            let mut alpha: f64 = if big > 0.1 * self.u_limit {
+            let mut alpha: f64 = if big > 0.1 * self.u_limit && off.is_none() {
                 0.1 * self.u_limit / big
             } else {
                 1.0
             };
             let (mut best_alpha, mut best_rn) = (alpha, f64::INFINITY);
-            for trial in 0..12 {
+            let trials = if off.is_some() { 1 } else { 12 };
+            for trial in 0..trials {
                 for (d, e) in self.eq.iter().enumerate() {
                     if let Some(k) = *e {
-                        if !(disp && d == cd) {
+                        if moves(d) {
                             self.u[d] = u0[d] + alpha * delta[k];
                         }
                     }
                 }
-                if disp {
-                    self.lambda = lam0 + alpha * delta[lam_eq];
-                }
+                self.lambda = lam0 + alpha * dlam;
                 self.evaluate();
-                let (r, f) = self.residual();
+                let (r, _) = self.residual();
                 if r < best_rn {
                     best_rn = r;
                     best_alpha = alpha;
                 }
-                let _ = f;
-                if r <= (1.0 - 1e-4 * alpha) * rn || trial == 11 {
+                if r <= (1.0 - 1e-4 * alpha) * rn || trial + 1 == trials {
                     break;
                 }
                 alpha *= 0.5;
@@ -518,24 +625,22 @@ impl<'a, 'm> Solver<'a, 'm> {
                 alpha = best_alpha;
                 for (d, e) in self.eq.iter().enumerate() {
                     if let Some(k) = *e {
-                        if !(disp && d == cd) {
+                        if moves(d) {
                             self.u[d] = u0[d] + alpha * delta[k];
                         }
                     }
                 }
-                if disp {
-                    self.lambda = lam0 + alpha * delta[lam_eq];
-                }
+                self.lambda = lam0 + alpha * dlam;
                 self.evaluate();
             }
             let (r, f) = self.residual();
-            // under load control, a wall past its collapse load flows plastically: the line
+            // at fixed lambda, a wall past its collapse load flows plastically: the line
             // search finds no step that lowers the residual, which stays put or creeps up while
             // the displacements keep moving (a block past its sliding or rocking load: 50
             // iterations, all alike, before this test). Not under displacement control, where
             // such a stall can pass (psi = 0) and a failure cuts the step: a mirror property
             // test saw the paths of a wall and its mirror image part there.
-            if !disp && r >= rn * (1.0 - 1e-10) {
+            if drive == Drive::Load && r >= rn * (1.0 - 1e-10) {
                 flat += 1;
                 if flat >= FLAT_ITERATIONS {
                     return Err(Error::Convergence(format!(
@@ -545,6 +650,20 @@ impl<'a, 'm> Solver<'a, 'm> {
                 }
             } else {
                 flat = 0;
+            }
+            // along the work path, a step that has not halved its residual in STALL_ITERATIONS
+            // iterations has stalled (the line search crawls between active sets): a shorter
+            // step is cheaper than the rest of max_iterations
+            if let Drive::Work(_) = drive {
+                history.push(r);
+                if history.len() > STALL_ITERATIONS
+                    && r > 0.5 * history[history.len() - 1 - STALL_ITERATIONS]
+                {
+                    return Err(Error::Convergence(format!(
+                        "no equilibrium: the residual did not halve in {STALL_ITERATIONS} iterations (at {:.3e} of the applied forces)",
+                        r / f.max(f64::MIN_POSITIVE)
+                    )));
+                }
             }
             rn = r;
             fnorm = f;
@@ -709,62 +828,185 @@ impl<'a, 'm> Solver<'a, 'm> {
         }
     }
 
+    /// Load control: lambda rises until collapse. The path is followed in steps of the live
+    /// load's work on the displacements (an arc length that any collapse mechanism of positive
+    /// multiplier increases), with lambda unknown: at a limit point the tangent is singular but
+    /// the bordered system is not, so steps grow geometrically as the wall approaches its
+    /// mechanism instead of being cut against it. Collapse is:
+    /// - a plateau: the rise that the last step's slope would give over as much work again as
+    ///   has been done is within the tolerance of lambda (exact on a perfectly plastic
+    ///   mechanism, where the slope is zero; close on a wall whose joints open one after the
+    ///   other, where lambda creeps up as the work grows);
+    /// - a peak: lambda falls after a step (the step that crossed it is refined until the rise
+    ///   it could hide, at the slope before it, is within the tolerance), and there is no
+    ///   equilibrium at a fixed lambda above it;
+    /// - the same where no step converges on the path, however short, or the displacements
+    ///   outgrow the small-displacement model.
+    ///
+    /// A step in which a joint breaks (loses cohesion and tensile strength at once) is refined
+    /// the same way, so that the peak just before the break is found.
+    ///
+    /// The mechanism is the last increment (after a peak: from the peak to the next state).
     fn load_control(&mut self) -> Outcome {
         if let Err(e) = self.dead_state() {
             return (Status::Failed, Some(e));
         }
         let scale = self.lambda_scale();
         let max_lambda = 1e3 * scale;
-        let mut dl = 4.0 * scale / self.opts.steps as f64;
-        // after a failed step, growth only after a run of easy steps (a wall that needed a cut
-        // early, e.g. on a joint that closes, would otherwise crawl to collapse in thousands of
-        // steps; near collapse steps take many iterations and never count as easy)
-        let mut easy = usize::MAX;
-        let mut u_conv = self.u.clone();
-        let mut lam_conv = 0.0;
+        let tol = self.opts.tolerance;
+        let dl0 = 4.0 * scale / self.opts.steps as f64;
+        self.u_ref.copy_from_slice(&self.u);
+        let dead = self.snap();
+        // the first step at fixed lambda (halved until it converges): its work sets the scale
+        // of the steps
+        let mut conv = dead;
+        let k0 = match self.above(&conv, dl0, tol * 1e-3 * scale) {
+            Ok(true) => {
+                let w = self.work();
+                if !(w > 0.0) {
+                    return (
+                        Status::Failed,
+                        Some(Error::Convergence(format!(
+                            "the live load does no work on the wall's displacements under lambda = {:.4e}",
+                            self.lambda
+                        ))),
+                    );
+                }
+                self.lambda / w
+            }
+            Ok(false) => {
+                // the wall stands under its dead loads and no more
+                self.evaluate();
+                return (Status::Collapse, None);
+            }
+            Err(e) => return (Status::Failed, Some(e)),
+        };
+        if let Err(e) = self.commit(f64::NAN) {
+            return (Status::Failed, Some(e));
+        }
+        let mut ds = self.work();
+        // the state before the last converged one (the secant predictor), the last converged
+        // one, the one of largest lambda and the slope of the step that reached it
+        let mut prev: Option<Saved> = Some(conv);
+        conv = self.snap();
+        let mut best = self.snap();
+        let (mut k_last, mut k_best) = (k0, k0);
+        let mut fails = 0usize;
         let max_attempts = 100 * self.opts.steps + 1000;
         for _ in 0..max_attempts {
-            self.lambda = lam_conv + dl;
-            match self.newton_load() {
+            let floor = tol * best.lambda.abs().max(1e-3 * scale);
+            // predictor: the last increment, scaled to this step (exact on a plateau)
+            if let Some(p) = &prev {
+                let r = ds / (conv.work - p.work);
+                for (d, e) in self.eq.iter().enumerate() {
+                    if e.is_some() {
+                        self.u[d] = conv.u[d] + r * (conv.u[d] - p.u[d]);
+                    }
+                }
+                self.lambda = conv.lambda + r * (conv.lambda - p.lambda);
+            }
+            match self.newton_work(conv.work + ds) {
                 Ok(iters) => {
-                    self.u_prev.copy_from_slice(&u_conv);
-                    u_conv.copy_from_slice(&self.u);
-                    lam_conv = self.lambda;
+                    let (lam, w) = (self.lambda, self.work());
+                    let k = (lam - conv.lambda) / (w - conv.work);
+                    let broke = self.trial.iter().zip(&self.committed).any(|(t, c)| t.broken && !c.broken);
+                    if broke && k_last.max(0.0) * ds > floor {
+                        self.restore(&conv);
+                        ds *= 0.25;
+                        continue;
+                    }
+                    if lam < best.lambda - 1e-12 * scale {
+                        // past a peak: refine the step that crossed it, or stop there
+                        let past = self.u.iter().zip(&best.u).map(|(a, b)| a - b).collect();
+                        let dw = w - best.work;
+                        self.restore(&best);
+                        self.curve_l.truncate(best.curve);
+                        self.curve_u.truncate(best.curve);
+                        self.steps = best.curve;
+                        conv = self.snap();
+                        prev = None;
+                        if k_best.max(0.0) * dw > floor {
+                            ds = 0.25 * dw;
+                            continue;
+                        }
+                        match self.above(&conv, dl0, floor) {
+                            Ok(true) => {}
+                            Ok(false) => {
+                                self.mechanism = Some(past);
+                                self.evaluate();
+                                return (Status::Collapse, None);
+                            }
+                            Err(e) => return (Status::Failed, Some(e)),
+                        }
+                    }
+                    let increment = self.u.iter().zip(&conv.u).map(|(a, b)| a - b).collect();
                     if let Err(e) = self.commit(f64::NAN) {
                         return (Status::Failed, Some(e));
                     }
-                    if iters <= 3 {
-                        easy = easy.saturating_add(1);
-                        if easy >= 4 {
-                            dl *= 1.5;
-                        }
-                    } else {
-                        easy = 0;
+                    let last = std::mem::replace(&mut conv, self.snap());
+                    prev = Some(last);
+                    k_last = (conv.lambda - prev.as_ref().unwrap().lambda)
+                        / (conv.work - prev.as_ref().unwrap().work);
+                    if conv.lambda >= best.lambda {
+                        best = self.snap();
+                        k_best = k_last;
                     }
-                    if lam_conv > max_lambda {
+                    if conv.lambda > max_lambda {
                         return (Status::Completed, None);
                     }
+                    if k_last.max(0.0) * conv.work <= tol * conv.lambda.abs().max(1e-3 * scale) {
+                        self.mechanism = Some(increment);
+                        return (Status::Collapse, None);
+                    }
+                    // longer steps while Newton finds them easy, as long as lambda rises by no
+                    // more than the first step did
+                    let _ = k;
+                    if iters <= 4 && fails == 0 {
+                        let dlam = conv.lambda - prev.as_ref().unwrap().lambda;
+                        ds *= if dlam > 0.0 { (dl0 / dlam).clamp(1.0, 2.0) } else { 2.0 };
+                    } else if iters > 10 {
+                        ds *= 0.5;
+                    }
+                    fails = fails.saturating_sub(1);
                 }
                 Err(Error::Interrupted) => return (Status::Failed, Some(Error::Interrupted)),
                 Err(_) => {
                     if self.u.iter().all(|v| v.is_finite()) {
-                        self.diverged =
-                            Some(self.u.iter().zip(&u_conv).map(|(a, b)| a - b).collect());
+                        self.diverged = Some(self.u.iter().zip(&conv.u).map(|(a, b)| a - b).collect());
                     }
-                    self.u.copy_from_slice(&u_conv);
-                    self.lambda = lam_conv;
-                    dl *= 0.5;
-                    easy = 0;
-                    // collapse: no equilibrium even a bracket-width above the last one
-                    if 2.0 * dl <= self.opts.tolerance * lam_conv.abs().max(1e-3 * scale) {
-                        self.mechanism = self.collapse_mechanism();
-                        if self.interrupted {
-                            return (Status::Failed, Some(Error::Interrupted));
+                    self.restore(&conv);
+                    ds *= 0.5;
+                    fails = 4;
+                    if k0 * ds > 0.1 * floor {
+                        continue;
+                    }
+                    // no equilibrium on the path a step within the tolerance on (or none within
+                    // the small-displacement limit). The state of a wall at a fixed lambda
+                    // depends on its path, and there may be one above, off this path:
+                    // - non-associative joints can stall on the path (8 blocks, psi = 0:
+                    //   0.2593, against 0.318 found by the explicit solver and by longer steps);
+                    // - wall 2 with soft joints (kN = kT = 1e8) creeps up to its plateau of
+                    //   0.5800 on the path, dilating, beyond the displacement limit at 0.5730;
+                    //   at a fixed lambda it is at 0.5800 within it.
+                    match self.above(&conv, dl0, floor) {
+                        Ok(true) => {
+                            ds = self.work() - conv.work;
+                            prev = None;
+                            if let Err(e) = self.commit(f64::NAN) {
+                                return (Status::Failed, Some(e));
+                            }
+                            conv = self.snap();
+                            best = self.snap();
+                            k_best = 0.0;
                         }
-                        self.u.copy_from_slice(&u_conv);
-                        self.lambda = lam_conv;
-                        self.evaluate();
-                        return (Status::Collapse, None);
+                        Ok(false) => {
+                            self.mechanism = self.diverged.take().or_else(|| {
+                                prev.as_ref().map(|p| conv.u.iter().zip(&p.u).map(|(a, b)| a - b).collect())
+                            });
+                            self.evaluate();
+                            return (Status::Collapse, None);
+                        }
+                        Err(e) => return (Status::Failed, Some(e)),
                     }
                 }
             }
@@ -772,106 +1014,44 @@ impl<'a, 'm> Solver<'a, 'm> {
         (
             Status::Failed,
             Some(Error::Convergence(format!(
-                "no collapse bracket after {max_attempts} attempts"
+                "no collapse after {max_attempts} steps"
             ))),
         )
     }
 
-    /// The collapse mechanism at the last equilibrium (the collapse state): the damped motion
-    /// of the wall under a load 1% above the collapse multiplier (the explicit integrator);
-    /// where the wall does not move off, the null mode of the exact tangent in which every
-    /// joint face within 0.1% of its limit is active; then the increment of a
-    /// displacement-controlled step; then the direction in which the last failed load step
-    /// went. Beyond collapse the increment of a perfectly plastic wall is not unique: on wall 1
-    /// a Newton step lands on a mixture of mechanisms moving all 33 blocks, the null mode
-    /// depends on which joints are within the margin, and the motion is the leeward wedge.
-    fn collapse_mechanism(&mut self) -> Option<Vec<f64>> {
-        let cd = self.control_dof;
-        if self.model.fixed()[cd] || self.ensure_disp_sys().is_err() {
-            return self.diverged.take();
+    /// The state to come back to.
+    fn snap(&self) -> Saved {
+        Saved {
+            u: self.u.clone(),
+            committed: self.committed.clone(),
+            lambda: self.lambda,
+            work: self.work(),
+            curve: self.curve_l.len(),
         }
-        let (u0, lam0) = (self.u.clone(), self.lambda);
-        let h = self.u_limit * 1e-3;
-        let step_from = |s: &mut Self, predictor: Option<&Vec<f64>>| -> Option<Vec<f64>> {
-            s.u.copy_from_slice(&u0);
-            s.lambda = lam0;
-            match predictor {
-                Some(v) => s.u.iter_mut().zip(v).for_each(|(u, v)| *u += h * v),
-                None => s.u[cd] += h,
-            }
-            let out = s
-                .newton_disp()
-                .ok()
-                .map(|_| s.u.iter().zip(&u0).map(|(a, b)| a - b).collect());
-            s.u.copy_from_slice(&u0);
-            s.lambda = lam0;
-            out
-        };
-        let scale = self.lambda_scale();
-        let over = lam0 + 0.01 * lam0.abs().max(1e-3 * scale);
-        if let Some(v) = crate::explicit::runaway_mode(self.model, &u0, &self.committed, over) {
-            return Some(v);
-        }
-        let mode = self.null_mode();
-        self.u.copy_from_slice(&u0);
-        self.lambda = lam0;
-        if mode.is_some() {
-            return mode;
-        }
-        step_from(self, None).or_else(|| self.diverged.take())
     }
 
-    /// The null mode of the tangent with every joint face within 0.1% of its limit active,
-    /// normalized by a unit horizontal velocity of the control block (a bordered system, in
-    /// which the live load may do work).
-    fn null_mode(&mut self) -> Option<Vec<f64>> {
-        let cd = self.control_dof;
-        let model = self.model;
-        self.evaluate();
-        for k in 0..model.interfaces().len() {
-            self.tangents[k] = tangent_near_limit(
-                model.law(k),
-                &model.sections()[k],
-                &self.forces[k],
-                &self.trial[k],
-                1e-3,
-            );
-        }
-        // rhs = -K e_c: the forces that a unit control displacement calls for
-        let mut kc = vec![0.0; self.u.len()];
-        for (it, dt) in model.interfaces().iter().zip(&self.tangents) {
-            let d = it.dofs();
-            if let Some(j) = d.iter().position(|&x| x == cd) {
-                let b = &it.b_mat;
-                let db =
-                    [0, 1, 2].map(|r| dt[r][0] * b[0][j] + dt[r][1] * b[1][j] + dt[r][2] * b[2][j]);
-                for i in 0..6 {
-                    kc[d[i]] += b[0][i] * db[0] + b[1][i] * db[1] + b[2][i] * db[2];
-                }
+    fn restore(&mut self, s: &Saved) {
+        self.u.copy_from_slice(&s.u);
+        self.committed.copy_from_slice(&s.committed);
+        self.lambda = s.lambda;
+    }
+
+    /// Newton at a fixed lambda above the state `from`, by `rise`, halved until it converges
+    /// or is within `floor`. True if it converged (`u`, `lambda` and `trial` hold the result);
+    /// false with `from` restored.
+    fn above(&mut self, from: &Saved, rise: f64, floor: f64) -> Result<bool, Error> {
+        let mut dl = rise;
+        while dl > floor {
+            self.restore(from);
+            self.lambda = from.lambda + dl;
+            match self.newton_load() {
+                Ok(_) => return Ok(true),
+                Err(Error::Interrupted) => return Err(Error::Interrupted),
+                Err(_) => dl *= 0.5,
             }
         }
-        for (d, e) in self.eq.iter().enumerate() {
-            if let Some(k) = *e {
-                self.rhs[k] = -kc[d];
-            }
-        }
-        let (sys, slots, lam_slots) = self.disp_sys.as_mut().unwrap();
-        Self::assemble(model, 0.0, &self.tangents, sys, slots);
-        let live = model.live_load();
-        let vals = sys.values_mut();
-        for &(d, s) in lam_slots.iter() {
-            vals[s as usize] -= live[d];
-        }
-        if sys.factorize().is_ok() && sys.solve_in_place(&mut self.rhs).is_ok() {
-            let mut v = vec![0.0; self.u.len()];
-            for (d, e) in self.eq.iter().enumerate() {
-                if let Some(k) = *e {
-                    v[d] = if d == cd { 1.0 } else { self.rhs[k] };
-                }
-            }
-            return Some(v);
-        }
-        None
+        self.restore(from);
+        Ok(false)
     }
 
     /// Whether some joint has cohesion or tensile strength: it can lose strength suddenly, and

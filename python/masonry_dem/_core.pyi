@@ -119,7 +119,8 @@ class Model:
     ) -> "Results":
         """Static incremental analysis (Newton with the consistent tangent).
 
-        control="load": raise lambda until collapse; the collapse multiplier is bracketed to
+        control="load": raise lambda until collapse, following the equilibrium path in steps of
+        the live load's work; the collapse multiplier is the peak or the plateau of lambda, to
         `tolerance` (relative). control="displacement": drive the horizontal displacement of
         control_block (default: the top beam if any, else the highest block at the right end)
         to max_displacement [m] in `steps` increments, through the peak and after it.

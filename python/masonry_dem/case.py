@@ -372,8 +372,8 @@ def load_case(path: PathLike) -> Case:
     The keys are those of ``case-format.md``. [analysis] also takes these optional keys:
 
     ========================  ===================================================================
-    ``tolerance``             0 < x < 1: relative width of the bracket on the collapse multiplier,
-                              for both methods (default 1e-4 static, 1e-3 dynamic).
+    ``tolerance``             0 < x < 1: relative precision of the collapse multiplier, for both
+                              methods (default 1e-4 static, 1e-3 dynamic).
     ``damping``               explicit solver: "local" (Cundall, the default), "viscous"
                               (mass-proportional) or "none".
     ``damping_coefficient``   explicit solver, >= 0: alpha in [0, 1) for "local" (default 0.8),
