@@ -14,21 +14,14 @@
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use masonry_dem::explicit::{Damping, Stepper};
-use masonry_dem::geometry::{running_bond, FirstCourse, RunningBond};
-use masonry_dem::model::{Model, ModelSpec};
+use masonry_dem::model::Model;
 use std::time::Duration;
 
+#[path = "common/walls.rs"]
+mod walls;
+
 fn wall(courses: usize, blocks_per_course: usize) -> Model {
-    let blocks = running_bond(&RunningBond {
-        block_length: 0.4,
-        block_height: 0.175,
-        courses,
-        length: 0.4 * blocks_per_course as f64,
-        first_course: FirstCourse::Half,
-        openings: vec![],
-    })
-    .unwrap();
-    Model::new(ModelSpec { blocks, gravity: 10.0, ..ModelSpec::default() }).unwrap()
+    Model::new(walls::spec(courses, blocks_per_course)).unwrap()
 }
 
 fn bench(c: &mut Criterion) {

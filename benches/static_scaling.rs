@@ -8,27 +8,13 @@
 //! The whole analysis to collapse is timed by `benches/scaling.py` (one run per size).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use masonry_dem::geometry::{running_bond, FirstCourse, RunningBond};
-use masonry_dem::joint::JointLaw;
-use masonry_dem::model::{JointLaws, Model, ModelSpec};
+use masonry_dem::model::Model;
 use masonry_dem::static_solver::stages::Stages;
 use masonry_dem::static_solver::{solve, Control, StaticOptions};
 use std::hint::black_box;
 
-/// `courses` courses of `courses` blocks (courses starting with a half block have one more).
-fn spec(courses: usize) -> ModelSpec {
-    let blocks = running_bond(&RunningBond {
-        block_length: 0.4,
-        block_height: 0.175,
-        courses,
-        length: 0.4 * courses as f64,
-        first_course: FirstCourse::Half,
-        openings: vec![],
-    })
-    .unwrap();
-    let law = JointLaw { friction: 0.65, dilatancy: 0.65, ..JointLaw::default() };
-    ModelSpec { blocks, gravity: 10.0, joints: JointLaws::uniform(law), ..ModelSpec::default() }
-}
+#[path = "common/walls.rs"]
+mod walls;
 
 const SIZES: [(&str, usize); 4] = [("1e2", 10), ("1e3", 32), ("1e4", 100), ("1e5", 316)];
 
@@ -36,7 +22,7 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("static_scaling");
     g.sample_size(10);
     for (label, courses) in SIZES {
-        let sp = spec(courses);
+        let sp = walls::associative(courses);
         let model = Model::new(sp.clone()).unwrap();
         let (nb, m) = (model.n_blocks(), model.interfaces().len());
         eprintln!("{label}: {nb} blocks, {m} interfaces");

@@ -528,6 +528,8 @@ impl<'a, 'm> Solver<'a, 'm> {
             }
             _ => vec![],
         };
+        // K^-1 f_live of the work path, solved into this buffer at each iteration
+        let mut b = vec![0.0; live_eq.len()];
         let mut flat = 0;
         let mut history = vec![rn];
         for it in 0..self.opts.max_iterations {
@@ -568,7 +570,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                     Self::assemble(self.model, NEWTON_STABILIZATION, &self.tangents, sys, slots);
                     sys.factorize()?;
                     sys.solve_in_place(&mut self.rhs)?;
-                    let mut b = live_eq.clone();
+                    b.copy_from_slice(&live_eq);
                     sys.solve_in_place(&mut b)?;
                     let fb: f64 = live_eq.iter().zip(&b).map(|(f, b)| f * b).sum();
                     let fa: f64 = live_eq.iter().zip(&self.rhs).map(|(f, a)| f * a).sum();
@@ -908,7 +910,6 @@ impl<'a, 'm> Solver<'a, 'm> {
             match self.newton_work(conv.work + ds) {
                 Ok(iters) => {
                     let (lam, w) = (self.lambda, self.work());
-                    let k = (lam - conv.lambda) / (w - conv.work);
                     let broke = self.trial.iter().zip(&self.committed).any(|(t, c)| t.broken && !c.broken);
                     if broke && k_last.max(0.0) * ds > floor {
                         self.restore(&conv);
@@ -960,7 +961,6 @@ impl<'a, 'm> Solver<'a, 'm> {
                     }
                     // longer steps while Newton finds them easy, as long as lambda rises by no
                     // more than the first step did
-                    let _ = k;
                     if iters <= 4 && fails == 0 {
                         let dlam = conv.lambda - prev.as_ref().unwrap().lambda;
                         ds *= if dlam > 0.0 { (dl0 / dlam).clamp(1.0, 2.0) } else { 2.0 };
