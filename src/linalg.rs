@@ -195,6 +195,11 @@ impl SparseLu {
         }
     }
 
+    /// Whether the current values are factorized (and `solve_in_place` may be called).
+    pub fn is_factorized(&self) -> bool {
+        self.factorized != Factor::None
+    }
+
     /// The value slot of entry (row, col), if it is in the pattern.
     pub fn slot(&self, row: usize, col: usize) -> Option<usize> {
         slot_of(self.pattern.as_ref(), row, col)

@@ -136,6 +136,10 @@ struct Solver<'a, 'm> {
     rhs: Vec<f64>,
     load_sys: Option<(SparseLu, Vec<[u32; 36]>)>,
     disp_sys: Option<(SparseLu, Vec<[u32; 36]>, Vec<(usize, u32)>)>,
+    /// the joint tangents and the system (displacement control or not, stabilization) of the
+    /// last factorization: Newton refactorizes only when one of them has changed
+    fact_tangents: Vec<[[f64; 3]; 3]>,
+    fact_key: Option<(bool, u64)>,
     /// force scale for the residual test
     iterations: usize,
     steps: usize,
@@ -299,6 +303,8 @@ impl<'a, 'm> Solver<'a, 'm> {
             rhs: vec![0.0; n_eq],
             load_sys: None,
             disp_sys: None,
+            fact_tangents: vec![],
+            fact_key: None,
             iterations: 0,
             steps: 0,
             curve_l: vec![],
@@ -468,6 +474,20 @@ impl<'a, 'm> Solver<'a, 'm> {
         Ok(())
     }
 
+    /// Whether the system (`disp`: the bordered one of displacement control) still holds the
+    /// factorization of the current tangents with stabilization `eps`; if not, records them as
+    /// those of the factorization about to be made. The law is piecewise linear, so the last
+    /// iteration of a step often sees the tangents of the one before.
+    fn reuse_factorization(&mut self, disp: bool, eps: f64) -> bool {
+        let key = Some((disp, eps.to_bits()));
+        if self.fact_key == key && self.fact_tangents == self.tangents {
+            return true;
+        }
+        self.fact_key = key;
+        self.fact_tangents.clone_from(&self.tangents);
+        false
+    }
+
     /// Newton iterations at fixed lambda. `u` and `trial` hold the result.
     fn newton_load(&mut self) -> Result<usize, Error> {
         self.ensure_load_sys()?;
@@ -528,8 +548,9 @@ impl<'a, 'm> Solver<'a, 'm> {
             }
             _ => vec![],
         };
-        // K^-1 f_live of the work path, solved into this buffer at each iteration
+        // K^-1 f_live of the work path, solved into this buffer with each new factorization
         let mut b = vec![0.0; live_eq.len()];
+        let mut b_solved = false;
         let mut flat = 0;
         let mut history = vec![rn];
         for it in 0..self.opts.max_iterations {
@@ -546,43 +567,54 @@ impl<'a, 'm> Solver<'a, 'm> {
             self.poll()?;
             self.iterations += 1;
             let mut dlam = 0.0;
+            let reused;
             match drive {
                 Drive::Disp => {
+                    reused = self.reuse_factorization(true, NEWTON_STABILIZATION_FIXED)
+                        && self.disp_sys.as_ref().is_some_and(|s| s.0.is_factorized());
                     let (sys, slots, lam_slots) = self.disp_sys.as_mut().unwrap();
-                    Self::assemble(self.model, NEWTON_STABILIZATION_FIXED, &self.tangents, sys, slots);
-                    let live = self.model.live_load();
-                    let vals = sys.values_mut();
-                    for &(d, s) in lam_slots.iter() {
-                        vals[s as usize] -= live[d];
+                    if !reused {
+                        Self::assemble(self.model, NEWTON_STABILIZATION_FIXED, &self.tangents, sys, slots);
+                        let live = self.model.live_load();
+                        let vals = sys.values_mut();
+                        for &(d, s) in lam_slots.iter() {
+                            vals[s as usize] -= live[d];
+                        }
+                        sys.factorize()?;
                     }
-                    sys.factorize()?;
                     sys.solve_in_place(&mut self.rhs)?;
                     dlam = self.rhs[lam_eq];
                 }
-                Drive::Load => {
+                Drive::Load | Drive::Work(_) => {
+                    let eps = if drive == Drive::Load { NEWTON_STABILIZATION_FIXED } else { NEWTON_STABILIZATION };
+                    reused = self.reuse_factorization(false, eps)
+                        && self.load_sys.as_ref().is_some_and(|s| s.0.is_factorized());
                     let (sys, slots) = self.load_sys.as_mut().unwrap();
-                    Self::assemble(self.model, NEWTON_STABILIZATION_FIXED, &self.tangents, sys, slots);
-                    sys.factorize()?;
+                    if !reused {
+                        Self::assemble(self.model, eps, &self.tangents, sys, slots);
+                        sys.factorize()?;
+                    }
                     sys.solve_in_place(&mut self.rhs)?;
                 }
-                Drive::Work(_) => {
-                    let (sys, slots) = self.load_sys.as_mut().unwrap();
-                    Self::assemble(self.model, NEWTON_STABILIZATION, &self.tangents, sys, slots);
-                    sys.factorize()?;
-                    sys.solve_in_place(&mut self.rhs)?;
+            }
+            if let Drive::Work(_) = drive {
+                // K^-1 f_live, solved again only with a new factorization
+                if !(reused && b_solved) {
+                    let (sys, _) = self.load_sys.as_mut().unwrap();
                     b.copy_from_slice(&live_eq);
                     sys.solve_in_place(&mut b)?;
-                    let fb: f64 = live_eq.iter().zip(&b).map(|(f, b)| f * b).sum();
-                    let fa: f64 = live_eq.iter().zip(&self.rhs).map(|(f, a)| f * a).sum();
-                    if !(fb.abs() > 0.0) {
-                        return Err(Error::Convergence(
-                            "the live load does no work on the tangent's displacements".into(),
-                        ));
-                    }
-                    dlam = (off.unwrap_or(0.0) - fa) / fb;
-                    for (a, b) in self.rhs.iter_mut().zip(&b) {
-                        *a += dlam * b;
-                    }
+                    b_solved = true;
+                }
+                let fb: f64 = live_eq.iter().zip(&b).map(|(f, b)| f * b).sum();
+                let fa: f64 = live_eq.iter().zip(&self.rhs).map(|(f, a)| f * a).sum();
+                if !(fb.abs() > 0.0) {
+                    return Err(Error::Convergence(
+                        "the live load does no work on the tangent's displacements".into(),
+                    ));
+                }
+                dlam = (off.unwrap_or(0.0) - fa) / fb;
+                for (a, b) in self.rhs.iter_mut().zip(&b) {
+                    *a += dlam * b;
                 }
             }
             delta.copy_from_slice(&self.rhs);
@@ -815,6 +847,7 @@ impl<'a, 'm> Solver<'a, 'm> {
         self.rhs = vec![0.0; n];
         self.load_sys = None;
         self.disp_sys = None;
+        self.fact_key = None;
     }
 
     /// A natural scale of lambda: 1 for the seismic coefficient, the dead loads for a force.
