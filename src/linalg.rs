@@ -1,10 +1,10 @@
 //! The only module that calls faer: a square sparse matrix of fixed pattern, assembled by
 //! value slots and factorized. A symmetric matrix (associative flow, load control) goes to a
-//! sparse Cholesky LL^T with an AMD ordering, about 10 times faster than LU here (n = 3,120:
-//! 2.5 ms against 26 ms; n = 30,150: 94 ms against 521 ms); a non-symmetric one (non-associative
-//! flow, the bordered system of displacement control), or one that is not positive definite
-//! (softening), to sparse LU with partial pivoting, or to a dense LU up to [`DENSE_LU_MAX`]
-//! equations. Each symbolic analysis is done once, when first needed; each `factorize` is a
+//! sparse Cholesky LL^T with an AMD ordering, about 10 times faster than faer's LU with its own
+//! choice of method here (n = 3,120: 2.5 ms against 26 ms; n = 30,150: 94 ms against 521 ms); a
+//! non-symmetric one (non-associative flow, the bordered system of displacement control), or one
+//! that is not positive definite (softening), to a supernodal sparse LU, or to a dense LU with
+//! partial pivoting up to [`DENSE_LU_MAX`] equations. Each symbolic analysis is done once, when first needed; each `factorize` is a
 //! numeric refactorization into preallocated buffers.
 
 use crate::error::{Error, Result};
@@ -16,7 +16,8 @@ use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
 };
-use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, LuSymbolicParams, NumericLu, SymbolicLu};
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, Par, Side};
 
@@ -128,11 +129,18 @@ impl SparseLu {
         Ok(this)
     }
 
-    /// The LU's symbolic analysis and buffers, made on first use.
+    /// The LU's symbolic analysis and buffers, made on first use. Supernodal whatever the
+    /// pattern: faer's own choice took the simplicial LU on these matrices, and whole analyses
+    /// of psi = 0 walls to collapse ran 1.7-2.6 times slower with it (best of one run each, side
+    /// by side: 69 blocks 0.152 s against 0.091 s, 151 blocks 1.38 s against 0.52 s, 265 blocks
+    /// 17.0 s against 7.0 s, the same steps and iterations).
     fn ensure_lu(&mut self) -> Result<()> {
         if self.lu.is_none() {
             let n = self.n;
-            let symbolic = factorize_symbolic_lu(self.pattern.as_ref(), Default::default()).map_err(|e| {
+            let symbolic = factorize_symbolic_lu(
+                self.pattern.as_ref(),
+                LuSymbolicParams { supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL, ..Default::default() },
+            ).map_err(|e| {
                 Error::Convergence(format!("sparse LU symbolic analysis failed: {e:?}"))
             })?;
             let factor_buf =
