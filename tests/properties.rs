@@ -6,7 +6,8 @@
 //! - every converged static step is in equilibrium (free dof) and the support reactions
 //!   balance the applied loads;
 //! - the same input gives bitwise the same output (static, and explicit on one thread);
-//! - translating a wall changes nothing; mirroring a wall and its push gives the mirrored curve.
+//! - translating a wall changes nothing; mirroring a wall and its push gives the mirrored curve
+//!   (both with associative joints: with psi = 0 the path is not unique and follows round-off).
 //!
 //! Case counts are kept small enough for `make test` (the whole file runs in well under a
 //! minute in release mode); failures are shrunk by proptest and printed with the minimal input.
@@ -707,38 +708,263 @@ const CURVE_TOL: f64 = 1e-6;
 /// block is pushed towards -x and lambda goes negative. So: the original wall pushed towards
 /// -x and its mirror image pushed towards +x must follow mirrored curves (lambda -> -lambda),
 /// and vice versa, with the same (mirrored) control block.
+///
+/// Associative joints only (psi = phi), as for translation (f) and in the Python mirror test.
+/// With psi = 0 the property is not true of the problem, so no solver can satisfy it: the
+/// equilibrium path at a prescribed displacement is not unique (non-associative friction), and
+/// which branch Newton lands on, and where it then stops with "no equilibrium after 50
+/// iterations", follows round-off. Mirroring only changes the round-off (x -> -x, head joints'
+/// a and b swapped, so another assembly order; the return mapping is mirror-symmetric to 4e-13
+/// of the trial force over 6e5 random calls, psi = 0 included). psi = 0 walls broke this test
+/// in about 1 run in 12; in a sweep of 2,454 psi = 0 pushes (kept out of the suite) 13 mirror
+/// pairs disagreed, 12 of them also between the wall and a copy of itself shifted by 1e-9 m or
+/// 0.37 m or with its blocks in reverse order, and 31 more pushes disagreed with such a copy
+/// while the mirror agreed (up to 15% on the peak). The walls found (`g_mirror_regressions`):
+/// - 7 blocks (mu = 0.740, top beam of fixed rotation under 3.5 kN) pushed by -2 mm: peak
+///   1.01833, mirror 1.02900; the wall itself in reverse block order or shifted by 1e-9 m
+///   also peaks at 1.02900, and at 1.02251 with 37 steps instead of 30;
+/// - 14 blocks, symmetric (mu = 0.482, beam of fixed rotation under 1 N): collapses after 70
+///   steps pushed by -2 mm, stops after 5 ("no equilibrium", lambda 0.204) pushed by +2 mm,
+///   or by -2 mm once shifted by 1e-9 m in x;
+/// - 4 blocks in one course (mu = 0.842, beam of fixed rotation under 4.3 kN): peaks 2.54802
+///   and 2.54887, both runs stopping at u = 4.9e-5 m.
+/// With psi = phi the same walls give the same curves with 30 to 240 steps, and mirror.
+///
+/// The control block is the wall's top right block (its image in the mirror), also under a
+/// top beam. A beam carries only its own force, and with a small one (28-89 N, rotation free)
+/// its displacement does not fix the wall's state: at the same beam displacement a wall and
+/// its mirror image gave lambda 0.684 and 0.698 at step 1 (2%), and the wall shifted by 1e-9
+/// m moved step 1 by 0.2% under 100 N. The solver refuses a beam under no force for this
+/// reason (8d4564f); wall blocks carry the live load. In a sweep of 3,000 associative walls
+/// the beam as control block broke the property in 4 of 1,934 pushes, a wall block in none.
+///
+/// A push in which either run fails ("no equilibrium") is compared no further: with
+/// associative joints displacement control fails where the control block's displacement
+/// stops being a parameter of the path, and the last converged point, or whether a step
+/// lands beyond a snap-back and the run goes on, depends on how the step was halved, not on
+/// the wall (1 status disagreement in 4,066 beamless pushes). Load control, which follows
+/// the path by the live load's work, shows it on the 12-block wall of `g_mirror_regressions`
+/// pushed towards -x: the control block goes to 2.913e-5 m at lambda 0.4853, back to
+/// 2.815e-5 m while lambda rises to 0.5001 (a snap-back), on to 1.007e-4 m at the collapse
+/// load 0.50105, and no further (the mechanism leaves it behind). Displacement control stops
+/// at the snap-back (peak 0.48446: the mirror image with 30 steps, the wall itself with 60 or
+/// 120) or, if a step lands beyond it, near the end of the plateau (0.50104: the wall with 30
+/// steps). That 3.3% broke this test once in 60 runs after psi = 0 was left out. Near the
+/// end of a plateau the peaks of runs halved differently differ by ~3e-6. Not crossing a dry
+/// wall's snap-back is the solver's (`g_displacement_control_crosses_a_dry_snap_back`).
+/// The tolerances stay those of equivalent runs (CURVE_TOL). In a sweep of 8,000 pushes
+/// (862 failed, always in both runs), one pair that both reached 2 mm differed by 8.7e-6 on
+/// the peak, and one in 50 runs of this file by 4e-6 at 2 mm: a run whose first step was
+/// halved against one whose was not (compared now only where the steps coincide, see
+/// `mirror_property`).
 #[test]
 fn g_mirroring_a_wall_mirrors_its_curve() {
-    check(10, wall_strategy(), |wall| {
-        let model = wall.model();
-        let mirror = wall.mirrored().model();
-        let cb = model.default_control_block();
-        for d in [2e-3, -2e-3] {
-            let a = solve(&model, &disp_options(d, Some(cb))).unwrap();
-            let b = solve(&mirror, &disp_options(-d, Some(cb))).unwrap();
-            // A failed run must fail in the mirror too, at the mirrored step: the curves are
-            // compared as far as they go. (Found: with a fixed-rotation top beam and psi = 0,
-            // displacement control can fail with "no equilibrium after 50 iterations" in one
-            // direction of push; the mirror fails identically, so symmetry holds.)
-            prop_assert_eq!(a.status, b.status, "{:?} / {:?}", a.error, b.error);
-            let peak = a.curve_multiplier.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            let peak_b = b.curve_multiplier.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            prop_assert!((peak - peak_b).abs() <= CURVE_TOL * peak, "push {d}: peak {peak}, mirror {peak_b}");
-            // as for translation, round-off may cut a step differently; where the prescribed
-            // displacements coincide (mirrored), every point must
-            let same_path = a.curve_displacement.len() == b.curve_displacement.len()
-                && a.curve_displacement.iter().zip(&b.curve_displacement).skip(1).all(|(x, y)| {
-                    (x + y).abs() <= CURVE_TOL * d.abs()
-                });
-            if same_path {
-                for (k, (x, y)) in a.curve_multiplier.iter().zip(&b.curve_multiplier).enumerate() {
-                    prop_assert!(
-                        (x + y).abs() <= CURVE_TOL * peak,
-                        "push {d}: step {k}: lambda {x}, mirror {y}"
-                    );
-                }
-            }
-        }
+    let compared = Cell::new(0usize);
+    let associative = wall_strategy().prop_map(|mut w| {
+        w.law.dilatancy = w.law.friction;
+        w
+    });
+    check(10, associative, |wall| {
+        compared.set(compared.get() + mirror_property(&wall)?);
         Ok(())
     });
+    eprintln!("mirror: {} of 20 pushes compared", compared.get());
+    // a run fails in about 1 push in 10: all 20 failing would mean something else broke
+    assert!(compared.get() > 0, "no push reached its displacement");
+}
+
+/// The mirror property of `wall` (see g): pushed both ways by its top right wall block, the
+/// wall and its mirror image, where both reach the requested displacement, end with the same
+/// status and, where they take the same steps, follow mirrored curves. Returns the number of
+/// pushes (of 2) compared point by point.
+fn mirror_property(wall: &WallCase) -> Result<usize, TestCaseError> {
+    let model = wall.model();
+    let mirror = wall.mirrored().model();
+    let top_right = |r: &Rect| (r.y1, r.x1);
+    let cb = (0..wall.blocks.len())
+        .max_by(|&i, &j| top_right(&wall.blocks[i]).partial_cmp(&top_right(&wall.blocks[j])).unwrap())
+        .unwrap();
+    let mut compared = 0;
+    for d in [2e-3, -2e-3] {
+        let a = solve(&model, &disp_options(d, Some(cb))).unwrap();
+        let b = solve(&mirror, &disp_options(-d, Some(cb))).unwrap();
+        if a.status == Status::Failed || b.status == Status::Failed {
+            continue; // where it stopped is not the wall's (see g)
+        }
+        prop_assert_eq!(a.status, b.status, "push {}", d);
+        // As for translation, round-off may cut a step differently, and then the runs are two
+        // discretizations of the path, not equivalent runs: on a plateau the slip accumulated
+        // depends on the steps (seen: 4e-6 on the peak at 2 mm, one run with its first step
+        // halved). CURVE_TOL holds where the prescribed displacements coincide (mirrored).
+        let same_path = a.curve_displacement.len() == b.curve_displacement.len()
+            && a.curve_displacement.iter().zip(&b.curve_displacement).skip(1).all(|(x, y)| {
+                (x + y).abs() <= CURVE_TOL * d.abs()
+            });
+        if !same_path {
+            continue;
+        }
+        compared += 1;
+        let peak = a.curve_multiplier.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let peak_b = b.curve_multiplier.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        prop_assert!((peak - peak_b).abs() <= CURVE_TOL * peak, "push {d}: peak {peak}, mirror {peak_b}");
+        for (k, (x, y)) in a.curve_multiplier.iter().zip(&b.curve_multiplier).enumerate() {
+            prop_assert!(
+                (x + y).abs() <= CURVE_TOL * peak,
+                "push {d}: step {k}: lambda {x}, mirror {y}"
+            );
+        }
+    }
+    Ok(compared)
+}
+
+/// One course of blocks between the x breakpoints `xs`, from y0 to y1.
+fn course(xs: &[f64], y0: f64, y1: f64) -> Vec<Rect> {
+    xs.windows(2).map(|w| Rect::new(w[0], y0, w[1], y1)).collect()
+}
+
+/// The walls (as proptest shrank them) on which the mirror property failed: three with
+/// psi = 0, each with a top beam of fixed rotation, kept with associative joints, where the
+/// property holds (see g for what psi = 0 did on them), and the associative 12-block wall of
+/// the snap-back, whose pushes towards -x fail and are not compared.
+#[test]
+fn g_mirror_regressions() {
+    let beam = |p: f64| Some(TopBeam { rotation_fixed: true, force: [0.0, -p], vertical_held: false });
+    // peak 1.01833 / 1.02900 pushed by -2 mm with psi = 0
+    let (a, b) = (
+        [0.0, 0.398610237629231, 0.797220475258462, 1.1958307128876928],
+        [0.0, 0.1993051188146155, 0.5979153564438464, 0.9965255940730774, 1.1958307128876928],
+    );
+    let y = [0.0, 0.36475760721783984, 0.7295152144356797];
+    let seven = WallCase {
+        blocks: [course(&a, y[0], y[1]), course(&b, y[1], y[2])].concat(),
+        law: common::dry(0.7399378017562555, 0.0, 5358997135.234735),
+        top: beam(3513.873417439486),
+    };
+    // Collapse / Failed (no equilibrium after 50 iterations) pushed by -2 mm with psi = 0
+    let (a, b) = (
+        [0.0, 0.10679785583839528, 0.32039356751518583, 0.5339892791919764, 0.6407871350303717],
+        [0.0, 0.21359571167679056, 0.4271914233535811, 0.6407871350303717],
+    );
+    let y = [0.0, 0.2114472890128573, 0.4228945780257146, 0.6343418670385719, 0.8457891560514292];
+    let fourteen = WallCase {
+        blocks: [
+            course(&a, y[0], y[1]),
+            course(&b, y[1], y[2]),
+            course(&a, y[2], y[3]),
+            course(&b, y[3], y[4]),
+        ]
+        .concat(),
+        law: common::dry(0.4816940153701755, 0.0, 6260286909.773505),
+        top: beam(1.0),
+    };
+    // peak 2.54802 / 2.54887 pushed by +2 mm with psi = 0
+    let xs = [0.0, 0.14729123416224593, 0.4418737024867378, 0.7364561708112296, 0.8837474049734756];
+    let four = WallCase {
+        blocks: course(&xs, 0.0, 0.2396670211533179),
+        law: common::dry(0.841621130428826, 0.0, 5494784580.722607),
+        top: beam(4299.872586299624),
+    };
+    for (name, mut wall) in [("7 blocks", seven), ("14 blocks", fourteen), ("4 blocks", four)] {
+        wall.law.dilatancy = wall.law.friction;
+        match mirror_property(&wall) {
+            Ok(n) => assert!(n > 0, "{name}: no push reached 2 mm with psi = phi"),
+            Err(e) => panic!("{name}: {e}"),
+        }
+    }
+    // peak 0.50104 / 0.48446 pushed by -2 mm (both runs failed): the pushes towards +x are
+    // compared, those towards -x by status
+    match mirror_property(&snap_back_wall()) {
+        Ok(n) => assert_eq!(n, 1, "12 blocks: the push towards -x fails, the other not"),
+        Err(e) => panic!("12 blocks: {e}"),
+    }
+}
+
+/// An associative 12-block running-bond wall (4 courses, no top beam) whose path pushed
+/// towards -x snaps back in the displacement of the control block (the top right block).
+fn snap_back_wall() -> WallCase {
+    let a = [0.0, 0.21207571876277026, 0.6362271562883108, 1.0603785938138512];
+    let b = [0.0, 0.4241514375255405, 0.848302875051081, 1.0603785938138512];
+    let y = [0.0, 0.30445832216103846, 0.6089166443220769, 0.9133749664831154, 1.2178332886441539];
+    WallCase {
+        blocks: [
+            course(&a, y[0], y[1]),
+            course(&b, y[1], y[2]),
+            course(&a, y[2], y[3]),
+            course(&b, y[3], y[4]),
+        ]
+        .concat(),
+        law: common::dry(0.7056858811962229, 0.7056858811962229, 6586062465.386855),
+        top: None,
+    }
+}
+
+/// SOLVER ISSUE (static displacement control, not fixed; src/static_solver.rs is not this
+/// file's to change). The wall of `snap_back_wall` pushed towards -x: its path, as load
+/// control follows it (on the mirror image, pushed towards +x), takes the control block to
+/// 2.913e-5 m at lambda 0.4853, back to 2.815e-5 m while lambda rises to 0.5001, and on to
+/// the collapse load 0.50105. Displacement control halves its step down to the minimum at
+/// the limit point and reports "no equilibrium after 50 iterations" at lambda 0.4845, 3.3%
+/// below the collapse load, unless a step happens to land beyond the snap-back (30 steps
+/// do: 0.50104; 60 or 120 do not). A snap-back is crossed by dynamic relaxation only in
+/// walls whose joints can lose strength (`can_lose_strength`); this dry, associative wall
+/// snaps back all the same. Letting a dry wall jump too takes every run here (wall and
+/// mirror image, 30 to 240 steps) to 0.50104-0.50105. Un-ignore once the solver crosses it.
+#[test]
+#[ignore = "solver issue: displacement control stops at a dry wall's snap-back"]
+fn g_displacement_control_crosses_a_dry_snap_back() {
+    let wall = snap_back_wall();
+    let model = wall.model();
+    let cb = model.default_control_block();
+    // the collapse load towards -x: load control on the mirror image, bracketed to 1e-4
+    let collapse = solve(&wall.mirrored().model(), &load_options()).unwrap();
+    assert_eq!(collapse.status, Status::Collapse, "{:?}", collapse.error);
+    let lambda_c = collapse.collapse_multiplier;
+    for (name, m, d) in [("wall", &model, -2e-3), ("mirror", &wall.mirrored().model(), 2e-3)] {
+        for steps in [30, 60, 120] {
+            let r = solve(m, &StaticOptions { steps, ..disp_options(d, Some(cb)) }).unwrap();
+            let peak = r.curve_multiplier.iter().fold(0.0f64, |p, x| p.max(x.abs()));
+            // 1e-3: the solver's own test of a softened curve; the snap-back is 3.3% below
+            assert!(
+                peak >= (1.0 - 1e-3) * lambda_c,
+                "{name}, {steps} steps: peak {peak} < collapse load {lambda_c} ({:?})",
+                r.error
+            );
+        }
+    }
+}
+
+/// SOLVER ISSUE (static load control, not fixed; found by f in 1 of 100 runs of this file):
+/// on this associative 5-block wall load control (50 steps) reports collapse at 0.324285,
+/// while displacement control reaches an equilibrium at 0.329523 (1.6% higher; with
+/// associative joints every equilibrium is a lower bound of the collapse load). The same wall
+/// shifted by 1e-9 m, or by (0, 3.38) m as f drew it, gives 0.329523 by load control too,
+/// and with 200 steps every position gives 0.324285: load control stops early on a plateau
+/// that is not the collapse, depending on round-off and the step count. Un-ignore once load
+/// control finds the collapse here.
+#[test]
+#[ignore = "solver issue: load control reports collapse 1.6% below an equilibrium"]
+fn f_load_control_does_not_stop_below_an_equilibrium() {
+    let (a, b) = ([0.0, 0.11623954432404907, 0.23247908864809813], [0.0, 0.23247908864809813]);
+    let y = [0.0, 0.19682242897599464, 0.3936448579519893, 0.5904672869279839];
+    let mu = 0.4235620298005757;
+    let wall = WallCase {
+        blocks: [course(&a, y[0], y[1]), course(&b, y[1], y[2]), course(&a, y[2], y[3])].concat(),
+        law: common::dry(mu, mu, 621320620.1970984),
+        top: None,
+    };
+    let model = wall.model();
+    let d = solve(&model, &disp_options(2e-3, None)).unwrap();
+    assert_eq!(d.status, Status::Collapse, "{:?}", d.error);
+    let reached = d.collapse_multiplier;
+    for steps in [50, 200] {
+        let opts = StaticOptions { steps, ..load_options() };
+        let l = solve(&model, &opts).unwrap();
+        assert_eq!(l.status, Status::Collapse, "{:?}", l.error);
+        // load control brackets the collapse load to `tolerance` (relative)
+        assert!(
+            l.collapse_multiplier >= reached * (1.0 - opts.tolerance),
+            "{steps} steps: collapse {} below the equilibrium at {reached}",
+            l.collapse_multiplier
+        );
+    }
 }
