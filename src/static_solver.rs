@@ -871,7 +871,8 @@ impl<'a, 'm> Solver<'a, 'm> {
     /// - a plateau: the rise that the last step's slope would give over as much work again as
     ///   has been done is within the tolerance of lambda (exact on a perfectly plastic
     ///   mechanism, where the slope is zero; close on a wall whose joints open one after the
-    ///   other, where lambda creeps up as the work grows);
+    ///   other, where lambda creeps up as the work grows), and Newton at a fixed lambda just
+    ///   above it finds no equilibrium (where it finds one, the path goes on from there);
     /// - a peak: lambda falls after a step (the step that crossed it is refined until the rise
     ///   it could hide, at the slope before it, is within the tolerance), and there is no
     ///   equilibrium at a fixed lambda above it;
@@ -989,8 +990,33 @@ impl<'a, 'm> Solver<'a, 'm> {
                         return (Status::Completed, None);
                     }
                     if k_last.max(0.0) * conv.work <= tol * conv.lambda.abs().max(1e-3 * scale) {
-                        self.mechanism = Some(increment);
-                        return (Status::Collapse, None);
+                        // a plateau of the path need not be the collapse: the state of a wall at
+                        // a fixed lambda depends on its path, and an associative 5-block wall
+                        // flowed at 0.324285 on it while it stands at 0.329523 (displacement
+                        // control, or load control from a position 1e-9 m away). Two attempts
+                        // just above (10 and 5 times the tolerance) cost wall 1 13 iterations
+                        // (90 -> 103); where one converges, the path goes on from there.
+                        let plateau = self.snap();
+                        match self.above(&plateau, 10.0 * floor, 5.0 * floor) {
+                            Ok(true) => {
+                                ds = self.work() - plateau.work;
+                                prev = None;
+                                if let Err(e) = self.commit(f64::NAN) {
+                                    return (Status::Failed, Some(e));
+                                }
+                                conv = self.snap();
+                                best = self.snap();
+                                k_best = 0.0;
+                                continue;
+                            }
+                            Err(e) => return (Status::Failed, Some(e)),
+                            _ => {
+                                self.restore(&plateau);
+                                self.evaluate();
+                                self.mechanism = Some(increment);
+                                return (Status::Collapse, None);
+                            }
+                        }
                     }
                     // longer steps while Newton finds them easy (a cap on the rise of lambda per
                     // step, as the first step's, cost a wall of 33 blocks twice as many steps in

@@ -898,8 +898,8 @@ fn snap_back_wall() -> WallCase {
     }
 }
 
-/// SOLVER ISSUE (static displacement control, not fixed; src/static_solver.rs is not this
-/// file's to change). The wall of `snap_back_wall` pushed towards -x: its path, as load
+/// SOLVER ISSUE (static displacement control, not fixed). The wall of `snap_back_wall` pushed
+/// towards -x: its path, as load
 /// control follows it (on the mirror image, pushed towards +x), takes the control block to
 /// 2.913e-5 m at lambda 0.4853, back to 2.815e-5 m while lambda rises to 0.5001, and on to
 /// the collapse load 0.50105. Displacement control halves its step down to the minimum at
@@ -933,16 +933,14 @@ fn g_displacement_control_crosses_a_dry_snap_back() {
     }
 }
 
-/// SOLVER ISSUE (static load control, not fixed; found by f in 1 of 100 runs of this file):
-/// on this associative 5-block wall load control (50 steps) reports collapse at 0.324285,
-/// while displacement control reaches an equilibrium at 0.329523 (1.6% higher; with
-/// associative joints every equilibrium is a lower bound of the collapse load). The same wall
-/// shifted by 1e-9 m, or by (0, 3.38) m as f drew it, gives 0.329523 by load control too,
-/// and with 200 steps every position gives 0.324285: load control stops early on a plateau
-/// that is not the collapse, depending on round-off and the step count. Un-ignore once load
-/// control finds the collapse here.
+/// Found by f in 1 of 100 runs of this file: on this associative 5-block wall load control
+/// (50 steps) reported collapse at 0.324285, a plateau of its path, while displacement control
+/// reaches an equilibrium at 0.329523 (1.6% higher; with associative joints every equilibrium
+/// is a lower bound of the collapse load). The same wall shifted by 1e-9 m, or by (0, 3.38) m
+/// as f drew it, gave 0.329523 by load control too, and with 200 steps every position gave
+/// 0.324285. Load control now tries Newton at a fixed lambda just above a plateau before it
+/// calls it the collapse, and goes on from the equilibrium found there.
 #[test]
-#[ignore = "solver issue: load control reports collapse 1.6% below an equilibrium"]
 fn f_load_control_does_not_stop_below_an_equilibrium() {
     let (a, b) = ([0.0, 0.11623954432404907, 0.23247908864809813], [0.0, 0.23247908864809813]);
     let y = [0.0, 0.19682242897599464, 0.3936448579519893, 0.5904672869279839];
