@@ -2,7 +2,7 @@
 
     .venv/bin/python benches/compare_methods.py            # after `make develop`
 
-Default options of each solver: static bracket 1e-4, explicit bracket 1e-3 with local damping
+Default options of each solver: static load control with precision 1e-4, explicit bracket 1e-3 with local damping
 0.8 and an unbalanced-force ratio of 1e-5. Times are the solvers' own (Results.elapsed_s), on
 one thread for the explicit solver (the walls are too small for two to pay)."""
 

@@ -41,7 +41,8 @@ pub struct StaticOptions {
     pub steps: usize,
     /// Relative precision of the collapse multiplier (load control): a peak is located within
     /// it, and a plateau is reached when the multiplier would rise by less than this fraction
-    /// over as much work of the live load again.
+    /// over as much work of the live load again and Newton finds no equilibrium 5 to 10 times
+    /// this fraction above it.
     pub tolerance: f64,
     /// Newton iterations before a step is cut.
     pub max_iterations: usize,
