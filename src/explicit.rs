@@ -515,8 +515,13 @@ impl<'a> Integrator<'a> {
                     let (a, b) = (3 * gk.a as usize, 3 * gk.b as usize);
                     let q = [u[a], u[a + 1], u[a + 2], u[b], u[b + 1], u[b + 2]];
                     let bm = gk.b_mat();
-                    // as Interface::jumps, term by term
-                    let e: [f64; 3] = std::array::from_fn(|r| (0..6).map(|j| bm[r][j] * q[j]).sum());
+                    // as Interface::jumps, term by term (`Iterator::sum` of f64 starts from
+                    // -0.0, and -0.0 + x == x: the sum is the terms added left to right)
+                    let row = |r: usize| {
+                        let b = &bm[r];
+                        b[0] * q[0] + b[1] * q[1] + b[2] * q[2] + b[3] * q[3] + b[4] * q[4] + b[5] * q[5]
+                    };
+                    let e = [row(0), row(1), row(2)];
                     let r = return_map_forces(law, &sections[k], e, st);
                     *st = r.state;
                     *f = r.force;
