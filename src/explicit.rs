@@ -261,6 +261,24 @@ impl Geo {
     }
 }
 
+/// A committed joint history from its packed form (`h`: the plastic jumps, then the opening and
+/// the slip if stored; not stored they are zero, which no law that does not soften reads).
+#[inline(always)]
+fn unpack(h: &[f64], broken: bool) -> JointState {
+    let (opening, slip) = if h.len() == 5 { (h[3], h[4]) } else { (0.0, 0.0) };
+    JointState { plastic: [h[0], h[1], h[2]], broken, opening, slip }
+}
+
+/// The packed form of a history (see [`unpack`]).
+#[inline(always)]
+fn pack(st: &JointState, h: &mut [f64]) {
+    h[..3].copy_from_slice(&st.plastic);
+    if h.len() == 5 {
+        h[3] = st.opening;
+        h[4] = st.slip;
+    }
+}
+
 /// Index of a family in the integrator's table of four laws.
 fn family_index(f: Family) -> u8 {
     match f {
@@ -273,8 +291,9 @@ fn family_index(f: Family) -> u8 {
 
 /// The integrator's state and work arrays (flat, allocated once).
 ///
-/// Per interface: the packed geometry (56 bytes), the family (1), the history (48), the force
-/// (24), the flags (1) and two entries of the block-to-interface incidence (8); sections and
+/// Per interface: the packed geometry (56 bytes), the family (1), the history (24: the plastic
+/// jumps, and 16 more, the opening and the slip, only if a law softens; `JointState` takes 48),
+/// the broken flag (1), the force (24), the flags (1) and two entries of the block-to-interface incidence (8); sections and
 /// laws are read from the model (a table of four laws, one per family). With finite rotations
 /// also the six generalized forces on the two blocks (48), and per block the centroid and the
 /// rotation's (cos, sin). One step is: a pass over the blocks (velocity half-step and
@@ -299,7 +318,11 @@ struct Integrator<'a> {
     a: Vec<f64>,
     f_int: Vec<f64>,
     f_ext: Vec<f64>,
-    states: Vec<JointState>,
+    /// the committed joint histories, `hw` numbers an interface: the plastic jumps, then (only
+    /// if a law softens, `hw` = 5) the opening and the slip, which no other law reads
+    hist: Vec<f64>,
+    hw: usize,
+    broken: Vec<bool>,
     forces: Vec<[f64; 3]>,
     flags: Vec<u8>,
     fe: Vec<[f64; 6]>,
@@ -388,6 +411,7 @@ impl<'a> Integrator<'a> {
             }
         }
         let laws = model.laws();
+        let hw = if [Family::Bed, Family::Head, Family::Base, Family::Top].iter().any(|&f| laws.of(f).is_softening()) { 5 } else { 3 };
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
@@ -409,7 +433,9 @@ impl<'a> Integrator<'a> {
             a: vec![0.0; 3 * nb],
             f_int: vec![0.0; 3 * nb],
             f_ext: vec![0.0; 3 * nb],
-            states: vec![JointState::default(); m],
+            hist: vec![0.0; hw * m],
+            hw,
+            broken: vec![false; m],
             forces: vec![[0.0; 3]; m],
             flags: vec![0; m],
             fe: vec![],
@@ -442,7 +468,7 @@ impl<'a> Integrator<'a> {
     fn damped_from(model: &'a Model, u: &[f64], states: &[JointState]) -> Result<Self, Error> {
         let mut s = Integrator::new(model, None, 0.8, Damping::Local(0.8), 1)?;
         s.u.copy_from_slice(u);
-        s.states.copy_from_slice(states);
+        s.set_states(states);
         s.hold();
         Ok(s)
     }
@@ -461,6 +487,23 @@ impl<'a> Integrator<'a> {
     #[inline(always)]
     fn law(&self, k: usize) -> &JointLaw {
         &self.laws[self.family[k] as usize]
+    }
+
+    /// The committed history of interface `k`.
+    fn state(&self, k: usize) -> JointState {
+        unpack(&self.hist[self.hw * k..self.hw * (k + 1)], self.broken[k])
+    }
+
+    /// Every committed history.
+    fn states(&self) -> Vec<JointState> {
+        (0..self.broken.len()).map(|k| self.state(k)).collect()
+    }
+
+    fn set_states(&mut self, states: &[JointState]) {
+        for (k, st) in states.iter().enumerate() {
+            pack(st, &mut self.hist[self.hw * k..self.hw * (k + 1)]);
+            self.broken[k] = st.broken;
+        }
     }
 
     /// Interface forces at the current `u` from the committed histories, which are updated
@@ -493,12 +536,15 @@ impl<'a> Integrator<'a> {
         let model = self.model;
         let sections = model.sections();
         let (u, geo, family, laws) = (&self.u, &self.geo, &self.family, &self.laws);
-        let (large, g, cs) = (self.large, &self.centroids, &self.cs);
-        // fe: the generalized forces on the blocks, with finite rotations only (empty otherwise)
-        let work = |k0: usize, st: &mut [JointState], f: &mut [[f64; 3]], fl: &mut [u8], fe: &mut [[f64; 6]]| {
-            for (i, ((st, f), fl)) in st.iter_mut().zip(f.iter_mut()).zip(fl.iter_mut()).enumerate() {
+        let (large, g, cs, hw) = (self.large, &self.centroids, &self.cs, self.hw);
+        debug_assert!(hw == 3 || hw == 5);
+        // h, br: the histories; fe: the generalized forces on the blocks, with finite rotations
+        // only (empty otherwise)
+        let body = |hw: usize, k0: usize, h: &mut [f64], br: &mut [bool], f: &mut [[f64; 3]], fl: &mut [u8], fe: &mut [[f64; 6]]| {
+            for (i, (((h, br), f), fl)) in h.chunks_exact_mut(hw).zip(br.iter_mut()).zip(f.iter_mut()).zip(fl.iter_mut()).enumerate() {
                 let k = k0 + i;
                 let law = &laws[family[k] as usize];
+                let st = &unpack(h, *br);
                 if large {
                     let it = &model.interfaces()[k];
                     let (a, b) = (it.a, it.b);
@@ -506,7 +552,8 @@ impl<'a> Integrator<'a> {
                     let ecc = if f[0] < 0.0 { (f[2] / f[0]).clamp(-0.5 * it.l, 0.5 * it.l) } else { 0.0 };
                     let kin = it.large_kinematics(g[a], g[b], &u[3 * a..3 * a + 3], &u[3 * b..3 * b + 3], cs[a], cs[b], ecc);
                     let r = return_map_forces(law, &sections[k], kin.jumps, st);
-                    *st = r.state;
+                    pack(&r.state, h);
+                    *br = r.state.broken;
                     *f = r.force;
                     *fl = r.flags;
                     fe[i] = kin.forces(r.force);
@@ -523,30 +570,41 @@ impl<'a> Integrator<'a> {
                     };
                     let e = [row(0), row(1), row(2)];
                     let r = return_map_forces(law, &sections[k], e, st);
-                    *st = r.state;
+                    pack(&r.state, h);
+                    *br = r.state.broken;
                     *f = r.force;
                     *fl = r.flags;
                 }
             }
         };
+        // one copy of the loop per history width (a constant in each)
+        let work = |k0: usize, h: &mut [f64], br: &mut [bool], f: &mut [[f64; 3]], fl: &mut [u8], fe: &mut [[f64; 6]]| {
+            if hw == 3 {
+                body(3, k0, h, br, f, fl, fe)
+            } else {
+                body(5, k0, h, br, f, fl, fe)
+            }
+        };
         const G: usize = GRAIN_INTERFACES;
         if par && large {
-            self.states
-                .par_chunks_mut(G)
+            self.hist
+                .par_chunks_mut(G * hw)
+                .zip(self.broken.par_chunks_mut(G))
                 .zip(self.forces.par_chunks_mut(G))
                 .zip(self.flags.par_chunks_mut(G))
                 .zip(self.fe.par_chunks_mut(G))
                 .enumerate()
-                .for_each(|(c, (((st, f), fl), fe))| work(c * G, st, f, fl, fe));
+                .for_each(|(c, ((((h, br), f), fl), fe))| work(c * G, h, br, f, fl, fe));
         } else if par {
-            self.states
-                .par_chunks_mut(G)
+            self.hist
+                .par_chunks_mut(G * hw)
+                .zip(self.broken.par_chunks_mut(G))
                 .zip(self.forces.par_chunks_mut(G))
                 .zip(self.flags.par_chunks_mut(G))
                 .enumerate()
-                .for_each(|(c, ((st, f), fl))| work(c * G, st, f, fl, &mut []));
+                .for_each(|(c, (((h, br), f), fl))| work(c * G, h, br, f, fl, &mut []));
         } else {
-            work(0, &mut self.states, &mut self.forces, &mut self.flags, &mut self.fe);
+            work(0, &mut self.hist, &mut self.broken, &mut self.forces, &mut self.flags, &mut self.fe);
         }
         // the gather: each block sums its interfaces' forces in increasing k, as a serial
         // scatter in interface order would; with the linearized kinematics the generalized
@@ -794,7 +852,8 @@ pub(crate) fn relax_dead_state(
         s.step(&mut set_ext, None);
         if k % 16 == 15 {
             if s.unbalanced_ratio(None) <= 1e-7 {
-                return Ok((s.u, s.states));
+                let states = s.states();
+                return Ok((s.u, states));
             }
             let (i, moved) = (0..nb)
                 .map(|i| (i, s.u[3 * i].hypot(s.u[3 * i + 1])))
@@ -852,7 +911,8 @@ pub(crate) fn relax_at_displacement(
                 break;
             }
             if s.unbalanced_ratio(Some(cd)) <= 1e-7 {
-                return Ok((s.u, s.states, lam.get()));
+                let states = s.states();
+                return Ok((s.u, states, lam.get()));
             }
         }
     }
@@ -968,10 +1028,11 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
     // a running mechanism, not an elastic response
     let settle = (0..nb).map(|i| s.u[3 * i].hypot(s.u[3 * i + 1])).fold(0.0, f64::max);
     let u_fail = (20.0 * settle).max(1e-4 * size);
-    let save = |s: &Integrator| (s.u.clone(), s.states.clone());
-    let restore = |s: &mut Integrator, st: &(Vec<f64>, Vec<JointState>)| {
+    let save = |s: &Integrator| (s.u.clone(), s.hist.clone(), s.broken.clone());
+    let restore = |s: &mut Integrator, st: &(Vec<f64>, Vec<f64>, Vec<bool>)| {
         s.u.copy_from_slice(&st.0);
-        s.states.copy_from_slice(&st.1);
+        s.hist.copy_from_slice(&st.1);
+        s.broken.copy_from_slice(&st.2);
         s.v.fill(0.0);
         s.a.fill(0.0);
     };
@@ -1108,7 +1169,7 @@ fn finish(
         mechanism: (0..nb).map(|i| [mech[3 * i] * scale, mech[3 * i + 1] * scale, mech[3 * i + 2] * scale]).collect(),
         interface_forces: s.forces,
         interface_states: s.flags,
-        broken: s.states.iter().map(|st| st.broken).collect(),
+        broken: s.broken,
         iterations: s.steps,
         steps: curve_l_len,
         elapsed_s: start.elapsed().as_secs_f64(),
