@@ -235,28 +235,52 @@ const GRAIN_BLOCKS: usize = 1024;
 /// the pool per step (some 10-20 us each) cost more than the second thread gives back.
 const PAR_MIN_INTERFACES: usize = 2048;
 
-/// What the linearized interface loop reads of an interface, packed in 56 bytes (the model's
-/// [`crate::interface::Interface`] takes 208): the two blocks and the four entries of `B` that
-/// are not +-n, +-t or +-1. `B`'s rows are (-n, -n.ra, n, n.rb), (-t, -t.ra, t, t.rb) and
-/// (0, 0, -1, 0, 0, 1), with t = (n_y, -n_x); [`Geo::b_mat`] rebuilds them bit for bit.
+/// What the linearized interface loop reads of an interface, packed in 48 bytes (the model's
+/// [`crate::interface::Interface`] takes 208): the two blocks, the four entries of `B` that
+/// are not +-n, +-t or +-1, the normal as an index into a table of the model's distinct normals
+/// (two on walls of rectangles: (1, 0) and (0, 1)), and the family. `B`'s rows are (-n, -n.ra,
+/// n, n.rb), (-t, -t.ra, t, t.rb) and (0, 0, -1, 0, 0, 1), with t = (n_y, -n_x);
+/// [`Geo::b_mat`] rebuilds them bit for bit.
 #[derive(Debug, Clone, Copy)]
 struct Geo {
     a: u32,
     b: u32,
-    n: [f64; 2],
     /// b_mat[0][2], b_mat[0][5], b_mat[1][2], b_mat[1][5]
     r: [f64; 4],
+    normal: u8,
+    family: u8,
 }
 
+/// The largest number of distinct interface normals of the explicit solver's packed geometry.
+const MAX_NORMALS: usize = 256;
+
 impl Geo {
-    fn new(it: &Interface) -> Self {
+    /// The packed geometry of `it`, its normal added to `normals` if new (bit for bit).
+    fn new(it: &Interface, normals: &mut Vec<[f64; 2]>) -> Result<Self, Error> {
+        let bits = |n: &[f64; 2]| [n[0].to_bits(), n[1].to_bits()];
+        let normal = match normals.iter().position(|n| bits(n) == bits(&it.n)) {
+            Some(i) => i,
+            None if normals.len() < MAX_NORMALS => {
+                normals.push(it.n);
+                normals.len() - 1
+            }
+            None => {
+                return Err(Error::input(format!("the explicit solver takes interfaces in at most {MAX_NORMALS} directions")))
+            }
+        };
         let b = &it.b_mat;
-        Geo { a: it.a as u32, b: it.b as u32, n: it.n, r: [b[0][2], b[0][5], b[1][2], b[1][5]] }
+        Ok(Geo {
+            a: it.a as u32,
+            b: it.b as u32,
+            r: [b[0][2], b[0][5], b[1][2], b[1][5]],
+            normal: normal as u8,
+            family: family_index(it.family),
+        })
     }
 
     #[inline(always)]
-    fn b_mat(&self) -> [[f64; 6]; 3] {
-        let ([n0, n1], r) = (self.n, self.r);
+    fn b_mat(&self, normals: &[[f64; 2]]) -> [[f64; 6]; 3] {
+        let ([n0, n1], r) = (normals[self.normal as usize], self.r);
         [[-n0, -n1, r[0], n0, n1, r[1]], [-n1, n0, r[2], n1, -n0, r[3]], [0.0, 0.0, -1.0, 0.0, 0.0, 1.0]]
     }
 }
@@ -291,7 +315,7 @@ fn family_index(f: Family) -> u8 {
 
 /// The integrator's state and work arrays (flat, allocated once).
 ///
-/// Per interface: the packed geometry (56 bytes), the family (1), the history (24: the plastic
+/// Per interface: the packed geometry and the family (48 bytes), the history (24: the plastic
 /// jumps, and 16 more, the opening and the slip, only if a law softens; `JointState` takes 48),
 /// the broken flag (1), the force (24), the flags (1) and two entries of the block-to-interface incidence (8); sections and
 /// laws are read from the model (a table of four laws, one per family). With finite rotations
@@ -304,7 +328,8 @@ fn family_index(f: Family) -> u8 {
 struct Integrator<'a> {
     model: &'a Model,
     geo: Vec<Geo>,
-    family: Vec<u8>,
+    /// the distinct interface normals (see [`Geo`])
+    normals: Vec<[f64; 2]>,
     laws: [JointLaw; 4],
     /// interfaces of block i: `incidence[incidence_start[i]..incidence_start[i + 1]]`, each
     /// `2 k + side` (side 0: the block is the interface's a, 1: its b), increasing in k
@@ -410,6 +435,8 @@ impl<'a> Integrator<'a> {
                 next[blk] += 1;
             }
         }
+        let mut normals = vec![];
+        let geo = model.interfaces().iter().map(|it| Geo::new(it, &mut normals)).collect::<Result<Vec<Geo>, Error>>()?;
         let laws = model.laws();
         let hw = if [Family::Bed, Family::Head, Family::Base, Family::Top].iter().any(|&f| laws.of(f).is_softening()) { 5 } else { 3 };
         let pool = rayon::ThreadPoolBuilder::new()
@@ -420,8 +447,8 @@ impl<'a> Integrator<'a> {
         let pool = std::sync::Arc::new(pool);
         Ok(Integrator {
             model,
-            geo: model.interfaces().iter().map(Geo::new).collect(),
-            family: model.interfaces().iter().map(|it| family_index(it.family)).collect(),
+            geo,
+            normals,
             laws: [Family::Bed, Family::Head, Family::Base, Family::Top].map(|f| *laws.of(f)),
             incidence_start,
             incidence,
@@ -486,7 +513,7 @@ impl<'a> Integrator<'a> {
     /// The law of interface `k`.
     #[inline(always)]
     fn law(&self, k: usize) -> &JointLaw {
-        &self.laws[self.family[k] as usize]
+        &self.laws[self.geo[k].family as usize]
     }
 
     /// The committed history of interface `k`.
@@ -535,7 +562,7 @@ impl<'a> Integrator<'a> {
         }
         let model = self.model;
         let sections = model.sections();
-        let (u, geo, family, laws) = (&self.u, &self.geo, &self.family, &self.laws);
+        let (u, geo, normals, laws) = (&self.u, &self.geo, &self.normals, &self.laws);
         let (large, g, cs, hw) = (self.large, &self.centroids, &self.cs, self.hw);
         debug_assert!(hw == 3 || hw == 5);
         // h, br: the histories; fe: the generalized forces on the blocks, with finite rotations
@@ -543,7 +570,8 @@ impl<'a> Integrator<'a> {
         let body = |hw: usize, k0: usize, h: &mut [f64], br: &mut [bool], f: &mut [[f64; 3]], fl: &mut [u8], fe: &mut [[f64; 6]]| {
             for (i, (((h, br), f), fl)) in h.chunks_exact_mut(hw).zip(br.iter_mut()).zip(f.iter_mut()).zip(fl.iter_mut()).enumerate() {
                 let k = k0 + i;
-                let law = &laws[family[k] as usize];
+                let gk = &geo[k];
+                let law = &laws[gk.family as usize];
                 let st = &unpack(h, *br);
                 if large {
                     let it = &model.interfaces()[k];
@@ -558,10 +586,9 @@ impl<'a> Integrator<'a> {
                     *fl = r.flags;
                     fe[i] = kin.forces(r.force);
                 } else {
-                    let gk = &geo[k];
                     let (a, b) = (3 * gk.a as usize, 3 * gk.b as usize);
                     let q = [u[a], u[a + 1], u[a + 2], u[b], u[b + 1], u[b + 2]];
-                    let bm = gk.b_mat();
+                    let bm = gk.b_mat(normals);
                     // as Interface::jumps, term by term (`Iterator::sum` of f64 starts from
                     // -0.0, and -0.0 + x == x: the sum is the terms added left to right)
                     let row = |r: usize| {
@@ -622,7 +649,7 @@ impl<'a> Integrator<'a> {
                         acc[1] += x[1];
                         acc[2] += x[2];
                     } else {
-                        let (bm, s) = (geo[k].b_mat(), &forces[k]);
+                        let (bm, s) = (geo[k].b_mat(normals), &forces[k]);
                         for c in 0..3 {
                             let j = side + c;
                             acc[c] += bm[0][j] * s[0] + bm[1][j] * s[1] + bm[2][j] * s[2];
@@ -1374,7 +1401,8 @@ mod tests {
         .unwrap();
         let model = Model::new(ModelSpec { blocks, ..ModelSpec::default() }).unwrap();
         for it in model.interfaces() {
-            let b = Geo::new(it).b_mat();
+            let mut normals = vec![];
+            let b = Geo::new(it, &mut normals).unwrap().b_mat(&normals);
             for r in 0..3 {
                 for j in 0..6 {
                     assert_eq!(b[r][j].to_bits(), it.b_mat[r][j].to_bits(), "{it:?} B[{r}][{j}]");
