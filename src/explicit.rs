@@ -642,17 +642,23 @@ impl<'a> Integrator<'a> {
                 let i = i0 + i;
                 let mut acc = [0.0; 3];
                 for &e in &inc[start[i] as usize..start[i + 1] as usize] {
-                    let (k, side) = ((e >> 1) as usize, 3 * (e & 1) as usize);
+                    let k = (e >> 1) as usize;
                     if large {
+                        let side = 3 * (e & 1) as usize;
                         let x = &fe[k][side..side + 3];
                         acc[0] += x[0];
                         acc[1] += x[1];
                         acc[2] += x[2];
                     } else {
-                        let (bm, s) = (geo[k].b_mat(normals), &forces[k]);
-                        for c in 0..3 {
-                            let j = side + c;
-                            acc[c] += bm[0][j] * s[0] + bm[1][j] * s[1] + bm[2][j] * s[2];
+                        // the side's three columns of B (see `Geo::b_mat`), picked without a
+                        // branch: (-+n0, -+n1, 0), (-+n1, +-n0, 0), (r, r', -+1); the same
+                        // numbers (a product by -1 is the negation)
+                        let (gk, s, sb) = (&geo[k], &forces[k], (e & 1) as usize);
+                        let sg = [-1.0, 1.0][sb];
+                        let [n0, n1] = normals[gk.normal as usize];
+                        let cols = [[sg * n0, sg * n1, 0.0], [sg * n1, -sg * n0, 0.0], [gk.r[sb], gk.r[2 + sb], sg]];
+                        for (acc, b) in acc.iter_mut().zip(&cols) {
+                            *acc += b[0] * s[0] + b[1] * s[1] + b[2] * s[2];
                         }
                     }
                 }
