@@ -235,29 +235,71 @@ const GRAIN_BLOCKS: usize = 1024;
 /// the pool per step (some 10-20 us each) cost more than the second thread gives back.
 const PAR_MIN_INTERFACES: usize = 2048;
 
-/// What the linearized interface loop reads of an interface, packed in 56 bytes (the model's
-/// [`crate::interface::Interface`] takes 208): the two blocks and the four entries of `B` that
-/// are not +-n, +-t or +-1. `B`'s rows are (-n, -n.ra, n, n.rb), (-t, -t.ra, t, t.rb) and
-/// (0, 0, -1, 0, 0, 1), with t = (n_y, -n_x); [`Geo::b_mat`] rebuilds them bit for bit.
+/// What the linearized interface loop reads of an interface, packed in 48 bytes (the model's
+/// [`crate::interface::Interface`] takes 208): the two blocks, the four entries of `B` that
+/// are not +-n, +-t or +-1, the normal as an index into a table of the model's distinct normals
+/// (two on walls of rectangles: (1, 0) and (0, 1)), and the family. `B`'s rows are (-n, -n.ra,
+/// n, n.rb), (-t, -t.ra, t, t.rb) and (0, 0, -1, 0, 0, 1), with t = (n_y, -n_x);
+/// [`Geo::b_mat`] rebuilds them bit for bit.
 #[derive(Debug, Clone, Copy)]
 struct Geo {
     a: u32,
     b: u32,
-    n: [f64; 2],
     /// b_mat[0][2], b_mat[0][5], b_mat[1][2], b_mat[1][5]
     r: [f64; 4],
+    normal: u8,
+    family: u8,
 }
 
+/// The largest number of distinct interface normals of the explicit solver's packed geometry.
+const MAX_NORMALS: usize = 256;
+
 impl Geo {
-    fn new(it: &Interface) -> Self {
+    /// The packed geometry of `it`, its normal added to `normals` if new (bit for bit).
+    fn new(it: &Interface, normals: &mut Vec<[f64; 2]>) -> Result<Self, Error> {
+        let bits = |n: &[f64; 2]| [n[0].to_bits(), n[1].to_bits()];
+        let normal = match normals.iter().position(|n| bits(n) == bits(&it.n)) {
+            Some(i) => i,
+            None if normals.len() < MAX_NORMALS => {
+                normals.push(it.n);
+                normals.len() - 1
+            }
+            None => {
+                return Err(Error::input(format!("the explicit solver takes interfaces in at most {MAX_NORMALS} directions")))
+            }
+        };
         let b = &it.b_mat;
-        Geo { a: it.a as u32, b: it.b as u32, n: it.n, r: [b[0][2], b[0][5], b[1][2], b[1][5]] }
+        Ok(Geo {
+            a: it.a as u32,
+            b: it.b as u32,
+            r: [b[0][2], b[0][5], b[1][2], b[1][5]],
+            normal: normal as u8,
+            family: family_index(it.family),
+        })
     }
 
     #[inline(always)]
-    fn b_mat(&self) -> [[f64; 6]; 3] {
-        let ([n0, n1], r) = (self.n, self.r);
+    fn b_mat(&self, normals: &[[f64; 2]]) -> [[f64; 6]; 3] {
+        let ([n0, n1], r) = (normals[self.normal as usize], self.r);
         [[-n0, -n1, r[0], n0, n1, r[1]], [-n1, n0, r[2], n1, -n0, r[3]], [0.0, 0.0, -1.0, 0.0, 0.0, 1.0]]
+    }
+}
+
+/// A committed joint history from its packed form (`h`: the plastic jumps, then the opening and
+/// the slip if stored; not stored they are zero, which no law that does not soften reads).
+#[inline(always)]
+fn unpack(h: &[f64], broken: bool) -> JointState {
+    let (opening, slip) = if h.len() == 5 { (h[3], h[4]) } else { (0.0, 0.0) };
+    JointState { plastic: [h[0], h[1], h[2]], broken, opening, slip }
+}
+
+/// The packed form of a history (see [`unpack`]).
+#[inline(always)]
+fn pack(st: &JointState, h: &mut [f64]) {
+    h[..3].copy_from_slice(&st.plastic);
+    if h.len() == 5 {
+        h[3] = st.opening;
+        h[4] = st.slip;
     }
 }
 
@@ -273,8 +315,9 @@ fn family_index(f: Family) -> u8 {
 
 /// The integrator's state and work arrays (flat, allocated once).
 ///
-/// Per interface: the packed geometry (56 bytes), the family (1), the history (48), the force
-/// (24), the flags (1) and two entries of the block-to-interface incidence (8); sections and
+/// Per interface: the packed geometry and the family (48 bytes), the history (24: the plastic
+/// jumps, and 16 more, the opening and the slip, only if a law softens; `JointState` takes 48),
+/// the broken flag (1), the force (24), the flags (1) and two entries of the block-to-interface incidence (8); sections and
 /// laws are read from the model (a table of four laws, one per family). With finite rotations
 /// also the six generalized forces on the two blocks (48), and per block the centroid and the
 /// rotation's (cos, sin). One step is: a pass over the blocks (velocity half-step and
@@ -285,7 +328,8 @@ fn family_index(f: Family) -> u8 {
 struct Integrator<'a> {
     model: &'a Model,
     geo: Vec<Geo>,
-    family: Vec<u8>,
+    /// the distinct interface normals (see [`Geo`])
+    normals: Vec<[f64; 2]>,
     laws: [JointLaw; 4],
     /// interfaces of block i: `incidence[incidence_start[i]..incidence_start[i + 1]]`, each
     /// `2 k + side` (side 0: the block is the interface's a, 1: its b), increasing in k
@@ -299,7 +343,11 @@ struct Integrator<'a> {
     a: Vec<f64>,
     f_int: Vec<f64>,
     f_ext: Vec<f64>,
-    states: Vec<JointState>,
+    /// the committed joint histories, `hw` numbers an interface: the plastic jumps, then (only
+    /// if a law softens, `hw` = 5) the opening and the slip, which no other law reads
+    hist: Vec<f64>,
+    hw: usize,
+    broken: Vec<bool>,
     forces: Vec<[f64; 3]>,
     flags: Vec<u8>,
     fe: Vec<[f64; 6]>,
@@ -387,7 +435,10 @@ impl<'a> Integrator<'a> {
                 next[blk] += 1;
             }
         }
+        let mut normals = vec![];
+        let geo = model.interfaces().iter().map(|it| Geo::new(it, &mut normals)).collect::<Result<Vec<Geo>, Error>>()?;
         let laws = model.laws();
+        let hw = if [Family::Bed, Family::Head, Family::Base, Family::Top].iter().any(|&f| laws.of(f).is_softening()) { 5 } else { 3 };
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
@@ -396,8 +447,8 @@ impl<'a> Integrator<'a> {
         let pool = std::sync::Arc::new(pool);
         Ok(Integrator {
             model,
-            geo: model.interfaces().iter().map(Geo::new).collect(),
-            family: model.interfaces().iter().map(|it| family_index(it.family)).collect(),
+            geo,
+            normals,
             laws: [Family::Bed, Family::Head, Family::Base, Family::Top].map(|f| *laws.of(f)),
             incidence_start,
             incidence,
@@ -409,7 +460,9 @@ impl<'a> Integrator<'a> {
             a: vec![0.0; 3 * nb],
             f_int: vec![0.0; 3 * nb],
             f_ext: vec![0.0; 3 * nb],
-            states: vec![JointState::default(); m],
+            hist: vec![0.0; hw * m],
+            hw,
+            broken: vec![false; m],
             forces: vec![[0.0; 3]; m],
             flags: vec![0; m],
             fe: vec![],
@@ -442,7 +495,7 @@ impl<'a> Integrator<'a> {
     fn damped_from(model: &'a Model, u: &[f64], states: &[JointState]) -> Result<Self, Error> {
         let mut s = Integrator::new(model, None, 0.8, Damping::Local(0.8), 1)?;
         s.u.copy_from_slice(u);
-        s.states.copy_from_slice(states);
+        s.set_states(states);
         s.hold();
         Ok(s)
     }
@@ -460,7 +513,24 @@ impl<'a> Integrator<'a> {
     /// The law of interface `k`.
     #[inline(always)]
     fn law(&self, k: usize) -> &JointLaw {
-        &self.laws[self.family[k] as usize]
+        &self.laws[self.geo[k].family as usize]
+    }
+
+    /// The committed history of interface `k`.
+    fn state(&self, k: usize) -> JointState {
+        unpack(&self.hist[self.hw * k..self.hw * (k + 1)], self.broken[k])
+    }
+
+    /// Every committed history.
+    fn states(&self) -> Vec<JointState> {
+        (0..self.broken.len()).map(|k| self.state(k)).collect()
+    }
+
+    fn set_states(&mut self, states: &[JointState]) {
+        for (k, st) in states.iter().enumerate() {
+            pack(st, &mut self.hist[self.hw * k..self.hw * (k + 1)]);
+            self.broken[k] = st.broken;
+        }
     }
 
     /// Interface forces at the current `u` from the committed histories, which are updated
@@ -492,13 +562,17 @@ impl<'a> Integrator<'a> {
         }
         let model = self.model;
         let sections = model.sections();
-        let (u, geo, family, laws) = (&self.u, &self.geo, &self.family, &self.laws);
-        let (large, g, cs) = (self.large, &self.centroids, &self.cs);
-        // fe: the generalized forces on the blocks, with finite rotations only (empty otherwise)
-        let work = |k0: usize, st: &mut [JointState], f: &mut [[f64; 3]], fl: &mut [u8], fe: &mut [[f64; 6]]| {
-            for (i, ((st, f), fl)) in st.iter_mut().zip(f.iter_mut()).zip(fl.iter_mut()).enumerate() {
+        let (u, geo, normals, laws) = (&self.u, &self.geo, &self.normals, &self.laws);
+        let (large, g, cs, hw) = (self.large, &self.centroids, &self.cs, self.hw);
+        debug_assert!(hw == 3 || hw == 5);
+        // h, br: the histories; fe: the generalized forces on the blocks, with finite rotations
+        // only (empty otherwise)
+        let body = |hw: usize, k0: usize, h: &mut [f64], br: &mut [bool], f: &mut [[f64; 3]], fl: &mut [u8], fe: &mut [[f64; 6]]| {
+            for (i, (((h, br), f), fl)) in h.chunks_exact_mut(hw).zip(br.iter_mut()).zip(f.iter_mut()).zip(fl.iter_mut()).enumerate() {
                 let k = k0 + i;
-                let law = &laws[family[k] as usize];
+                let gk = &geo[k];
+                let law = &laws[gk.family as usize];
+                let st = &unpack(h, *br);
                 if large {
                     let it = &model.interfaces()[k];
                     let (a, b) = (it.a, it.b);
@@ -506,42 +580,58 @@ impl<'a> Integrator<'a> {
                     let ecc = if f[0] < 0.0 { (f[2] / f[0]).clamp(-0.5 * it.l, 0.5 * it.l) } else { 0.0 };
                     let kin = it.large_kinematics(g[a], g[b], &u[3 * a..3 * a + 3], &u[3 * b..3 * b + 3], cs[a], cs[b], ecc);
                     let r = return_map_forces(law, &sections[k], kin.jumps, st);
-                    *st = r.state;
+                    pack(&r.state, h);
+                    *br = r.state.broken;
                     *f = r.force;
                     *fl = r.flags;
                     fe[i] = kin.forces(r.force);
                 } else {
-                    let gk = &geo[k];
                     let (a, b) = (3 * gk.a as usize, 3 * gk.b as usize);
                     let q = [u[a], u[a + 1], u[a + 2], u[b], u[b + 1], u[b + 2]];
-                    let bm = gk.b_mat();
-                    // as Interface::jumps, term by term
-                    let e: [f64; 3] = std::array::from_fn(|r| (0..6).map(|j| bm[r][j] * q[j]).sum());
+                    let bm = gk.b_mat(normals);
+                    // as Interface::jumps, term by term (`Iterator::sum` of f64 starts from
+                    // -0.0, and -0.0 + x == x: the sum is the terms added left to right)
+                    let row = |r: usize| {
+                        let b = &bm[r];
+                        b[0] * q[0] + b[1] * q[1] + b[2] * q[2] + b[3] * q[3] + b[4] * q[4] + b[5] * q[5]
+                    };
+                    let e = [row(0), row(1), row(2)];
                     let r = return_map_forces(law, &sections[k], e, st);
-                    *st = r.state;
+                    pack(&r.state, h);
+                    *br = r.state.broken;
                     *f = r.force;
                     *fl = r.flags;
                 }
             }
         };
+        // one copy of the loop per history width (a constant in each)
+        let work = |k0: usize, h: &mut [f64], br: &mut [bool], f: &mut [[f64; 3]], fl: &mut [u8], fe: &mut [[f64; 6]]| {
+            if hw == 3 {
+                body(3, k0, h, br, f, fl, fe)
+            } else {
+                body(5, k0, h, br, f, fl, fe)
+            }
+        };
         const G: usize = GRAIN_INTERFACES;
         if par && large {
-            self.states
-                .par_chunks_mut(G)
+            self.hist
+                .par_chunks_mut(G * hw)
+                .zip(self.broken.par_chunks_mut(G))
                 .zip(self.forces.par_chunks_mut(G))
                 .zip(self.flags.par_chunks_mut(G))
                 .zip(self.fe.par_chunks_mut(G))
                 .enumerate()
-                .for_each(|(c, (((st, f), fl), fe))| work(c * G, st, f, fl, fe));
+                .for_each(|(c, ((((h, br), f), fl), fe))| work(c * G, h, br, f, fl, fe));
         } else if par {
-            self.states
-                .par_chunks_mut(G)
+            self.hist
+                .par_chunks_mut(G * hw)
+                .zip(self.broken.par_chunks_mut(G))
                 .zip(self.forces.par_chunks_mut(G))
                 .zip(self.flags.par_chunks_mut(G))
                 .enumerate()
-                .for_each(|(c, ((st, f), fl))| work(c * G, st, f, fl, &mut []));
+                .for_each(|(c, (((h, br), f), fl))| work(c * G, h, br, f, fl, &mut []));
         } else {
-            work(0, &mut self.states, &mut self.forces, &mut self.flags, &mut self.fe);
+            work(0, &mut self.hist, &mut self.broken, &mut self.forces, &mut self.flags, &mut self.fe);
         }
         // the gather: each block sums its interfaces' forces in increasing k, as a serial
         // scatter in interface order would; with the linearized kinematics the generalized
@@ -552,17 +642,23 @@ impl<'a> Integrator<'a> {
                 let i = i0 + i;
                 let mut acc = [0.0; 3];
                 for &e in &inc[start[i] as usize..start[i + 1] as usize] {
-                    let (k, side) = ((e >> 1) as usize, 3 * (e & 1) as usize);
+                    let k = (e >> 1) as usize;
                     if large {
+                        let side = 3 * (e & 1) as usize;
                         let x = &fe[k][side..side + 3];
                         acc[0] += x[0];
                         acc[1] += x[1];
                         acc[2] += x[2];
                     } else {
-                        let (bm, s) = (geo[k].b_mat(), &forces[k]);
-                        for c in 0..3 {
-                            let j = side + c;
-                            acc[c] += bm[0][j] * s[0] + bm[1][j] * s[1] + bm[2][j] * s[2];
+                        // the side's three columns of B (see `Geo::b_mat`), picked without a
+                        // branch: (-+n0, -+n1, 0), (-+n1, +-n0, 0), (r, r', -+1); the same
+                        // numbers (a product by -1 is the negation)
+                        let (gk, s, sb) = (&geo[k], &forces[k], (e & 1) as usize);
+                        let sg = [-1.0, 1.0][sb];
+                        let [n0, n1] = normals[gk.normal as usize];
+                        let cols = [[sg * n0, sg * n1, 0.0], [sg * n1, -sg * n0, 0.0], [gk.r[sb], gk.r[2 + sb], sg]];
+                        for (acc, b) in acc.iter_mut().zip(&cols) {
+                            *acc += b[0] * s[0] + b[1] * s[1] + b[2] * s[2];
                         }
                     }
                 }
@@ -789,7 +885,8 @@ pub(crate) fn relax_dead_state(
         s.step(&mut set_ext, None);
         if k % 16 == 15 {
             if s.unbalanced_ratio(None) <= 1e-7 {
-                return Ok((s.u, s.states));
+                let states = s.states();
+                return Ok((s.u, states));
             }
             let (i, moved) = (0..nb)
                 .map(|i| (i, s.u[3 * i].hypot(s.u[3 * i + 1])))
@@ -847,7 +944,8 @@ pub(crate) fn relax_at_displacement(
                 break;
             }
             if s.unbalanced_ratio(Some(cd)) <= 1e-7 {
-                return Ok((s.u, s.states, lam.get()));
+                let states = s.states();
+                return Ok((s.u, states, lam.get()));
             }
         }
     }
@@ -963,10 +1061,11 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
     // a running mechanism, not an elastic response
     let settle = (0..nb).map(|i| s.u[3 * i].hypot(s.u[3 * i + 1])).fold(0.0, f64::max);
     let u_fail = (20.0 * settle).max(1e-4 * size);
-    let save = |s: &Integrator| (s.u.clone(), s.states.clone());
-    let restore = |s: &mut Integrator, st: &(Vec<f64>, Vec<JointState>)| {
+    let save = |s: &Integrator| (s.u.clone(), s.hist.clone(), s.broken.clone());
+    let restore = |s: &mut Integrator, st: &(Vec<f64>, Vec<f64>, Vec<bool>)| {
         s.u.copy_from_slice(&st.0);
-        s.states.copy_from_slice(&st.1);
+        s.hist.copy_from_slice(&st.1);
+        s.broken.copy_from_slice(&st.2);
         s.v.fill(0.0);
         s.a.fill(0.0);
     };
@@ -1103,7 +1202,7 @@ fn finish(
         mechanism: (0..nb).map(|i| [mech[3 * i] * scale, mech[3 * i + 1] * scale, mech[3 * i + 2] * scale]).collect(),
         interface_forces: s.forces,
         interface_states: s.flags,
-        broken: s.states.iter().map(|st| st.broken).collect(),
+        broken: s.broken,
         iterations: s.steps,
         steps: curve_l_len,
         elapsed_s: start.elapsed().as_secs_f64(),
@@ -1308,7 +1407,8 @@ mod tests {
         .unwrap();
         let model = Model::new(ModelSpec { blocks, ..ModelSpec::default() }).unwrap();
         for it in model.interfaces() {
-            let b = Geo::new(it).b_mat();
+            let mut normals = vec![];
+            let b = Geo::new(it, &mut normals).unwrap().b_mat(&normals);
             for r in 0..3 {
                 for j in 0..6 {
                     assert_eq!(b[r][j].to_bits(), it.b_mat[r][j].to_bits(), "{it:?} B[{r}][{j}]");

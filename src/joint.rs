@@ -238,8 +238,8 @@ fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// Active sets tried, smallest first: single faces, then edges, then corners.
-const SUBSETS: [u8; 14] = [1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14];
+// Active sets tried, smallest first: single faces, then edges, then corners
+// (1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14; bit j: face j), in `map`.
 
 /// Solves the k x k system (k <= 3) in place by Gaussian elimination with partial pivoting;
 /// returns false if it is singular relative to its scale.
@@ -363,88 +363,28 @@ fn map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, want_
         return finish(trial, [0.0; 3], [0.0; 2], elastic_tangent);
     }
     // D m_j for every face
-    let dm: [[f64; 3]; 4] = std::array::from_fn(|j| {
-        [
-            d[0] * faces.m(j)[0],
-            d[1] * faces.m(j)[1],
-            d[2] * faces.m(j)[2],
-        ]
-    });
+    // (array literals rather than `std::array::from_fn`, whose closure is not always inlined)
+    let dmj = |j: usize| [d[0] * faces.m(j)[0], d[1] * faces.m(j)[1], d[2] * faces.m(j)[2]];
+    let dm: [[f64; 3]; 4] = [dmj(0), dmj(1), dmj(2), dmj(3)];
     // the values on the trial force and the products a_i . D m_j of every face, once: each
     // active set below picks its entries (the same numbers as computing them per set)
-    let f_trial: [f64; 4] = std::array::from_fn(|j| faces.f(j, &trial));
-    let g_all: [[f64; 4]; 4] = std::array::from_fn(|i| std::array::from_fn(|j| dot(&faces.a(i), &dm[j])));
-    for &mask in SUBSETS.iter() {
-        if mask.count_ones() == 1 {
-            // a single face whose multiplier f_j(trial) / (a_j . D m_j) is negative is rejected
-            // below: skip it without the elimination (most plastic updates end on one face or
-            // two, so most single faces are skipped)
-            let j = mask.trailing_zeros() as usize;
-            if f_trial[j] / g_all[j][j] < 0.0 {
-                continue;
+    let f_trial: [f64; 4] = [faces.f(0, &trial), faces.f(1, &trial), faces.f(2, &trial), faces.f(3, &trial)];
+    let g_row = |i: usize| {
+        let a = faces.a(i);
+        [dot(&a, &dm[0]), dot(&a, &dm[1]), dot(&a, &dm[2]), dot(&a, &dm[3])]
+    };
+    let g_all: [[f64; 4]; 4] = [g_row(0), g_row(1), g_row(2), g_row(3)];
+    // the active sets in the order of SUBSETS, each in its own copy of `attempt` (the faces of
+    // a set known at compile time: no index lists, unrolled eliminations)
+    macro_rules! sets {
+        ($($mask:literal),*) => {$(
+            if let Some(a) = attempt::<$mask>(&faces, &trial, &f_trial, &g_all, &dm, tol) {
+                let tangent = if want_tangent { set_tangent($mask, &faces, &d, &dm, &a, tol) } else { [[0.0; 3]; 3] };
+                return finish(a.s, a.slip, a.dk, tangent);
             }
-        }
-        let mut act_buf = [0usize; 3];
-        let mut n = 0;
-        for j in 0..4 {
-            if mask & (1 << j) != 0 {
-                act_buf[n] = j;
-                n += 1;
-            }
-        }
-        let act = &act_buf[..n];
-        let mut g = [[0.0; 3]; 3];
-        let mut r = [0.0; 3];
-        for (p, &i) in act.iter().enumerate() {
-            r[p] = f_trial[i];
-            for (q, &j) in act.iter().enumerate() {
-                g[p][q] = g_all[i][j];
-            }
-        }
-        let g0 = g;
-        if !solve_small(&mut g, &mut r, n) {
-            continue;
-        }
-        let gtol = 1e-12 * r[..n].iter().map(|x| x.abs()).fold(0.0, f64::max);
-        if r[..n].iter().any(|&x| x < -gtol) {
-            continue;
-        }
-        let mut s = trial;
-        let mut slip = [0.0; 3];
-        // plastic opening (cut-off and rocking faces) and slip increment (Coulomb faces)
-        let mut dk = [0.0; 2];
-        for (p, &j) in act.iter().enumerate() {
-            for c in 0..3 {
-                s[c] -= r[p] * dm[j][c];
-                if j < 2 {
-                    slip[c] += r[p] * faces.m(j)[c];
-                }
-            }
-            dk[if j < 2 { 1 } else { 0 }] += r[p];
-        }
-        if (0..4)
-            .filter(|j| mask & (1 << j) == 0)
-            .any(|j| faces.f(j, &s) > tol)
-        {
-            continue;
-        }
-        // Both faces of a pair active (the rocking pair: N = ft A, M = 0; the Coulomb pair:
-        // T = 0, N = c A / mu) with a face of the other pair reached as well: the point is the
-        // apex, and this set's region is degenerate (with c = ft = 0 the rocking pair holds only
-        // where the trial slip is exactly 0, e.g. a pure opening). Any trial nearby returns to
-        // the apex too, so the derivative is the apex's, zero; the set's own tangent would
-        // give the free direction (the shear of an open joint) its elastic stiffness.
-        let pair = |m: u8| mask & m == m;
-        let reached = |j: usize| faces.f(j, &s) > -tol;
-        let apex = (pair(0b1100) && (reached(0) || reached(1)))
-            || (pair(0b0011) && (reached(2) || reached(3)));
-        let tangent = if apex || !want_tangent {
-            [[0.0; 3]; 3]
-        } else {
-            active_tangent(&faces, &d, &dm, act, &g0).unwrap_or([[0.0; 3]; 3])
-        };
-        return finish(s, slip, dk, tangent);
+        )*};
     }
+    sets!(1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14);
     // No active set satisfied the conditions (degenerate data): fall back on the apex, the one
     // point of the domain that every face reaches, carrying nothing beyond the cut-off.
     let n_apex = if faces.a(0)[0] > 0.0 {
@@ -453,6 +393,101 @@ fn map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, want_
         faces.b[2]
     };
     finish([n_apex, 0.0, 0.0], [0.0; 3], [0.0; 2], [[0.0; 3]; 3])
+}
+
+/// The return of one active set: the force, the Coulomb flow, the plastic (opening, slip)
+/// increments, and for the tangent the set's faces and its matrix `G = A D M`.
+struct Attempt {
+    s: [f64; 3],
+    slip: [f64; 3],
+    dk: [f64; 2],
+    act: [usize; 3],
+    n: usize,
+    g0: [[f64; 3]; 3],
+}
+
+/// The return onto the faces of `MASK` (bit j: face j), if it satisfies the Kuhn-Tucker
+/// conditions: multipliers >= 0 and every other face satisfied.
+#[inline(always)]
+fn attempt<const MASK: u8>(
+    faces: &Faces,
+    trial: &[f64; 3],
+    f_trial: &[f64; 4],
+    g_all: &[[f64; 4]; 4],
+    dm: &[[f64; 3]; 4],
+    tol: f64,
+) -> Option<Attempt> {
+    let mask = MASK;
+    if mask.count_ones() == 1 {
+        // a single face whose multiplier f_j(trial) / (a_j . D m_j) is negative is rejected
+        // below: skip it without the elimination (most plastic updates end on one face or
+        // two, so most single faces are skipped)
+        let j = mask.trailing_zeros() as usize;
+        if f_trial[j] / g_all[j][j] < 0.0 {
+            return None;
+        }
+    }
+    let mut act_buf = [0usize; 3];
+    let mut n = 0;
+    for j in 0..4 {
+        if mask & (1 << j) != 0 {
+            act_buf[n] = j;
+            n += 1;
+        }
+    }
+    let act = &act_buf[..n];
+    let mut g = [[0.0; 3]; 3];
+    let mut r = [0.0; 3];
+    for (p, &i) in act.iter().enumerate() {
+        r[p] = f_trial[i];
+        for (q, &j) in act.iter().enumerate() {
+            g[p][q] = g_all[i][j];
+        }
+    }
+    let g0 = g;
+    if !solve_small(&mut g, &mut r, n) {
+        return None;
+    }
+    let gtol = 1e-12 * r[..n].iter().map(|x| x.abs()).fold(0.0, f64::max);
+    if r[..n].iter().any(|&x| x < -gtol) {
+        return None;
+    }
+    let mut s = *trial;
+    let mut slip = [0.0; 3];
+    // plastic opening (cut-off and rocking faces) and slip increment (Coulomb faces)
+    let mut dk = [0.0; 2];
+    for (p, &j) in act.iter().enumerate() {
+        for c in 0..3 {
+            s[c] -= r[p] * dm[j][c];
+            if j < 2 {
+                slip[c] += r[p] * faces.m(j)[c];
+            }
+        }
+        dk[if j < 2 { 1 } else { 0 }] += r[p];
+    }
+    if (0..4).filter(|j| mask & (1 << j) == 0).any(|j| faces.f(j, &s) > tol) {
+        return None;
+    }
+    Some(Attempt { s, slip, dk, act: act_buf, n, g0 })
+}
+
+/// The consistent tangent of the accepted set `mask`.
+fn set_tangent(mask: u8, faces: &Faces, d: &[f64; 3], dm: &[[f64; 3]; 4], a: &Attempt, tol: f64) -> [[f64; 3]; 3] {
+    let s = &a.s;
+    // Both faces of a pair active (the rocking pair: N = ft A, M = 0; the Coulomb pair:
+    // T = 0, N = c A / mu) with a face of the other pair reached as well: the point is the
+    // apex, and this set's region is degenerate (with c = ft = 0 the rocking pair holds only
+    // where the trial slip is exactly 0, e.g. a pure opening). Any trial nearby returns to
+    // the apex too, so the derivative is the apex's, zero; the set's own tangent would
+    // give the free direction (the shear of an open joint) its elastic stiffness.
+    let pair = |m: u8| mask & m == m;
+    let reached = |j: usize| faces.f(j, s) > -tol;
+    let apex = (pair(0b1100) && (reached(0) || reached(1))) || (pair(0b0011) && (reached(2) || reached(3)));
+    if apex {
+        [[0.0; 3]; 3]
+    } else {
+        active_tangent(faces, d, dm, &a.act[..a.n], &a.g0).unwrap_or([[0.0; 3]; 3])
+    }
 }
 
 /// The consistent tangent `D - (D M) G^-1 (A D)` of the active faces `act`, with
