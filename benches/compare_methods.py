@@ -39,7 +39,7 @@ def main():
         a = agreement(s, d)
         diff = 100 * a["multiplier_relative_difference"]
         print(
-            f"| {name} | {model.n_blocks} | {s.collapse_multiplier:.4f} | {s.iterations} | {s.elapsed_s:.2f} s "
+            f"| {name} | {model.n_blocks} | {s.collapse_multiplier:.4f} | {s.iterations} | {s.elapsed_s:.3f} s "
             f"| {d.collapse_multiplier:.4f} | {d.iterations} | {d.elapsed_s:.1f} s | {diff:+.2f}% "
             f"| {a['failed_static']} / {a['failed_dynamic']} / {a['failed_common']} |",
             flush=True,
