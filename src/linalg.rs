@@ -4,8 +4,8 @@
 //! choice of method here (n = 3,120: 2.5 ms against 26 ms; n = 30,150: 94 ms against 521 ms); a
 //! non-symmetric one (non-associative flow, the bordered system of displacement control), or one
 //! that is not positive definite (softening), to a supernodal sparse LU, or to a dense LU with
-//! partial pivoting up to [`DENSE_LU_MAX`] equations. Each symbolic analysis is done once, when first needed; each `factorize` is a
-//! numeric refactorization into preallocated buffers.
+//! partial pivoting up to [`DENSE_LU_MAX`] equations. Each symbolic analysis is done once, when
+//! first needed; each `factorize` is a numeric refactorization into preallocated buffers.
 
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};

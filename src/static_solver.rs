@@ -553,7 +553,9 @@ impl<'a, 'm> Solver<'a, 'm> {
         let mut b = vec![0.0; live_eq.len()];
         let mut b_solved = false;
         let mut flat = 0;
-        let mut history = vec![rn];
+        // the residuals of the work path's last iterations, the one before the first included:
+        // that after iteration `it` at `(it + 1) % (STALL_ITERATIONS + 1)`
+        let mut history = [rn; STALL_ITERATIONS + 1];
         for it in 0..self.opts.max_iterations {
             let off = match drive {
                 Drive::Work(w) => {
@@ -690,10 +692,9 @@ impl<'a, 'm> Solver<'a, 'm> {
             // iterations has stalled (the line search crawls between active sets): a shorter
             // step is cheaper than the rest of max_iterations
             if let Drive::Work(_) = drive {
-                history.push(r);
-                if history.len() > STALL_ITERATIONS
-                    && r > 0.5 * history[history.len() - 1 - STALL_ITERATIONS]
-                {
+                let before = history[(it + 2) % (STALL_ITERATIONS + 1)];
+                history[(it + 1) % (STALL_ITERATIONS + 1)] = r;
+                if it + 1 >= STALL_ITERATIONS && r > 0.5 * before {
                     return Err(Error::Convergence(format!(
                         "no equilibrium: the residual did not halve in {STALL_ITERATIONS} iterations (at {:.3e} of the applied forces)",
                         r / f.max(f64::MIN_POSITIVE)
@@ -997,26 +998,19 @@ impl<'a, 'm> Solver<'a, 'm> {
                         // control, or load control from a position 1e-9 m away). Two attempts
                         // just above (10 and 5 times the tolerance) cost wall 1 13 iterations
                         // (90 -> 103); where one converges, the path goes on from there.
-                        let plateau = self.snap();
-                        match self.above(&plateau, 10.0 * floor, 5.0 * floor) {
+                        match self.above(&conv, 10.0 * floor, 5.0 * floor) {
                             Ok(true) => {
-                                ds = self.work() - plateau.work;
-                                prev = None;
-                                if let Err(e) = self.commit(f64::NAN) {
+                                if let Err(e) = self.restart_path(&mut conv, &mut prev, &mut best, &mut k_best, &mut ds) {
                                     return (Status::Failed, Some(e));
                                 }
-                                conv = self.snap();
-                                best = self.snap();
-                                k_best = 0.0;
                                 continue;
                             }
-                            Err(e) => return (Status::Failed, Some(e)),
-                            _ => {
-                                self.restore(&plateau);
+                            Ok(false) => {
                                 self.evaluate();
                                 self.mechanism = Some(increment);
                                 return (Status::Collapse, None);
                             }
+                            Err(e) => return (Status::Failed, Some(e)),
                         }
                     }
                     // longer steps while Newton finds them easy (a cap on the rise of lambda per
@@ -1050,14 +1044,9 @@ impl<'a, 'm> Solver<'a, 'm> {
                     //   at a fixed lambda it is at 0.5800 within it.
                     match self.above(&conv, dl0, floor) {
                         Ok(true) => {
-                            ds = self.work() - conv.work;
-                            prev = None;
-                            if let Err(e) = self.commit(f64::NAN) {
+                            if let Err(e) = self.restart_path(&mut conv, &mut prev, &mut best, &mut k_best, &mut ds) {
                                 return (Status::Failed, Some(e));
                             }
-                            conv = self.snap();
-                            best = self.snap();
-                            k_best = 0.0;
                         }
                         Ok(false) => {
                             self.mechanism = self.diverged.take().or_else(|| {
@@ -1077,6 +1066,26 @@ impl<'a, 'm> Solver<'a, 'm> {
                 "no collapse after {max_attempts} steps"
             ))),
         )
+    }
+
+    /// Makes the equilibrium that [`Solver::above`] found off the path, above `conv`, the
+    /// path's new start: committed, the next step as long as the jump to it, no secant
+    /// predictor (the jump is not a step of the path), and the largest lambda so far.
+    fn restart_path(
+        &mut self,
+        conv: &mut Saved,
+        prev: &mut Option<Saved>,
+        best: &mut Saved,
+        k_best: &mut f64,
+        ds: &mut f64,
+    ) -> Result<(), Error> {
+        *ds = self.work() - conv.work;
+        *prev = None;
+        self.commit(f64::NAN)?;
+        *conv = self.snap();
+        *best = self.snap();
+        *k_best = 0.0;
+        Ok(())
     }
 
     /// The state to come back to.

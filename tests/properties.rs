@@ -822,6 +822,15 @@ fn course(xs: &[f64], y0: f64, y1: f64) -> Vec<Rect> {
     xs.windows(2).map(|w| Rect::new(w[0], y0, w[1], y1)).collect()
 }
 
+/// Courses between the heights `ys`, the first, third... with the x breakpoints `a`, the
+/// others with `b` (a running bond).
+fn bond(a: &[f64], b: &[f64], ys: &[f64]) -> Vec<Rect> {
+    ys.windows(2)
+        .enumerate()
+        .flat_map(|(k, y)| course(if k % 2 == 0 { a } else { b }, y[0], y[1]))
+        .collect()
+}
+
 /// The walls (as proptest shrank them) on which the mirror property failed: three with
 /// psi = 0, each with a top beam of fixed rotation, kept with associative joints, where the
 /// property holds (see g for what psi = 0 did on them), and the associative 12-block wall of
@@ -836,7 +845,7 @@ fn g_mirror_regressions() {
     );
     let y = [0.0, 0.36475760721783984, 0.7295152144356797];
     let seven = WallCase {
-        blocks: [course(&a, y[0], y[1]), course(&b, y[1], y[2])].concat(),
+        blocks: bond(&a, &b, &y),
         law: common::dry(0.7399378017562555, 0.0, 5358997135.234735),
         top: beam(3513.873417439486),
     };
@@ -847,13 +856,7 @@ fn g_mirror_regressions() {
     );
     let y = [0.0, 0.2114472890128573, 0.4228945780257146, 0.6343418670385719, 0.8457891560514292];
     let fourteen = WallCase {
-        blocks: [
-            course(&a, y[0], y[1]),
-            course(&b, y[1], y[2]),
-            course(&a, y[2], y[3]),
-            course(&b, y[3], y[4]),
-        ]
-        .concat(),
+        blocks: bond(&a, &b, &y),
         law: common::dry(0.4816940153701755, 0.0, 6260286909.773505),
         top: beam(1.0),
     };
@@ -886,13 +889,7 @@ fn snap_back_wall() -> WallCase {
     let b = [0.0, 0.4241514375255405, 0.848302875051081, 1.0603785938138512];
     let y = [0.0, 0.30445832216103846, 0.6089166443220769, 0.9133749664831154, 1.2178332886441539];
     WallCase {
-        blocks: [
-            course(&a, y[0], y[1]),
-            course(&b, y[1], y[2]),
-            course(&a, y[2], y[3]),
-            course(&b, y[3], y[4]),
-        ]
-        .concat(),
+        blocks: bond(&a, &b, &y),
         law: common::dry(0.7056858811962229, 0.7056858811962229, 6586062465.386855),
         top: None,
     }
@@ -946,7 +943,7 @@ fn f_load_control_does_not_stop_below_an_equilibrium() {
     let y = [0.0, 0.19682242897599464, 0.3936448579519893, 0.5904672869279839];
     let mu = 0.4235620298005757;
     let wall = WallCase {
-        blocks: [course(&a, y[0], y[1]), course(&b, y[1], y[2]), course(&a, y[2], y[3])].concat(),
+        blocks: bond(&a, &b, &y),
         law: common::dry(mu, mu, 621320620.1970984),
         top: None,
     };
