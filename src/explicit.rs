@@ -22,7 +22,7 @@
 
 use crate::error::{check_steps, Error};
 use crate::interface::{Family, Interface};
-use crate::joint::{return_map_forces, JointLaw, JointState};
+use crate::joint::{return_map_forces_warm, JointLaw, JointState};
 use crate::model::{LiveLoad, Model};
 use crate::results::{Results, Status};
 use rayon::prelude::*;
@@ -350,6 +350,9 @@ struct Integrator<'a> {
     broken: Vec<bool>,
     forces: Vec<[f64; 3]>,
     flags: Vec<u8>,
+    /// the active set each interface's return mapping accepted at its last plastic update
+    /// (bit j: face j; 0: none yet), tried first at the next ([`return_map_forces_warm`])
+    warm: Vec<u8>,
     fe: Vec<[f64; 6]>,
     dt: f64,
     damping: Damping,
@@ -465,6 +468,7 @@ impl<'a> Integrator<'a> {
             broken: vec![false; m],
             forces: vec![[0.0; 3]; m],
             flags: vec![0; m],
+            warm: vec![0; m],
             fe: vec![],
             dt,
             damping,
@@ -567,8 +571,10 @@ impl<'a> Integrator<'a> {
         debug_assert!(hw == 3 || hw == 5);
         // h, br: the histories; fe: the generalized forces on the blocks, with finite rotations
         // only (empty otherwise)
-        let body = |hw: usize, k0: usize, h: &mut [f64], br: &mut [bool], f: &mut [[f64; 3]], fl: &mut [u8], fe: &mut [[f64; 6]]| {
-            for (i, (((h, br), f), fl)) in h.chunks_exact_mut(hw).zip(br.iter_mut()).zip(f.iter_mut()).zip(fl.iter_mut()).enumerate() {
+        let body = |hw: usize, k0: usize, h: &mut [f64], br: &mut [bool], f: &mut [[f64; 3]], fl: &mut [u8], ws: &mut [u8], fe: &mut [[f64; 6]]| {
+            for (i, ((((h, br), f), fl), ws)) in
+                h.chunks_exact_mut(hw).zip(br.iter_mut()).zip(f.iter_mut()).zip(fl.iter_mut()).zip(ws.iter_mut()).enumerate()
+            {
                 let k = k0 + i;
                 let gk = &geo[k];
                 let law = &laws[gk.family as usize];
@@ -579,7 +585,10 @@ impl<'a> Integrator<'a> {
                     // the normal force's eccentricity at the previous step, within the interface
                     let ecc = if f[0] < 0.0 { (f[2] / f[0]).clamp(-0.5 * it.l, 0.5 * it.l) } else { 0.0 };
                     let kin = it.large_kinematics(g[a], g[b], &u[3 * a..3 * a + 3], &u[3 * b..3 * b + 3], cs[a], cs[b], ecc);
-                    let r = return_map_forces(law, &sections[k], kin.jumps, st);
+                    let (r, set) = return_map_forces_warm(law, &sections[k], kin.jumps, st, *ws);
+                    if set != 0 {
+                        *ws = set;
+                    }
                     pack(&r.state, h);
                     *br = r.state.broken;
                     *f = r.force;
@@ -596,7 +605,10 @@ impl<'a> Integrator<'a> {
                         b[0] * q[0] + b[1] * q[1] + b[2] * q[2] + b[3] * q[3] + b[4] * q[4] + b[5] * q[5]
                     };
                     let e = [row(0), row(1), row(2)];
-                    let r = return_map_forces(law, &sections[k], e, st);
+                    let (r, set) = return_map_forces_warm(law, &sections[k], e, st, *ws);
+                    if set != 0 {
+                        *ws = set;
+                    }
                     pack(&r.state, h);
                     *br = r.state.broken;
                     *f = r.force;
@@ -605,11 +617,11 @@ impl<'a> Integrator<'a> {
             }
         };
         // one copy of the loop per history width (a constant in each)
-        let work = |k0: usize, h: &mut [f64], br: &mut [bool], f: &mut [[f64; 3]], fl: &mut [u8], fe: &mut [[f64; 6]]| {
+        let work = |k0: usize, h: &mut [f64], br: &mut [bool], f: &mut [[f64; 3]], fl: &mut [u8], ws: &mut [u8], fe: &mut [[f64; 6]]| {
             if hw == 3 {
-                body(3, k0, h, br, f, fl, fe)
+                body(3, k0, h, br, f, fl, ws, fe)
             } else {
-                body(5, k0, h, br, f, fl, fe)
+                body(5, k0, h, br, f, fl, ws, fe)
             }
         };
         const G: usize = GRAIN_INTERFACES;
@@ -619,19 +631,21 @@ impl<'a> Integrator<'a> {
                 .zip(self.broken.par_chunks_mut(G))
                 .zip(self.forces.par_chunks_mut(G))
                 .zip(self.flags.par_chunks_mut(G))
+                .zip(self.warm.par_chunks_mut(G))
                 .zip(self.fe.par_chunks_mut(G))
                 .enumerate()
-                .for_each(|(c, ((((h, br), f), fl), fe))| work(c * G, h, br, f, fl, fe));
+                .for_each(|(c, (((((h, br), f), fl), ws), fe))| work(c * G, h, br, f, fl, ws, fe));
         } else if par {
             self.hist
                 .par_chunks_mut(G * hw)
                 .zip(self.broken.par_chunks_mut(G))
                 .zip(self.forces.par_chunks_mut(G))
                 .zip(self.flags.par_chunks_mut(G))
+                .zip(self.warm.par_chunks_mut(G))
                 .enumerate()
-                .for_each(|(c, (((h, br), f), fl))| work(c * G, h, br, f, fl, &mut []));
+                .for_each(|(c, ((((h, br), f), fl), ws))| work(c * G, h, br, f, fl, ws, &mut []));
         } else {
-            work(0, &mut self.hist, &mut self.broken, &mut self.forces, &mut self.flags, &mut self.fe);
+            work(0, &mut self.hist, &mut self.broken, &mut self.forces, &mut self.flags, &mut self.warm, &mut self.fe);
         }
         // the gather: each block sums its interfaces' forces in increasing k, as a serial
         // scatter in interface order would; with the linearized kinematics the generalized
