@@ -735,13 +735,15 @@ impl<'a> Integrator<'a> {
         let damping = self.damping;
         let (f_ext, f_int, free, inv_mass, mass) = (&self.f_ext, &self.f_int, &self.free, &self.inv_mass, &self.mass);
         let work = |d0: usize, a: &mut [f64], v: &mut [f64]| {
-            for (i, (a, v)) in a.iter_mut().zip(v.iter_mut()).enumerate() {
-                let d = d0 + i;
-                if !free[d] {
+            // the chunk's slices, zipped: no bounds check per dof
+            let r = d0..d0 + a.len();
+            let dofs = free[r.clone()].iter().zip(&f_ext[r.clone()]).zip(&f_int[r.clone()]).zip(&inv_mass[r.clone()]).zip(&mass[r]);
+            for ((a, v), ((((&free, &fe), &fi), &im), &m)) in a.iter_mut().zip(v.iter_mut()).zip(dofs) {
+                if !free {
                     *a = 0.0;
                     continue;
                 }
-                let mut f = f_ext[d] - f_int[d];
+                let mut f = fe - fi;
                 let vd = *v;
                 let fd = match damping {
                     Damping::None => 0.0,
@@ -752,10 +754,10 @@ impl<'a> Integrator<'a> {
                             0.0
                         }
                     }
-                    Damping::Viscous(c) => -c * mass[d] * vd,
+                    Damping::Viscous(c) => -c * m * vd,
                 };
                 f += fd;
-                *a = f * inv_mass[d];
+                *a = f * im;
                 if let Some(h) = kick {
                     *v += h * *a;
                 }
@@ -781,9 +783,10 @@ impl<'a> Integrator<'a> {
         let dt = self.dt;
         let (a, free) = (&self.a, &self.free);
         let drift = |d0: usize, u: &mut [f64], v: &mut [f64]| {
-            for (i, (u, v)) in u.iter_mut().zip(v.iter_mut()).enumerate() {
-                if free[d0 + i] {
-                    *v += 0.5 * dt * a[d0 + i];
+            let r = d0..d0 + u.len();
+            for ((u, v), (&free, &a)) in u.iter_mut().zip(v.iter_mut()).zip(free[r.clone()].iter().zip(&a[r])) {
+                if free {
+                    *v += 0.5 * dt * a;
                     *u += dt * *v;
                 }
             }
