@@ -22,7 +22,7 @@
 
 use crate::error::{check_steps, Error};
 use crate::interface::{Family, Interface};
-use crate::joint::{return_map_forces, JointLaw, JointState};
+use crate::joint::{return_map_forces_prepared, return_map_forces_warm, JointLaw, JointState, Prepared, Response, Section};
 use crate::model::{LiveLoad, Model};
 use crate::results::{Results, Status};
 use rayon::prelude::*;
@@ -238,7 +238,8 @@ const PAR_MIN_INTERFACES: usize = 2048;
 /// What the linearized interface loop reads of an interface, packed in 48 bytes (the model's
 /// [`crate::interface::Interface`] takes 208): the two blocks, the four entries of `B` that
 /// are not +-n, +-t or +-1, the normal as an index into a table of the model's distinct normals
-/// (two on walls of rectangles: (1, 0) and (0, 1)), and the family. `B`'s rows are (-n, -n.ra,
+/// (two on walls of rectangles: (1, 0) and (0, 1)), the family, and the kind (an index into
+/// the integrator's table of the distinct pairs of law and section). `B`'s rows are (-n, -n.ra,
 /// n, n.rb), (-t, -t.ra, t, t.rb) and (0, 0, -1, 0, 0, 1), with t = (n_y, -n_x);
 /// [`Geo::b_mat`] rebuilds them bit for bit.
 #[derive(Debug, Clone, Copy)]
@@ -249,10 +250,23 @@ struct Geo {
     r: [f64; 4],
     normal: u8,
     family: u8,
+    /// [`NO_KIND`] for an interface whose kind did not fit in the table
+    kind: u16,
 }
 
 /// The largest number of distinct interface normals of the explicit solver's packed geometry.
 const MAX_NORMALS: usize = 256;
+/// The largest number of kinds (distinct pairs of law and section, each with its
+/// [`Prepared`] constants, 2.6 kB) in the integrator's table; the interfaces of further kinds
+/// are mapped without prepared constants (the same numbers, computed per update).
+const MAX_KINDS: usize = 256;
+const NO_KIND: u16 = u16::MAX;
+
+/// A kind of interface: its section and the constants of its law on it.
+struct Kind {
+    sec: Section,
+    prep: Prepared,
+}
 
 impl Geo {
     /// The packed geometry of `it`, its normal added to `normals` if new (bit for bit).
@@ -275,6 +289,7 @@ impl Geo {
             r: [b[0][2], b[0][5], b[1][2], b[1][5]],
             normal: normal as u8,
             family: family_index(it.family),
+            kind: NO_KIND,
         })
     }
 
@@ -283,6 +298,13 @@ impl Geo {
         let ([n0, n1], r) = (normals[self.normal as usize], self.r);
         [[-n0, -n1, r[0], n0, n1, r[1]], [-n1, n0, r[2], n1, -n0, r[3]], [0.0, 0.0, -1.0, 0.0, 0.0, 1.0]]
     }
+}
+
+/// The return mapping of an interface whose kind is not in the table (out of line: the loop
+/// keeps one inlined copy, for the table's kinds).
+#[inline(never)]
+fn map_unprepared(law: &JointLaw, sec: &Section, e: [f64; 3], st: &JointState, warm: u8) -> (Response, u8) {
+    return_map_forces_warm(law, sec, e, st, warm)
 }
 
 /// A committed joint history from its packed form (`h`: the plastic jumps, then the opening and
@@ -330,6 +352,8 @@ struct Integrator<'a> {
     geo: Vec<Geo>,
     /// the distinct interface normals (see [`Geo`])
     normals: Vec<[f64; 2]>,
+    /// the kinds of interface (see [`Geo`])
+    kinds: Vec<Kind>,
     laws: [JointLaw; 4],
     /// interfaces of block i: `incidence[incidence_start[i]..incidence_start[i + 1]]`, each
     /// `2 k + side` (side 0: the block is the interface's a, 1: its b), increasing in k
@@ -350,6 +374,9 @@ struct Integrator<'a> {
     broken: Vec<bool>,
     forces: Vec<[f64; 3]>,
     flags: Vec<u8>,
+    /// the active set each interface's return mapping accepted at its last plastic update
+    /// (bit j: face j; 0: none yet), tried first at the next ([`return_map_forces_warm`])
+    warm: Vec<u8>,
     fe: Vec<[f64; 6]>,
     dt: f64,
     damping: Damping,
@@ -436,8 +463,23 @@ impl<'a> Integrator<'a> {
             }
         }
         let mut normals = vec![];
-        let geo = model.interfaces().iter().map(|it| Geo::new(it, &mut normals)).collect::<Result<Vec<Geo>, Error>>()?;
+        let mut geo = model.interfaces().iter().map(|it| Geo::new(it, &mut normals)).collect::<Result<Vec<Geo>, Error>>()?;
         let laws = model.laws();
+        let mut kinds: Vec<Kind> = vec![];
+        let mut kind_of = std::collections::HashMap::new();
+        for (g, sec) in geo.iter_mut().zip(model.sections()) {
+            let key = (g.family, [sec.area.to_bits(), sec.inertia.to_bits(), sec.length.to_bits()]);
+            g.kind = match kind_of.get(&key) {
+                Some(&i) => i,
+                None if kinds.len() < MAX_KINDS => {
+                    let law = laws.of([Family::Bed, Family::Head, Family::Base, Family::Top][g.family as usize]);
+                    kinds.push(Kind { sec: *sec, prep: Prepared::new(law, sec) });
+                    kind_of.insert(key, (kinds.len() - 1) as u16);
+                    (kinds.len() - 1) as u16
+                }
+                None => NO_KIND,
+            };
+        }
         let hw = if [Family::Bed, Family::Head, Family::Base, Family::Top].iter().any(|&f| laws.of(f).is_softening()) { 5 } else { 3 };
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -449,6 +491,7 @@ impl<'a> Integrator<'a> {
             model,
             geo,
             normals,
+            kinds,
             laws: [Family::Bed, Family::Head, Family::Base, Family::Top].map(|f| *laws.of(f)),
             incidence_start,
             incidence,
@@ -465,6 +508,7 @@ impl<'a> Integrator<'a> {
             broken: vec![false; m],
             forces: vec![[0.0; 3]; m],
             flags: vec![0; m],
+            warm: vec![0; m],
             fe: vec![],
             dt,
             damping,
@@ -562,29 +606,44 @@ impl<'a> Integrator<'a> {
         }
         let model = self.model;
         let sections = model.sections();
-        let (u, geo, normals, laws) = (&self.u, &self.geo, &self.normals, &self.laws);
+        let (u, geo, normals, laws, kinds) = (&self.u, &self.geo, &self.normals, &self.laws, &self.kinds);
+        // the return mapping of interface k for the jumps e, with its kind's constants, its
+        // results stored (each arm stores its own: no copy of the response between them)
+        let update = |k: usize, gk: &Geo, e: [f64; 3], h: &mut [f64], br: &mut bool, f: &mut [f64; 3], fl: &mut u8, ws: &mut u8| {
+            let law = &laws[gk.family as usize];
+            let st = &unpack(h, *br);
+            let store = |(r, set): (Response, u8), h: &mut [f64], br: &mut bool, f: &mut [f64; 3], fl: &mut u8, ws: &mut u8| {
+                if set != 0 {
+                    *ws = set;
+                }
+                pack(&r.state, h);
+                *br = r.state.broken;
+                *f = r.force;
+                *fl = r.flags;
+            };
+            match kinds.get(gk.kind as usize) {
+                Some(kd) => store(return_map_forces_prepared(law, &kd.sec, &kd.prep, e, st, *ws), h, br, f, fl, ws),
+                None => store(map_unprepared(law, &sections[k], e, st, *ws), h, br, f, fl, ws),
+            }
+        };
         let (large, g, cs, hw) = (self.large, &self.centroids, &self.cs, self.hw);
         debug_assert!(hw == 3 || hw == 5);
         // h, br: the histories; fe: the generalized forces on the blocks, with finite rotations
         // only (empty otherwise)
-        let body = |hw: usize, k0: usize, h: &mut [f64], br: &mut [bool], f: &mut [[f64; 3]], fl: &mut [u8], fe: &mut [[f64; 6]]| {
-            for (i, (((h, br), f), fl)) in h.chunks_exact_mut(hw).zip(br.iter_mut()).zip(f.iter_mut()).zip(fl.iter_mut()).enumerate() {
+        let body = |hw: usize, k0: usize, h: &mut [f64], br: &mut [bool], f: &mut [[f64; 3]], fl: &mut [u8], ws: &mut [u8], fe: &mut [[f64; 6]]| {
+            for (i, ((((h, br), f), fl), ws)) in
+                h.chunks_exact_mut(hw).zip(br.iter_mut()).zip(f.iter_mut()).zip(fl.iter_mut()).zip(ws.iter_mut()).enumerate()
+            {
                 let k = k0 + i;
                 let gk = &geo[k];
-                let law = &laws[gk.family as usize];
-                let st = &unpack(h, *br);
                 if large {
                     let it = &model.interfaces()[k];
                     let (a, b) = (it.a, it.b);
                     // the normal force's eccentricity at the previous step, within the interface
                     let ecc = if f[0] < 0.0 { (f[2] / f[0]).clamp(-0.5 * it.l, 0.5 * it.l) } else { 0.0 };
                     let kin = it.large_kinematics(g[a], g[b], &u[3 * a..3 * a + 3], &u[3 * b..3 * b + 3], cs[a], cs[b], ecc);
-                    let r = return_map_forces(law, &sections[k], kin.jumps, st);
-                    pack(&r.state, h);
-                    *br = r.state.broken;
-                    *f = r.force;
-                    *fl = r.flags;
-                    fe[i] = kin.forces(r.force);
+                    update(k, gk, kin.jumps, h, br, f, fl, ws);
+                    fe[i] = kin.forces(*f);
                 } else {
                     let (a, b) = (3 * gk.a as usize, 3 * gk.b as usize);
                     let q = [u[a], u[a + 1], u[a + 2], u[b], u[b + 1], u[b + 2]];
@@ -596,20 +655,16 @@ impl<'a> Integrator<'a> {
                         b[0] * q[0] + b[1] * q[1] + b[2] * q[2] + b[3] * q[3] + b[4] * q[4] + b[5] * q[5]
                     };
                     let e = [row(0), row(1), row(2)];
-                    let r = return_map_forces(law, &sections[k], e, st);
-                    pack(&r.state, h);
-                    *br = r.state.broken;
-                    *f = r.force;
-                    *fl = r.flags;
+                    update(k, gk, e, h, br, f, fl, ws);
                 }
             }
         };
         // one copy of the loop per history width (a constant in each)
-        let work = |k0: usize, h: &mut [f64], br: &mut [bool], f: &mut [[f64; 3]], fl: &mut [u8], fe: &mut [[f64; 6]]| {
+        let work = |k0: usize, h: &mut [f64], br: &mut [bool], f: &mut [[f64; 3]], fl: &mut [u8], ws: &mut [u8], fe: &mut [[f64; 6]]| {
             if hw == 3 {
-                body(3, k0, h, br, f, fl, fe)
+                body(3, k0, h, br, f, fl, ws, fe)
             } else {
-                body(5, k0, h, br, f, fl, fe)
+                body(5, k0, h, br, f, fl, ws, fe)
             }
         };
         const G: usize = GRAIN_INTERFACES;
@@ -619,19 +674,21 @@ impl<'a> Integrator<'a> {
                 .zip(self.broken.par_chunks_mut(G))
                 .zip(self.forces.par_chunks_mut(G))
                 .zip(self.flags.par_chunks_mut(G))
+                .zip(self.warm.par_chunks_mut(G))
                 .zip(self.fe.par_chunks_mut(G))
                 .enumerate()
-                .for_each(|(c, ((((h, br), f), fl), fe))| work(c * G, h, br, f, fl, fe));
+                .for_each(|(c, (((((h, br), f), fl), ws), fe))| work(c * G, h, br, f, fl, ws, fe));
         } else if par {
             self.hist
                 .par_chunks_mut(G * hw)
                 .zip(self.broken.par_chunks_mut(G))
                 .zip(self.forces.par_chunks_mut(G))
                 .zip(self.flags.par_chunks_mut(G))
+                .zip(self.warm.par_chunks_mut(G))
                 .enumerate()
-                .for_each(|(c, (((h, br), f), fl))| work(c * G, h, br, f, fl, &mut []));
+                .for_each(|(c, ((((h, br), f), fl), ws))| work(c * G, h, br, f, fl, ws, &mut []));
         } else {
-            work(0, &mut self.hist, &mut self.broken, &mut self.forces, &mut self.flags, &mut self.fe);
+            work(0, &mut self.hist, &mut self.broken, &mut self.forces, &mut self.flags, &mut self.warm, &mut self.fe);
         }
         // the gather: each block sums its interfaces' forces in increasing k, as a serial
         // scatter in interface order would; with the linearized kinematics the generalized
@@ -678,13 +735,15 @@ impl<'a> Integrator<'a> {
         let damping = self.damping;
         let (f_ext, f_int, free, inv_mass, mass) = (&self.f_ext, &self.f_int, &self.free, &self.inv_mass, &self.mass);
         let work = |d0: usize, a: &mut [f64], v: &mut [f64]| {
-            for (i, (a, v)) in a.iter_mut().zip(v.iter_mut()).enumerate() {
-                let d = d0 + i;
-                if !free[d] {
+            // the chunk's slices, zipped: no bounds check per dof
+            let r = d0..d0 + a.len();
+            let dofs = free[r.clone()].iter().zip(&f_ext[r.clone()]).zip(&f_int[r.clone()]).zip(&inv_mass[r.clone()]).zip(&mass[r]);
+            for ((a, v), ((((&free, &fe), &fi), &im), &m)) in a.iter_mut().zip(v.iter_mut()).zip(dofs) {
+                if !free {
                     *a = 0.0;
                     continue;
                 }
-                let mut f = f_ext[d] - f_int[d];
+                let mut f = fe - fi;
                 let vd = *v;
                 let fd = match damping {
                     Damping::None => 0.0,
@@ -695,10 +754,10 @@ impl<'a> Integrator<'a> {
                             0.0
                         }
                     }
-                    Damping::Viscous(c) => -c * mass[d] * vd,
+                    Damping::Viscous(c) => -c * m * vd,
                 };
                 f += fd;
-                *a = f * inv_mass[d];
+                *a = f * im;
                 if let Some(h) = kick {
                     *v += h * *a;
                 }
@@ -724,9 +783,10 @@ impl<'a> Integrator<'a> {
         let dt = self.dt;
         let (a, free) = (&self.a, &self.free);
         let drift = |d0: usize, u: &mut [f64], v: &mut [f64]| {
-            for (i, (u, v)) in u.iter_mut().zip(v.iter_mut()).enumerate() {
-                if free[d0 + i] {
-                    *v += 0.5 * dt * a[d0 + i];
+            let r = d0..d0 + u.len();
+            for ((u, v), (&free, &a)) in u.iter_mut().zip(v.iter_mut()).zip(free[r.clone()].iter().zip(&a[r])) {
+                if free {
+                    *v += 0.5 * dt * a;
                     *u += dt * *v;
                 }
             }
@@ -1391,8 +1451,48 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{running_bond, FirstCourse, RunningBond};
+    use crate::geometry::{running_bond, FirstCourse, Rect, RunningBond};
     use crate::model::ModelSpec;
+
+    #[test]
+    fn prepared_kinds_change_no_result() {
+        // a stack of blocks of 300 widths: more kinds than the table holds
+        let stack: Vec<Rect> = (0..300)
+            .map(|i| {
+                let (w, y) = (0.4 + 1e-3 * i as f64, 0.1 * i as f64);
+                Rect::new(-0.5 * w, y, 0.5 * w, y + 0.1)
+            })
+            .collect();
+        let wall = running_bond(&RunningBond {
+            block_length: 0.4,
+            block_height: 0.175,
+            courses: 6,
+            length: 2.0,
+            first_course: FirstCourse::Half,
+            openings: vec![],
+        })
+        .unwrap();
+        for (blocks, overflow) in [(stack, true), (wall, false)] {
+            let model = Model::new(ModelSpec { blocks, ..ModelSpec::default() }).unwrap();
+            for large in [false, true] {
+                // under a horizontal load that makes joints slide and open
+                let run = |prepared: bool| {
+                    let mut s = Stepper::new(&model, 0.4, Damping::Local(0.8), large, 1).unwrap();
+                    assert_eq!(s.s.geo.iter().any(|g| g.kind == NO_KIND), overflow);
+                    assert_eq!(s.s.kinds.len() == MAX_KINDS, overflow);
+                    if !prepared {
+                        s.s.kinds.clear();
+                    }
+                    s.run(400);
+                    let u: Vec<u64> = s.displacements().iter().map(|x| x.to_bits()).collect();
+                    let f: Vec<u64> = s.interface_forces().iter().flatten().map(|x| x.to_bits()).collect();
+                    assert!(s.s.flags.iter().any(|&fl| fl != 0), "no joint reached its strength");
+                    (u, f)
+                };
+                assert!(run(true) == run(false), "{} blocks, large rotations {large}", model.n_blocks());
+            }
+        }
+    }
 
     #[test]
     fn packed_geometry_rebuilds_b_bit_for_bit() {
