@@ -734,32 +734,44 @@ impl<'a> Integrator<'a> {
     fn accelerations_kick(&mut self, kick: Option<f64>) {
         let damping = self.damping;
         let (f_ext, f_int, free, inv_mass, mass) = (&self.f_ext, &self.f_int, &self.free, &self.inv_mass, &self.mass);
+        // one dof: the same operations for every kind of damping; the mass is read only by
+        // viscous damping (local damping and none do not touch it: 8 bytes a dof less per step)
+        #[inline(always)]
+        fn dof(damping: Damping, kick: Option<f64>, a: &mut f64, v: &mut f64, free: bool, fe: f64, fi: f64, im: f64, m: impl FnOnce() -> f64) {
+            if !free {
+                *a = 0.0;
+                return;
+            }
+            let mut f = fe - fi;
+            let vd = *v;
+            let fd = match damping {
+                Damping::None => 0.0,
+                Damping::Local(alpha) => {
+                    if vd != 0.0 {
+                        -alpha * f.abs() * vd.signum()
+                    } else {
+                        0.0
+                    }
+                }
+                Damping::Viscous(c) => -c * m() * vd,
+            };
+            f += fd;
+            *a = f * im;
+            if let Some(h) = kick {
+                *v += h * *a;
+            }
+        }
         let work = |d0: usize, a: &mut [f64], v: &mut [f64]| {
             // the chunk's slices, zipped: no bounds check per dof
             let r = d0..d0 + a.len();
-            let dofs = free[r.clone()].iter().zip(&f_ext[r.clone()]).zip(&f_int[r.clone()]).zip(&inv_mass[r.clone()]).zip(&mass[r]);
-            for ((a, v), ((((&free, &fe), &fi), &im), &m)) in a.iter_mut().zip(v.iter_mut()).zip(dofs) {
-                if !free {
-                    *a = 0.0;
-                    continue;
+            let dofs = free[r.clone()].iter().zip(&f_ext[r.clone()]).zip(&f_int[r.clone()]).zip(&inv_mass[r.clone()]);
+            if let Damping::Viscous(_) = damping {
+                for ((a, v), ((((&free, &fe), &fi), &im), &m)) in a.iter_mut().zip(v.iter_mut()).zip(dofs.zip(&mass[r])) {
+                    dof(damping, kick, a, v, free, fe, fi, im, || m);
                 }
-                let mut f = fe - fi;
-                let vd = *v;
-                let fd = match damping {
-                    Damping::None => 0.0,
-                    Damping::Local(alpha) => {
-                        if vd != 0.0 {
-                            -alpha * f.abs() * vd.signum()
-                        } else {
-                            0.0
-                        }
-                    }
-                    Damping::Viscous(c) => -c * m * vd,
-                };
-                f += fd;
-                *a = f * im;
-                if let Some(h) = kick {
-                    *v += h * *a;
+            } else {
+                for ((a, v), (((&free, &fe), &fi), &im)) in a.iter_mut().zip(v.iter_mut()).zip(dofs) {
+                    dof(damping, kick, a, v, free, fe, fi, im, || 0.0);
                 }
             }
         };
