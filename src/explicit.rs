@@ -464,7 +464,8 @@ impl<'a> Integrator<'a> {
         }
         let mut normals = vec![];
         let mut geo = model.interfaces().iter().map(|it| Geo::new(it, &mut normals)).collect::<Result<Vec<Geo>, Error>>()?;
-        let laws = model.laws();
+        // the laws by family index (see `family_index`)
+        let laws = [Family::Bed, Family::Head, Family::Base, Family::Top].map(|f| *model.laws().of(f));
         let mut kinds: Vec<Kind> = vec![];
         let mut kind_of = std::collections::HashMap::new();
         for (g, sec) in geo.iter_mut().zip(model.sections()) {
@@ -472,15 +473,14 @@ impl<'a> Integrator<'a> {
             g.kind = match kind_of.get(&key) {
                 Some(&i) => i,
                 None if kinds.len() < MAX_KINDS => {
-                    let law = laws.of([Family::Bed, Family::Head, Family::Base, Family::Top][g.family as usize]);
-                    kinds.push(Kind { sec: *sec, prep: Prepared::new(law, sec) });
+                    kinds.push(Kind { sec: *sec, prep: Prepared::new(&laws[g.family as usize], sec) });
                     kind_of.insert(key, (kinds.len() - 1) as u16);
                     (kinds.len() - 1) as u16
                 }
                 None => NO_KIND,
             };
         }
-        let hw = if [Family::Bed, Family::Head, Family::Base, Family::Top].iter().any(|&f| laws.of(f).is_softening()) { 5 } else { 3 };
+        let hw = if laws.iter().any(|l| l.is_softening()) { 5 } else { 3 };
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
@@ -492,7 +492,7 @@ impl<'a> Integrator<'a> {
             geo,
             normals,
             kinds,
-            laws: [Family::Bed, Family::Head, Family::Base, Family::Top].map(|f| *laws.of(f)),
+            laws,
             incidence_start,
             incidence,
             inv_mass,

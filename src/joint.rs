@@ -241,27 +241,16 @@ fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 // Active sets tried, smallest first: single faces, then edges, then corners
 // (1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14; bit j: face j), in `map`.
 
-/// Solves the k x k system (k <= 3) in place by Gaussian elimination with partial pivoting;
-/// returns false if it is singular relative to its scale.
+/// The factors of the leading k x k block of `g` (k <= 3, overwritten), None if it is
+/// singular relative to its scale ([`factor_k`]).
 #[inline(always)]
-fn solve_small(g: &mut [[f64; 3]; 3], r: &mut [f64; 3], k: usize) -> bool {
-    // one unrolled copy per size: the return mapping calls this up to 14 times per plastic update
+fn factor_small(g: &mut [[f64; 3]; 3], k: usize) -> Option<Lu> {
+    // one unrolled copy per size: the return mapping eliminates up to 14 sets per plastic update
     match k {
-        1 => solve_k::<1>(g, r),
-        2 => solve_k::<2>(g, r),
-        3 => solve_k::<3>(g, r),
+        1 => factor_k::<1>(g),
+        2 => factor_k::<2>(g),
+        3 => factor_k::<3>(g),
         _ => unreachable!("at most 3 active faces"),
-    }
-}
-
-#[inline(always)]
-fn solve_k<const K: usize>(g: &mut [[f64; 3]; 3], r: &mut [f64; 3]) -> bool {
-    match factor_k::<K>(g) {
-        Some(lu) => {
-            lu.apply_k::<K>(r);
-            true
-        }
-        None => false,
     }
 }
 
@@ -375,11 +364,7 @@ impl Prepared {
             if mask.count_ones() <= 3 {
                 let (act, n) = faces_of(mask);
                 let mut g = set_matrix(&g_all, &act[..n]);
-                *lu = match n {
-                    1 => factor_k::<1>(&mut g),
-                    2 => factor_k::<2>(&mut g),
-                    _ => factor_k::<3>(&mut g),
-                };
+                *lu = factor_small(&mut g, n);
             }
         }
         Prepared { d, dm, g_all, lu }
@@ -657,7 +642,7 @@ fn attempt<const MASK: u8>(
             }
             None => false,
         },
-        None => solve_small(&mut set_matrix(g_all, act), &mut r, n),
+        None => factor_small(&mut set_matrix(g_all, act), n).map(|lu| lu.apply(&mut r, n)).is_some(),
     };
     if !solved {
         return None;
@@ -729,16 +714,16 @@ fn active_tangent(
     g: &[[f64; 3]; 3],
 ) -> Option<[[f64; 3]; 3]> {
     let mut tangent = [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
+    // G factorized once for the three columns (the numbers of eliminating it with each)
+    let mut g = *g;
+    let lu = factor_small(&mut g, act.len())?;
     for col in 0..3 {
         // G^-1 (A D)[:, col]
-        let mut g1 = *g;
         let mut rhs = [0.0; 3];
         for (p, &i) in act.iter().enumerate() {
             rhs[p] = faces.a(i)[col] * d[col];
         }
-        if !solve_small(&mut g1, &mut rhs, act.len()) {
-            return None;
-        }
+        lu.apply(&mut rhs, act.len());
         for row in 0..3 {
             for (p, &j) in act.iter().enumerate() {
                 tangent[row][col] -= dm[j][row] * rhs[p];
