@@ -15,8 +15,10 @@ use faer::mat::{MatMut, MatRef};
 use faer::perm::PermRef;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
+use faer::sparse::utils::permute_self_adjoint_to_unsorted;
+use faer::dyn_stack::StackReq;
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, LuSymbolicParams, NumericLu, SymbolicLu};
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
@@ -27,8 +29,9 @@ pub struct SparseLu {
     n: usize,
     pattern: SymbolicSparseColMat<usize>,
     values: Vec<f64>,
-    /// slot of the transposed entry of every slot (None: the pattern is not symmetric)
-    transpose: Option<Vec<usize>>,
+    /// the slots of every pair of transposed entries off the diagonal, each pair once (None:
+    /// the pattern is not symmetric)
+    transpose: Option<Vec<(u32, u32)>>,
     lu: Option<LuParts>,
     llt: Option<LltParts>,
     dense: Option<DenseParts>,
@@ -69,12 +72,23 @@ struct LuParts {
     solve_buf: MemBuffer,
 }
 
+/// The Cholesky of the matrix permuted once, at the symbolic analysis: faer's numeric
+/// factorization, given the ordering, would permute the matrix again at every call (4% of a
+/// 33-block wall's analysis), and its solve the right-hand side.
 struct LltParts {
     symbolic: SymbolicCholesky<usize>,
-    /// the lower triangle of the pattern, and where each of its values comes from
-    lower: SymbolicSparseColMat<usize>,
-    lower_src: Vec<usize>,
-    lower_values: Vec<f64>,
+    /// the permuted triangle that the factorization reads (`side`), and the slot of the
+    /// pattern each of its values comes from
+    permuted: SymbolicSparseColMat<usize>,
+    side: Side,
+    src: Vec<usize>,
+    permuted_values: Vec<f64>,
+    /// the fill-reducing ordering (entry i of the permuted matrix is entry `fwd[i]`) and its
+    /// inverse
+    fwd: Vec<usize>,
+    inv: Vec<usize>,
+    /// the permuted right-hand side of a solve
+    x: Vec<f64>,
     l_values: Vec<f64>,
     factor_buf: MemBuffer,
     solve_buf: MemBuffer,
@@ -122,11 +136,13 @@ impl SparseLu {
         }
         let nnz = row_idx.len();
         let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        // the slot of the transposed entry of every slot; None if the pattern is not symmetric
+        // the slots of the transposed pairs; None if the pattern is not symmetric (or has more
+        // slots than 32 bits index, where a matrix could not be factorized anyway)
         let p = pattern.as_ref();
         let transpose = (0..n)
-            .flat_map(|c| (p.col_ptr()[c]..p.col_ptr()[c + 1]).map(move |s| (p.row_idx()[s], c)))
-            .map(|(r, c)| slot_of(p, c, r))
+            .flat_map(|c| (p.col_ptr()[c]..p.col_ptr()[c + 1]).map(move |s| (s, p.row_idx()[s], c)))
+            .filter(|&(_, r, c)| r > c)
+            .map(|(s, r, c)| Some((u32::try_from(s).ok()?, u32::try_from(slot_of(p, c, r)?).ok()?)))
             .collect();
         let this = SparseLu {
             n,
@@ -190,33 +206,66 @@ impl SparseLu {
                 Some((perm, inv)) => SymmetricOrdering::Custom(PermRef::new_checked(perm, inv, n)),
                 None => SymmetricOrdering::Amd,
             };
-            let symbolic = factorize_symbolic_cholesky(
-                lower.as_ref(),
+            let failed = |e: faer::sparse::FaerError| Error::Convergence(format!("sparse Cholesky symbolic analysis failed: {e:?}"));
+            let ordered = factorize_symbolic_cholesky(lower.as_ref(), Side::Lower, ordering, CholeskySymbolicParams::default())
+                .map_err(failed)?;
+            // the matrix permuted as faer's factorization would permute it (the same function:
+            // the same entries in the same order, so the same factors bit for bit), once, with
+            // each value's source slot carried in place of the value
+            let simplicial = matches!(ordered.raw(), SymbolicCholeskyRaw::Simplicial(_));
+            let side = if simplicial { Side::Upper } else { Side::Lower };
+            let (fwd, inv): (Vec<usize>, Vec<usize>) = match ordered.perm() {
+                Some(p) => (p.arrays().0.to_vec(), p.arrays().1.to_vec()),
+                None => ((0..n).collect(), (0..n).collect()),
+            };
+            let nnz = lower_src.len();
+            let slots: Vec<f64> = lower_src.iter().map(|&s| s as f64).collect();
+            let (mut new_val, mut new_col_ptr, mut new_row_idx) = (vec![0.0; nnz], vec![0usize; n + 1], vec![0usize; nnz]);
+            let mut buf = MemBuffer::try_new(StackReq::new::<usize>(n)).map_err(|_| out_of_memory(n, "ordering"))?;
+            permute_self_adjoint_to_unsorted(
+                &mut new_val,
+                &mut new_col_ptr,
+                &mut new_row_idx,
+                SparseColMatRef::new(lower.as_ref(), &slots),
+                PermRef::new_checked(&fwd, &inv, n),
                 Side::Lower,
-                ordering,
-                CholeskySymbolicParams::default(),
+                side,
+                MemStack::new(&mut buf),
+            );
+            let kept = new_col_ptr[n];
+            new_row_idx.truncate(kept);
+            let src: Vec<usize> = new_val[..kept].iter().map(|&v| v as usize).collect();
+            let permuted = SymbolicSparseColMat::new_unsorted_checked(n, n, new_col_ptr, None, new_row_idx);
+            // the same analysis of the permuted matrix, with faer's choice of method above
+            let threshold = if simplicial { SupernodalThreshold::FORCE_SIMPLICIAL } else { SupernodalThreshold::FORCE_SUPERNODAL };
+            let symbolic = factorize_symbolic_cholesky(
+                permuted.as_ref(),
+                side,
+                SymmetricOrdering::Identity,
+                CholeskySymbolicParams { supernodal_flop_ratio_threshold: threshold, ..Default::default() },
             )
-            .map_err(|e| Error::Convergence(format!("sparse Cholesky symbolic analysis failed: {e:?}")))?;
+            .map_err(failed)?;
             let factor_buf =
                 MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()))
                     .map_err(|_| out_of_memory(n, "factorization"))?;
             let solve_buf = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
                 .map_err(|_| out_of_memory(n, "solve"))?;
             let l_values = vec![0.0; symbolic.len_val()];
-            let lower_values = vec![0.0; lower_src.len()];
-            self.llt = Some(LltParts { symbolic, lower, lower_src, lower_values, l_values, factor_buf, solve_buf });
+            let permuted_values = vec![0.0; src.len()];
+            self.llt = Some(LltParts { symbolic, permuted, side, src, permuted_values, fwd, inv, x: vec![0.0; n], l_values, factor_buf, solve_buf });
         }
         Ok(())
     }
 
     /// Whether the values are symmetric to round-off: each pair within 1e-12 of the largest
-    /// entry (assembly leaves entries that cancel at about 1e-16 of it, on one side only).
-    fn symmetric(&self) -> bool {
+    /// entry (assembly leaves entries that cancel at about 1e-16 of it, on one side only);
+    /// `largest`: the largest magnitude of the values.
+    fn symmetric(&self, largest: f64) -> bool {
         match &self.transpose {
             None => false,
             Some(t) => {
-                let tol = 1e-12 * self.values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-                t.iter().enumerate().all(|(s, &ts)| (self.values[s] - self.values[ts]).abs() <= tol)
+                let (v, tol) = (&self.values, 1e-12 * largest);
+                t.iter().all(|&(s, ts)| (v[s as usize] - v[ts as usize]).abs() <= tol)
             }
         }
     }
@@ -240,25 +289,27 @@ impl SparseLu {
     /// Factorizes the current values: Cholesky if they are symmetric and positive definite,
     /// else LU with partial pivoting; each reuses its symbolic analysis.
     pub fn factorize(&mut self) -> Result<()> {
-        if self.values.iter().any(|v| !v.is_finite()) {
+        // the largest magnitude, and whether every value is finite, in one pass
+        let (largest, finite) = self.values.iter().fold((0.0_f64, true), |(m, ok), v| (m.max(v.abs()), ok && v.is_finite()));
+        if !finite {
             return Err(Error::Convergence(
                 "the tangent matrix has a non-finite entry".into(),
             ));
         }
         self.factorized = Factor::None;
-        if self.symmetric() {
+        if self.symmetric(largest) {
             self.ensure_llt()?;
             let parts = self.llt.as_mut().unwrap();
-            for (v, &s) in parts.lower_values.iter_mut().zip(&parts.lower_src) {
+            for (v, &s) in parts.permuted_values.iter_mut().zip(&parts.src) {
                 *v = self.values[s];
             }
-            let mat = SparseColMatRef::new(parts.lower.as_ref(), &parts.lower_values);
+            let mat = SparseColMatRef::new(parts.permuted.as_ref(), &parts.permuted_values);
             let ok = parts
                 .symbolic
                 .factorize_numeric_llt(
                     &mut parts.l_values,
                     mat,
-                    Side::Lower,
+                    parts.side,
                     LltRegularization::default(),
                     Par::Seq,
                     MemStack::new(&mut parts.factor_buf),
@@ -335,8 +386,17 @@ impl SparseLu {
             }
             Factor::Llt => {
                 let parts = self.llt.as_mut().unwrap();
+                // permuted, solved and permuted back as faer's solve would (copies only)
+                let (x, m) = (&mut parts.x, m.col_mut(0).try_as_col_major_mut().unwrap().as_slice_mut());
+                for (x, &f) in x.iter_mut().zip(&parts.fwd) {
+                    *x = m[f];
+                }
                 let llt = LltRef::new(&parts.symbolic, &parts.l_values);
-                llt.solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut parts.solve_buf));
+                let xm = MatMut::from_column_major_slice_mut(x, self.n, 1);
+                llt.solve_in_place_with_conj(Conj::No, xm, Par::Seq, MemStack::new(&mut parts.solve_buf));
+                for (m, &i) in m.iter_mut().zip(&parts.inv) {
+                    *m = x[i];
+                }
             }
         }
         if rhs.iter().any(|v| !v.is_finite()) {
