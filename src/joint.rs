@@ -371,6 +371,67 @@ impl Prepared {
     }
 }
 
+/// The kinds of many joints: the distinct pairs of law and section, each with its
+/// [`Prepared`] constants, and the kind of each joint. A wall of equal blocks has a handful of
+/// kinds however many joints it has.
+#[derive(Debug, Clone, Default)]
+pub struct Kinds {
+    table: Vec<(Section, Prepared)>,
+    of: Vec<u16>,
+}
+
+impl Kinds {
+    /// The kind of a joint whose pair did not fit in the table: mapped without prepared
+    /// constants (the same numbers, computed per mapping).
+    pub const NONE: u16 = u16::MAX;
+
+    /// The kinds of `joints`, each given as (an identifier of its law, the law, its section):
+    /// equal identifiers must mean equal laws, sections are compared bit for bit. At most `max`
+    /// kinds (each 2.6 kB) are kept, at most 65,535.
+    pub fn new<'a>(joints: impl IntoIterator<Item = (u8, &'a JointLaw, &'a Section)>, max: usize) -> Self {
+        let max = max.min(Self::NONE as usize);
+        let (mut table, mut of, mut index) = (vec![], vec![], std::collections::HashMap::new());
+        for (id, law, sec) in joints {
+            let key = (id, [sec.area.to_bits(), sec.inertia.to_bits(), sec.length.to_bits()]);
+            of.push(match index.get(&key) {
+                Some(&i) => i,
+                None if table.len() < max => {
+                    table.push((*sec, Prepared::new(law, sec)));
+                    index.insert(key, (table.len() - 1) as u16);
+                    (table.len() - 1) as u16
+                }
+                None => Self::NONE,
+            });
+        }
+        Kinds { table, of }
+    }
+
+    /// The kind of joint `k` ([`Kinds::NONE`] if not in the table).
+    pub fn kind(&self, k: usize) -> u16 {
+        self.of[k]
+    }
+
+    /// The section and constants of a kind, if it is in the table.
+    pub fn get(&self, kind: u16) -> Option<&(Section, Prepared)> {
+        self.table.get(kind as usize)
+    }
+
+    /// The prepared constants of joint `k`, if its kind is in the table.
+    pub fn prepared(&self, k: usize) -> Option<&Prepared> {
+        self.get(self.of[k]).map(|(_, p)| p)
+    }
+
+    /// The number of kinds in the table.
+    pub fn len(&self) -> usize {
+        self.table.len()
+    }
+
+    /// Whether the table is empty.
+    pub fn is_empty(&self) -> bool {
+        self.table.is_empty()
+    }
+}
+
 /// D = diag(kN A, kT A, kN I).
 #[inline(always)]
 fn stiffness(law: &JointLaw, sec: &Section) -> [f64; 3] {
@@ -424,7 +485,42 @@ fn set_matrix(g_all: &[[f64; 4]; 4], act: &[usize]) -> [[f64; 3]; 3] {
 /// The return mapping: forces, updated history, state flags and consistent tangent for the total
 /// jumps `e`, starting from the committed history `committed`.
 pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState) -> Response {
-    map(law, sec, None, e, committed, true, 0).0
+    map(law, sec, None, e, committed, true, 0, false).0
+}
+
+/// How [`return_map_with`] maps. The default is [`return_map`]'s: no prepared constants, no
+/// warm set, the tangent.
+#[derive(Debug, Clone, Copy)]
+pub struct MapOptions<'a> {
+    /// the constants of the law on the section (`Prepared::new(law, sec)`), or None to compute
+    /// them here: the same numbers
+    pub prepared: Option<&'a Prepared>,
+    /// an active set to try first (bit j: face j; 0: none), e.g. the one the joint ended on at
+    /// the last evaluation
+    pub warm: u8,
+    /// take the warm set only with a margin: every multiplier and every inactive face's value
+    /// beyond a millionth of the force's scale (a million times the tolerance of the test). The
+    /// set is then the one the ordered enumeration finds (the return is unique, and a set off
+    /// it by such margins is not near another), so that the force, history, flags and tangent
+    /// are those of [`return_map`] bit for bit. Without it the warm set is taken on the ordered
+    /// enumeration's own test, which can choose another set at a tie (a face reached with a
+    /// zero multiplier): the same force and history to rounding, but another tangent.
+    pub strict: bool,
+    /// compute the consistent tangent (left zero otherwise)
+    pub tangent: bool,
+}
+
+impl Default for MapOptions<'_> {
+    fn default() -> Self {
+        MapOptions { prepared: None, warm: 0, strict: false, tangent: true }
+    }
+}
+
+/// The return mapping with [`MapOptions`]; also the active set accepted (bit j: face j; 0:
+/// elastic, or the apex of degenerate data).
+#[inline]
+pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, opts: MapOptions) -> (Response, u8) {
+    map(law, sec, opts.prepared, e, committed, opts.tangent, opts.warm, opts.strict)
 }
 
 /// The same return mapping as [`return_map`] without its consistent tangent
@@ -432,7 +528,7 @@ pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointS
 /// Forces, history and flags are those of [`return_map`], bit for bit.
 #[inline]
 pub fn return_map_forces(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState) -> Response {
-    map(law, sec, None, e, committed, false, 0).0
+    map(law, sec, None, e, committed, false, 0, false).0
 }
 
 /// [`return_map_forces`] trying the active set `warm` first (bit j: face j; 0: none), e.g.
@@ -442,7 +538,7 @@ pub fn return_map_forces(law: &JointLaw, sec: &Section, e: [f64; 3], committed: 
 /// [`return_map_forces`] up to rounding: the Kuhn-Tucker point is unique (see [`map`]).
 #[inline]
 pub fn return_map_forces_warm(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, warm: u8) -> (Response, u8) {
-    map(law, sec, None, e, committed, false, warm)
+    map(law, sec, None, e, committed, false, warm, false)
 }
 
 /// [`return_map_forces_warm`] with the constants of `law` on `sec` computed beforehand
@@ -457,7 +553,7 @@ pub fn return_map_forces_prepared(
     committed: &JointState,
     warm: u8,
 ) -> (Response, u8) {
-    map(law, sec, Some(prep), e, committed, false, warm)
+    map(law, sec, Some(prep), e, committed, false, warm, false)
 }
 
 /// The return mapping, with its tangent if `want_tangent`, trying the active set `warm` first
@@ -485,6 +581,7 @@ fn map(
     committed: &JointState,
     want_tangent: bool,
     warm: u8,
+    strict: bool,
 ) -> (Response, u8) {
     let d = match prep {
         Some(p) => p.d,
@@ -556,8 +653,8 @@ fn map(
     // eliminations); one exit for all, so that `finish` is inlined once
     let accepted = 'found: {
         macro_rules! try_set {
-            ($mask:literal) => {
-                if let Some(a) = attempt::<$mask>(&faces, prep, &trial, &f_trial, g_all, dm, tol) {
+            ($mask:literal, $strict:expr) => {
+                if let Some(a) = attempt::<$mask>(&faces, prep, &trial, &f_trial, g_all, dm, tol, $strict) {
                     break 'found Some((a, $mask));
                 }
             };
@@ -565,7 +662,7 @@ fn map(
         macro_rules! warm_sets {
             ($($mask:literal),*) => {
                 match warm {
-                    $($mask => try_set!($mask),)*
+                    $($mask => try_set!($mask, strict),)*
                     _ => {}
                 }
             };
@@ -573,12 +670,13 @@ fn map(
         warm_sets!(1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14);
         macro_rules! sets {
             ($($mask:literal),*) => {$(
-                if warm != $mask {
-                    try_set!($mask);
+                if strict || warm != $mask {
+                    try_set!($mask, false);
                 }
             )*};
         }
-        // (the warm set, if tried, has failed: it would again)
+        // (the warm set, if tried, has failed: it would again, unless it failed only the
+        // margins of a strict test)
         sets!(1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14);
         None
     };
@@ -617,6 +715,7 @@ fn attempt<const MASK: u8>(
     g_all: &[[f64; 4]; 4],
     dm: &[[f64; 3]; 4],
     tol: f64,
+    strict: bool,
 ) -> Option<Attempt> {
     let mask = MASK;
     if mask.count_ones() == 1 {
@@ -651,6 +750,12 @@ fn attempt<const MASK: u8>(
     if r[..n].iter().any(|&x| x < -gtol) {
         return None;
     }
+    // the strict test's margin, in newtons: each multiplier moves its own face's value by at
+    // least this much (r_j a_j . D m_j), every other face is at least this far inside
+    let margin = STRICT_MARGIN * tol;
+    if strict && act.iter().enumerate().any(|(p, &j)| r[p] * g_all[j][j] < margin) {
+        return None;
+    }
     let mut s = *trial;
     let mut slip = [0.0; 3];
     // plastic opening (cut-off and rocking faces) and slip increment (Coulomb faces)
@@ -666,15 +771,20 @@ fn attempt<const MASK: u8>(
     }
     // every other face satisfied (a plain loop: the test of every face is cheap, and an
     // iterator chain here is not always inlined)
+    let limit = if strict { -margin } else { tol };
     let mut violated = false;
     for j in 0..4 {
-        violated |= mask & (1 << j) == 0 && faces.f(j, &s) > tol;
+        violated |= mask & (1 << j) == 0 && faces.f(j, &s) > limit;
     }
     if violated {
         return None;
     }
     Some(Attempt { s, slip, dk, act: act_buf, n })
 }
+
+/// The margins of a strict warm set ([`MapOptions::strict`]), in units of the Kuhn-Tucker
+/// test's tolerance (1e-12 of the force's scale).
+const STRICT_MARGIN: f64 = 1e6;
 
 /// The consistent tangent of the accepted set `mask`.
 fn set_tangent(
@@ -804,10 +914,10 @@ mod tests {
                     }
                 }
                 let committed = JointState { plastic: [1e-6 * r(), 1e-6 * r(), 0.0], ..JointState::default() };
-                let (cold, set) = map(law, &sec, None, e, &committed, false, 0);
+                let (cold, set) = map(law, &sec, None, e, &committed, false, 0, false);
                 let scale = cold.force[0].abs() + cold.force[1].abs() + cold.force[2].abs() * 5.0 + 1.0;
                 for warm in 1..15u8 {
-                    let (w, wset) = map(law, &sec, None, e, &committed, false, warm);
+                    let (w, wset) = map(law, &sec, None, e, &committed, false, warm, false);
                     // the prepared constants change nothing, bit for bit
                     let (wp, wpset) = return_map_forces_prepared(law, &sec, &prep, e, &committed, warm);
                     assert_eq!((wp.force.map(f64::to_bits), wp.state.plastic.map(f64::to_bits)), (w.force.map(f64::to_bits), w.state.plastic.map(f64::to_bits)));
@@ -823,5 +933,58 @@ mod tests {
             }
         }
         println!("worst relative differences: force {:e} plastic {:e} opening/slip {:e}", worst[0], worst[1], worst[2]);
+    }
+
+    /// The bits of everything a mapping gives: force, history, flags, tangent and set.
+    fn bits(r: &Response, set: u8) -> Vec<u64> {
+        let mut v: Vec<u64> = r.force.iter().chain(&r.state.plastic).chain(r.tangent.iter().flatten()).map(|x| x.to_bits()).collect();
+        v.extend([r.state.opening.to_bits(), r.state.slip.to_bits(), r.state.broken as u64, r.flags as u64, set as u64]);
+        v
+    }
+
+    #[test]
+    fn a_strict_warm_set_with_prepared_constants_gives_the_ordered_enumerations_bits_tangent_included() {
+        let base = JointLaw { friction: 0.65, ..JointLaw::default() };
+        let laws = [
+            base,
+            JointLaw { dilatancy: 0.65, ..base },
+            JointLaw { dilatancy: 0.3, ..base },
+            JointLaw { cohesion: 2e4, tensile_strength: 1e4, dilatancy: 0.2, ..base },
+            JointLaw { cohesion: 2e4, tensile_strength: 1e4, fracture_energy_tension: 10.0, fracture_energy_shear: 50.0, ..base },
+            JointLaw { cohesion: 0.65e4, tensile_strength: 1e4, dilatancy: 0.65, ..base },
+            JointLaw { shear_stiffness: 4e9, dilatancy: 0.4, ..base },
+        ];
+        let sec = Section::new(0.4, 1.0);
+        let mut r = rng(11);
+        for law in &laws {
+            let kinds = Kinds::new([(0, law, &sec)], 1);
+            let prep = kinds.prepared(0).unwrap();
+            for _ in 0..20000 {
+                let mut e = [1e-5 * r(), 1e-5 * r(), 5e-5 * r()];
+                for x in e.iter_mut() {
+                    if r() > 0.8 {
+                        *x = 0.0;
+                    }
+                }
+                let committed = JointState { plastic: [1e-6 * r(), 1e-6 * r(), 0.0], ..JointState::default() };
+                let (cold, set) = return_map_with(law, &sec, e, &committed, MapOptions::default());
+                assert_eq!(bits(&cold, set), bits(&return_map(law, &sec, e, &committed), set));
+                for warm in 0..15u8 {
+                    for prepared in [None, Some(prep)] {
+                        let opts = MapOptions { prepared, warm, strict: true, tangent: true };
+                        let (w, wset) = return_map_with(law, &sec, e, &committed, opts);
+                        assert_eq!(bits(&w, wset), bits(&cold, set), "{law:?} e {e:?} warm {warm}");
+                        // without the tangent: the same force, history, flags and set
+                        let (f, fset) = return_map_with(law, &sec, e, &committed, MapOptions { tangent: false, ..opts });
+                        assert_eq!(bits(&Response { tangent: cold.tangent, ..f }, fset), bits(&cold, set));
+                    }
+                    // the set found, given back as the warm set without margins, is taken again
+                    if warm == set && set != 0 {
+                        let (w, wset) = return_map_with(law, &sec, e, &committed, MapOptions { warm, ..MapOptions::default() });
+                        assert_eq!(bits(&w, wset), bits(&cold, set));
+                    }
+                }
+            }
+        }
     }
 }

@@ -16,7 +16,7 @@
 use crate::error::{non_negative, positive, Error, Result};
 use crate::geometry::{Rect, MAX_BLOCKS};
 use crate::interface::{detect, BlockKind, Family, Interface};
-use crate::joint::{JointLaw, Section};
+use crate::joint::{JointLaw, Kinds, Section};
 
 /// The joint law of each family; a family without its own law uses `default`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -420,6 +420,11 @@ impl Model {
     /// The joint law of interface `k`.
     pub fn law(&self, k: usize) -> &JointLaw {
         self.laws.of(self.interfaces[k].family)
+    }
+    /// The kinds of the interfaces (the distinct pairs of law and section, at most `max` in
+    /// the table), each with the return mapping's constants.
+    pub fn joint_kinds(&self, max: usize) -> Kinds {
+        Kinds::new(self.interfaces.iter().zip(&self.sections).map(|(it, s)| (it.family as u8, self.laws.of(it.family), s)), max)
     }
     pub fn laws(&self) -> &JointLaws {
         &self.laws

@@ -18,7 +18,7 @@
 //! Joint histories are committed only at converged steps, so a failed step leaves no trace.
 
 use crate::error::{check_steps, Error};
-use crate::joint::{return_map, JointState};
+use crate::joint::{return_map_with, JointState, Kinds, MapOptions};
 use crate::linalg::SparseLu;
 use crate::model::{LiveLoad, Model};
 use crate::results::{Results, Status};
@@ -132,7 +132,15 @@ struct Solver<'a, 'm> {
     trial: Vec<JointState>,
     forces: Vec<[f64; 3]>,
     flags: Vec<u8>,
+    /// the joints' kinds, with the return mapping's constants of each
+    kinds: Kinds,
+    /// the active set each joint's return mapping accepted at the last evaluation, tried first
+    /// (with margins) at the next
+    sets: Vec<u8>,
+    /// the joint tangents, of the last evaluation if `tangents_current`: they are computed
+    /// only when a Newton iteration needs them, not at every trial of the line search
     tangents: Vec<[[f64; 3]; 3]>,
+    tangents_current: bool,
     fint: Vec<f64>,
     rhs: Vec<f64>,
     load_sys: Option<(SparseLu, Vec<[u32; 36]>)>,
@@ -158,6 +166,10 @@ struct Solver<'a, 'm> {
 }
 
 const NONE: u32 = u32::MAX;
+
+/// The largest number of joint kinds (distinct pairs of law and section, 2.6 kB each) whose
+/// return-mapping constants the solver keeps; the joints of further kinds are mapped without.
+const MAX_KINDS: usize = 256;
 
 /// A converged state of the load-control path.
 struct Saved {
@@ -299,7 +311,10 @@ impl<'a, 'm> Solver<'a, 'm> {
             trial: vec![JointState::default(); m],
             forces: vec![[0.0; 3]; m],
             flags: vec![0; m],
+            kinds: model.joint_kinds(MAX_KINDS),
+            sets: vec![0; m],
             tangents: vec![[[0.0; 3]; 3]; m],
+            tangents_current: false,
             fint: vec![0.0; 3 * nb],
             rhs: vec![0.0; n_eq],
             load_sys: None,
@@ -394,13 +409,33 @@ impl<'a, 'm> Solver<'a, 'm> {
         let model = self.model;
         for (k, it) in model.interfaces().iter().enumerate() {
             let e = it.jumps(&self.u);
-            let r = return_map(model.law(k), &model.sections()[k], e, &self.committed[k]);
+            // the last set first, taken only with margins: the numbers of the ordered
+            // enumeration, bit for bit (see `MapOptions::strict`)
+            let opts = MapOptions { prepared: self.kinds.prepared(k), warm: self.sets[k], strict: true, tangent: false };
+            let (r, set) = return_map_with(model.law(k), &model.sections()[k], e, &self.committed[k], opts);
             self.forces[k] = r.force;
             self.trial[k] = r.state;
             self.flags[k] = r.flags;
-            self.tangents[k] = r.tangent;
+            self.sets[k] = set;
         }
+        self.tangents_current = false;
         model.internal_forces(&self.forces, &mut self.fint);
+    }
+
+    /// The joint tangents of the last evaluation, if not computed yet: each joint's mapping
+    /// again, its accepted set tried first (taken at once: the same test on the same numbers),
+    /// with the tangent.
+    fn update_tangents(&mut self) {
+        if self.tangents_current {
+            return;
+        }
+        let model = self.model;
+        for (k, it) in model.interfaces().iter().enumerate() {
+            let e = it.jumps(&self.u);
+            let opts = MapOptions { prepared: self.kinds.prepared(k), warm: self.sets[k], strict: false, tangent: true };
+            self.tangents[k] = return_map_with(model.law(k), &model.sections()[k], e, &self.committed[k], opts).0.tangent;
+        }
+        self.tangents_current = true;
     }
 
     /// Residual on the equations (external minus internal); returns its norm and the norm of
@@ -480,6 +515,7 @@ impl<'a, 'm> Solver<'a, 'm> {
     /// those of the factorization about to be made. The law is piecewise linear, so the last
     /// iteration of a step often sees the tangents of the one before.
     fn reuse_factorization(&mut self, disp: bool, eps: f64) -> bool {
+        self.update_tangents();
         let key = Some((disp, eps.to_bits()));
         if self.fact_key == key && self.fact_tangents == self.tangents {
             return true;
@@ -1344,6 +1380,7 @@ pub mod stages {
         /// The tangent's values into the sparse matrix.
         pub fn assemble(&mut self) {
             let s = &mut self.0;
+            s.update_tangents();
             let (sys, slots) = s.load_sys.as_mut().unwrap();
             Solver::assemble(s.model, NEWTON_STABILIZATION, &s.tangents, sys, slots);
         }
