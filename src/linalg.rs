@@ -218,29 +218,36 @@ impl SparseLu {
                 Some(p) => (p.arrays().0.to_vec(), p.arrays().1.to_vec()),
                 None => ((0..n).collect(), (0..n).collect()),
             };
-            let nnz = lower_src.len();
+            // `to`: the lower triangle permuted into triangle `to`, with each value's source
+            // slot in place of the value
             let slots: Vec<f64> = lower_src.iter().map(|&s| s as f64).collect();
-            let (mut new_val, mut new_col_ptr, mut new_row_idx) = (vec![0.0; nnz], vec![0usize; n + 1], vec![0usize; nnz]);
-            let mut buf = MemBuffer::try_new(StackReq::new::<usize>(n)).map_err(|_| out_of_memory(n, "ordering"))?;
-            permute_self_adjoint_to_unsorted(
-                &mut new_val,
-                &mut new_col_ptr,
-                &mut new_row_idx,
-                SparseColMatRef::new(lower.as_ref(), &slots),
-                PermRef::new_checked(&fwd, &inv, n),
-                Side::Lower,
-                side,
-                MemStack::new(&mut buf),
-            );
-            let kept = new_col_ptr[n];
-            new_row_idx.truncate(kept);
-            let src: Vec<usize> = new_val[..kept].iter().map(|&v| v as usize).collect();
-            let permuted = SymbolicSparseColMat::new_unsorted_checked(n, n, new_col_ptr, None, new_row_idx);
-            // the same analysis of the permuted matrix, with faer's choice of method above
+            let permute = |to: Side| -> Result<(SymbolicSparseColMat<usize>, Vec<usize>)> {
+                let nnz = slots.len();
+                let (mut val, mut col_ptr, mut row_idx) = (vec![0.0; nnz], vec![0usize; n + 1], vec![0usize; nnz]);
+                let mut buf = MemBuffer::try_new(StackReq::new::<usize>(n)).map_err(|_| out_of_memory(n, "ordering"))?;
+                permute_self_adjoint_to_unsorted(
+                    &mut val,
+                    &mut col_ptr,
+                    &mut row_idx,
+                    SparseColMatRef::new(lower.as_ref(), &slots),
+                    PermRef::new_checked(&fwd, &inv, n),
+                    Side::Lower,
+                    to,
+                    MemStack::new(&mut buf),
+                );
+                let kept = col_ptr[n];
+                row_idx.truncate(kept);
+                let src = val[..kept].iter().map(|&v| v as usize).collect();
+                Ok((SymbolicSparseColMat::new_unsorted_checked(n, n, col_ptr, None, row_idx), src))
+            };
+            let (permuted, src) = permute(side)?;
+            // the same analysis of the permuted matrix, with faer's choice of method above;
+            // with the identity ordering faer analyses the upper triangle as given
+            let upper = if side == Side::Upper { None } else { Some(permute(Side::Upper)?.0) };
             let threshold = if simplicial { SupernodalThreshold::FORCE_SIMPLICIAL } else { SupernodalThreshold::FORCE_SUPERNODAL };
             let symbolic = factorize_symbolic_cholesky(
-                permuted.as_ref(),
-                side,
+                upper.as_ref().unwrap_or(&permuted).as_ref(),
+                Side::Upper,
                 SymmetricOrdering::Identity,
                 CholeskySymbolicParams { supernodal_flop_ratio_threshold: threshold, ..Default::default() },
             )
