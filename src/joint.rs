@@ -516,8 +516,12 @@ impl Default for MapOptions<'_> {
     }
 }
 
-/// The return mapping with [`MapOptions`]; also the active set accepted (bit j: face j; 0:
-/// elastic, or the apex of degenerate data).
+/// The set that [`return_map_with`] reports where no active set satisfies the Kuhn-Tucker
+/// conditions (degenerate data) and the force is put at the apex of the domain.
+pub const APEX: u8 = 0x10;
+
+/// The return mapping with [`MapOptions`]; also the active set accepted (bit j: face j; 0: the
+/// update is elastic and the tangent D; [`APEX`]: no set, the apex).
 #[inline]
 pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, opts: MapOptions) -> (Response, u8) {
     map(law, sec, opts.prepared, e, committed, opts.tangent, opts.warm, opts.strict)
@@ -533,7 +537,7 @@ pub fn return_map_forces(law: &JointLaw, sec: &Section, e: [f64; 3], committed: 
 
 /// [`return_map_forces`] trying the active set `warm` first (bit j: face j; 0: none), e.g.
 /// the one this joint ended on at the previous time step; also gives the active set accepted
-/// (0 if the update is elastic). The warm set is accepted on the same Kuhn-Tucker test as in
+/// (0 if the update is elastic, [`APEX`] if no set was). The warm set is accepted on the same Kuhn-Tucker test as in
 /// the ordered enumeration, which follows if it fails. The force and history are those of
 /// [`return_map_forces`] up to rounding: the Kuhn-Tucker point is unique (see [`map`]).
 #[inline]
@@ -558,7 +562,7 @@ pub fn return_map_forces_prepared(
 
 /// The return mapping, with its tangent if `want_tangent`, trying the active set `warm` first
 /// if not 0, with the constants `prep` if given (computed here otherwise); also the active set
-/// accepted (0: elastic or none).
+/// accepted (0: elastic; [`APEX`]: none).
 ///
 /// Why any set passing the Kuhn-Tucker test gives the same force and history, whichever is
 /// tried first: the Coulomb flow `m_j = (tan psi, +-1, 0)` is `H a_j` scaled by `tan psi / mu`
@@ -691,7 +695,14 @@ fn map(
     } else {
         faces.b[2]
     };
-    (finish([n_apex, 0.0, 0.0], [0.0; 3], [0.0; 2], [[0.0; 3]; 3]), 0)
+    (finish([n_apex, 0.0, 0.0], [0.0; 3], [0.0; 2], [[0.0; 3]; 3]), APEX)
+}
+
+/// The elastic tangent D = diag(kN A, kT A, kN I) of `law` on `sec`: the tangent of an update
+/// that [`return_map_with`] reports elastic (set 0), the same numbers.
+pub fn elastic_tangent(law: &JointLaw, sec: &Section) -> [[f64; 3]; 3] {
+    let d = stiffness(law, sec);
+    [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]]
 }
 
 /// The return of one active set: the force, the Coulomb flow, the plastic (opening, slip)
@@ -969,6 +980,9 @@ mod tests {
                 let committed = JointState { plastic: [1e-6 * r(), 1e-6 * r(), 0.0], ..JointState::default() };
                 let (cold, set) = return_map_with(law, &sec, e, &committed, MapOptions::default());
                 assert_eq!(bits(&cold, set), bits(&return_map(law, &sec, e, &committed), set));
+                if set == 0 {
+                    assert_eq!(elastic_tangent(law, &sec), cold.tangent);
+                }
                 for warm in 0..15u8 {
                     for prepared in [None, Some(prep)] {
                         let opts = MapOptions { prepared, warm, strict: true, tangent: true };

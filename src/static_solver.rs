@@ -18,7 +18,7 @@
 //! Joint histories are committed only at converged steps, so a failed step leaves no trace.
 
 use crate::error::{check_steps, Error};
-use crate::joint::{return_map_with, JointState, Kinds, MapOptions};
+use crate::joint::{elastic_tangent, return_map_with, JointState, Kinds, MapOptions};
 use crate::linalg::SparseLu;
 use crate::model::{LiveLoad, Model};
 use crate::results::{Results, Status};
@@ -422,15 +422,19 @@ impl<'a, 'm> Solver<'a, 'm> {
         model.internal_forces(&self.forces, &mut self.fint);
     }
 
-    /// The joint tangents of the last evaluation, if not computed yet: each joint's mapping
-    /// again, its accepted set tried first (taken at once: the same test on the same numbers),
-    /// with the tangent.
+    /// The joint tangents of the last evaluation, if not computed yet: D where it was elastic,
+    /// elsewhere each joint's mapping again, its accepted set tried first (taken at once: the
+    /// same test on the same numbers), with the tangent.
     fn update_tangents(&mut self) {
         if self.tangents_current {
             return;
         }
         let model = self.model;
         for (k, it) in model.interfaces().iter().enumerate() {
+            if self.sets[k] == 0 {
+                self.tangents[k] = elastic_tangent(model.law(k), &model.sections()[k]);
+                continue;
+            }
             let e = it.jumps(&self.u);
             let opts = MapOptions { prepared: self.kinds.prepared(k), warm: self.sets[k], strict: false, tangent: true };
             self.tangents[k] = return_map_with(model.law(k), &model.sections()[k], e, &self.committed[k], opts).0.tangent;
@@ -473,19 +477,27 @@ impl<'a, 'm> Solver<'a, 'm> {
             dt[0][0] += eps * law.normal_stiffness * sec.area;
             dt[1][1] += eps * law.shear_stiffness * sec.area;
             dt[2][2] += eps * law.normal_stiffness * sec.inertia;
+            // B's third row is (0, 0, -1, 0, 0, 1) (`Interface::new`): its terms are formed as
+            // the negation, the value and nothing, the numbers of the products (x * -1 == -x,
+            // x * 1 == x, and a zero term leaves a non-zero sum as it is) for a third fewer
+            debug_assert_eq!(b[2], [0.0, 0.0, -1.0, 0.0, 0.0, 1.0]);
+            let third = |c: usize, x: f64, y: f64| match c {
+                2 => x - y,
+                5 => x + y,
+                _ => x,
+            };
             // DB = D_t B (3 x 6)
             let mut db = [[0.0; 6]; 3];
             for r in 0..3 {
                 for c in 0..6 {
-                    db[r][c] = dt[r][0] * b[0][c] + dt[r][1] * b[1][c] + dt[r][2] * b[2][c];
+                    db[r][c] = third(c, dt[r][0] * b[0][c] + dt[r][1] * b[1][c], dt[r][2]);
                 }
             }
             for i in 0..6 {
                 for j in 0..6 {
                     let s = sl[6 * i + j];
                     if s != NONE {
-                        vals[s as usize] +=
-                            b[0][i] * db[0][j] + b[1][i] * db[1][j] + b[2][i] * db[2][j];
+                        vals[s as usize] += third(i, b[0][i] * db[0][j] + b[1][i] * db[1][j], db[2][j]);
                     }
                 }
             }
