@@ -537,8 +537,8 @@ pub fn return_map_forces(law: &JointLaw, sec: &Section, e: [f64; 3], committed: 
 
 /// [`return_map_forces`] trying the active set `warm` first (bit j: face j; 0: none), e.g.
 /// the one this joint ended on at the previous time step; also gives the active set accepted
-/// (0 if the update is elastic, [`APEX`] if no set was). The warm set is accepted on the same Kuhn-Tucker test as in
-/// the ordered enumeration, which follows if it fails. The force and history are those of
+/// (0 if the update is elastic, [`APEX`] if no set was). The warm set is accepted on the same
+/// Kuhn-Tucker test as in the ordered enumeration, which follows if it fails. The force and history are those of
 /// [`return_map_forces`] up to rounding: the Kuhn-Tucker point is unique (see [`map`]).
 #[inline]
 pub fn return_map_forces_warm(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, warm: u8) -> (Response, u8) {
