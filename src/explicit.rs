@@ -22,7 +22,7 @@
 
 use crate::error::{check_steps, Error};
 use crate::interface::{Family, Interface};
-use crate::joint::{return_map_forces_prepared, return_map_forces_warm, JointLaw, JointState, Prepared, Response, Section};
+use crate::joint::{return_map_forces_prepared, return_map_forces_warm, JointLaw, JointState, Prepared, Response, Section, APEX};
 use crate::model::{LiveLoad, Model};
 use crate::results::{Results, Status};
 use rayon::prelude::*;
@@ -423,7 +423,8 @@ impl Pass<'_> {
         let law = &self.laws[gk.family as usize];
         let st = &unpack(h, *br);
         let store = |(r, set): (Response, u8), h: &mut [f64], br: &mut bool, f: &mut [f64; 3], fl: &mut u8, ws: &mut u8| {
-            if set != 0 {
+            // an elastic update or the apex of degenerate data keeps the last set
+            if set != 0 && set != APEX {
                 *ws = set;
             }
             pack(&r.state, h);
