@@ -250,23 +250,17 @@ struct Geo {
 
 /// The bit of [`Geo::a`] and [`Geo::b`] set when the interface loop sums the block's forces.
 const SUMMED: u32 = 1 << 31;
+/// The block's index in [`Geo::a`] and [`Geo::b`].
+const BLOCK: u32 = SUMMED - 1;
 
 impl Geo {
     #[inline(always)]
     fn a(&self) -> usize {
-        (self.a & !SUMMED) as usize
+        (self.a & BLOCK) as usize
     }
     #[inline(always)]
     fn b(&self) -> usize {
-        (self.b & !SUMMED) as usize
-    }
-    #[inline(always)]
-    fn a_summed(&self) -> bool {
-        self.a & SUMMED != 0
-    }
-    #[inline(always)]
-    fn b_summed(&self) -> bool {
-        self.b & SUMMED != 0
+        (self.b & BLOCK) as usize
     }
 }
 
@@ -321,6 +315,24 @@ impl Shape {
         [dot(&cols[0]), dot(&cols[1]), dot(&cols[2])]
     }
 
+    /// What the force sums of blocks a and b add for an interface of this shape carrying `s`:
+    /// [`Shape::side_force`] of both sides in fewer operations, the same sums bit for bit. The
+    /// force on b is t = (n0 N + n1 T, n1 N - n0 T) and on a -t; the moments are r N + r' T -+
+    /// M. `side_force` also adds the products 0 M to the forces, and sums the negated products
+    /// for a: its terms differ only where they are zero, and then only in the sign of the zero
+    /// (rounding is symmetric, and x + 0 M == x for x != 0 when M is finite), which a force sum
+    /// does not see: it starts from +0.0, so it is never -0.0, and x + -0.0 == x + 0.0 == x for
+    /// every other x. With M not finite (0 M is NaN), `side_force` itself.
+    #[inline(always)]
+    fn side_sums(&self, s: &[f64; 3]) -> [[f64; 3]; 2] {
+        if !s[2].is_finite() {
+            return [self.side_force(s, 0), self.side_force(s, 1)];
+        }
+        let ([n0, n1], r) = (self.n, &self.r);
+        let t = [n0 * s[0] + n1 * s[1], n1 * s[0] - n0 * s[1]];
+        [[-t[0], -t[1], r[0] * s[0] + r[2] * s[1] - s[2]], [t[0], t[1], r[1] * s[0] + r[3] * s[1] + s[2]]]
+    }
+
     #[inline(always)]
     fn b_mat(&self) -> [[f64; 6]; 3] {
         let ([n0, n1], r) = (self.n, self.r);
@@ -353,43 +365,44 @@ fn pack(st: &JointState, h: &mut [f64]) {
     }
 }
 
-/// A part of the interface pass: the interfaces from `k0` (their histories, forces, flags,
-/// warm sets and, with finite rotations, generalized forces) and the force sums of the blocks
-/// from `b0`.
+/// A part of the interface pass: the interfaces from `k0` (their histories, forces, flags and
+/// warm sets), the force sums of the blocks from `b0`, and the terms from `t0`.
 struct Part<'s> {
     k0: usize,
     b0: usize,
+    t0: usize,
     hist: &'s mut [f64],
     broken: &'s mut [bool],
     forces: &'s mut [[f64; 3]],
     flags: &'s mut [u8],
     warm: &'s mut [u8],
-    /// empty with the linearized kinematics
-    fe: &'s mut [[f64; 6]],
+    /// the forces on the blocks whose sums the pass does not form, in the order of
+    /// [`Straddlers::slots`]
+    terms: &'s mut [[f64; 3]],
     f_int: &'s mut [f64],
 }
 
 impl<'s> Part<'s> {
-    /// The part before interface `k` and block `blk`, and the part from them.
-    fn split(self, (k, blk): (usize, usize), hw: usize) -> (Part<'s>, Part<'s>) {
+    /// The part before interface `k`, block `blk` and term `t`, and the part from them.
+    fn split(self, (k, blk, t): (usize, usize, usize), hw: usize) -> (Part<'s>, Part<'s>) {
         let (kk, bb) = (k - self.k0, blk - self.b0);
         let (h0, h1) = self.hist.split_at_mut(hw * kk);
         let (br0, br1) = self.broken.split_at_mut(kk);
         let (f0, f1) = self.forces.split_at_mut(kk);
         let (fl0, fl1) = self.flags.split_at_mut(kk);
         let (w0, w1) = self.warm.split_at_mut(kk);
-        let (fe0, fe1) = if self.fe.is_empty() { (&mut [][..], &mut [][..]) } else { self.fe.split_at_mut(kk) };
+        let (t0, t1) = self.terms.split_at_mut(t - self.t0);
         let (s0, s1) = self.f_int.split_at_mut(3 * bb);
         (
-            Part { k0: self.k0, b0: self.b0, hist: h0, broken: br0, forces: f0, flags: fl0, warm: w0, fe: fe0, f_int: s0 },
-            Part { k0: k, b0: blk, hist: h1, broken: br1, forces: f1, flags: fl1, warm: w1, fe: fe1, f_int: s1 },
+            Part { k0: self.k0, b0: self.b0, t0: self.t0, hist: h0, broken: br0, forces: f0, flags: fl0, warm: w0, terms: t0, f_int: s0 },
+            Part { k0: k, b0: blk, t0: t, hist: h1, broken: br1, forces: f1, flags: fl1, warm: w1, terms: t1, f_int: s1 },
         )
     }
 }
 
-/// Runs `work` on the parts of `p` cut at `bounds` (interface, block; the first and the last
+/// Runs `work` on the parts of `p` cut at `bounds` (interface, block, term; the first and the last
 /// are `p`'s own start and end), in parallel on the current rayon pool.
-fn run_parts<F: Fn(Part) + Sync>(p: Part, bounds: &[(usize, usize)], hw: usize, work: &F) {
+fn run_parts<F: Fn(Part) + Sync>(p: Part, bounds: &[(usize, usize, usize)], hw: usize, work: &F) {
     if bounds.len() <= 2 {
         work(p);
     } else {
@@ -441,23 +454,35 @@ impl Pass<'_> {
     /// The interface pass over part `p`, with histories of `HW` numbers and finite rotations
     /// if `LARGE` (one copy of the loop for each).
     fn part<const HW: usize, const LARGE: bool>(&self, p: Part) {
-        let Part { k0, b0, hist, broken, forces, flags, warm, fe, f_int } = p;
-        let (u, geo, shapes) = (self.u, self.geo, self.shapes);
+        let Part { k0, b0, hist, broken, forces, flags, warm, terms, f_int, .. } = p;
+        let (u, shapes) = (self.u, self.shapes);
         // every sum starts from +0.0, as the gather's
         f_int.fill(0.0);
-        // adds x to the block's sum, if it is one of the part's
-        let mut sum = |blk: usize, x: [f64; 3]| {
-            if let Some([s0, s1, s2]) = blk.checked_sub(b0).and_then(|i| f_int.get_mut(3 * i..3 * i + 3)) {
-                *s0 += x[0];
-                *s1 += x[1];
-                *s2 += x[2];
+        // adds x to the block's sum if it is one of the part's (`side`: the block's field of
+        // Geo), else stores it as the next term
+        let mut terms = terms.iter_mut();
+        let mut sum = |side: u32, blk: usize, x: [f64; 3]| {
+            if side & SUMMED != 0 {
+                if let Some([s0, s1, s2]) = blk.checked_sub(b0).and_then(|i| f_int.get_mut(3 * i..3 * i + 3)) {
+                    *s0 += x[0];
+                    *s1 += x[1];
+                    *s2 += x[2];
+                }
+            } else if let Some(t) = terms.next() {
+                *t = x;
             }
         };
-        for (i, ((((h, br), f), fl), ws)) in
-            hist.chunks_exact_mut(HW).zip(broken.iter_mut()).zip(forces.iter_mut()).zip(flags.iter_mut()).zip(warm.iter_mut()).enumerate()
+        let geo = &self.geo[k0..k0 + broken.len()];
+        for (i, (((((h, br), f), fl), ws), ik)) in hist
+            .chunks_exact_mut(HW)
+            .zip(broken.iter_mut())
+            .zip(forces.iter_mut())
+            .zip(flags.iter_mut())
+            .zip(warm.iter_mut())
+            .zip(geo)
+            .enumerate()
         {
             let k = k0 + i;
-            let ik = &geo[k];
             let gk = &shapes[ik.shape as usize];
             if LARGE {
                 let it = &self.model.interfaces()[k];
@@ -467,16 +492,12 @@ impl Pass<'_> {
                 let kin = it.large_kinematics(g[a], g[b], &u[3 * a..3 * a + 3], &u[3 * b..3 * b + 3], cs[a], cs[b], ecc);
                 self.update(k, gk, kin.jumps, h, br, f, fl, ws);
                 let x = kin.forces(*f);
-                if ik.a_summed() {
-                    sum(a, [x[0], x[1], x[2]]);
-                }
-                if ik.b_summed() {
-                    sum(b, [x[3], x[4], x[5]]);
-                }
-                fe[i] = x;
+                sum(ik.a, a, [x[0], x[1], x[2]]);
+                sum(ik.b, b, [x[3], x[4], x[5]]);
             } else {
                 let (a, b) = (ik.a(), ik.b());
-                let q = [u[3 * a], u[3 * a + 1], u[3 * a + 2], u[3 * b], u[3 * b + 1], u[3 * b + 2]];
+                let (ua, ub) = (&u[3 * a..3 * a + 3], &u[3 * b..3 * b + 3]);
+                let q = [ua[0], ua[1], ua[2], ub[0], ub[1], ub[2]];
                 let bm = gk.b_mat();
                 // as Interface::jumps, term by term (`Iterator::sum` of f64 starts from
                 // -0.0, and -0.0 + x == x: the sum is the terms added left to right)
@@ -486,12 +507,9 @@ impl Pass<'_> {
                 };
                 let e = [row(0), row(1), row(2)];
                 self.update(k, gk, e, h, br, f, fl, ws);
-                if ik.a_summed() {
-                    sum(a, gk.side_force(f, 0));
-                }
-                if ik.b_summed() {
-                    sum(b, gk.side_force(f, 1));
-                }
+                let [xa, xb] = gk.side_sums(f);
+                sum(ik.a, a, xa);
+                sum(ik.b, b, xb);
             }
         }
     }
@@ -507,31 +525,31 @@ impl Pass<'_> {
     }
 }
 
-/// The blocks whose interfaces lie in more than one part of the interface pass, and their
-/// interfaces: `incidence[start[j]..start[j + 1]]` for `blocks[j]`, each `2 k + side` (side 0:
-/// the block is the interface's a, 1: its b), increasing in k.
-#[derive(Default)]
+/// The blocks whose interfaces lie in more than one part of the interface pass, and where
+/// the pass leaves their interfaces' forces on them: `slots[start[j]..start[j + 1]]` for
+/// `blocks[j]`, increasing in k, index the terms, which the pass fills in the order of the
+/// interfaces (a before b).
 struct Straddlers {
     blocks: Vec<u32>,
     start: Vec<u32>,
-    incidence: Vec<u32>,
+    slots: Vec<u32>,
 }
 
 /// The interface pass in `n_parts` parts of about as many interfaces (see
 /// [`Integrator::parts`]), the blocks whose forces the pass sums marked [`SUMMED`] in `geo`,
 /// and the others. Any order of the interfaces gives the same sums; the model's, by block a,
 /// makes most blocks' interfaces fall in one part.
-fn partition(nb: usize, geo: &mut [Geo], n_parts: usize) -> (Vec<(usize, usize)>, Straddlers) {
+fn partition(nb: usize, geo: &mut [Geo], n_parts: usize) -> (Vec<(usize, usize, usize)>, Straddlers) {
     let m = geo.len();
     let n_parts = n_parts.clamp(1, m.max(1));
-    let mut parts = vec![(0, 0)];
+    let mut parts = vec![(0, 0, 0)];
     for p in 1..n_parts {
         let k = (p as u64 * m as u64 / n_parts as u64) as usize;
         // the blocks from the part's first interface's a on (nondecreasing)
         let b0 = parts[p - 1].1;
-        parts.push((k, geo[k].a().clamp(b0, nb)));
+        parts.push((k, geo[k].a().clamp(b0, nb), 0));
     }
-    parts.push((m, nb));
+    parts.push((m, nb, 0));
     // each block's first and last interface
     let mut span = vec![(u32::MAX, 0u32); nb];
     for (k, g) in geo.iter().enumerate() {
@@ -541,17 +559,16 @@ fn partition(nb: usize, geo: &mut [Geo], n_parts: usize) -> (Vec<(usize, usize)>
     }
     let mut summed = vec![false; nb];
     for w in parts.windows(2) {
-        let ((k0, b0), (k1, b1)) = (w[0], w[1]);
+        let ((k0, b0, _), (k1, b1, _)) = (w[0], w[1]);
         for (s, &(first, last)) in summed[b0..b1].iter_mut().zip(&span[b0..b1]) {
             *s = first == u32::MAX || (first as usize >= k0 && (last as usize) < k1);
         }
     }
     for g in geo.iter_mut() {
-        if summed[g.a()] {
-            g.a |= SUMMED;
-        }
-        if summed[g.b()] {
-            g.b |= SUMMED;
+        for side in [&mut g.a, &mut g.b] {
+            if summed[(*side & BLOCK) as usize] {
+                *side |= SUMMED;
+            }
         }
     }
     // the other blocks' interfaces, by counting sort: in increasing k within each block
@@ -571,17 +588,27 @@ fn partition(nb: usize, geo: &mut [Geo], n_parts: usize) -> (Vec<(usize, usize)>
     for j in 0..blocks.len() {
         start[j + 1] += start[j];
     }
+    // the terms in the order the pass fills them, and where each part's start
     let mut next = start.clone();
-    let mut incidence = vec![0u32; start[blocks.len()] as usize];
+    let mut slots = vec![0u32; start[blocks.len()] as usize];
+    let (mut n, mut p) = (0u32, 0);
     for (k, g) in geo.iter().enumerate() {
-        for (side, blk) in [(0, g.a()), (1, g.b())] {
+        while p < parts.len() && parts[p].0 == k {
+            parts[p].2 = n as usize;
+            p += 1;
+        }
+        for blk in [g.a(), g.b()] {
             if let Some(j) = index.get(blk).filter(|&&j| j != u32::MAX) {
-                incidence[next[*j as usize] as usize] = (2 * k + side) as u32;
+                slots[next[*j as usize] as usize] = n;
                 next[*j as usize] += 1;
+                n += 1;
             }
         }
     }
-    (parts, Straddlers { blocks, start, incidence })
+    for part in &mut parts[p..] {
+        part.2 = n as usize;
+    }
+    (parts, Straddlers { blocks, start, slots })
 }
 
 /// Index of a family in the integrator's table of four laws.
@@ -601,13 +628,14 @@ fn family_index(f: Family) -> u8 {
 /// plastic jumps, and 16 more, the opening and the slip, only if a law softens; `JointState`
 /// takes 48), the broken flag (1), the force (24), the flags (1) and the warm set (1); sections
 /// and laws are read from the model (a table of four laws, one per family). With finite
-/// rotations also the six generalized forces on the two blocks (48), and per block the
-/// centroid and the rotation's (cos, sin). One step is: a pass over the blocks (velocity
-/// half-step and positions), a pass over the interfaces in parts (return mapping, and each
-/// interface's forces added to its blocks' sums at once, for the blocks whose interfaces are
-/// all in one part: in interface order, so the sums do not depend on the number of threads), a
-/// gather for the other blocks, the external forces, and a pass over the blocks (accelerations
-/// and velocity half-step). Each pass is split into independent chunks on the thread pool.
+/// rotations also, per block, the centroid and the rotation's (cos, sin). One step is: a pass
+/// over the blocks (velocity half-step and positions), a pass over the interfaces in parts
+/// (return mapping, and each interface's forces on its blocks added to their sums at once, for
+/// the blocks whose interfaces are all in one part: in interface order, so the sums do not
+/// depend on the number of threads; for the others (a course of blocks at each boundary of
+/// parts) the forces are stored and a gather sums them after the pass, in the same order), the
+/// external forces, and a pass over the blocks (accelerations and velocity half-step). Each pass
+/// is split into independent chunks on the thread pool.
 struct Integrator<'a> {
     model: &'a Model,
     geo: Vec<Geo>,
@@ -620,9 +648,11 @@ struct Integrator<'a> {
     /// interfaces `parts[p].0..parts[p + 1].0` and adds their forces to the blocks'
     /// `parts[p].1..parts[p + 1].1` whose interfaces are all among them (marked [`SUMMED`] in
     /// [`Geo`]), in increasing k: the sums of the gather below, with no pass of their own.
-    parts: Vec<(usize, usize)>,
-    /// the other blocks, whose sums a gather after the pass forms, and the sums
+    parts: Vec<(usize, usize, usize)>,
+    /// the other blocks, whose sums a gather after the pass forms from the terms the pass
+    /// leaves them (`parts[p].2..parts[p + 1].2` from part p), and the sums
     straddlers: Straddlers,
+    terms: Vec<[f64; 3]>,
     straddler_sums: Vec<[f64; 3]>,
     inv_mass: Vec<f64>,
     mass: Vec<f64>,
@@ -642,7 +672,6 @@ struct Integrator<'a> {
     /// the active set each interface's return mapping accepted at its last plastic update
     /// (bit j: face j; 0: none yet), tried first at the next ([`return_map_forces_warm`])
     warm: Vec<u8>,
-    fe: Vec<[f64; 6]>,
     dt: f64,
     damping: Damping,
     pool: std::sync::Arc<rayon::ThreadPool>,
@@ -695,7 +724,7 @@ impl<'a> Integrator<'a> {
         }
         let nb = model.n_blocks();
         let m = model.interfaces().len();
-        if nb >= SUMMED as usize || 2 * m >= u32::MAX as usize {
+        if nb > BLOCK as usize || 2 * m >= u32::MAX as usize {
             return Err(Error::input(format!("{nb} blocks and {m} interfaces: the explicit solver takes fewer than 2^31 blocks and 2^31 interfaces")));
         }
         let fixed = model.fixed();
@@ -754,6 +783,7 @@ impl<'a> Integrator<'a> {
             laws,
             parts,
             straddler_sums: vec![[0.0; 3]; straddlers.blocks.len()],
+            terms: vec![[0.0; 3]; straddlers.slots.len()],
             straddlers,
             inv_mass,
             mass,
@@ -769,7 +799,6 @@ impl<'a> Integrator<'a> {
             forces: vec![[0.0; 3]; m],
             flags: vec![0; m],
             warm: vec![0; m],
-            fe: vec![],
             dt,
             damping,
             pool,
@@ -785,9 +814,8 @@ impl<'a> Integrator<'a> {
     /// arrays only the finite rotations need are allocated here.
     fn set_large(&mut self, large: bool) {
         self.large = large;
-        if large && self.fe.is_empty() {
-            let (m, nb) = (self.model.interfaces().len(), self.model.n_blocks());
-            self.fe = vec![[0.0; 6]; m];
+        if large && self.cs.is_empty() {
+            let nb = self.model.n_blocks();
             self.centroids = self.model.rects().iter().map(|r| r.centroid()).collect();
             self.cs = vec![[1.0, 0.0]; nb];
         }
@@ -879,12 +907,13 @@ impl<'a> Integrator<'a> {
         let all = Part {
             k0: 0,
             b0: 0,
+            t0: 0,
             hist: &mut self.hist,
             broken: &mut self.broken,
             forces: &mut self.forces,
             flags: &mut self.flags,
             warm: &mut self.warm,
-            fe: &mut self.fe,
+            terms: &mut self.terms,
             f_int: &mut self.f_int,
         };
         if par {
@@ -895,7 +924,7 @@ impl<'a> Integrator<'a> {
         }
         // the blocks whose interfaces span parts: each sums its interfaces' forces in
         // increasing k, as a serial scatter in interface order would
-        let (st, fe, forces, geo, shapes) = (&self.straddlers, &self.fe, &self.forces, &self.geo, &self.shapes);
+        let (st, terms) = (&self.straddlers, &self.terms);
         if st.blocks.is_empty() {
             return;
         }
@@ -903,14 +932,8 @@ impl<'a> Integrator<'a> {
             for (j, out) in out.iter_mut().enumerate() {
                 let j = j0 + j;
                 let mut acc = [0.0; 3];
-                for &e in &st.incidence[st.start[j] as usize..st.start[j + 1] as usize] {
-                    let (k, sb) = ((e >> 1) as usize, (e & 1) as usize);
-                    let x = if large {
-                        let x = &fe[k];
-                        [x[3 * sb], x[3 * sb + 1], x[3 * sb + 2]]
-                    } else {
-                        shapes[geo[k].shape as usize].side_force(&forces[k], sb)
-                    };
+                for &t in &st.slots[st.start[j] as usize..st.start[j + 1] as usize] {
+                    let x = &terms[t as usize];
                     acc[0] += x[0];
                     acc[1] += x[1];
                     acc[2] += x[2];
@@ -1702,6 +1725,45 @@ mod tests {
                     (u, f)
                 };
                 assert!(run(true) == run(false), "{} blocks, large rotations {large}", model.n_blocks());
+            }
+        }
+    }
+
+    #[test]
+    fn parts_change_no_result() {
+        // a wall with an opening, under a horizontal load that makes joints slide and open
+        let blocks = running_bond(&RunningBond {
+            block_length: 0.4,
+            block_height: 0.175,
+            courses: 8,
+            length: 3.0,
+            first_course: FirstCourse::Half,
+            openings: vec![Rect::new(1.0, 0.4, 1.8, 1.0)],
+        })
+        .unwrap();
+        let model = Model::new(ModelSpec { blocks, ..ModelSpec::default() }).unwrap();
+        for large in [false, true] {
+            // the pass in `n_parts` parts, on the pool if `par` (whatever the wall's size)
+            let run = |n_parts: usize, par: bool| {
+                let mut s = Stepper::new(&model, 0.4, Damping::Local(0.8), large, 2).unwrap();
+                let it = &mut s.s;
+                for g in &mut it.geo {
+                    g.a &= BLOCK;
+                    g.b &= BLOCK;
+                }
+                let (parts, straddlers) = partition(model.n_blocks(), &mut it.geo, n_parts);
+                assert_eq!(straddlers.blocks.is_empty(), n_parts == 1);
+                it.terms = vec![[0.0; 3]; straddlers.slots.len()];
+                it.straddler_sums = vec![[0.0; 3]; straddlers.blocks.len()];
+                (it.parts, it.straddlers, it.par) = (parts, straddlers, par);
+                s.run(300);
+                let u: Vec<u64> = s.displacements().iter().map(|x| x.to_bits()).collect();
+                let f: Vec<u64> = s.interface_forces().iter().flatten().map(|x| x.to_bits()).collect();
+                (u, f)
+            };
+            let one = run(1, false);
+            for (n_parts, par) in [(3, false), (3, true), (8, true), (40, true), (1000, true)] {
+                assert!(run(n_parts, par) == one, "{n_parts} parts, on the pool {par}, large rotations {large}");
             }
         }
     }
