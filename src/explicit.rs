@@ -22,7 +22,7 @@
 
 use crate::error::{check_steps, Error};
 use crate::interface::{Family, Interface};
-use crate::joint::{return_map_forces_prepared, return_map_forces_warm, JointLaw, JointState, Prepared, Response, Section, APEX};
+use crate::joint::{return_map_forces_prepared, return_map_forces_warm, JointLaw, JointState, Kinds, Response, Section, APEX};
 use crate::model::{LiveLoad, Model};
 use crate::results::{Results, Status};
 use rayon::prelude::*;
@@ -273,21 +273,9 @@ struct Shape {
     /// b_mat[0][2], b_mat[0][5], b_mat[1][2], b_mat[1][5]
     r: [f64; 4],
     n: [f64; 2],
-    /// [`NO_KIND`] for an interface whose kind did not fit in the table
+    /// [`Kinds::NONE`] for an interface whose kind did not fit in the table
     kind: u16,
     family: u8,
-}
-
-/// The largest number of kinds (distinct pairs of law and section, each with its
-/// [`Prepared`] constants, 2.6 kB) in the integrator's table; the interfaces of further kinds
-/// are mapped without prepared constants (the same numbers, computed per update).
-const MAX_KINDS: usize = 256;
-const NO_KIND: u16 = u16::MAX;
-
-/// A kind of interface: its section and the constants of its law on it.
-struct Kind {
-    sec: Section,
-    prep: Prepared,
 }
 
 impl Shape {
@@ -419,7 +407,7 @@ struct Pass<'a> {
     geo: &'a [Geo],
     shapes: &'a [Shape],
     laws: &'a [JointLaw; 4],
-    kinds: &'a [Kind],
+    kinds: &'a Kinds,
     /// with finite rotations only: the blocks' reference centroids and (cos, sin) of their
     /// rotations
     centroids: &'a [[f64; 2]],
@@ -445,8 +433,8 @@ impl Pass<'_> {
             *f = r.force;
             *fl = r.flags;
         };
-        match self.kinds.get(gk.kind as usize) {
-            Some(kd) => store(return_map_forces_prepared(law, &kd.sec, &kd.prep, e, st, *ws), h, br, f, fl, ws),
+        match self.kinds.get(gk.kind) {
+            Some((sec, prep)) => store(return_map_forces_prepared(law, sec, prep, e, st, *ws), h, br, f, fl, ws),
             None => store(map_unprepared(law, &self.model.sections()[k], e, st, *ws), h, br, f, fl, ws),
         }
     }
@@ -642,7 +630,7 @@ struct Integrator<'a> {
     /// the distinct shapes of interface (see [`Geo`])
     shapes: Vec<Shape>,
     /// the kinds of interface (see [`Shape`])
-    kinds: Vec<Kind>,
+    kinds: Kinds,
     laws: [JointLaw; 4],
     /// The interface pass in parts (one unless the passes go to the pool): part p maps the
     /// interfaces `parts[p].0..parts[p + 1].0` and adds their forces to the blocks'
@@ -741,24 +729,12 @@ impl<'a> Integrator<'a> {
         }
         // the laws by family index (see `family_index`)
         let laws = [Family::Bed, Family::Head, Family::Base, Family::Top].map(|f| *model.laws().of(f));
-        let mut kinds: Vec<Kind> = vec![];
-        let mut kind_of = std::collections::HashMap::new();
+        let kinds = model.joint_kinds();
         let mut shapes: Vec<Shape> = vec![];
         let mut shape_of = std::collections::HashMap::new();
         let mut geo = Vec::with_capacity(m);
-        for (it, sec) in model.interfaces().iter().zip(model.sections()) {
-            let family = family_index(it.family);
-            let key = (family, [sec.area.to_bits(), sec.inertia.to_bits(), sec.length.to_bits()]);
-            let kind = match kind_of.get(&key) {
-                Some(&i) => i,
-                None if kinds.len() < MAX_KINDS => {
-                    kinds.push(Kind { sec: *sec, prep: Prepared::new(&laws[family as usize], sec) });
-                    kind_of.insert(key, (kinds.len() - 1) as u16);
-                    (kinds.len() - 1) as u16
-                }
-                None => NO_KIND,
-            };
-            let shape = Shape::new(it, kind);
+        for (k, it) in model.interfaces().iter().enumerate() {
+            let shape = Shape::new(it, kinds.kind(k));
             // at most one shape per interface: fewer than 2^31
             let index = *shape_of.entry(shape.key()).or_insert_with(|| {
                 shapes.push(shape);
@@ -1713,10 +1689,10 @@ mod tests {
                 // under a horizontal load that makes joints slide and open
                 let run = |prepared: bool| {
                     let mut s = Stepper::new(&model, 0.4, Damping::Local(0.8), large, 1).unwrap();
-                    assert_eq!(s.s.shapes.iter().any(|g| g.kind == NO_KIND), overflow);
-                    assert_eq!(s.s.kinds.len() == MAX_KINDS, overflow);
+                    assert_eq!(s.s.shapes.iter().any(|g| g.kind == Kinds::NONE), overflow);
+                    assert_eq!(s.s.kinds.len() == Kinds::MAX, overflow);
                     if !prepared {
-                        s.s.kinds.clear();
+                        s.s.kinds = Kinds::default();
                     }
                     s.run(400);
                     let u: Vec<u64> = s.displacements().iter().map(|x| x.to_bits()).collect();

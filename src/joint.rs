@@ -385,6 +385,9 @@ impl Kinds {
     /// constants (the same numbers, computed per mapping).
     pub const NONE: u16 = u16::MAX;
 
+    /// The solvers' size of the table: 256 kinds, 0.7 MB at most.
+    pub const MAX: usize = 256;
+
     /// The kinds of `joints`, each given as (an identifier of its law, the law, its section):
     /// equal identifiers must mean equal laws, sections are compared bit for bit. At most `max`
     /// kinds (each 2.6 kB) are kept, at most 65,535.
@@ -485,7 +488,7 @@ fn set_matrix(g_all: &[[f64; 4]; 4], act: &[usize]) -> [[f64; 3]; 3] {
 /// The return mapping: forces, updated history, state flags and consistent tangent for the total
 /// jumps `e`, starting from the committed history `committed`.
 pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState) -> Response {
-    map(law, sec, None, e, committed, true, 0, false).0
+    return_map_with(law, sec, e, committed, MapOptions::default()).0
 }
 
 /// How [`return_map_with`] maps. The default is [`return_map`]'s: no prepared constants, no
@@ -520,29 +523,23 @@ impl Default for MapOptions<'_> {
 /// conditions (degenerate data) and the force is put at the apex of the domain.
 pub const APEX: u8 = 0x10;
 
-/// The return mapping with [`MapOptions`]; also the active set accepted (bit j: face j; 0: the
-/// update is elastic and the tangent D; [`APEX`]: no set, the apex).
-#[inline]
-pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, opts: MapOptions) -> (Response, u8) {
-    map(law, sec, opts.prepared, e, committed, opts.tangent, opts.warm, opts.strict)
-}
 
 /// The same return mapping as [`return_map`] without its consistent tangent
 /// (`Response::tangent` is left zero): for the explicit solver, which needs the forces only.
 /// Forces, history and flags are those of [`return_map`], bit for bit.
 #[inline]
 pub fn return_map_forces(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState) -> Response {
-    map(law, sec, None, e, committed, false, 0, false).0
+    return_map_with(law, sec, e, committed, MapOptions { tangent: false, ..MapOptions::default() }).0
 }
 
 /// [`return_map_forces`] trying the active set `warm` first (bit j: face j; 0: none), e.g.
 /// the one this joint ended on at the previous time step; also gives the active set accepted
 /// (0 if the update is elastic, [`APEX`] if no set was). The warm set is accepted on the same
 /// Kuhn-Tucker test as in the ordered enumeration, which follows if it fails. The force and history are those of
-/// [`return_map_forces`] up to rounding: the Kuhn-Tucker point is unique (see [`map`]).
+/// [`return_map_forces`] up to rounding: the Kuhn-Tucker point is unique (see [`return_map_with`]).
 #[inline]
 pub fn return_map_forces_warm(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, warm: u8) -> (Response, u8) {
-    map(law, sec, None, e, committed, false, warm, false)
+    return_map_with(law, sec, e, committed, MapOptions { warm, tangent: false, ..MapOptions::default() })
 }
 
 /// [`return_map_forces_warm`] with the constants of `law` on `sec` computed beforehand
@@ -557,12 +554,13 @@ pub fn return_map_forces_prepared(
     committed: &JointState,
     warm: u8,
 ) -> (Response, u8) {
-    map(law, sec, Some(prep), e, committed, false, warm, false)
+    return_map_with(law, sec, e, committed, MapOptions { prepared: Some(prep), warm, strict: false, tangent: false })
 }
 
-/// The return mapping, with its tangent if `want_tangent`, trying the active set `warm` first
-/// if not 0, with the constants `prep` if given (computed here otherwise); also the active set
-/// accepted (0: elastic; [`APEX`]: none).
+/// The return mapping with [`MapOptions`]: with its tangent if asked, trying the active set
+/// `warm` first if not 0, with the prepared constants if given (computed here otherwise); also
+/// the active set accepted (bit j: face j; 0: the update is elastic and the tangent D;
+/// [`APEX`]: no set, the apex).
 ///
 /// Why any set passing the Kuhn-Tucker test gives the same force and history, whichever is
 /// tried first: the Coulomb flow `m_j = (tan psi, +-1, 0)` is `H a_j` scaled by `tan psi / mu`
@@ -577,16 +575,8 @@ pub fn return_map_forces_prepared(
 /// taken, and the ordered enumeration chooses, as without a warm start. (With tan psi = 0 the
 /// sets with both Coulomb faces are singular and never accepted.)
 #[inline(always)]
-fn map(
-    law: &JointLaw,
-    sec: &Section,
-    prep: Option<&Prepared>,
-    e: [f64; 3],
-    committed: &JointState,
-    want_tangent: bool,
-    warm: u8,
-    strict: bool,
-) -> (Response, u8) {
+pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, opts: MapOptions) -> (Response, u8) {
+    let MapOptions { prepared: prep, warm, strict, tangent: want_tangent } = opts;
     let d = match prep {
         Some(p) => p.d,
         None => stiffness(law, sec),
@@ -718,6 +708,7 @@ struct Attempt {
 /// The return onto the faces of `MASK` (bit j: face j), if it satisfies the Kuhn-Tucker
 /// conditions: multipliers >= 0 and every other face satisfied.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)] // the constants of the mapping, passed as they are
 fn attempt<const MASK: u8>(
     faces: &Faces,
     prep: Option<&Prepared>,
@@ -897,38 +888,47 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_warm_start_and_prepared_constants_give_the_force_and_history_of_the_ordered_enumeration() {
+    /// The laws of the mapping tests: dry, associative, dilatant, brittle, softening, with all
+    /// four faces meeting at one point (c = mu ft), and with a stiffer shear.
+    fn laws() -> [JointLaw; 7] {
         let base = JointLaw { friction: 0.65, ..JointLaw::default() };
-        let laws = [
+        [
             base,
             JointLaw { dilatancy: 0.65, ..base },
             JointLaw { dilatancy: 0.3, ..base },
             JointLaw { cohesion: 2e4, tensile_strength: 1e4, dilatancy: 0.2, ..base },
             JointLaw { cohesion: 2e4, tensile_strength: 1e4, fracture_energy_tension: 10.0, fracture_energy_shear: 50.0, ..base },
-            // c = mu ft: all four faces meet at one point
             JointLaw { cohesion: 0.65e4, tensile_strength: 1e4, dilatancy: 0.65, ..base },
             JointLaw { shear_stiffness: 4e9, dilatancy: 0.4, ..base },
-        ];
-        let sec = Section::new(0.4, 1.0);
+        ]
+    }
+
+    /// Random jumps of up to 1e-5 m (forces up to about 4e4 N against strengths of 4e3 to
+    /// 8e3 N), some components zero, and a random plastic history.
+    fn random_case(r: &mut impl FnMut() -> f64) -> ([f64; 3], JointState) {
+        let mut e = [1e-5 * r(), 1e-5 * r(), 5e-5 * r()];
+        for x in e.iter_mut() {
+            if r() > 0.8 {
+                *x = 0.0;
+            }
+        }
+        (e, JointState { plastic: [1e-6 * r(), 1e-6 * r(), 0.0], ..JointState::default() })
+    }
+
+    #[test]
+    fn a_warm_start_and_prepared_constants_give_the_force_and_history_of_the_ordered_enumeration() {
+        let (laws, sec) = (laws(), Section::new(0.4, 1.0));
         let mut r = rng(7);
         let mut worst: [f64; 3] = [0.0; 3];
         for law in &laws {
             let prep = Prepared::new(law, &sec);
             for _ in 0..20000 {
-                // jumps of up to 1e-5 m (forces up to about 4e4 N against strengths of 4e3 to 8e3 N),
-                // some components zero
-                let mut e = [1e-5 * r(), 1e-5 * r(), 5e-5 * r()];
-                for x in e.iter_mut() {
-                    if r() > 0.8 {
-                        *x = 0.0;
-                    }
-                }
-                let committed = JointState { plastic: [1e-6 * r(), 1e-6 * r(), 0.0], ..JointState::default() };
-                let (cold, set) = map(law, &sec, None, e, &committed, false, 0, false);
+                let (e, committed) = random_case(&mut r);
+                let forces = MapOptions { tangent: false, ..MapOptions::default() };
+                let (cold, set) = return_map_with(law, &sec, e, &committed, forces);
                 let scale = cold.force[0].abs() + cold.force[1].abs() + cold.force[2].abs() * 5.0 + 1.0;
                 for warm in 1..15u8 {
-                    let (w, wset) = map(law, &sec, None, e, &committed, false, warm, false);
+                    let (w, wset) = return_map_with(law, &sec, e, &committed, MapOptions { warm, ..forces });
                     // the prepared constants change nothing, bit for bit
                     let (wp, wpset) = return_map_forces_prepared(law, &sec, &prep, e, &committed, warm);
                     assert_eq!((wp.force.map(f64::to_bits), wp.state.plastic.map(f64::to_bits)), (w.force.map(f64::to_bits), w.state.plastic.map(f64::to_bits)));
@@ -955,29 +955,13 @@ mod tests {
 
     #[test]
     fn a_strict_warm_set_with_prepared_constants_gives_the_ordered_enumerations_bits_tangent_included() {
-        let base = JointLaw { friction: 0.65, ..JointLaw::default() };
-        let laws = [
-            base,
-            JointLaw { dilatancy: 0.65, ..base },
-            JointLaw { dilatancy: 0.3, ..base },
-            JointLaw { cohesion: 2e4, tensile_strength: 1e4, dilatancy: 0.2, ..base },
-            JointLaw { cohesion: 2e4, tensile_strength: 1e4, fracture_energy_tension: 10.0, fracture_energy_shear: 50.0, ..base },
-            JointLaw { cohesion: 0.65e4, tensile_strength: 1e4, dilatancy: 0.65, ..base },
-            JointLaw { shear_stiffness: 4e9, dilatancy: 0.4, ..base },
-        ];
-        let sec = Section::new(0.4, 1.0);
+        let (laws, sec) = (laws(), Section::new(0.4, 1.0));
         let mut r = rng(11);
         for law in &laws {
             let kinds = Kinds::new([(0, law, &sec)], 1);
             let prep = kinds.prepared(0).unwrap();
             for _ in 0..20000 {
-                let mut e = [1e-5 * r(), 1e-5 * r(), 5e-5 * r()];
-                for x in e.iter_mut() {
-                    if r() > 0.8 {
-                        *x = 0.0;
-                    }
-                }
-                let committed = JointState { plastic: [1e-6 * r(), 1e-6 * r(), 0.0], ..JointState::default() };
+                let (e, committed) = random_case(&mut r);
                 let (cold, set) = return_map_with(law, &sec, e, &committed, MapOptions::default());
                 assert_eq!(bits(&cold, set), bits(&return_map(law, &sec, e, &committed), set));
                 if set == 0 {

@@ -421,10 +421,10 @@ impl Model {
     pub fn law(&self, k: usize) -> &JointLaw {
         self.laws.of(self.interfaces[k].family)
     }
-    /// The kinds of the interfaces (the distinct pairs of law and section, at most `max` in
-    /// the table), each with the return mapping's constants.
-    pub fn joint_kinds(&self, max: usize) -> Kinds {
-        Kinds::new(self.interfaces.iter().zip(&self.sections).map(|(it, s)| (it.family as u8, self.laws.of(it.family), s)), max)
+    /// The kinds of the interfaces (the distinct pairs of law and section, at most
+    /// [`Kinds::MAX`] in the table), each with the return mapping's constants.
+    pub fn joint_kinds(&self) -> Kinds {
+        Kinds::new(self.interfaces.iter().zip(&self.sections).map(|(it, s)| (it.family as u8, self.laws.of(it.family), s)), Kinds::MAX)
     }
     pub fn laws(&self) -> &JointLaws {
         &self.laws

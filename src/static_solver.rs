@@ -167,10 +167,6 @@ struct Solver<'a, 'm> {
 
 const NONE: u32 = u32::MAX;
 
-/// The largest number of joint kinds (distinct pairs of law and section, 2.6 kB each) whose
-/// return-mapping constants the solver keeps; the joints of further kinds are mapped without.
-const MAX_KINDS: usize = 256;
-
 /// A converged state of the load-control path.
 struct Saved {
     u: Vec<f64>,
@@ -311,7 +307,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             trial: vec![JointState::default(); m],
             forces: vec![[0.0; 3]; m],
             flags: vec![0; m],
-            kinds: model.joint_kinds(MAX_KINDS),
+            kinds: model.joint_kinds(),
             sets: vec![0; m],
             tangents: vec![[[0.0; 3]; 3]; m],
             tangents_current: false,
