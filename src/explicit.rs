@@ -517,6 +517,7 @@ impl Pass<'_> {
 /// the pass leaves their interfaces' forces on them: `slots[start[j]..start[j + 1]]` for
 /// `blocks[j]`, increasing in k, index the terms, which the pass fills in the order of the
 /// interfaces (a before b).
+#[derive(Default)]
 struct Straddlers {
     blocks: Vec<u32>,
     start: Vec<u32>,
@@ -749,18 +750,17 @@ impl<'a> Integrator<'a> {
             .map_err(|e| Error::input(format!("cannot start {threads} threads: {e}")))?;
         let par = pool.current_num_threads() > 1 && m >= PAR_MIN_INTERFACES;
         let n_parts = if par { (2 * pool.current_num_threads()).max(m.div_ceil(PART_INTERFACES)) } else { 1 };
-        let (parts, straddlers) = partition(nb, &mut geo, n_parts);
         let pool = std::sync::Arc::new(pool);
-        Ok(Integrator {
+        let mut it = Integrator {
             model,
             geo,
             shapes,
             kinds,
             laws,
-            parts,
-            straddler_sums: vec![[0.0; 3]; straddlers.blocks.len()],
-            terms: vec![[0.0; 3]; straddlers.slots.len()],
-            straddlers,
+            parts: vec![],
+            straddler_sums: vec![],
+            terms: vec![],
+            straddlers: Straddlers::default(),
             inv_mass,
             mass,
             free: fixed.iter().map(|f| !f).collect(),
@@ -783,7 +783,22 @@ impl<'a> Integrator<'a> {
             large: false,
             centroids: vec![],
             cs: vec![],
-        })
+        };
+        it.set_parts(n_parts);
+        Ok(it)
+    }
+
+    /// The interface pass in `n_parts` parts (see [`partition`]), with the terms and sums of
+    /// the blocks that straddle them.
+    fn set_parts(&mut self, n_parts: usize) {
+        for g in &mut self.geo {
+            g.a &= BLOCK;
+            g.b &= BLOCK;
+        }
+        let (parts, straddlers) = partition(self.model.n_blocks(), &mut self.geo, n_parts);
+        self.terms = vec![[0.0; 3]; straddlers.slots.len()];
+        self.straddler_sums = vec![[0.0; 3]; straddlers.blocks.len()];
+        (self.parts, self.straddlers) = (parts, straddlers);
     }
 
     /// Finite rotations (time histories) or the linearized kinematics (the default); the
@@ -1722,16 +1737,9 @@ mod tests {
             // the pass in `n_parts` parts, on the pool if `par` (whatever the wall's size)
             let run = |n_parts: usize, par: bool| {
                 let mut s = Stepper::new(&model, 0.4, Damping::Local(0.8), large, 2).unwrap();
-                let it = &mut s.s;
-                for g in &mut it.geo {
-                    g.a &= BLOCK;
-                    g.b &= BLOCK;
-                }
-                let (parts, straddlers) = partition(model.n_blocks(), &mut it.geo, n_parts);
-                assert_eq!(straddlers.blocks.is_empty(), n_parts == 1);
-                it.terms = vec![[0.0; 3]; straddlers.slots.len()];
-                it.straddler_sums = vec![[0.0; 3]; straddlers.blocks.len()];
-                (it.parts, it.straddlers, it.par) = (parts, straddlers, par);
+                s.s.set_parts(n_parts);
+                assert_eq!(s.s.straddlers.blocks.is_empty(), n_parts == 1);
+                s.s.par = par;
                 s.run(300);
                 let u: Vec<u64> = s.displacements().iter().map(|x| x.to_bits()).collect();
                 let f: Vec<u64> = s.interface_forces().iter().flatten().map(|x| x.to_bits()).collect();

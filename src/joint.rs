@@ -523,7 +523,6 @@ impl Default for MapOptions<'_> {
 /// conditions (degenerate data) and the force is put at the apex of the domain.
 pub const APEX: u8 = 0x10;
 
-
 /// The same return mapping as [`return_map`] without its consistent tangent
 /// (`Response::tangent` is left zero): for the explicit solver, which needs the forces only.
 /// Forces, history and flags are those of [`return_map`], bit for bit.
@@ -535,8 +534,9 @@ pub fn return_map_forces(law: &JointLaw, sec: &Section, e: [f64; 3], committed: 
 /// [`return_map_forces`] trying the active set `warm` first (bit j: face j; 0: none), e.g.
 /// the one this joint ended on at the previous time step; also gives the active set accepted
 /// (0 if the update is elastic, [`APEX`] if no set was). The warm set is accepted on the same
-/// Kuhn-Tucker test as in the ordered enumeration, which follows if it fails. The force and history are those of
-/// [`return_map_forces`] up to rounding: the Kuhn-Tucker point is unique (see [`return_map_with`]).
+/// Kuhn-Tucker test as in the ordered enumeration, which follows if it fails. The force and
+/// history are those of [`return_map_forces`] up to rounding: the Kuhn-Tucker point is unique
+/// (see [`return_map_with`]).
 #[inline]
 pub fn return_map_forces_warm(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, warm: u8) -> (Response, u8) {
     return_map_with(law, sec, e, committed, MapOptions { warm, tangent: false, ..MapOptions::default() })

@@ -377,24 +377,25 @@ impl SparseLu {
 
     /// Solves A x = rhs in place; an error if the matrix is (numerically) singular.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
-        let m = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
         match self.factorized {
             Factor::None => panic!("factorize before solve"),
             Factor::Lu => {
                 let parts = self.lu.as_mut().unwrap();
                 let lu = LuRef::new_unchecked(&parts.symbolic, &parts.numeric);
+                let m = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
                 lu.solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut parts.solve_buf));
             }
             Factor::Dense => {
                 let parts = self.dense.as_mut().unwrap();
                 let lu = MatRef::from_column_major_slice(&parts.a, self.n, self.n);
                 let perm = PermRef::new_checked(&parts.perm, &parts.perm_inv, self.n);
+                let m = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
                 dense_solve(lu, lu, perm, Conj::No, m, Par::Seq, MemStack::new(&mut parts.solve_buf));
             }
             Factor::Llt => {
                 let parts = self.llt.as_mut().unwrap();
                 // permuted, solved and permuted back as faer's solve would (copies only)
-                let (x, m) = (&mut parts.x, m.col_mut(0).try_as_col_major_mut().unwrap().as_slice_mut());
+                let (x, m) = (&mut parts.x, &mut *rhs);
                 for (x, &f) in x.iter_mut().zip(&parts.fwd) {
                     *x = m[f];
                 }
