@@ -577,6 +577,7 @@ pub fn return_map_forces_prepared(
 #[inline(always)]
 pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, opts: MapOptions) -> (Response, u8) {
     let MapOptions { prepared: prep, warm, strict, tangent: want_tangent } = opts;
+    let warm_in = warm;
     let d = match prep {
         Some(p) => p.d,
         None => stiffness(law, sec),
@@ -641,6 +642,9 @@ pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &J
     // the warm set, unless it has three faces and all four faces meet at one point with
     // tan psi > 0 (the multipliers are not unique there: see above)
     let vertex = faces.tp > 0.0 && (faces.b[0] - faces.mu * faces.b[2]).abs() <= 1e-6 * (scale + faces.b[0] + faces.b[2]);
+    // ... except a warm set 7 or 11 at the apex of a joint without strength (dry, or broken),
+    // taken where it is the ordered enumeration's (see `apex_set`)
+    let apex_warm = vertex && faces.b[0] == 0.0 && faces.b[2] == 0.0 && (warm == 7 || warm == 11);
     let warm = if warm.count_ones() == 3 && vertex { 0 } else { warm };
     // the warm set, then the active sets smallest first (the order above), each in its own copy of
     // `attempt` (the faces of a set known at compile time: no index lists, unrolled
@@ -662,6 +666,16 @@ pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &J
             };
         }
         warm_sets!(1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14);
+        if apex_warm {
+            let a = if warm_in == 7 {
+                attempt::<7>(&faces, prep, &trial, &f_trial, g_all, dm, tol, false)
+            } else {
+                attempt::<11>(&faces, prep, &trial, &f_trial, g_all, dm, tol, false)
+            };
+            if let Some(a) = a.filter(|a| apex_set(a, g_all, tol)) {
+                break 'found Some((a, warm_in));
+            }
+        }
         macro_rules! sets {
             ($($mask:literal),*) => {$(
                 if strict || warm != $mask {
@@ -698,6 +712,8 @@ pub fn elastic_tangent(law: &JointLaw, sec: &Section) -> [[f64; 3]; 3] {
 /// The return of one active set: the force, the Coulomb flow, the plastic (opening, slip)
 /// increments, and for the tangent the set's faces.
 struct Attempt {
+    /// the multipliers of the active faces, in the order of `act`
+    r: [f64; 3],
     s: [f64; 3],
     slip: [f64; 3],
     dk: [f64; 2],
@@ -781,7 +797,31 @@ fn attempt<const MASK: u8>(
     if violated {
         return None;
     }
-    Some(Attempt { s, slip, dk, act: act_buf, n })
+    Some(Attempt { r, s, slip, dk, act: act_buf, n })
+}
+
+/// Whether the return `a` of set 7 (faces 0, 1, 2) or 11 (faces 0, 1, 3), which passed the
+/// Kuhn-Tucker test, is the set that the ordered enumeration accepts, at the apex of a joint
+/// without strength (all four faces through the origin, tan psi > 0), so that a warm start
+/// may take it at once: the same force, history, flags and tangent.
+///
+/// There the flow columns `g_j = D m_j` obey `g_0 + g_1 = tan psi (g_2 + g_3)`, and a trial in
+/// the cone they span returns to the apex with multipliers that are not unique. The ordered
+/// enumeration takes the first set that passes: a single face or a pair only if the trial lies
+/// (to the test's tolerance) on a ray `g_j` or in the plane of a pair, else set 7 if the trial
+/// lies on the side of g_2 of the plane of `g_0, g_1` (all its multipliers >= 0), else 11. Set
+/// 7's or 11's return is that choice when the trial is off every ray and every pair's plane by
+/// a margin: each of its three multipliers moves its face's value by [`STRICT_MARGIN`] times
+/// the tolerance or more (off the planes of two of its columns, and so off the rays and the
+/// planes of a column of the set with the fourth), and so does `r_0 - r_1` (off the plane of
+/// `g_2, g_3`, the one left, where `r_0 = r_1`). For set 11 the plane of `g_0, g_1` separates
+/// it from set 7, whose multiplier of face 2 is then `-r_3`: set 7 fails, and 11 is the first
+/// to pass. A test maps trials generic and next to every ray and plane against the ordered
+/// enumeration, bit for bit.
+#[inline(always)]
+fn apex_set(a: &Attempt, g_all: &[[f64; 4]; 4], tol: f64) -> bool {
+    let margin = STRICT_MARGIN * tol;
+    a.act.iter().zip(&a.r).all(|(&j, &r)| r * g_all[j][j] >= margin) && (a.r[0] - a.r[1]).abs() * g_all[0][0] >= margin
 }
 
 /// The margins of a strict warm set ([`MapOptions::strict`]), in units of the Kuhn-Tucker
@@ -985,4 +1025,76 @@ mod tests {
             }
         }
     }
+
+    /// At the apex of a dry joint (tan psi > 0) the multipliers are not unique, and a warm set 7
+    /// or 11 is taken only where it is the ordered enumeration's choice (`apex_set`): trials in
+    /// the cone of the flow columns, generic and next to its rays, its faces and the planes of
+    /// its pairs (down to 1e-15 of the trial), mapped with every warm set, strict or not, with
+    /// and without prepared constants: the bits of the ordered enumeration, tangent included.
+    #[test]
+    fn a_warm_set_at_the_apex_is_taken_only_where_the_ordered_enumeration_takes_it() {
+        let sec = Section::new(0.4, 1.0);
+        let mut r = rng(23);
+        let mut taken = 0;
+        let mut total = 0;
+        // the dry dilatant laws, and two with flow columns nearer each other: a small dilatancy
+        // and a soft shear
+        let base = JointLaw { friction: 0.65, ..JointLaw::default() };
+        let extra = [JointLaw { dilatancy: 0.02, ..base }, JointLaw { dilatancy: 0.65, shear_stiffness: 1e7, ..base }];
+        for law in laws().iter().filter(|l| l.dilatancy > 0.0 && !l.is_strong()).chain(&extra) {
+            let prep = Prepared::new(law, &sec);
+            let faces = Faces::new(law, &sec, 0.0, 0.0);
+            let d = stiffness(law, &sec);
+            for i in 0..20000 {
+                // multipliers of the four flow columns: random, some near zero, some pairs near
+                // equal (on the plane of g_2, g_3 where r_0 = r_1 in set 7's terms)
+                let mut lam = [r().abs(), r().abs(), r().abs(), r().abs()];
+                let tiny = [0.0, 1e-15, 1e-12, 1e-9, 1e-6, 1e-3][i % 6];
+                match (i / 6) % 5 {
+                    0 => {}
+                    1 => lam[(i / 30) % 4] = tiny * r().abs(),
+                    2 => {
+                        lam[(i / 30) % 4] = tiny * r().abs();
+                        lam[(i / 120) % 4] = tiny * r().abs();
+                    }
+                    3 => lam[1] = lam[0] * (1.0 + tiny * r()),
+                    _ => {
+                        lam[3] = tiny * r().abs();
+                        lam[1] = lam[0] * (1.0 + tiny * r());
+                    }
+                }
+                let t: [f64; 3] = std::array::from_fn(|c| (0..4).map(|j| 1e-6 * lam[j] * d[c] * faces.m(j)[c]).sum());
+                let committed = JointState { plastic: [1e-6 * r(), 1e-6 * r(), 0.0], ..JointState::default() };
+                let e: [f64; 3] = std::array::from_fn(|c| t[c] / d[c] + committed.plastic[c]);
+                let (cold, set) = return_map_with(law, &sec, e, &committed, MapOptions::default());
+                for warm in [7u8, 11, 13, 14, 3, 12, set] {
+                    for strict in [false, true] {
+                        for prepared in [None, Some(&prep)] {
+                            let opts = MapOptions { prepared, warm, strict, tangent: true };
+                            let (w, wset) = return_map_with(law, &sec, e, &committed, opts);
+                            assert_eq!(bits(&w, wset), bits(&cold, set), "{law:?} lam {lam:?} warm {warm} strict {strict}");
+                        }
+                    }
+                }
+                // how often the shortcut is taken
+                if set == 7 || set == 11 {
+                    total += 1;
+                    let tr: [f64; 3] = std::array::from_fn(|c| d[c] * (e[c] - committed.plastic[c]));
+                    let scale = tr[0].abs() + tr[1].abs() + (tr[2] * faces.k).abs();
+                    let tol = 1e-12 * scale + f64::MIN_POSITIVE;
+                    let ft: [f64; 4] = std::array::from_fn(|j| faces.f(j, &tr));
+                    let a = if set == 7 {
+                        attempt::<7>(&faces, Some(&prep), &tr, &ft, &prep.g_all, &prep.dm, tol, false)
+                    } else {
+                        attempt::<11>(&faces, Some(&prep), &tr, &ft, &prep.g_all, &prep.dm, tol, false)
+                    };
+                    taken += a.is_some_and(|a| apex_set(&a, &prep.g_all, tol)) as usize;
+                }
+            }
+        }
+        // the generic fifth of the cases at least
+        assert!(taken * 5 > total, "the shortcut taken in {taken} of {total} returns to the apex");
+        println!("shortcut taken in {taken} of {total} returns to the apex by set 7 or 11");
+    }
+
 }
