@@ -712,8 +712,6 @@ pub fn elastic_tangent(law: &JointLaw, sec: &Section) -> [[f64; 3]; 3] {
 /// The return of one active set: the force, the Coulomb flow, the plastic (opening, slip)
 /// increments, and for the tangent the set's faces.
 struct Attempt {
-    /// the multipliers of the active faces, in the order of `act`
-    r: [f64; 3],
     s: [f64; 3],
     slip: [f64; 3],
     dk: [f64; 2],
@@ -797,7 +795,7 @@ fn attempt<const MASK: u8>(
     if violated {
         return None;
     }
-    Some(Attempt { r, s, slip, dk, act: act_buf, n })
+    Some(Attempt { s, slip, dk, act: act_buf, n })
 }
 
 /// Whether the return `a` of set 7 (faces 0, 1, 2) or 11 (faces 0, 1, 3), which passed the
@@ -821,7 +819,14 @@ fn attempt<const MASK: u8>(
 #[inline(always)]
 fn apex_set(a: &Attempt, g_all: &[[f64; 4]; 4], tol: f64) -> bool {
     let margin = STRICT_MARGIN * tol;
-    a.act.iter().zip(&a.r).all(|(&j, &r)| r * g_all[j][j] >= margin) && (a.r[0] - a.r[1]).abs() * g_all[0][0] >= margin
+    // the multipliers from the increments: the slip's shear is r_0 - r_1 (m_0, m_1 = (tan psi,
+    // +-1, 0)), dk = (r_2 or r_3, r_0 + r_1); to rounding, against margins of 1e6 tolerances
+    let (r01, d01, r23) = (a.dk[1], a.slip[1], a.dk[0]);
+    let third = a.act[2];
+    0.5 * (r01 + d01) * g_all[0][0] >= margin
+        && 0.5 * (r01 - d01) * g_all[1][1] >= margin
+        && r23 * g_all[third][third] >= margin
+        && d01.abs() * g_all[0][0] >= margin
 }
 
 /// The margins of a strict warm set ([`MapOptions::strict`]), in units of the Kuhn-Tucker
