@@ -571,9 +571,10 @@ pub fn return_map_forces_prepared(
 /// Coulomb bounds at that N: unique too. The multipliers, which make the history (slip,
 /// dilatancy, opening), are unique too except where all four faces meet at the point (c =
 /// mu ft, e.g. the apex of a dry joint) with tan psi > 0: there `m_0 + m_1 - tan psi (a_2 +
-/// a_3) = 0`, and each 3-face set splits the flow differently; a warm 3-face set is then not
-/// taken, and the ordered enumeration chooses, as without a warm start. (With tan psi = 0 the
-/// sets with both Coulomb faces are singular and never accepted.)
+/// a_3) = 0`, and each 3-face set splits the flow differently; the ordered enumeration chooses
+/// there, as without a warm start, and a warm 3-face set is taken only where it is that choice
+/// by margins: set 7 or 11 at the apex of a joint without strength (`apex_set`). (With tan psi
+/// = 0 the sets with both Coulomb faces are singular and never accepted.)
 #[inline(always)]
 pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, opts: MapOptions) -> (Response, u8) {
     let MapOptions { prepared: prep, warm, strict, tangent: want_tangent } = opts;
