@@ -923,6 +923,13 @@ pub fn admissible(law: &JointLaw, sec: &Section, force: &[f64; 3], state: &Joint
 mod tests {
     use super::*;
 
+    /// [`return_map_with`], one copy for all the tests: inlined at each of their call sites (it
+    /// is `inline(always)`), it made this module's test build take over nine minutes.
+    #[inline(never)]
+    fn map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, opts: MapOptions) -> (Response, u8) {
+        return_map_with(law, sec, e, committed, opts)
+    }
+
     /// A tiny xorshift generator: the same numbers on every run.
     fn rng(seed: u64) -> impl FnMut() -> f64 {
         let mut x = seed;
@@ -971,10 +978,10 @@ mod tests {
             for _ in 0..20000 {
                 let (e, committed) = random_case(&mut r);
                 let forces = MapOptions { tangent: false, ..MapOptions::default() };
-                let (cold, set) = return_map_with(law, &sec, e, &committed, forces);
+                let (cold, set) = map(law, &sec, e, &committed, forces);
                 let scale = cold.force[0].abs() + cold.force[1].abs() + cold.force[2].abs() * 5.0 + 1.0;
                 for warm in 1..15u8 {
-                    let (w, wset) = return_map_with(law, &sec, e, &committed, MapOptions { warm, ..forces });
+                    let (w, wset) = map(law, &sec, e, &committed, MapOptions { warm, ..forces });
                     // the prepared constants change nothing, bit for bit
                     let (wp, wpset) = return_map_forces_prepared(law, &sec, &prep, e, &committed, warm);
                     assert_eq!((wp.force.map(f64::to_bits), wp.state.plastic.map(f64::to_bits)), (w.force.map(f64::to_bits), w.state.plastic.map(f64::to_bits)));
@@ -1008,7 +1015,7 @@ mod tests {
             let prep = kinds.prepared(0).unwrap();
             for _ in 0..20000 {
                 let (e, committed) = random_case(&mut r);
-                let (cold, set) = return_map_with(law, &sec, e, &committed, MapOptions::default());
+                let (cold, set) = map(law, &sec, e, &committed, MapOptions::default());
                 assert_eq!(bits(&cold, set), bits(&return_map(law, &sec, e, &committed), set));
                 if set == 0 {
                     assert_eq!(elastic_tangent(law, &sec), cold.tangent);
@@ -1016,15 +1023,15 @@ mod tests {
                 for warm in 0..15u8 {
                     for prepared in [None, Some(prep)] {
                         let opts = MapOptions { prepared, warm, strict: true, tangent: true };
-                        let (w, wset) = return_map_with(law, &sec, e, &committed, opts);
+                        let (w, wset) = map(law, &sec, e, &committed, opts);
                         assert_eq!(bits(&w, wset), bits(&cold, set), "{law:?} e {e:?} warm {warm}");
                         // without the tangent: the same force, history, flags and set
-                        let (f, fset) = return_map_with(law, &sec, e, &committed, MapOptions { tangent: false, ..opts });
+                        let (f, fset) = map(law, &sec, e, &committed, MapOptions { tangent: false, ..opts });
                         assert_eq!(bits(&Response { tangent: cold.tangent, ..f }, fset), bits(&cold, set));
                     }
                     // the set found, given back as the warm set without margins, is taken again
                     if warm == set && set != 0 {
-                        let (w, wset) = return_map_with(law, &sec, e, &committed, MapOptions { warm, ..MapOptions::default() });
+                        let (w, wset) = map(law, &sec, e, &committed, MapOptions { warm, ..MapOptions::default() });
                         assert_eq!(bits(&w, wset), bits(&cold, set));
                     }
                 }
@@ -1072,12 +1079,12 @@ mod tests {
                 let t: [f64; 3] = std::array::from_fn(|c| (0..4).map(|j| 1e-6 * lam[j] * d[c] * faces.m(j)[c]).sum());
                 let committed = JointState { plastic: [1e-6 * r(), 1e-6 * r(), 0.0], ..JointState::default() };
                 let e: [f64; 3] = std::array::from_fn(|c| t[c] / d[c] + committed.plastic[c]);
-                let (cold, set) = return_map_with(law, &sec, e, &committed, MapOptions::default());
+                let (cold, set) = map(law, &sec, e, &committed, MapOptions::default());
                 for warm in [7u8, 11, 13, 14, 3, 12, set] {
                     for strict in [false, true] {
                         for prepared in [None, Some(&prep)] {
                             let opts = MapOptions { prepared, warm, strict, tangent: true };
-                            let (w, wset) = return_map_with(law, &sec, e, &committed, opts);
+                            let (w, wset) = map(law, &sec, e, &committed, opts);
                             assert_eq!(bits(&w, wset), bits(&cold, set), "{law:?} lam {lam:?} warm {warm} strict {strict}");
                         }
                     }
