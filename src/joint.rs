@@ -589,8 +589,7 @@ pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &J
         d[1] * (e[1] - ep[1]),
         d[2] * (e[2] - ep[2]),
     ];
-    let k = 2.0 / sec.length;
-    let scale = trial[0].abs() + trial[1].abs() + (trial[2] * k).abs();
+    let scale = force_scale(&trial, sec);
     let mut broken = committed.broken;
     let softening = law.is_softening();
     if law.is_strong() && !broken && !softening {
@@ -602,7 +601,7 @@ pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &J
     // softening: the strengths of the committed history hold within the step
     let (c_now, ft_now) = law.strengths(&JointState { broken, ..*committed });
     let faces = Faces::new(law, sec, c_now, ft_now);
-    let tol = 1e-12 * (scale + faces.b[0] + faces.b[2]) + f64::MIN_POSITIVE;
+    let tol = kt_tolerance(scale, &faces);
     let elastic_tangent = if want_tangent { [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]] } else { [[0.0; 3]; 3] };
     // Only the Coulomb flow (slip and its dilatancy) is history: an opening or a rocking gap
     // closes again without resistance (no-tension contact), so the rocking faces' flow is not
@@ -701,6 +700,19 @@ pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &J
         faces.b[2]
     };
     (finish([n_apex, 0.0, 0.0], [0.0; 3], [0.0; 2], [[0.0; 3]; 3]), APEX)
+}
+
+/// The size of a trial force (N, T, M) in newtons, the moment as its rocking faces see it
+/// (2 |M| / l).
+#[inline(always)]
+fn force_scale(trial: &[f64; 3], sec: &Section) -> f64 {
+    trial[0].abs() + trial[1].abs() + (trial[2] * (2.0 / sec.length)).abs()
+}
+
+/// The tolerance of the Kuhn-Tucker tests of a trial of size `scale` on `faces`.
+#[inline(always)]
+fn kt_tolerance(scale: f64, faces: &Faces) -> f64 {
+    1e-12 * (scale + faces.b[0] + faces.b[2]) + f64::MIN_POSITIVE
 }
 
 /// The elastic tangent D = diag(kN A, kT A, kN I) of `law` on `sec`: the tangent of an update
@@ -1093,8 +1105,7 @@ mod tests {
                 if set == 7 || set == 11 {
                     total += 1;
                     let tr: [f64; 3] = std::array::from_fn(|c| d[c] * (e[c] - committed.plastic[c]));
-                    let scale = tr[0].abs() + tr[1].abs() + (tr[2] * faces.k).abs();
-                    let tol = 1e-12 * scale + f64::MIN_POSITIVE;
+                    let tol = kt_tolerance(force_scale(&tr, &sec), &faces);
                     let ft: [f64; 4] = std::array::from_fn(|j| faces.f(j, &tr));
                     let a = if set == 7 {
                         attempt::<7>(&faces, Some(&prep), &tr, &ft, &prep.g_all, &prep.dm, tol, false)
