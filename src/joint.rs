@@ -620,7 +620,7 @@ pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &J
         Response {
             force,
             state: JointState { plastic, broken, opening, slip: slip_acc },
-            flags: flags(&faces, &force, sec),
+            flags: flags(&faces, &force, sec, scale),
             tangent,
         }
     };
@@ -903,11 +903,15 @@ fn active_tangent(
     Some(tangent)
 }
 
-/// A face counts as reached within 0.1% of the force's size: a relaxed explicit state and a
-/// Newton-converged static state of the same collapse are then classified alike.
-fn flags(faces: &Faces, s: &[f64; 3], sec: &Section) -> u8 {
-    let scale = s[0].abs() + s[1].abs() + (s[2] * 2.0 / sec.length).abs() + faces.b[0] + faces.b[2];
-    let tol = 1e-3 * scale + f64::MIN_POSITIVE;
+/// The OPEN | SLIDING | ROCKING bits of a returned force `s`, from the trial of size
+/// `trial_scale` ([`force_scale`]). A face counts as reached within 0.1% of the force's size: a
+/// relaxed explicit state and a Newton-converged static state of the same collapse are then
+/// classified alike. And within 1e-9 of the trial's: a joint without strength returned to its
+/// apex carries nothing but rounding (some 1e-17 of the trial), whose signs would otherwise read
+/// as sliding or rocking instead of open.
+fn flags(faces: &Faces, s: &[f64; 3], sec: &Section, trial_scale: f64) -> u8 {
+    let scale = force_scale(s, sec) + faces.b[0] + faces.b[2];
+    let tol = 1e-3 * scale + 1e-9 * trial_scale + f64::MIN_POSITIVE;
     let at = |j: usize| faces.f(j, s) >= -tol;
     if at(2) && at(3) {
         OPEN

@@ -188,6 +188,35 @@ fn pure_opening_is_open_and_carries_nothing() {
     assert!(r.force.iter().all(|f| f.abs() < 1e-9));
 }
 
+/// A joint without strength (dry, or mortar that has failed) opened and slid at once returns to
+/// the apex of its domain, where it carries nothing: its force is zero but for rounding. The crack
+/// pattern must show it open, whatever the sign of that rounding.
+#[test]
+fn a_joint_that_carries_nothing_is_open() {
+    let broken = JointState { broken: true, ..JointState::default() };
+    let laws = laws();
+    let cases = [(laws[0], JointState::default()), (laws[1], JointState::default()), (laws[2], broken), (laws[3], broken)];
+    // opened by 10 um and slid by 10 um: no dilatancy closes that gap
+    let r = return_map(&laws[1], &SEC, [1e-5, 1e-5, 0.0], &JointState::default());
+    assert!(r.force.iter().all(|f| f.abs() < 1e-9), "force {:?}", r.force);
+    assert_eq!(r.flags, OPEN, "force {:?}", r.force);
+    for (law, state) in &cases {
+        let mut nothing = 0;
+        for e in jumps() {
+            let r = return_map(law, &SEC, e, state);
+            let size = trial_size(law, &e);
+            let carried = r.force[0].abs() + r.force[1].abs() + (r.force[2] * 2.0 / SEC.length).abs();
+            if carried <= 1e-12 * size {
+                nothing += 1;
+                assert_eq!(r.flags, OPEN, "{law:?} e {e:?}: force {:?} of a trial of {size:e} N", r.force);
+            }
+        }
+        println!("{nothing} of {} trials carried nothing", jumps().len());
+        // a count, so that the test cannot pass empty
+        assert!(nothing >= 100, "only {nothing} of the trials carried nothing ({law:?})");
+    }
+}
+
 #[test]
 fn rotation_under_compression_rocks_at_the_edge() {
     let law = laws()[1];

@@ -80,6 +80,28 @@ fn ferris_wall2_non_associative() {
     );
 }
 
+/// At collapse the joints that the mechanism opens carry nothing (dry joints: zero force at the
+/// apex, but for rounding). The crack pattern must report them open, not sliding or rocking.
+#[test]
+fn the_joints_that_carry_nothing_at_collapse_are_open() {
+    use masonry_dem::joint::OPEN;
+    for (courses, psi) in [(6, 0.65), (10, 0.65), (6, 0.0)] {
+        let r = solve(&ferris(courses, dry(0.65, psi, 1e10)), &StaticOptions::default()).unwrap();
+        assert_eq!(r.status, Status::Collapse);
+        let size = |f: &[f64; 3]| f[0].abs() + f[1].abs() + f[2].abs();
+        let largest = r.interface_forces.iter().map(size).fold(0.0, f64::max);
+        let mut nothing = 0;
+        for (k, (f, &state)) in r.interface_forces.iter().zip(&r.interface_states).enumerate() {
+            if size(f) <= 1e-12 * largest {
+                nothing += 1;
+                assert_eq!(state, OPEN, "{courses} courses, psi {psi}: interface {k} carries {f:?} (largest {largest:e})");
+            }
+        }
+        // the crack of each wall opens joints (a count, so that the test cannot pass empty)
+        assert!(nothing >= 5, "{courses} courses, psi {psi}: only {nothing} joints carry nothing");
+    }
+}
+
 #[test]
 fn wall2_collapse_does_not_depend_on_penalty_stiffness() {
     let stiff = collapse(&ferris(10, dry(0.65, 0.65, 1e10)));
