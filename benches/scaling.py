@@ -4,7 +4,8 @@ For each size: the time of `Model.solve_static(control="load")` (median of --rep
 elapsed time, Newton iterations, load steps and the peak memory of the process. Then the overhead of the Python
 call on Ferris & Tin-Loi wall 1 (33 blocks): the call's wall time against the solver's `elapsed_s`.
 
-    .venv/bin/python benches/scaling.py [--sizes 10 32] [--repeat 3]
+    .venv/bin/python benches/scaling.py [--sizes 10 32] [--repeat 3] [--calls 40] [--rounds 3]
+    .venv/bin/python benches/scaling.py --sizes        # only the Python call
 
 A size is a number of courses c: c courses of about c blocks (10: 105 blocks, 32: 1,040, 100: 10,050); the
 fixed base comes on top of these.
@@ -31,11 +32,15 @@ def peak_rss_mb() -> float:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--sizes", type=int, nargs="+", default=[10, 32], help="courses (about as many blocks each)")
+    ap.add_argument("--sizes", type=int, nargs="*", default=[10, 32],
+                    help="courses (about as many blocks each); none: only the Python call")
     ap.add_argument("--repeat", type=int, default=3, help="runs per size (the median is shown)")
+    ap.add_argument("--calls", type=int, default=40, help="calls on wall 1 per round (the median is shown)")
+    ap.add_argument("--rounds", type=int, default=3, help="rounds of calls on wall 1")
     a = ap.parse_args()
-    print(f"{'blocks':>7s} {'interfaces':>10s} {'median s':>9s} {'solver s':>9s} {'steps':>6s} {'iterations':>10s} "
-          f"{'lambda':>7s} {'peak RSS MB':>11s}")
+    if a.sizes:
+        print(f"{'blocks':>7s} {'interfaces':>10s} {'median s':>9s} {'solver s':>9s} {'steps':>6s} {'iterations':>10s} "
+              f"{'lambda':>7s} {'peak RSS MB':>11s}")
     for c in a.sizes:
         t_build = time.perf_counter()
         model = wall(c)
@@ -53,15 +58,18 @@ def main() -> None:
     # the Python call on a 33-block wall: its wall time against the solver's own time
     w1 = md.Model(md.running_bond(0.4, 0.175, 6, 2.0), gravity=10.0,
                   joints={"default": {"friction": 0.65, "dilatancy": 0.65}})
-    calls = []
-    for _ in range(20):
-        t0 = time.perf_counter()
-        r = w1.solve_static(control="load")
-        calls.append((time.perf_counter() - t0, r.elapsed_s))
-    call = statistics.median(t for t, _ in calls)
-    inner = statistics.median(e for _, e in calls)
-    print(f"\nwall 1 (33 blocks) from Python, median of 20: call {call * 1e3:.2f} ms, solver {inner * 1e3:.2f} ms, "
-          f"overhead {(call - inner) * 1e3:.3f} ms")
+    print()
+    for _ in range(a.rounds):
+        calls = []
+        for _ in range(a.calls):
+            t0 = time.perf_counter()
+            r = w1.solve_static(control="load")
+            calls.append((time.perf_counter() - t0, r.elapsed_s))
+        call = statistics.median(t for t, _ in calls)
+        fastest = min(t for t, _ in calls)
+        inner = statistics.median(e for _, e in calls)
+        print(f"wall 1 (33 blocks) from Python, median of {a.calls}: call {call * 1e3:.2f} ms (fastest "
+              f"{fastest * 1e3:.2f} ms), solver {inner * 1e3:.2f} ms, overhead {(call - inner) * 1e3:.3f} ms")
 
 
 if __name__ == "__main__":
