@@ -221,6 +221,11 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
     """The short human summary printed by ``masonry-dem run`` (several lines, no trailing newline)."""
     states: Dict[str, int] = dict(results.joint_states)
     joint_text = ", ".join(f"{int(states.get(k, 0))} {k}" for k in ("elastic", "sliding", "rocking", "open"))
+    # an interface that slides and rocks at once counts in both (the result file's convention): say how many,
+    # so that the counts add up to the interfaces
+    both = sum(1 for s in getattr(results, "interface_states", ()) if s & SLIDING and s & ROCKING and not s & OPEN)
+    if both:
+        joint_text += f" ({both} both sliding and rocking)"
     lines = [
         title,
         f"  blocks:              {model.n_blocks}",

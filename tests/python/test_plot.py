@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -146,6 +147,12 @@ def test_plot_real(tmp_path: Path, name: str) -> None:
     text = summary(case.title, model, results)
     assert text.splitlines()[0] == case.title
     assert "mechanism:" in text
+    # the joint states add up to the interfaces, those that slide and rock counted once
+    line = next(l for l in text.splitlines() if "joint states:" in l)
+    counts = {k: int(v) for v, k in re.findall(r"(\d+) (elastic|sliding|rocking|open)\b", line)}
+    both = re.search(r"\((\d+) both sliding and rocking\)", line)
+    twice = int(both.group(1)) if both else 0
+    assert sum(counts.values()) - twice == model.n_interfaces, line
 
 
 def test_describe_top_beam_only() -> None:
