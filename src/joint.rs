@@ -667,12 +667,7 @@ pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &J
         }
         warm_sets!(1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14);
         if apex_warm {
-            let a = if warm_in == 7 {
-                attempt::<7>(&faces, prep, &trial, &f_trial, g_all, dm, tol, false)
-            } else {
-                attempt::<11>(&faces, prep, &trial, &f_trial, g_all, dm, tol, false)
-            };
-            if let Some(a) = a.filter(|a| apex_set(a, g_all, tol)) {
+            if let Some(a) = apex_return(warm_in, &faces, prep, &trial, &f_trial, g_all, dm, tol) {
                 break 'found Some((a, warm_in));
             }
         }
@@ -840,6 +835,28 @@ fn apex_set(a: &Attempt, g_all: &[[f64; 4]; 4], tol: f64) -> bool {
         && 0.5 * (r01 - d01) * g_all[1][1] >= margin
         && r23 * g_all[third][third] >= margin
         && d01.abs() * g_all[0][0] >= margin
+}
+
+/// The return of set 7 or 11 (`set`) at the apex of a joint without strength, if it passes the
+/// Kuhn-Tucker test and is the ordered enumeration's choice there ([`apex_set`]).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn apex_return(
+    set: u8,
+    faces: &Faces,
+    prep: Option<&Prepared>,
+    trial: &[f64; 3],
+    f_trial: &[f64; 4],
+    g_all: &[[f64; 4]; 4],
+    dm: &[[f64; 3]; 4],
+    tol: f64,
+) -> Option<Attempt> {
+    let a = if set == 7 {
+        attempt::<7>(faces, prep, trial, f_trial, g_all, dm, tol, false)
+    } else {
+        attempt::<11>(faces, prep, trial, f_trial, g_all, dm, tol, false)
+    };
+    a.filter(|a| apex_set(a, g_all, tol))
 }
 
 /// The margins of a strict warm set ([`MapOptions::strict`]), in units of the Kuhn-Tucker
@@ -1111,12 +1128,7 @@ mod tests {
                     let tr: [f64; 3] = std::array::from_fn(|c| d[c] * (e[c] - committed.plastic[c]));
                     let tol = kt_tolerance(force_scale(&tr, &sec), &faces);
                     let ft: [f64; 4] = std::array::from_fn(|j| faces.f(j, &tr));
-                    let a = if set == 7 {
-                        attempt::<7>(&faces, Some(&prep), &tr, &ft, &prep.g_all, &prep.dm, tol, false)
-                    } else {
-                        attempt::<11>(&faces, Some(&prep), &tr, &ft, &prep.g_all, &prep.dm, tol, false)
-                    };
-                    taken += a.is_some_and(|a| apex_set(&a, &prep.g_all, tol)) as usize;
+                    taken += apex_return(set, &faces, Some(&prep), &tr, &ft, &prep.g_all, &prep.dm, tol).is_some() as usize;
                 }
             }
         }

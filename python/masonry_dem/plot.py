@@ -31,7 +31,6 @@ import os
 from typing import Any, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
-import numpy.typing as npt
 from matplotlib.collections import LineCollection, PatchCollection
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
@@ -46,6 +45,7 @@ from .report import (
     _plural,
     corner_motion,
     deformed_corners,
+    interface_categories,
     interface_jumps,
 )
 
@@ -74,26 +74,6 @@ STATE_STYLES: Tuple[Tuple[str, str, float], ...] = (
 
 #: The largest corner motion of the drawn mechanism, as a fraction of the wall height.
 MECHANISM_FRACTION = 0.12
-
-
-def interface_categories(states: npt.ArrayLike) -> List[str]:
-    """The drawing category of each interface from its bit flags (1 open, 2 sliding, 4 rocking).
-
-    An open interface carries nothing and is drawn as open whatever else is set.
-    """
-    out = []
-    for s in np.asarray(states, dtype=np.int64):
-        if s & OPEN:
-            out.append("open")
-        elif s & SLIDING and s & ROCKING:
-            out.append("sliding + rocking")
-        elif s & SLIDING:
-            out.append("sliding")
-        elif s & ROCKING:
-            out.append("rocking")
-        else:
-            out.append("elastic")
-    return out
 
 
 def _outline(rect: Sequence[float]) -> np.ndarray:

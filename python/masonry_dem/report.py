@@ -12,6 +12,7 @@ from collections import Counter
 from typing import Any, Dict, List, Sequence
 
 import numpy as np
+import numpy.typing as npt
 
 __all__ = [
     "OPEN",
@@ -20,6 +21,7 @@ __all__ = [
     "corner_motion",
     "deformed_corners",
     "describe_mechanism",
+    "interface_categories",
     "interface_jumps",
     "format_multiplier",
     "summary",
@@ -33,6 +35,26 @@ MOVING_FRACTION = 1e-2
 #: An interface is cracked in the mechanism when the jump across it (slip, or the gap at one end) exceeds this
 #: fraction of the largest corner motion of a block.
 CRACK_TOLERANCE = 5e-2
+
+
+def interface_categories(states: npt.ArrayLike) -> List[str]:
+    """The drawing category of each interface from its bit flags (1 open, 2 sliding, 4 rocking).
+
+    An open interface carries nothing and is drawn as open whatever else is set.
+    """
+    out = []
+    for s in np.asarray(states, dtype=np.int64):
+        if s & OPEN:
+            out.append("open")
+        elif s & SLIDING and s & ROCKING:
+            out.append("sliding + rocking")
+        elif s & SLIDING:
+            out.append("sliding")
+        elif s & ROCKING:
+            out.append("rocking")
+        else:
+            out.append("elastic")
+    return out
 
 
 def _corners(rect: Sequence[float]) -> np.ndarray:
@@ -223,7 +245,7 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
     joint_text = ", ".join(f"{int(states.get(k, 0))} {k}" for k in ("elastic", "sliding", "rocking", "open"))
     # an interface that slides and rocks at once counts in both (the result file's convention): say how many,
     # so that the counts add up to the interfaces
-    both = sum(1 for s in getattr(results, "interface_states", ()) if s & SLIDING and s & ROCKING and not s & OPEN)
+    both = interface_categories(getattr(results, "interface_states", ())).count("sliding + rocking")
     if both:
         joint_text += f" ({both} both sliding and rocking)"
     lines = [
