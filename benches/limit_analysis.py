@@ -40,7 +40,10 @@ def wall(courses: int) -> md.Model:
 
 def collapse_multiplier(model: md.Model, mu: float) -> tuple[float, str]:
     """The largest lambda in equilibrium: dead load W_i down, live load lambda W_i along +x, at each block's centroid
-    (the model's default loads); the base (and any block the model fixes) takes whatever the interfaces give it."""
+    (the model's default loads), the base fixed. Only such walls: no top beam, no forces on blocks, no other fixed
+    blocks (the Python model does not expose its loads and supports, so they are not checked, except the top beam)."""
+    if model.top_index is not None:
+        raise ValueError("limit analysis here: a wall on its base without a top beam")
     rects = np.asarray(model.rects)
     weights = np.asarray(model.weights)
     n_free = model.n_blocks  # the wall's blocks come first, then the base
