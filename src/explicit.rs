@@ -1492,6 +1492,7 @@ fn finish(
         iterations: s.steps,
         steps: curve_l_len,
         elapsed_s: start.elapsed().as_secs_f64(),
+        certificate: None,
     }
 }
 

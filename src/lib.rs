@@ -7,6 +7,7 @@
 //! - [`joint`]: the joint law and its return mapping (shared by every solver);
 //! - [`model`]: blocks, interfaces, supports and loads;
 //! - [`static_solver`]: the static incremental solver (load or displacement control);
+//! - [`limit`]: limit analysis (the collapse multiplier as a linear program, with its certificate);
 //! - [`explicit`]: the explicit (molecular dynamics) solver: quasi-static analyses and time histories;
 //! - [`results`]: what an analysis returns; [`error`]: the error type.
 //!
@@ -32,6 +33,7 @@ pub mod explicit;
 pub mod geometry;
 pub mod interface;
 pub mod joint;
+pub mod limit;
 pub(crate) mod linalg;
 pub mod model;
 pub mod results;

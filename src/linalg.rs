@@ -304,29 +304,8 @@ impl SparseLu {
             ));
         }
         self.factorized = Factor::None;
-        if self.symmetric(largest) {
-            self.ensure_llt()?;
-            let parts = self.llt.as_mut().unwrap();
-            for (v, &s) in parts.permuted_values.iter_mut().zip(&parts.src) {
-                *v = self.values[s];
-            }
-            let mat = SparseColMatRef::new(parts.permuted.as_ref(), &parts.permuted_values);
-            let ok = parts
-                .symbolic
-                .factorize_numeric_llt(
-                    &mut parts.l_values,
-                    mat,
-                    parts.side,
-                    LltRegularization::default(),
-                    Par::Seq,
-                    MemStack::new(&mut parts.factor_buf),
-                    Default::default(),
-                )
-                .is_ok();
-            if ok {
-                self.factorized = Factor::Llt;
-                return Ok(());
-            }
+        if self.symmetric(largest) && self.factorize_llt(LltRegularization::default())?.is_some() {
+            return Ok(());
         }
         if self.n <= DENSE_LU_MAX {
             return self.factorize_dense();
@@ -348,6 +327,29 @@ impl SparseLu {
         r?;
         self.factorized = Factor::Lu;
         Ok(())
+    }
+
+    /// The numeric Cholesky of the current values (the symbolic analysis done once); None if
+    /// a pivot is not positive.
+    fn factorize_llt(&mut self, reg: LltRegularization<f64>) -> Result<Option<()>> {
+        self.ensure_llt()?;
+        let parts = self.llt.as_mut().unwrap();
+        for (v, &s) in parts.permuted_values.iter_mut().zip(&parts.src) {
+            *v = self.values[s];
+        }
+        let mat = SparseColMatRef::new(parts.permuted.as_ref(), &parts.permuted_values);
+        let info = parts.symbolic.factorize_numeric_llt(
+            &mut parts.l_values,
+            mat,
+            parts.side,
+            reg,
+            Par::Seq,
+            MemStack::new(&mut parts.factor_buf),
+            Default::default(),
+        );
+        Ok(info.ok().map(|_| {
+            self.factorized = Factor::Llt;
+        }))
     }
 
     /// The dense LU with partial pivoting of a small non-symmetric matrix (a zero pivot shows

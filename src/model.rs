@@ -426,6 +426,10 @@ impl Model {
     pub fn joint_kinds(&self) -> Kinds {
         Kinds::new(self.interfaces.iter().zip(&self.sections).map(|(it, s)| (it.family as u8, self.laws.of(it.family), s)), Kinds::MAX)
     }
+    /// Whether some interface's law has cohesion or tensile strength.
+    pub fn laws_are_strong(&self) -> bool {
+        (0..self.interfaces.len()).any(|k| self.law(k).is_strong())
+    }
     pub fn laws(&self) -> &JointLaws {
         &self.laws
     }

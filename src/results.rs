@@ -11,6 +11,11 @@ pub enum Status {
     Completed,
     /// The solver failed; `error` says why and the curve holds the converged steps.
     Failed,
+    /// The wall cannot stand under its dead loads (limit analysis: the program is infeasible, or
+    /// its largest multiplier is negative).
+    NoEquilibrium,
+    /// The live load finds no mechanism within the analysis's range of multipliers.
+    Unbounded,
 }
 
 impl Status {
@@ -19,6 +24,8 @@ impl Status {
             Status::Collapse => "collapse",
             Status::Completed => "completed",
             Status::Failed => "failed",
+            Status::NoEquilibrium => "no_equilibrium",
+            Status::Unbounded => "unbounded",
         }
     }
 }
@@ -64,6 +71,32 @@ pub struct Results {
     /// Converged steps.
     pub steps: usize,
     pub elapsed_s: f64,
+    /// The limit analysis's evidence (None for the other methods).
+    pub certificate: Option<Certificate>,
+}
+
+/// What a limit analysis certifies: the interior point's residuals at its solution (scaled to
+/// loads of order one) and, for joints with dilatancy below friction, the associative bound and
+/// the non-associative sequence.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Certificate {
+    /// Largest violation of equilibrium or of a strength face, relative to the largest load.
+    pub primal_residual: f64,
+    /// Largest violation of the dual (mechanism) equations.
+    pub dual_residual: f64,
+    /// Relative difference of the primal and dual objectives.
+    pub duality_gap: f64,
+    /// Interior-point iterations in all.
+    pub iterations: usize,
+    /// The associative multiplier, an upper bound, when the joints are non-associative (NaN
+    /// otherwise: the multiplier is then the program's own optimum).
+    pub upper_bound: f64,
+    /// Programs of the non-associative sequence after the associative one (0: none).
+    pub sequence: usize,
+    /// Whether the sequence's multiplier settled within its tolerance.
+    pub sequence_converged: bool,
+    /// Whether some joint has cohesion or tensile strength, taken at its peak (no softening).
+    pub peak_strengths: bool,
 }
 
 impl Results {

@@ -1365,6 +1365,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             iterations: self.iterations,
             steps: self.steps,
             elapsed_s: start.elapsed().as_secs_f64(),
+            certificate: None,
         }
     }
 }
