@@ -17,12 +17,16 @@
 //! forces (Gilbert, Casapulla & Ahmed, 2006). That estimate is a heuristic, neither bound.
 //!
 //! The method: Mehrotra's predictor-corrector on the program scaled to forces of order one
-//! (moments carried as `2 M / l`, rotation rows divided by a length). Each iteration solves the
-//! normal equations `A D A^T dy = r`, whose matrix is assembled exactly as the stiffness matrix
-//! is (one 3 x 3 block `D_k` per interface) and factorized by [`crate::linalg`]'s sparse
-//! Cholesky, the symbolic analysis once. lambda's column is handled by bordering: two solves
-//! with one factorization. The dual variables of the equilibrium rows are the block velocities
-//! of the collapse mechanism.
+//! (moments carried as `2 M / l`, rotation rows divided by a length), in standard form: each
+//! interface's resultants are a point of its strength domain written with non-negative
+//! variables (the four rays of two contact points, and the segment between the domain's two
+//! vertices for joints with strength). Each iteration solves the normal equations
+//! `A Theta A^T dy = r`, whose matrix is assembled exactly as the stiffness matrix is (one 3 x 3
+//! block per interface, on the same pattern) and factorized by [`crate::linalg`] (LDL^T on the
+//! sparse Cholesky's symbolic analysis, which is done once), each solve refined twice on the
+//! exact operator. lambda, a free variable, borders the system: two solves with one
+//! factorization. The dual variables of the equilibrium rows are the block velocities of the
+//! collapse mechanism.
 //!
 //! ```
 //! use masonry_dem::geometry::{running_bond, RunningBond, FirstCourse};
@@ -543,6 +547,9 @@ impl Program {
             if !monitor(&LimitProgress { program, iteration: iter, multiplier: lam * self.force / self.live, residual: worst }) {
                 return Err(Error::Interrupted);
             }
+            // the dual iterates running away along a ray while equilibrium stays violated: the
+            // sign of a program without a feasible point, if the iterations end here
+            let failed = if norm_inf(&p.y) > 1e12 && primal > 1e-3 { Outcome::Infeasible } else { Outcome::NotConverged };
             let done = |outcome| Solution {
                 outcome,
                 x: p.x.clone(),
@@ -571,10 +578,7 @@ impl Program {
                 since_best += 1;
             }
             if iter == opts.max_iterations || since_best >= 30 || !worst.is_finite() {
-                // the dual iterates running away along a ray while equilibrium stays violated:
-                // the sign of a program without a feasible point
-                let ray = norm_inf(&p.y) > 1e12 && primal > 1e-3;
-                return Ok(done(if ray { Outcome::Infeasible } else { Outcome::NotConverged }));
+                return Ok(done(failed));
             }
             // Theta = 1 / (s / x + v / t), and the normal matrix A Theta A^T (lambda's column
             // apart: the system is bordered)
@@ -586,20 +590,22 @@ impl Program {
             }
             theta.iter_mut().for_each(|t| *t = 1.0 / *t);
             self.assemble(&theta);
-            // Cholesky, or LU where rounding made the matrix indefinite near the optimum
-            if self.normal.factorize().is_err() {
-                return Ok(done(Outcome::NotConverged));
+            // LDL^T on the Cholesky's analysis: the matrix is positive semi-definite, but near
+            // the optimum Theta spans 1e-12 to 1e12 and rounding leaves pivots of either sign
+            // that a Cholesky refuses (the solves' refinement corrects for them)
+            if self.normal.factorize_ldlt().is_err() {
+                return Ok(done(failed));
             }
             u.copy_from_slice(&self.f_live);
             if self.solve_normal(&theta, &mut u).is_none() {
-                return Ok(done(Outcome::NotConverged));
+                return Ok(done(failed));
             }
             let fu = dot(&self.f_live, &u);
             // predictor
             let rxs: Vec<f64> = p.x.iter().zip(&p.s).map(|(x, s)| -x * s).collect();
             let rtv: Vec<f64> = p.t.iter().zip(&p.v).map(|(t, v)| -t * v).collect();
             let Some(aff) = self.direction(&p, &res, &rxs, &rtv, &theta, &u, fu) else {
-                return Ok(done(Outcome::NotConverged));
+                return Ok(done(failed));
             };
             let ap = max_step(&p.x, &aff.dx).min(max_step(&p.t, &aff.dt));
             let ad = max_step(&p.s, &aff.ds).min(max_step(&p.v, &aff.dv));
@@ -612,7 +618,7 @@ impl Program {
             let rxs: Vec<f64> = (0..nx).map(|i| sigma * mu - p.x[i] * p.s[i] - aff.dx[i] * aff.ds[i]).collect();
             let rtv: Vec<f64> = (0..m).map(|i| sigma * mu - p.t[i] * p.v[i] - aff.dt[i] * aff.dv[i]).collect();
             let Some(d) = self.direction(&p, &res, &rxs, &rtv, &theta, &u, fu) else {
-                return Ok(done(Outcome::NotConverged));
+                return Ok(done(failed));
             };
             let eta = 0.995;
             let ap = (eta * max_step(&p.x, &d.dx).min(max_step(&p.t, &d.dt))).min(1.0);

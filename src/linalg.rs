@@ -5,8 +5,10 @@
 //! choice of method here (n = 3,120: 2.5 ms against 26 ms; n = 30,150: 94 ms against 521 ms); a
 //! non-symmetric one (non-associative flow, the bordered system of displacement control), or one
 //! that is not positive definite (softening), to a supernodal sparse LU, or to a dense LU with
-//! partial pivoting up to [`DENSE_LU_MAX`] equations. Each symbolic analysis is done once, when
-//! first needed; each `factorize` is a numeric refactorization into preallocated buffers.
+//! partial pivoting up to [`DENSE_LU_MAX`] equations. The limit analysis's normal equations,
+//! symmetric and semi-definite, go to an LDL^T on the Cholesky's analysis. Each symbolic
+//! analysis is done once, when first needed; each `factorize` is a numeric refactorization into
+//! preallocated buffers.
 
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -14,8 +16,9 @@ use faer::linalg::lu::partial_pivoting::{factor::lu_in_place, factor::lu_in_plac
 use faer::mat::{MatMut, MatRef};
 use faer::perm::PermRef;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::utils::permute_self_adjoint_to_unsorted;
 use faer::dyn_stack::StackReq;
@@ -92,6 +95,8 @@ struct LltParts {
     l_values: Vec<f64>,
     factor_buf: MemBuffer,
     solve_buf: MemBuffer,
+    /// the scratch of an LDL^T factorization on the same analysis, once one is asked for
+    ldlt_buf: Option<MemBuffer>,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -99,6 +104,7 @@ enum Factor {
     None,
     Lu,
     Llt,
+    Ldlt,
     Dense,
 }
 
@@ -259,7 +265,7 @@ impl SparseLu {
                 .map_err(|_| out_of_memory(n, "solve"))?;
             let l_values = vec![0.0; symbolic.len_val()];
             let permuted_values = vec![0.0; src.len()];
-            self.llt = Some(LltParts { symbolic, permuted, side, src, permuted_values, fwd, inv, x: vec![0.0; n], l_values, factor_buf, solve_buf });
+            self.llt = Some(LltParts { symbolic, permuted, side, src, permuted_values, fwd, inv, x: vec![0.0; n], l_values, factor_buf, solve_buf, ldlt_buf: None });
         }
         Ok(())
     }
@@ -329,6 +335,44 @@ impl SparseLu {
         Ok(())
     }
 
+    /// The sparse LDL^T of the current values, on the Cholesky's symbolic analysis, without
+    /// pivoting: for a symmetric matrix that is positive semi-definite in exact arithmetic but
+    /// on which rounding made a Cholesky pivot non-positive (an interior point's normal
+    /// equations near the optimum); a tiny pivot of either sign is kept as it is, and the
+    /// caller refines the solves. An error for a zero pivot or non-finite values.
+    pub fn factorize_ldlt(&mut self) -> Result<()> {
+        if self.values.iter().any(|v| !v.is_finite()) {
+            return Err(Error::Convergence("the matrix has a non-finite entry".into()));
+        }
+        self.factorized = Factor::None;
+        self.ensure_llt()?;
+        let n = self.n;
+        let parts = self.llt.as_mut().unwrap();
+        if parts.ldlt_buf.is_none() {
+            let req = parts.symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default());
+            parts.ldlt_buf = Some(MemBuffer::try_new(req).map_err(|_| out_of_memory(n, "factorization"))?);
+        }
+        for (v, &s) in parts.permuted_values.iter_mut().zip(&parts.src) {
+            *v = self.values[s];
+        }
+        let mat = SparseColMatRef::new(parts.permuted.as_ref(), &parts.permuted_values);
+        let reg = LdltRegularization { dynamic_regularization_signs: None, dynamic_regularization_delta: 0.0, dynamic_regularization_epsilon: 0.0 };
+        parts
+            .symbolic
+            .factorize_numeric_ldlt(
+                &mut parts.l_values,
+                mat,
+                parts.side,
+                reg,
+                Par::Seq,
+                MemStack::new(parts.ldlt_buf.as_mut().unwrap()),
+                Default::default(),
+            )
+            .map_err(|e| Error::Convergence(format!("the LDL^T factorization failed ({e:?})")))?;
+        self.factorized = Factor::Ldlt;
+        Ok(())
+    }
+
     /// The numeric Cholesky of the current values (the symbolic analysis done once); None if
     /// a pivot is not positive.
     fn factorize_llt(&mut self, reg: LltRegularization<f64>) -> Result<Option<()>> {
@@ -394,16 +438,20 @@ impl SparseLu {
                 let m = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
                 dense_solve(lu, lu, perm, Conj::No, m, Par::Seq, MemStack::new(&mut parts.solve_buf));
             }
-            Factor::Llt => {
+            Factor::Llt | Factor::Ldlt => {
                 let parts = self.llt.as_mut().unwrap();
                 // permuted, solved and permuted back as faer's solve would (copies only)
                 let (x, m) = (&mut parts.x, &mut *rhs);
                 for (x, &f) in x.iter_mut().zip(&parts.fwd) {
                     *x = m[f];
                 }
-                let llt = LltRef::new(&parts.symbolic, &parts.l_values);
                 let xm = MatMut::from_column_major_slice_mut(x, self.n, 1);
-                llt.solve_in_place_with_conj(Conj::No, xm, Par::Seq, MemStack::new(&mut parts.solve_buf));
+                let stack = MemStack::new(&mut parts.solve_buf);
+                if self.factorized == Factor::Llt {
+                    LltRef::new(&parts.symbolic, &parts.l_values).solve_in_place_with_conj(Conj::No, xm, Par::Seq, stack);
+                } else {
+                    LdltRef::new(&parts.symbolic, &parts.l_values).solve_in_place_with_conj(Conj::No, xm, Par::Seq, stack);
+                }
                 for (m, &i) in m.iter_mut().zip(&parts.inv) {
                     *m = x[i];
                 }
