@@ -88,6 +88,14 @@ pub struct LimitProgress {
 /// within the range).
 const LAMBDA_RANGE: f64 = 1e4;
 
+/// An interior point whose residuals stop decreasing within this factor of the tolerance
+/// gives its solution, with the residuals in its certificate.
+const REDUCED_ACCURACY: f64 = 100.0;
+
+/// Joints' strengths are capped at this many times the total load (dead plus live at
+/// lambda = 1), beyond which no multiplier in the range reaches them.
+const STRENGTH_CAP: f64 = 1e4;
+
 /// Steps of iterative refinement of each solve of the normal equations.
 const REFINEMENTS: usize = 2;
 
@@ -118,6 +126,7 @@ pub fn limit_analysis_with(
         l.dilatancy < l.friction
     });
     let mut cert = Certificate {
+        multiplier: f64::NAN,
         primal_residual: assoc.primal,
         dual_residual: assoc.dual,
         duality_gap: assoc.gap,
@@ -155,7 +164,11 @@ pub fn limit_analysis_with(
         cert.duality_gap = sol.gap;
     }
     cert.iterations = iterations;
-    Ok(lp.results(model, &sol, cert, start))
+    let mut res = lp.results(model, &sol, cert, start);
+    if let Some(c) = res.certificate.as_mut() {
+        c.multiplier = res.collapse_multiplier;
+    }
+    Ok(res)
 }
 
 fn validate(opts: &LimitOptions) -> Result<()> {
@@ -307,6 +320,12 @@ impl Program {
             ht.push(ft * a / force);
             coulomb.push((c * a / force, law.friction, law.dilatancy));
         }
+        // strengths beyond STRENGTH_CAP times the total load cannot be reached within lambda's
+        // range: they are capped there (a glued joint), which keeps the program well scaled
+        let total = (0..3 * nb).filter(|&d| eq[d].is_some()).map(|d| (fd[d] / force).abs() + (fl[d] / live).abs()).sum::<f64>();
+        let cap = STRENGTH_CAP * total.max(1.0);
+        hc.iter_mut().chain(ht.iter_mut()).for_each(|h| *h = h.min(cap));
+        coulomb.iter_mut().for_each(|c| c.0 = c.0.min(cap));
         let free = |d: &usize| eq[*d].is_some();
         let f_dead = (0..3 * nb).filter(free).map(|d| fd[d] * row_scale(d) / force).collect();
         let f_live = (0..3 * nb).filter(free).map(|d| fl[d] * row_scale(d) / live).collect();
@@ -549,7 +568,14 @@ impl Program {
             }
             // the dual iterates running away along a ray while equilibrium stays violated: the
             // sign of a program without a feasible point, if the iterations end here
-            let failed = if norm_inf(&p.y) > 1e12 && primal > 1e-3 { Outcome::Infeasible } else { Outcome::NotConverged };
+            // lambda running away beyond its range: the live load finds no mechanism
+            let failed = if norm_inf(&p.y) > 1e12 && primal > 1e-3 {
+                Outcome::Infeasible
+            } else if lam > range {
+                Outcome::Unbounded
+            } else {
+                Outcome::NotConverged
+            };
             let done = |outcome| Solution {
                 outcome,
                 x: p.x.clone(),
@@ -560,7 +586,7 @@ impl Program {
                 gap,
                 iterations: iter,
             };
-            if lam > range && primal <= opts.tolerance {
+            if lam > range * range || (lam > range && primal <= opts.tolerance) {
                 return Ok(done(Outcome::Unbounded));
             }
             if worst <= opts.tolerance {
@@ -577,8 +603,15 @@ impl Program {
             } else {
                 since_best += 1;
             }
+            // stalled: rounding bounds the residuals above the tolerance. Within
+            // REDUCED_ACCURACY times it the solution stands (its certificate says how close it
+            // is); a long stall or the last iteration far from it is a failure
+            let near = worst <= REDUCED_ACCURACY * opts.tolerance;
+            if near && since_best >= 5 {
+                return Ok(done(Outcome::Optimal));
+            }
             if iter == opts.max_iterations || since_best >= 30 || !worst.is_finite() {
-                return Ok(done(failed));
+                return Ok(done(if near { Outcome::Optimal } else { failed }));
             }
             // Theta = 1 / (s / x + v / t), and the normal matrix A Theta A^T (lambda's column
             // apart: the system is bordered)
@@ -592,12 +625,18 @@ impl Program {
             self.assemble(&theta);
             // LDL^T on the Cholesky's analysis: the matrix is positive semi-definite, but near
             // the optimum Theta spans 1e-12 to 1e12 and rounding leaves pivots of either sign
-            // that a Cholesky refuses (the solves' refinement corrects for them)
-            if self.normal.factorize_ldlt().is_err() {
-                return Ok(done(failed));
+            // that a Cholesky refuses (the solves' refinement corrects for them); where a pivot
+            // is zero, or a solve not finite, LU with pivoting
+            let mut solved = false;
+            for lu in [false, true] {
+                let ok = if lu { self.normal.factorize().is_ok() } else { self.normal.factorize_ldlt().is_ok() };
+                u.copy_from_slice(&self.f_live);
+                if ok && self.solve_normal(&theta, &mut u).is_some() {
+                    solved = true;
+                    break;
+                }
             }
-            u.copy_from_slice(&self.f_live);
-            if self.solve_normal(&theta, &mut u).is_none() {
+            if !solved {
                 return Ok(done(failed));
             }
             let fu = dot(&self.f_live, &u);
@@ -747,7 +786,7 @@ impl Program {
             Outcome::Unbounded => (
                 Status::Unbounded,
                 Some(format!(
-                    "lambda exceeds {:e}, the limit of the analysis's range: the live load finds no mechanism (check the strengths and the supports)",
+                    "lambda grows beyond {:e}, the analysis's range: the live load finds no mechanism (check the strengths and the supports: a support that holds a block's position, such as a top beam held vertically, forbids the dilatancy of associative sliding)",
                     LAMBDA_RANGE * self.force / self.live
                 )),
             ),

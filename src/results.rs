@@ -16,6 +16,10 @@ pub enum Status {
     NoEquilibrium,
     /// The live load finds no mechanism within the analysis's range of multipliers.
     Unbounded,
+    /// The incremental path stopped converging below the limit-analysis collapse multiplier
+    /// (exact for associative dry joints): not a collapse. The curve holds the path, `error`
+    /// both numbers.
+    Stalled,
 }
 
 impl Status {
@@ -26,6 +30,7 @@ impl Status {
             Status::Failed => "failed",
             Status::NoEquilibrium => "no_equilibrium",
             Status::Unbounded => "unbounded",
+            Status::Stalled => "stalled",
         }
     }
 }
@@ -71,7 +76,8 @@ pub struct Results {
     /// Converged steps.
     pub steps: usize,
     pub elapsed_s: f64,
-    /// The limit analysis's evidence (None for the other methods).
+    /// The limit analysis's evidence: its own, or, for a static load-control analysis of a wall
+    /// of associative dry joints, that of the limit analysis run as its check (None otherwise).
     pub certificate: Option<Certificate>,
 }
 
@@ -80,6 +86,9 @@ pub struct Results {
 /// the non-associative sequence.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Certificate {
+    /// The program's collapse multiplier (the associative one's, for the non-associative
+    /// sequence see `upper_bound`); NaN when it has none.
+    pub multiplier: f64,
     /// Largest violation of equilibrium or of a strength face, relative to the largest load.
     pub primal_residual: f64,
     /// Largest violation of the dual (mechanism) equations.

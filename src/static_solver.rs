@@ -92,6 +92,9 @@ const FLAT_ITERATIONS: usize = 2;
 /// many iterations.
 const STALL_ITERATIONS: usize = 8;
 
+/// Fixed-multiplier attempts of [`Solver::check_collapse`] to reach the exact collapse.
+const REACH_ATTEMPTS: usize = 20;
+
 /// The shortest wall time between two polls of the monitor within a step [s].
 const POLL_INTERVAL: f64 = 0.1;
 
@@ -109,12 +112,45 @@ pub fn solve_with(
 ) -> Result<Results, Error> {
     let start = Instant::now();
     let mut s = Solver::new(model, opts, Box::new(|p: &Progress| monitor(p)))?;
-    let outcome = match opts.control {
+    let mut outcome = match opts.control {
         Control::Load => s.load_control(),
         Control::Displacement { max_displacement } => s.displacement_control(max_displacement),
     };
-    Ok(s.finish(outcome, start))
+    let mut evidence = None;
+    if opts.control == Control::Load && outcome.0 == Status::Collapse && exact_by_limit_analysis(model) {
+        match s.check_collapse() {
+            Ok((checked, lp)) => {
+                outcome = checked;
+                evidence = lp;
+            }
+            Err(e) => outcome = (Status::Failed, Some(e)),
+        }
+    }
+    let mut res = s.finish(outcome, start);
+    if let Some(lp) = evidence {
+        // the mechanism of the exact collapse, and its certificate as the evidence
+        if res.status == Status::Collapse {
+            res.mechanism = lp.mechanism;
+        }
+        res.certificate = lp.certificate;
+    }
+    Ok(res)
 }
+
+/// Whether the limit analysis's multiplier is the exact collapse multiplier of the model:
+/// every joint dry (no cohesion, no tensile strength) and associative (dilatancy = friction).
+pub fn exact_by_limit_analysis(model: &Model) -> bool {
+    (0..model.interfaces().len()).all(|k| {
+        let l = model.law(k);
+        !l.is_strong() && l.dilatancy == l.friction
+    })
+}
+
+/// How far below the limit-analysis multiplier, relative to it and in units of `tolerance`,
+/// load control may end and still be called a collapse: the plateau test locates the collapse
+/// within a few times `tolerance` (walls that creep to collapse end 1e-4 to 5e-4 below the
+/// exact value at the default 1e-4).
+pub const COLLAPSE_EVIDENCE: f64 = 10.0;
 
 /// Outcome of a run: status, and the reason when it failed.
 type Outcome = (Status, Option<Error>);
@@ -162,6 +198,8 @@ struct Solver<'a, 'm> {
     u_prev: Vec<f64>,
     /// the reference state of the live load's work (the dead state)
     u_ref: Vec<f64>,
+    /// the dead state (load control)
+    dead: Option<Saved>,
     mechanism: Option<Vec<f64>>,
     /// how far the last failed load step had gone from the converged state
     diverged: Option<Vec<f64>>,
@@ -328,6 +366,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             curve_u: vec![],
             u_prev: model.prescribed().to_vec(),
             u_ref: model.prescribed().to_vec(),
+            dead: None,
             mechanism: None,
             diverged: None,
             dead_factor: 1.0,
@@ -944,6 +983,7 @@ impl<'a, 'm> Solver<'a, 'm> {
         let dl0 = 4.0 * scale / self.opts.steps as f64;
         self.u_ref.copy_from_slice(&self.u);
         let dead = self.snap();
+        self.dead = Some(self.snap());
         // the first step at fixed lambda (halved until it converges): its work sets the scale
         // of the steps
         let mut conv = dead;
@@ -1148,6 +1188,100 @@ impl<'a, 'm> Solver<'a, 'm> {
         }
     }
 
+    /// Checks a load-control collapse of a wall of associative dry joints against limit
+    /// analysis, whose multiplier is then exact. A path that stopped converging more than
+    /// [`COLLAPSE_EVIDENCE`] `tolerance` below it goes on: Newton at fixed multipliers up to it
+    /// from the last converged state, each rise halved until it converges, then from the dead
+    /// state (the equilibrium at a fixed lambda depends on the path: soft joints creep up to
+    /// their plateau beyond the small-displacement limit on the path and stand within it at a
+    /// fixed lambda). Reaching the band below the exact value is the collapse; otherwise the status is `Stalled`, with both
+    /// numbers. The limit analysis's result is returned as the evidence.
+    fn check_collapse(&mut self) -> Result<(Outcome, Option<Results>), Error> {
+        let model = self.model;
+        let lp = {
+            let mut polled = Instant::now();
+            let last = Progress {
+                step: self.steps,
+                multiplier: self.lambda,
+                displacement: self.u[self.control_dof],
+                fraction: f64::NAN,
+                poll: true,
+            };
+            let (interrupted, monitor) = (&mut self.interrupted, &mut self.monitor);
+            crate::limit::limit_analysis_with(model, &crate::limit::LimitOptions::default(), &mut |_| {
+                if *interrupted {
+                    return false;
+                }
+                if polled.elapsed().as_secs_f64() < POLL_INTERVAL {
+                    return true;
+                }
+                polled = Instant::now();
+                let go = monitor(&last);
+                *interrupted |= !go;
+                go
+            })?
+        };
+        if lp.status != Status::Collapse {
+            return Ok(((Status::Collapse, None), None));
+        }
+        let exact = lp.collapse_multiplier;
+        let band = exact * (1.0 - COLLAPSE_EVIDENCE * self.opts.tolerance);
+        let found = self.curve_l.last().copied().unwrap_or(f64::NAN);
+        if found >= band {
+            return Ok(((Status::Collapse, None), Some(lp)));
+        }
+        // go on towards the exact value at fixed multipliers, from the last converged state
+        let target = exact * (1.0 - 0.5 * COLLAPSE_EVIDENCE * self.opts.tolerance);
+        let floor = self.opts.tolerance * exact;
+        let mut conv = self.snap();
+        conv.lambda = found;
+        let mut reached = found;
+        for _ in 0..REACH_ATTEMPTS {
+            if reached >= band || target - conv.lambda <= floor {
+                break;
+            }
+            let previous = conv.u.clone();
+            if !self.above(&conv, target - conv.lambda, floor)? {
+                break;
+            }
+            self.mechanism = Some(self.u.iter().zip(&previous).map(|(a, b)| a - b).collect());
+            self.commit(f64::NAN)?;
+            conv = self.snap();
+            reached = conv.lambda;
+        }
+        // and from the dead state, at the target and halfway down to the band
+        if reached < band {
+            if let Some(dead) = self.dead.take() {
+                for lam in [target, 0.5 * (target + band)] {
+                    self.restore(&dead);
+                    self.lambda = lam;
+                    match self.newton_load() {
+                        Ok(_) => {
+                            self.mechanism = Some(self.u.iter().zip(&conv.u).map(|(a, b)| a - b).collect());
+                            self.commit(f64::NAN)?;
+                            reached = lam;
+                            break;
+                        }
+                        Err(Error::Interrupted) => return Err(Error::Interrupted),
+                        Err(_) => {}
+                    }
+                }
+                if reached < band {
+                    self.restore(&conv);
+                }
+            }
+        }
+        self.evaluate();
+        if reached >= band {
+            return Ok(((Status::Collapse, None), Some(lp)));
+        }
+        let msg = format!(
+            "Newton stopped converging at lambda = {reached:.6}, {:.2}% below the collapse multiplier of limit analysis, {exact:.6} (exact for these associative dry joints): not a collapse",
+            100.0 * (exact - reached) / exact
+        );
+        Ok(((Status::Stalled, Some(Error::Convergence(msg))), Some(lp)))
+    }
+
     fn restore(&mut self, s: &Saved) {
         self.u.copy_from_slice(&s.u);
         self.committed.copy_from_slice(&s.committed);
@@ -1337,8 +1471,8 @@ impl<'a, 'm> Solver<'a, 'm> {
             method: "static",
             status,
             error: err.map(|e| e.to_string()),
-            collapse_multiplier: if status == Status::Completed
-                && self.opts.control == Control::Load
+            collapse_multiplier: if (status == Status::Completed && self.opts.control == Control::Load)
+                || status == Status::Stalled
             {
                 f64::NAN
             } else {

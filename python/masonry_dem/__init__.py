@@ -10,8 +10,10 @@ SI units throughout (m, N, Pa, kg, s). The compiled core (Rust) provides the wal
 0.6429...
 
 Two solvers share one model: ``Model.solve_static`` (incremental, Newton) and ``Model.solve_dynamic``
-(explicit, molecular dynamics; ``Model.simulate`` gives time histories). Case files choose one with
-[analysis] method; :mod:`masonry_dem.compare` sets their results side by side.
+(explicit, molecular dynamics; ``Model.simulate`` gives time histories); ``Model.solve_limit`` is limit
+analysis on the same model (the collapse multiplier as a linear program, with ``Results.certificate``).
+Case files choose one with [analysis] method ("static", "dynamic", "limit"); :mod:`masonry_dem.compare`
+sets their results side by side.
 
 Plots (:mod:`masonry_dem.plot`, matplotlib, imported on first use): panels ``plot_wall``,
 ``plot_deformed``, ``plot_cracks``, ``plot_mechanism``, ``plot_curve``, the one-page ``report_figure``,

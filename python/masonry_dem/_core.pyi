@@ -5,7 +5,7 @@ the top beam (if any) come after them (see `Model.base_index`, `Model.top_index`
 Interface families: "bed", "head", "base", "top".
 """
 
-from typing import Callable, Literal, Optional, Sequence
+from typing import Callable, Literal, Optional, Sequence, TypedDict
 
 import numpy as np
 import numpy.typing as npt
@@ -154,6 +154,36 @@ class Model:
         stable step (safety * the stability limit); a user step above the limit is an InputError.
         threads: threads of the interface loop (0: all cores). Releases the GIL; Ctrl-C stops it
         and returns what was computed. progress: as in solve_static, every few thousand steps."""
+    def solve_limit(
+        self,
+        tolerance: Optional[float] = None,
+        max_iterations: Optional[int] = None,
+        max_sequence: Optional[int] = None,
+        progress: Optional[Callable[[int, float, float, float], None]] = None,
+    ) -> "Results":
+        """Limit analysis (the static theorem): the largest lambda for which interface forces inside
+        the joints' strength domains balance the dead loads plus lambda times the live load, as a
+        linear program solved by a primal-dual interior point method on the stiffness matrix's
+        sparsity pattern. Exact for dry associative joints (dilatancy = friction); for dilatancy
+        below friction the associative optimum is an upper bound (certificate["upper_bound"]) and
+        the multiplier is a non-associative estimate from a sequence of at most max_sequence
+        programs (0: the associative bound only). Mortar joints enter with their peak strengths.
+
+        tolerance: the interior point stops when its scaled residuals and relative duality gap are
+        all below this (0 < tolerance < 0.01; default 1e-8). max_iterations: interior-point
+        iterations per program (default 200); max_sequence default 50.
+        Returns Results with method "limit" and status "collapse" (collapse_multiplier, the
+        mechanism's normalised block velocities in `mechanism`, the forces at collapse in
+        interface_forces, the crack pattern in interface_states), "no_equilibrium" (the dead loads
+        alone cannot be carried), "unbounded" (no mechanism within the range of multipliers) or
+        "failed" (the interior point did not converge); the reason is in Results.error, and
+        collapse_multiplier is NaN unless the status is "collapse". No load path: the curve is
+        empty, displacements are zeros and steps is 0; iterations counts interior-point iterations.
+        Releases the GIL; Ctrl-C stops it between iterations and returns a Results with status
+        "failed" and error "interrupted by the user" (no multiplier, no certificate).
+        progress: optional callable(iteration, multiplier, nan, nan) called after each
+        interior-point iteration (iterations counted over all the programs; multiplier: the
+        current estimate). An exception raised by it stops the analysis and is raised again."""
     def simulate(
         self,
         duration: float,
@@ -194,20 +224,34 @@ class TimeHistory:
     steps: int
     elapsed_s: float
 
+class _Certificate(TypedDict):
+    """What a limit analysis certifies (Results.certificate)."""
+
+    multiplier: Optional[float]  # the program's collapse multiplier (None when it has none)
+    primal_residual: float  # largest violation of equilibrium or of a strength face, relative to the loads
+    dual_residual: float  # largest violation of the dual (mechanism) equations
+    duality_gap: float  # relative difference of the primal and dual objectives
+    iterations: int  # interior-point iterations in all
+    upper_bound: Optional[float]  # the associative multiplier when dilatancy < friction somewhere, else None
+    sequence: int  # programs of the non-associative sequence after the associative one (0: none)
+    sequence_converged: bool  # whether the sequence's multiplier settled within its tolerance
+    peak_strengths: bool  # some joint has cohesion or tensile strength, taken at its peak (no softening)
+
 class Results:
-    method: str  # "static" | "dynamic"
-    status: str  # "collapse" | "completed" | "failed"
-    error: Optional[str]
+    method: str  # "static" | "dynamic" | "limit"
+    status: str  # "collapse" | "completed" | "failed" | "no_equilibrium" | "unbounded" (these two: limit) | "stalled" (static)
+    error: Optional[str]  # why, when the status is "failed", "no_equilibrium" or "unbounded"
     collapse_multiplier: float  # lambda at collapse, or the peak of the curve (NaN if none)
-    curve_multiplier: FloatArray  # (k,) lambda at each converged step, from 0
-    curve_displacement: FloatArray  # (k,) horizontal displacement of the control point [m]
+    curve_multiplier: FloatArray  # (k,) lambda at each converged step, from 0 (empty for "limit")
+    curve_displacement: FloatArray  # (k,) horizontal displacement of the control point [m] (empty for "limit")
     control_block: int
-    displacements: FloatArray  # (n_all, 3): u1 [m], u2 [m], phi [rad] at the last converged step
-    mechanism: FloatArray  # (n_all, 3): last increment, scaled so that max |u| over blocks is 1
-    interface_forces: FloatArray  # (m, 3): N [N] (tension > 0), T [N], M [N m]
-    interface_states: IntArray  # (m,) bit flags: 1 open, 2 sliding, 4 rocking; 0 elastic
+    displacements: FloatArray  # (n_all, 3): u1 [m], u2 [m], phi [rad] at the last converged step (zeros for "limit")
+    mechanism: FloatArray  # (n_all, 3): last increment (limit: the block velocities), scaled so that max |u| is 1
+    interface_forces: FloatArray  # (m, 3): N [N] (tension > 0), T [N], M [N m] (limit: at collapse)
+    interface_states: IntArray  # (m,) bit flags: 1 open, 2 sliding, 4 rocking; 0 elastic (limit: of the mechanism)
     broken: npt.NDArray[np.bool_]  # (m,) joint lost its cohesion and tensile strength
     joint_states: dict[str, int]  # counts: elastic, sliding, rocking, open
-    iterations: int  # total equilibrium iterations (static) or time steps (dynamic)
-    steps: int  # converged steps
+    iterations: int  # total equilibrium iterations (static), time steps (dynamic), interior-point iterations (limit)
+    steps: int  # converged steps (0 for "limit")
     elapsed_s: float
+    certificate: Optional[_Certificate]  # limit analysis's (also a static load-control run's check on associative dry joints)

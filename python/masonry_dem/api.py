@@ -34,7 +34,7 @@ from typing import Any, Dict, List, Optional, Union
 import numpy as np
 
 from ._core import InputError
-from .case import JOINT_STATE_KEYS, result_dict
+from .case import JOINT_STATE_KEYS, certificate_dict, result_dict
 from .export import _atomic_write
 
 __all__ = [
@@ -196,7 +196,8 @@ def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dic
     {multiplier, displacement [m]}, control_block, displacements ((n_all, 3) u1 [m], u2 [m], phi [rad]),
     mechanism ((n_all, 3)), interface_forces ((m, 3) N [N], T [N], M [N m]), interface_states (bit flags:
     1 open, 2 sliding, 4 rocking; 0 elastic), broken, joint_states {elastic, sliding, rocking, open},
-    iterations, steps, elapsed_s [s]; title when given. With ``model`` also: blocks and interfaces
+    iterations, steps, elapsed_s [s], certificate (a limit analysis's certificate, see
+    :data:`masonry_dem.case.CERTIFICATE_KEYS`; None for the other methods); title when given. With ``model`` also: blocks and interfaces
     (counts, as in the result file), base_index, top_index, block_rects ((n_all, 4) [x0, y0, x1, y1] m),
     weights [N], interface_blocks ((m, 2) a, b), interface_geometry ((m, 5) x, y [m], nx, ny, l [m]),
     interface_family. Non-finite numbers become None.
@@ -224,6 +225,7 @@ def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dic
         "iterations": int(results.iterations),
         "steps": int(results.steps),
         "elapsed_s": _float(results.elapsed_s),
+        "certificate": certificate_dict(getattr(results, "certificate", None)),
     })
     if model is not None:
         _check_model("to_dict", results, model)

@@ -8,7 +8,8 @@ The keys are a public contract, described in ``case-format.md``; this module fol
   and names the key with its table path, e.g. ``wall.toml: unknown key 'frictoin' in [joints.bed]``.
 * :class:`Case` maps the case onto the core: ``build_model()`` gives a :class:`masonry_dem.Model`,
   ``run()`` the :class:`masonry_dem.Results` of the analysis, with the static solver
-  (``Model.solve_static``) or the explicit one (``Model.solve_dynamic``).
+  (``Model.solve_static``), the explicit one (``Model.solve_dynamic``) or limit analysis
+  (``Model.solve_limit``).
 * :func:`result_dict` / :func:`write_result_json` produce the result file.
 
 Units are SI throughout: m, N, Pa, kg, s.
@@ -37,12 +38,15 @@ else:  # pragma: no cover - exercised on Python < 3.11 only
 
 __all__ = [
     "FORMAT",
+    "METHODS",
+    "CERTIFICATE_KEYS",
     "Case",
     "load_case",
     "parse_case",
     "case_from_dict",
     "run_case",
     "result_dict",
+    "certificate_dict",
     "write_result_json",
 ]
 
@@ -56,13 +60,14 @@ PathLike = Union[str, "os.PathLike[str]"]
 LAW_KEYS = tuple(_core.JOINT_LAW_KEYS)
 FAMILIES = ("bed", "head", "base", "top")
 GEOMETRY_KINDS = ("running_bond", "pattern", "blocks")
-METHODS = ("static", "dynamic")
-# Keys of [analysis]: those of both methods, then those of the explicit solver only.
+METHODS = ("static", "dynamic", "limit")
+# Keys of [analysis]: those of the incremental methods (static and dynamic), then those of the explicit solver
+# only. Limit analysis (method = "limit") has no load path: it uses none of them (they are checked, then ignored).
 ANALYSIS_KEYS = ("method", "control", "control_point", "max_displacement", "steps", "tolerance")
 DYNAMIC_KEYS = ("damping", "damping_coefficient", "time_step", "unbalanced_ratio", "threads")
 DAMPINGS = ("local", "viscous", "none")
 # Keys of the optional [reference] table (a published or exact answer, checked by ``masonry-dem validate``).
-REFERENCE_KEYS = ("collapse_multiplier", "tolerance", "source")
+REFERENCE_KEYS = ("collapse_multiplier", "tolerance", "source", "methods")
 DEFAULT_REFERENCE_TOLERANCE = 0.01
 
 
@@ -288,11 +293,12 @@ class Case:
             top_force [N], joints, gravity [m/s2], live).
         analysis_kwargs: keyword arguments common to :meth:`masonry_dem.Model.solve_static` and
             :meth:`masonry_dem.Model.solve_dynamic` (control, steps, max_displacement [m],
-            control_block, and tolerance when the case gives it).
+            control_block, and tolerance when the case gives it); limit analysis
+            (:meth:`masonry_dem.Model.solve_limit`) ignores them.
         dynamic_kwargs: keyword arguments of :meth:`masonry_dem.Model.solve_dynamic` only, those the
             case gives (damping, damping_coefficient, time_step [s], unbalanced_ratio, threads); the
             static solver ignores them.
-        method: "static" or "dynamic".
+        method: "static", "dynamic" or "limit".
         source: where the case came from (file name), the first word of every error message.
         reference: the optional [reference] table, or None: ``{"collapse_multiplier": float,
             "tolerance": float, "source": str}`` (the multiplier is a force in N with
@@ -316,19 +322,27 @@ class Case:
             raise type(exc)(f"{self.source}: {exc}") from exc
 
     def check_method(self, method: Optional[str] = None) -> str:
-        """The method to use, ``method`` ("static" | "dynamic") overriding the case's.
+        """The method to use, ``method`` ("static" | "dynamic" | "limit") overriding the case's.
 
         Raises:
             masonry_dem.InputError: an unknown method.
         """
         method = self.method if method is None else method
         if method not in METHODS:
-            raise InputError(f'{self.source}: method: expected one of "static", "dynamic", got {_quote(method)}')
+            expected = ", ".join(_quote(m) for m in METHODS)
+            raise InputError(f"{self.source}: method: expected one of {expected}, got {_quote(method)}")
         return method
 
     def solver_kwargs(self, method: Optional[str] = None) -> Dict[str, Any]:
-        """The keyword arguments of the solver of ``method`` (default: the case's), without ``progress``."""
-        if self.check_method(method) == "dynamic":
+        """The keyword arguments of the solver of ``method`` (default: the case's), without ``progress``.
+
+        Limit analysis takes none of the case's [analysis] keys (they describe a load path: control,
+        steps, max_displacement, and tolerance, the precision of the incremental solvers' multiplier);
+        ``Model.solve_limit`` runs with its own defaults."""
+        method = self.check_method(method)
+        if method == "limit":
+            return {}
+        if method == "dynamic":
             return {**self.analysis_kwargs, **self.dynamic_kwargs}
         return dict(self.analysis_kwargs)
 
@@ -341,8 +355,9 @@ class Case:
         """Run the analysis of this case on ``model`` (built by :meth:`build_model`).
 
         ``method`` overrides the case's [analysis] method: "static" calls ``Model.solve_static``,
-        "dynamic" ``Model.solve_dynamic``. ``progress``, if given, is the solvers' progress callback
-        ``(step, multiplier, displacement, fraction)``. The solvers never raise for a solver failure:
+        "dynamic" ``Model.solve_dynamic``, "limit" ``Model.solve_limit``. ``progress``, if given, is the
+        solvers' progress callback ``(step, multiplier, displacement, fraction)`` (limit analysis: the
+        interior-point iteration, the current multiplier, NaN, NaN). The solvers never raise for a solver failure:
         check ``Results.status`` and ``Results.error``. Errors of the core about the input (e.g. a
         time_step above the stability limit) are re-raised with the file name in front.
         """
@@ -350,7 +365,7 @@ class Case:
         kwargs = self.solver_kwargs(method)
         if progress is not None:
             kwargs["progress"] = progress
-        solver = model.solve_dynamic if method == "dynamic" else model.solve_static
+        solver = {"static": model.solve_static, "dynamic": model.solve_dynamic, "limit": model.solve_limit}[method]
         try:
             return solver(**kwargs)
         except MasonryError as exc:
@@ -373,7 +388,8 @@ def load_case(path: PathLike) -> Case:
 
     ========================  ===================================================================
     ``tolerance``             0 < x < 1: relative precision of the collapse multiplier, for both
-                              methods (default 1e-4 static, 1e-3 dynamic).
+                              incremental methods (default 1e-4 static, 1e-3 dynamic; limit
+                              analysis ignores it).
     ``damping``               explicit solver: "local" (Cundall, the default), "viscous"
                               (mass-proportional) or "none".
     ``damping_coefficient``   explicit solver, >= 0: alpha in [0, 1) for "local" (default 0.8),
@@ -387,7 +403,8 @@ def load_case(path: PathLike) -> Case:
     ========================  ===================================================================
 
     The static solver ignores the explicit solver's keys, so one case runs with either method
-    (``masonry-dem run --method``, ``masonry-dem compare``).
+    (``masonry-dem run --method``, ``masonry-dem compare``). Limit analysis (``method = "limit"``) has
+    no load path and ignores every other [analysis] key (they are still checked).
 
     An optional [reference] table gives a published or exact answer, checked by ``masonry-dem validate``:
     ``collapse_multiplier`` (number, required in the table; a force in N with live = "top_horizontal"),
@@ -582,13 +599,24 @@ def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_titl
 
 
 def _reference(table: Optional[_Table]) -> Optional[Dict[str, Any]]:
-    """The [reference] table, checked: collapse_multiplier (required), tolerance, source."""
+    """The [reference] table, checked: collapse_multiplier (required), tolerance, source, and methods (the
+    methods the reference applies to; all by default)."""
     if table is None:
         return None
+    methods = table.array("methods", required=False)
+    if methods is None:
+        methods = list(METHODS)
+    for i, m in enumerate(methods):
+        if m not in METHODS:
+            options = ", ".join(_quote(c) for c in METHODS)
+            raise table.key_error("methods", f"entry {i}: expected one of {options}, got {_quote(m) if isinstance(m, str) else _got(m)}")
+    if not methods:
+        raise table.key_error("methods", "must name at least one method")
     return {
         "collapse_multiplier": table.number("collapse_multiplier"),
         "tolerance": table.number("tolerance", DEFAULT_REFERENCE_TOLERANCE, _open_unit),
         "source": table.string("source", ""),
+        "methods": tuple(methods),
     }
 
 
@@ -630,7 +658,7 @@ def run_case(
     method: Optional[str] = None,
     progress: Optional[Callable[[int, float, float, float], None]] = None,
 ) -> "_core.Results":
-    """Load a case file and run it; ``method`` ("static" | "dynamic") overrides the file's.
+    """Load a case file and run it; ``method`` ("static" | "dynamic" | "limit") overrides the file's.
 
     ``progress``: the solvers' optional callback ``(step, multiplier, displacement, fraction)``, e.g. a
     :class:`masonry_dem.progress.ProgressBar`.
@@ -643,6 +671,20 @@ def run_case(
 # --------------------------------------------------------------------------------------------------
 
 JOINT_STATE_KEYS = ("elastic", "sliding", "rocking", "open")
+#: The keys of a limit analysis's certificate (``Results.certificate``), in the result file's order.
+CERTIFICATE_KEYS = (
+    "multiplier",
+    "primal_residual",
+    "dual_residual",
+    "duality_gap",
+    "iterations",
+    "upper_bound",
+    "sequence",
+    "sequence_converged",
+    "peak_strengths",
+)
+#: The statuses that come with a reason in ``Results.error`` (and an ``error`` key in the result file).
+ERROR_STATUSES = ("failed", "no_equilibrium", "unbounded", "stalled")
 
 
 def _json_float(x: Any) -> Optional[float]:
@@ -655,8 +697,16 @@ def result_dict(results: Any, model: Any, title: str) -> Dict[str, Any]:
     """The result file of case-format.md as a dict, ready for ``json.dump``.
 
     ``results`` is a :class:`masonry_dem.Results`, ``model`` the :class:`masonry_dem.Model` it came
-    from (for the numbers of blocks and interfaces). Non-finite numbers become None (JSON null).
-    ``curve.displacement`` and ``elapsed_s`` are in m and s.
+    from (for the numbers of blocks and interfaces). Non-finite numbers become None (JSON null): a
+    ``collapse_multiplier`` that is NaN (no collapse: a failed run, or a limit analysis whose status is
+    "no_equilibrium" or "unbounded") is written as null. ``curve.displacement`` and ``elapsed_s`` are in m
+    and s.
+
+    A limit analysis (method "limit": its curve is empty) also gets ``certificate``: an object with the
+    keys of :data:`CERTIFICATE_KEYS` (``upper_bound`` null unless some joint is non-associative), or null
+    when the run was interrupted; so does a static load-control analysis of associative dry joints, whose
+    collapse is checked against limit analysis (its certificate is the evidence). ``error`` is written with
+    the statuses that have a reason: "failed", "no_equilibrium", "unbounded" and "stalled".
     """
     states = getattr(results, "joint_states", None) or {}
     out: Dict[str, Any] = {
@@ -674,8 +724,28 @@ def result_dict(results: Any, model: Any, title: str) -> Dict[str, Any]:
         "joint_states": {key: int(states.get(key, 0)) for key in JOINT_STATE_KEYS},
         "elapsed_s": _json_float(results.elapsed_s),
     }
-    if out["status"] == "failed":
+    if out["method"] == "limit" or getattr(results, "certificate", None) is not None:
+        out["certificate"] = certificate_dict(getattr(results, "certificate", None))
+    if out["status"] in ERROR_STATUSES:
         out["error"] = str(results.error) if results.error else "unknown error"
+    return out
+
+
+def certificate_dict(certificate: Optional[Mapping[str, Any]]) -> Optional[Dict[str, Any]]:
+    """A limit analysis's certificate (``Results.certificate``) with plain JSON values, or None.
+
+    Floats that are not finite (or missing) become None, counts ints, flags bools."""
+    if certificate is None:
+        return None
+    out: Dict[str, Any] = {}
+    for key in CERTIFICATE_KEYS:
+        value = certificate.get(key)
+        if key in ("iterations", "sequence"):
+            out[key] = None if value is None else int(value)
+        elif key in ("sequence_converged", "peak_strengths"):
+            out[key] = None if value is None else bool(value)
+        else:
+            out[key] = None if value is None else _json_float(value)
     return out
 
 

@@ -1,23 +1,27 @@
 """The ``masonry-dem`` command line.
 
-    masonry-dem run CASE.toml [--method static|dynamic] [--json OUT.json] [--plot OUT.png]
+    masonry-dem run CASE.toml [--method static|dynamic|limit] [--json OUT.json] [--plot OUT.png]
                     [--vtk PREFIX] [--csv OUT.csv] [--quiet]
     masonry-dem compare CASE.toml [--json OUT.json] [--plot OUT.png] [--quiet]
     masonry-dem demo [--plot OUT.png] [--json OUT.json] [--vtk PREFIX] [--csv OUT.csv] [--quiet]
-    masonry-dem validate [DIR] [--method static|dynamic|both] [--quiet]
+    masonry-dem validate [DIR] [--method static|dynamic|limit|both|all] [--quiet]
 
 ``validate`` runs every case file of DIR (default: the repository's examples/) that carries a [reference]
 table and prints a table of its collapse multipliers against the reference (see :mod:`masonry_dem.validate`);
 it exits 1 if any is outside its tolerance or failed.
 
-``compare`` runs the static and then the explicit (dynamic) solver on one case and prints them side by
-side (see :mod:`masonry_dem.compare`).
+``compare`` runs the static solver, the explicit (dynamic) one and limit analysis on one case and prints
+them side by side (see :mod:`masonry_dem.compare`).
+
+``--method limit`` is limit analysis (``Model.solve_limit``): the collapse multiplier as a linear program,
+with its certificate; no load path (the curve is empty, the CSV has its header only).
 
 A progress bar (tqdm, if installed) is drawn on stderr while a solver runs, when stderr is a terminal
 and ``--quiet`` is not given.
 
-Exit status: 0 on success; 1 when an analysis fails (the solver's reason is printed, the JSON and
-plot are still written) or another error occurs; 2 for bad input (an invalid case file, a missing
+Exit status: 0 on success; 1 when an analysis fails or gives no collapse multiplier (status "failed",
+"no_equilibrium" / "unbounded" of a limit analysis, or "stalled": a static path that stopped below the
+limit-analysis multiplier; the reason is printed, the JSON and plot are still written) or another error occurs; 2 for bad input (an invalid case file, a missing
 file, bad arguments); 130 when interrupted (Ctrl-C; ``run`` still prints and writes what was
 computed, ``compare`` does not start the second method). Errors are one line on stderr, ``masonry-dem: error: ...``.
 """
@@ -32,7 +36,7 @@ from pathlib import Path
 from typing import Any, Optional, Sequence
 
 from ._core import InputError, MasonryError, __version__
-from .case import Case, load_case, write_result_json
+from .case import ERROR_STATUSES, Case, load_case, write_result_json
 from .progress import progress_bar
 from .report import summary
 
@@ -57,8 +61,9 @@ def build_parser() -> argparse.ArgumentParser:
               masonry-dem demo                                  Ferris & Tin-Loi wall 1, plot in out/demo.png
               masonry-dem run examples/ferris-tinloi-wall1.toml --json out/wall1.json --plot out/wall1.png
               masonry-dem run CASE.toml --method dynamic         the explicit (molecular dynamics) solver
+              masonry-dem run CASE.toml --method limit           limit analysis (a linear program, certified)
               masonry-dem run CASE.toml --vtk out/w --csv out/curve.csv   ParaView files and the curve
-              masonry-dem compare CASE.toml --plot out/compare.png   static and dynamic side by side
+              masonry-dem compare CASE.toml --plot out/compare.png   static, dynamic and limit side by side
               masonry-dem validate --method static              check examples/ against their reference values
 
             Case files are TOML (format 1, SI units); see examples/*.toml.
@@ -80,6 +85,7 @@ def build_parser() -> argparse.ArgumentParser:
               masonry-dem run examples/ferris-tinloi-wall1.toml
               masonry-dem run examples/ferris-tinloi-wall2.toml --json out/wall2.json --plot out/wall2.png
               masonry-dem run examples/ferris-tinloi-wall1.toml --vtk out/wall1 --csv out/wall1.csv
+              masonry-dem run examples/ferris-tinloi-wall1.toml --method limit --json out/wall1-limit.json
 
             --vtk out/wall1 writes out/wall1-blocks.vtu and out/wall1-interfaces.vtu (open them in ParaView)."""
         ),
@@ -87,19 +93,21 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("case", metavar="CASE.toml", help="case file (TOML, format 1)")
     run.add_argument(
         "--method",
-        choices=("static", "dynamic"),
+        choices=("static", "dynamic", "limit"),
         help="solution method, overriding [analysis] method of the case (default: the case's, else static): "
-        "static (incremental, Newton) or dynamic (explicit, molecular dynamics)",
+        "static (incremental, Newton), dynamic (explicit, molecular dynamics) or limit (limit analysis: "
+        "a linear program; the case's other [analysis] keys are ignored)",
     )
     _add_outputs(run, plot_default=None)
 
     compare = sub.add_parser(
         "compare",
-        help="run a case with both methods and compare them",
+        help="run a case with the three methods and compare them",
         description=(
-            "Run a case file with the static solver, then with the explicit (dynamic) one, and print them\n"
-            "side by side: collapse multipliers and their relative difference, status, failed joints (open or\n"
-            "sliding at collapse) of each and in common (Jaccard index), iterations and time steps, time."
+            "Run a case file with the static solver, the explicit (dynamic) one and limit analysis, and print\n"
+            "them side by side: collapse multipliers and their relative differences from the static one, status,\n"
+            "failed joints (open or sliding at collapse; of the mechanism for limit analysis) of each and in\n"
+            "common with the static ones (Jaccard index), iterations and time steps, time."
         ),
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog=textwrap.dedent(
@@ -108,7 +116,8 @@ def build_parser() -> argparse.ArgumentParser:
               masonry-dem compare examples/single-block-rocking.toml
               masonry-dem compare examples/ferris-tinloi-wall1.toml --json out/cmp.json --plot out/cmp.png
 
-            --json writes {"format": 1, "title", "static": <result>, "dynamic": <result>, "agreement": {...}}."""
+            --json writes {"format": 1, "title", "static": <result>, "dynamic": <result>, "limit": <result>,
+            "agreement": {...}}."""
         ),
     )
     compare.add_argument("case", metavar="CASE.toml", help="case file (TOML, format 1)")
@@ -116,7 +125,8 @@ def build_parser() -> argparse.ArgumentParser:
     compare.add_argument(
         "--plot",
         metavar="OUT.png",
-        help="write a figure: both walls with their crack patterns, and both load curves overlaid (PNG)",
+        help="write a figure: the three walls with their crack patterns, and the load curves overlaid, the "
+        "limit multiplier as a horizontal line (PNG)",
     )
     _add_quiet(compare)
 
@@ -141,17 +151,18 @@ def build_parser() -> argparse.ArgumentParser:
         "validate",
         help="run every case with a reference value and check it",
         description=(
-            "Run every case file (*.toml) of DIR that carries a [reference] table with the static and/or the\n"
-            "explicit solver, and print a table: case, reference (with its relative tolerance), static and\n"
-            "explicit collapse multipliers, error (the largest relative error), time of each method, verdict.\n"
-            "Case files without a [reference] table are skipped and listed."
+            "Run every case file (*.toml) of DIR that carries a [reference] table with the static solver, the\n"
+            "explicit one and/or limit analysis, and print a table: case, reference (with its relative\n"
+            "tolerance), static, explicit and limit collapse multipliers, error (the largest relative error),\n"
+            "time of each method, verdict. Case files without a [reference] table are skipped and listed."
         ),
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog=textwrap.dedent(
             """\
             examples:
-              masonry-dem validate                       examples/ of the repository, both solvers
+              masonry-dem validate                       examples/ of the repository, the three methods
               masonry-dem validate --method static       the static solver only (a second or so)
+              masonry-dem validate --method both         the static and the explicit solver
               masonry-dem validate my-cases/ --method dynamic
 
             [reference] table of a case file:
@@ -169,9 +180,10 @@ def build_parser() -> argparse.ArgumentParser:
     )
     validate.add_argument(
         "--method",
-        choices=("static", "dynamic", "both"),
-        default="both",
-        help="the solvers to run: static, dynamic (explicit) or both (default)",
+        choices=("static", "dynamic", "limit", "both", "all"),
+        default="all",
+        help="the methods to run: static, dynamic (explicit), limit (limit analysis), both (static and "
+        "dynamic) or all three (default)",
     )
     _add_quiet(validate)
     return parser
@@ -220,7 +232,8 @@ def _show_progress(quiet: bool) -> bool:
 def _solve(case: Case, model: Any, method: str, quiet: bool) -> Any:
     """Run one analysis, with a progress bar on stderr when wanted."""
     live = str(case.model_kwargs.get("live", "horizontal_weight"))
-    with progress_bar(method, live=live, enabled=_show_progress(quiet)) as bar:
+    unit = "iterations" if method == "limit" else "steps"
+    with progress_bar(method, live=live, enabled=_show_progress(quiet), unit=unit) as bar:
         return case.solve(model, method, progress=bar or None)
 
 
@@ -287,39 +300,48 @@ def _execute(
         return _error("interrupted", EXIT_INTERRUPTED)
     if results.status == "failed":
         return _error(f"the analysis failed: {results.error or 'unknown reason'}", EXIT_FAILURE)
+    if results.status in ERROR_STATUSES:  # no_equilibrium, unbounded: no collapse multiplier
+        return _error(f"no collapse multiplier ({results.status}): {results.error or 'no reason given'}", EXIT_FAILURE)
     return EXIT_OK
 
 
 def _compare(case: Case, json_path: Optional[str], plot_path: Optional[str], quiet: bool = False) -> int:
-    """Run both methods on one model, print them side by side, write the outputs; return the exit status."""
+    """Run the three methods on one model, print them side by side, write the outputs; return the exit status."""
     from .compare import comparison_text, write_comparison_json
 
     model = case.build_model()
     static = _solve(case, model, "static", quiet)
-    if _interrupted(static):  # Ctrl-C during the first run: do not start the second
+    if _interrupted(static):  # Ctrl-C during a run: do not start the next
         raise KeyboardInterrupt
     dynamic = _solve(case, model, "dynamic", quiet)
+    if _interrupted(dynamic):
+        raise KeyboardInterrupt
+    limit = _solve(case, model, "limit", quiet)
     live = str(case.model_kwargs.get("live", "horizontal_weight"))
-    print(comparison_text(static, dynamic, model, case.title, live), flush=True)
+    print(comparison_text(static, dynamic, model, case.title, live, limit=limit), flush=True)
 
     try:
         if json_path:
             _prepare(json_path)
-            write_comparison_json(json_path, static, dynamic, model, case.title)
+            write_comparison_json(json_path, static, dynamic, model, case.title, limit=limit)
             print(f"  wrote {json_path}")
         if plot_path:
             from .plot import plot_comparison
 
             _prepare(plot_path)
-            plot_comparison(model, static, dynamic, title=case.title, path=plot_path, live=live)
+            plot_comparison(model, static, dynamic, title=case.title, path=plot_path, live=live, limit=limit)
             print(f"  wrote {plot_path}")
     except OSError as exc:
         return _error(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}", EXIT_FAILURE)
 
-    if _interrupted(dynamic):
+    if _interrupted(limit):
         return _error("interrupted", EXIT_INTERRUPTED)
-    runs = (("static", static), ("dynamic", dynamic))
-    failed = [f"{name}: {res.error or 'unknown reason'}" for name, res in runs if res.status == "failed"]
+    runs = (("static", static), ("dynamic", dynamic), ("limit", limit))
+    failed = [
+        f"{name}: {'' if res.status == 'failed' else res.status + ': '}{res.error or 'unknown reason'}"
+        for name, res in runs
+        if res.status in ERROR_STATUSES
+    ]
     if failed:
         return _error("the analysis failed (" + "; ".join(failed) + ")", EXIT_FAILURE)
     return EXIT_OK

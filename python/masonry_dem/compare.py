@@ -1,21 +1,30 @@
-"""The static and the explicit (dynamic) solver on one case, side by side: ``masonry-dem compare``.
+"""The static solver, the explicit (dynamic) one and limit analysis on one case, side by side:
+``masonry-dem compare``.
 
-:func:`agreement` measures how far two results agree: the relative difference of their collapse
+:func:`agreement` measures how far the results agree: the relative difference of their collapse
 multipliers, and their failed-joint patterns. An interface is *failed* at collapse (at the last converged
-step) when its state has the open (1) or the sliding (2) bit; the patterns are compared by their counts,
-the number in common and the Jaccard index |S ∩ D| / |S ∪ D| (1 when neither has a failed joint).
+step; for limit analysis, in its collapse mechanism) when its state has the open (1) or the sliding (2) bit;
+the patterns are compared by their counts, the number in common and the Jaccard index |S ∩ D| / |S ∪ D|
+(1 when neither has a failed joint). The static run is the one the others are compared with.
 :func:`comparison_dict` is the comparison file (JSON), :func:`comparison_text` the table printed by the
-command line.
+command line. The limit analysis is optional in every function (``limit=None``: the two incremental
+solvers only, as before).
 
 The comparison file::
 
     {"format": 1, "title": "...",
      "static": <result file of the static run>, "dynamic": <result file of the explicit run>,
+     "limit": <result file of the limit analysis, with its certificate>,
      "agreement": {"multiplier_relative_difference": (dynamic - static) / |static|,
                    "failed_static": n, "failed_dynamic": n, "failed_common": n, "jaccard": x,
                    "failed_interfaces_static": [indices], "failed_interfaces_dynamic": [indices],
                    "iterations_static": n, "time_steps_dynamic": n,
-                   "elapsed_ratio": dynamic elapsed_s / static elapsed_s}}
+                   "elapsed_ratio": dynamic elapsed_s / static elapsed_s,
+                   # with the limit analysis:
+                   "multiplier_relative_difference_limit": (limit - static) / |static|,
+                   "failed_limit": n, "failed_common_limit": n (with the static run), "jaccard_limit": x,
+                   "failed_interfaces_limit": [indices], "iterations_limit": n (interior point),
+                   "elapsed_ratio_limit": limit elapsed_s / static elapsed_s}}
 
 Numbers that cannot be computed (a NaN multiplier, a zero time) are null.
 """
@@ -30,8 +39,8 @@ from typing import Any, Dict, List, Optional, Union
 
 import numpy as np
 
-from .case import FORMAT, result_dict
-from .report import OPEN, SLIDING, _plural
+from .case import ERROR_STATUSES, FORMAT, result_dict
+from .report import OPEN, SLIDING, _plural, certificate_text
 
 __all__ = [
     "FAILED",
@@ -60,14 +69,20 @@ def _ratio(num: float, den: float) -> Optional[float]:
     return num / den
 
 
-def agreement(static: Any, dynamic: Any) -> Dict[str, Any]:
-    """How far the results of the two methods agree (see the module docstring for the keys)."""
-    ls, ld = float(static.collapse_multiplier), float(dynamic.collapse_multiplier)
-    diff = _ratio(ld - ls, abs(ls)) if math.isfinite(ls) and math.isfinite(ld) else None
+def _difference(static: Any, other: Any) -> Optional[float]:
+    """(other - static) / |static| of the collapse multipliers, None when one is not finite."""
+    ls, lo = float(static.collapse_multiplier), float(other.collapse_multiplier)
+    return _ratio(lo - ls, abs(ls)) if math.isfinite(ls) and math.isfinite(lo) else None
+
+
+def agreement(static: Any, dynamic: Any, limit: Any = None) -> Dict[str, Any]:
+    """How far the results of the methods agree (see the module docstring for the keys); the keys of the
+    limit analysis only when ``limit`` is given."""
+    diff = _difference(static, dynamic)
     fs = {int(k) for k in failed_interfaces(static)}
     fd = {int(k) for k in failed_interfaces(dynamic)}
     common, union = len(fs & fd), len(fs | fd)
-    return {
+    out = {
         "multiplier_relative_difference": diff,
         "failed_static": len(fs),
         "failed_dynamic": len(fd),
@@ -79,24 +94,41 @@ def agreement(static: Any, dynamic: Any) -> Dict[str, Any]:
         "time_steps_dynamic": int(dynamic.iterations),
         "elapsed_ratio": _ratio(dynamic.elapsed_s, static.elapsed_s),
     }
+    if limit is not None:
+        fl = {int(k) for k in failed_interfaces(limit)}
+        common_l, union_l = len(fs & fl), len(fs | fl)
+        out.update({
+            "multiplier_relative_difference_limit": _difference(static, limit),
+            "failed_limit": len(fl),
+            "failed_common_limit": common_l,
+            "jaccard_limit": common_l / union_l if union_l else 1.0,
+            "failed_interfaces_limit": sorted(fl),
+            "iterations_limit": int(limit.iterations),
+            "elapsed_ratio_limit": _ratio(limit.elapsed_s, static.elapsed_s),
+        })
+    return out
 
 
-def comparison_dict(static: Any, dynamic: Any, model: Any, title: str) -> Dict[str, Any]:
-    """The comparison file as a dict, ready for ``json.dump`` (no NaN: null instead)."""
-    return {
+def comparison_dict(static: Any, dynamic: Any, model: Any, title: str, limit: Any = None) -> Dict[str, Any]:
+    """The comparison file as a dict, ready for ``json.dump`` (no NaN: null instead); "limit" only when
+    ``limit`` is given."""
+    out: Dict[str, Any] = {
         "format": FORMAT,
         "title": title,
         "static": result_dict(static, model, title),
         "dynamic": result_dict(dynamic, model, title),
-        "agreement": agreement(static, dynamic),
     }
+    if limit is not None:
+        out["limit"] = result_dict(limit, model, title)
+    out["agreement"] = agreement(static, dynamic, limit)
+    return out
 
 
 def write_comparison_json(
-    path: Union[str, "os.PathLike[str]"], static: Any, dynamic: Any, model: Any, title: str
+    path: Union[str, "os.PathLike[str]"], static: Any, dynamic: Any, model: Any, title: str, limit: Any = None
 ) -> Dict[str, Any]:
     """Write the comparison file to ``path``; return the dict written."""
-    data = comparison_dict(static, dynamic, model, title)
+    data = comparison_dict(static, dynamic, model, title, limit)
     Path(path).write_text(json.dumps(data, indent=2, allow_nan=False) + "\n", encoding="utf-8")
     return data
 
@@ -122,50 +154,103 @@ def _seconds(value: float) -> str:
     return f"{value:.3g} s" if math.isfinite(value) else "-"
 
 
-def comparison_text(static: Any, dynamic: Any, model: Any, title: str, live: str = "horizontal_weight") -> str:
-    """The side-by-side table printed by ``masonry-dem compare`` (several lines, no trailing newline)."""
-    agree = agreement(static, dynamic)
+def comparison_text(
+    static: Any, dynamic: Any, model: Any, title: str, live: str = "horizontal_weight", limit: Any = None
+) -> str:
+    """The side-by-side table printed by ``masonry-dem compare`` (several lines, no trailing newline);
+    a column for the limit analysis when ``limit`` is given."""
+    agree = agreement(static, dynamic, limit)
     diff = agree["multiplier_relative_difference"]
     ratio = agree["elapsed_ratio"]
     what = "peak horizontal force" if live == "top_horizontal" else "collapse multiplier"
-    rows = [
-        ("", "static", "dynamic", ""),
-        ("status:", str(static.status), str(dynamic.status), ""),
-        (
-            f"{what}:",
-            _multiplier(float(static.collapse_multiplier), live),
-            _multiplier(float(dynamic.collapse_multiplier), live),
-            "difference " + format_difference(diff),
-        ),
-        (
-            "failed joints:",
-            str(agree["failed_static"]),
-            str(agree["failed_dynamic"]),
-            f"{agree['failed_common']} in common, Jaccard index {agree['jaccard']:.2f}",
-        ),
-        (
-            "work:",
-            f"{agree['iterations_static']:,} iterations",
-            f"{agree['time_steps_dynamic']:,} time steps",
-            "",
-        ),
-        (
-            "elapsed:",
-            _seconds(float(static.elapsed_s)),
-            _seconds(float(dynamic.elapsed_s)),
-            f"dynamic / static = {ratio:.3g}" if ratio is not None else "",
-        ),
-    ]
-    widths = [max(len(r[i]) for r in rows) + 2 for i in range(3)]
+    if limit is None:
+        rows = [
+            ("", "static", "dynamic", ""),
+            ("status:", str(static.status), str(dynamic.status), ""),
+            (
+                f"{what}:",
+                _multiplier(float(static.collapse_multiplier), live),
+                _multiplier(float(dynamic.collapse_multiplier), live),
+                "difference " + format_difference(diff),
+            ),
+            (
+                "failed joints:",
+                str(agree["failed_static"]),
+                str(agree["failed_dynamic"]),
+                f"{agree['failed_common']} in common, Jaccard index {agree['jaccard']:.2f}",
+            ),
+            (
+                "work:",
+                f"{agree['iterations_static']:,} iterations",
+                f"{agree['time_steps_dynamic']:,} time steps",
+                "",
+            ),
+            (
+                "elapsed:",
+                _seconds(float(static.elapsed_s)),
+                _seconds(float(dynamic.elapsed_s)),
+                f"dynamic / static = {ratio:.3g}" if ratio is not None else "",
+            ),
+        ]
+        head = f"{title}: static and explicit (dynamic) solvers"
+        runs = (("static", static), ("dynamic", dynamic))
+    else:
+        ratio_l = agree["elapsed_ratio_limit"]
+        ratios = [f"dynamic / static = {ratio:.3g}" if ratio is not None else "",
+                  f"limit / static = {ratio_l:.3g}" if ratio_l is not None else ""]
+        rows = [
+            ("", "static", "dynamic", "limit", ""),
+            ("status:", str(static.status), str(dynamic.status), str(limit.status), ""),
+            (
+                f"{what}:",
+                _multiplier(float(static.collapse_multiplier), live),
+                _multiplier(float(dynamic.collapse_multiplier), live),
+                _multiplier(float(limit.collapse_multiplier), live),
+                f"difference from static: dynamic {format_difference(diff)}, "
+                f"limit {format_difference(agree['multiplier_relative_difference_limit'])}",
+            ),
+            (
+                "failed joints:",
+                str(agree["failed_static"]),
+                str(agree["failed_dynamic"]),
+                str(agree["failed_limit"]),
+                f"with static: dynamic {agree['failed_common']} in common, Jaccard index {agree['jaccard']:.2f}; "
+                f"limit {agree['failed_common_limit']} in common, Jaccard index {agree['jaccard_limit']:.2f}",
+            ),
+            (
+                "work:",
+                f"{agree['iterations_static']:,} iterations",
+                f"{agree['time_steps_dynamic']:,} time steps",
+                f"{agree['iterations_limit']:,} iterations",
+                "",
+            ),
+            (
+                "elapsed:",
+                _seconds(float(static.elapsed_s)),
+                _seconds(float(dynamic.elapsed_s)),
+                _seconds(float(limit.elapsed_s)),
+                ", ".join(r for r in ratios if r),
+            ),
+        ]
+        head = f"{title}: static and explicit (dynamic) solvers and limit analysis"
+        runs = (("static", static), ("dynamic", dynamic), ("limit", limit))
+    columns = len(rows[0]) - 1
+    widths = [max(len(r[i]) for r in rows) + 2 for i in range(columns)]
     lines: List[str] = [
-        f"{title}: static and explicit (dynamic) solvers",
+        head,
         f"  {_plural(int(model.n_blocks), 'block')}, {_plural(int(model.n_interfaces), 'interface')}; "
-        "failed joints are open or sliding at the last converged step",
+        "failed joints are open or sliding at the last converged step"
+        + (" (limit: in the collapse mechanism)" if limit is not None else ""),
     ]
     for row in rows:
-        cells = "".join(cell.ljust(w) for cell, w in zip(row[:3], widths)) + row[3]
+        cells = "".join(cell.ljust(w) for cell, w in zip(row[:columns], widths)) + row[columns]
         lines.append(("  " + cells).rstrip())
-    for name, res in (("static", static), ("dynamic", dynamic)):
+    for name, res in runs:
         if res.status == "failed":
             lines.append(f"  {name} failed: {res.error or 'unknown reason'}")
+        elif res.status in ERROR_STATUSES:
+            lines.append(f"  {name}: {res.status}: {res.error or 'no reason given'}")
+    if limit is not None:
+        for k, text in enumerate(certificate_text(limit, live)):
+            lines.append(f"  {'limit certificate:' if k == 0 else '':<19}{text}")
     return "\n".join(lines)

@@ -15,7 +15,8 @@
 
 :func:`write_curve_csv` writes the load curve: a header ``multiplier,displacement_m`` and one row per
 converged step (lambda, or the force in N for ``live = "top_horizontal"``; the horizontal displacement of
-the control point in m).
+the control point in m). A limit analysis has no curve: its file is the header alone, and its blocks file has
+zero ``displacement`` and ``rotation`` and the collapse velocities as ``mechanism``.
 
 Every file is written under a temporary name in its folder and then renamed, so that a reader never sees
 half a file.

@@ -12,15 +12,20 @@ Panels, each drawn on a matplotlib ``Axes`` given by the caller:
 * :func:`plot_mechanism` (ax, model, results): the blocks moved along ``Results.mechanism`` (the last
   increment, exaggerated), the moving ones orange, the cracked interfaces black.
 * :func:`plot_curve` (ax, *results, labels=None): load multiplier lambda (or the top-beam force in kN)
-  against the horizontal displacement of the control point [mm]; several results overlaid.
+  against the horizontal displacement of the control point [mm]; several results overlaid. A limit
+  analysis (method "limit") has no curve: its multiplier is drawn as a horizontal line.
 
 Figures (written as PNG with the Agg canvas when a ``path`` is given, else made through pyplot):
 
 * :func:`report_figure`: one page with the crack pattern, the mechanism, the deformed shape and the curve
   (``masonry-dem run --plot``).
 * :func:`plot_results`: the wall (mechanism and joint states in one panel) and the curve.
-* :func:`plot_comparison`: the static and the explicit (dynamic) analyses of one case side by side: the
-  two walls with their crack patterns, and the two curves overlaid (``masonry-dem compare --plot``).
+* :func:`plot_comparison`: the static and the explicit (dynamic) analyses of one case side by side, and
+  optionally its limit analysis: the walls with their crack patterns, and the curves overlaid, the limit
+  multiplier as a horizontal line (``masonry-dem compare --plot``).
+
+A limit analysis's result has a mechanism (the collapse velocities) and a crack pattern (the joint states of
+that mechanism) but no load path: no curve, no deformed shape (its panels say so instead of drawing one).
 
 Geometry in m; displacements plotted in mm. Matplotlib is imported when this module is.
 """
@@ -37,6 +42,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Polygon, Rectangle
 
 from .report import (
+    STATUS_NOTES,
     CRACK_TOLERANCE,
     MOVING_FRACTION,
     OPEN,
@@ -338,9 +344,17 @@ def plot_deformed(ax: Any, model: Any, results: Any, scale: Optional[float] = No
         scale = DEFORMED_FRACTION * _wall_height(model) / peak if peak > 0 else 0.0
     _draw_blocks(ax, model, disp, float(scale))
     _wall_axes(ax, model)
+    if _is_limit(results):
+        ax.set_title("no deformed shape\n(limit analysis: rigid blocks, no load path)", fontsize=10)
+        return float(scale)
     factor = f"{scale:,.0f}" if scale >= 100 else f"{scale:.3g}"
     ax.set_title(f"deformed shape ×{factor}\nlargest displacement {peak * 1e3:.3g} mm", fontsize=10)
     return float(scale)
+
+
+def _is_limit(results: Any) -> bool:
+    """Whether ``results`` come from a limit analysis (no curve, no displacements)."""
+    return str(getattr(results, "method", "")) == "limit"
 
 
 def plot_cracks(ax: Any, model: Any, results: Any, legend: bool = True, legend_columns: int = 5) -> dict:
@@ -390,14 +404,16 @@ def plot_mechanism(ax: Any, model: Any, results: Any) -> bool:
     if segs:
         ax.add_collection(LineCollection(segs, colors="black", linewidths=2.5, zorder=3))
     _wall_axes(ax, model)
+    limit = _is_limit(results)
     if have:
         n_moving = int(np.sum(moving[: int(model.n_blocks)]))
+        what = "collapse velocities" if limit else "last increment"
         text = (
-            f"mechanism (last increment, exaggerated)\n{_plural(n_moving, 'moving block')}, "
+            f"mechanism ({what}, exaggerated)\n{_plural(n_moving, 'moving block')}, "
             f"{_plural(len(segs), 'cracked joint')}"
         )
     else:
-        text = "no mechanism\n(no displacement increment)"
+        text = "no mechanism\n" + (f"({results.status})" if limit else "(no displacement increment)")
     ax.set_title(text, fontsize=10)
     return have
 
@@ -491,7 +507,7 @@ def _draw_curve(ax: Any, results: Any, live: str) -> None:
         if np.any(np.isfinite(lam)):
             k = int(np.nanargmin(np.abs(lam - lam_u)))  # the point of the curve at the collapse multiplier
             ax.plot([disp[k]], [lam[k]], "o", color="#d62728", markersize=7, zorder=5)
-        what = "collapse" if results.status == "collapse" else "peak"
+        what = "limit analysis" if _is_limit(results) else "collapse" if results.status == "collapse" else "peak"
         text = f"{what}: H = {lam_u:.4g}{unit}" if live == "top_horizontal" else f"{what}: λu = {lam_u:.4f}"
         ax.annotate(
             text,
@@ -504,8 +520,10 @@ def _draw_curve(ax: Any, results: Any, live: str) -> None:
             color="#d62728",
             fontsize=10,
         )
-    if results.status == "failed" and results.error:
-        ax.text(0.02, 0.02, f"failed: {results.error}", transform=ax.transAxes, fontsize=8, color="#d62728", wrap=True)
+    if str(results.status) in STATUS_NOTES:
+        reason = results.error or STATUS_NOTES[str(results.status)]
+        ax.text(0.02, 0.02, f"{results.status}: {reason}", transform=ax.transAxes, fontsize=8, color="#d62728",
+                wrap=True)
     ax.set_xlabel("horizontal displacement of the control point [mm]")
     ax.set_ylabel(label)
     values = [float(v) for v in lam if np.isfinite(v)] + ([lam_u] if np.isfinite(lam_u) else [])
@@ -514,12 +532,25 @@ def _draw_curve(ax: Any, results: Any, live: str) -> None:
         if hi > lo:
             ax.set_ylim(lo, hi + 0.12 * (hi - lo))  # room for the collapse label
     ax.grid(True, alpha=0.3)
+    if _is_limit(results):
+        ax.set_xticks([])
+        ax.set_xlabel("no load path: the limit multiplier")
+        ax.set_title(
+            f"limit analysis: no load path\n{results.iterations} interior-point iterations, {results.elapsed_s:.3g} s",
+            fontsize=10,
+        )
+        return
     ax.set_title(f"{results.steps} steps, {results.iterations} iterations, {results.elapsed_s:.3g} s", fontsize=10)
 
 
 #: Colour, marker, line width, opacity and drawing order of each method in :func:`plot_comparison`: the
 #: dynamic curve wide and light under the static one, so that both show where they coincide.
-METHOD_STYLES = {"static": ("#1f3b73", "o", 1.2, 1.0, 3), "dynamic": ("#e07b00", "s", 4.0, 0.55, 2)}
+#: A limit analysis (no curve) is a horizontal dashed line at its multiplier.
+METHOD_STYLES = {
+    "static": ("#1f3b73", "o", 1.2, 1.0, 3),
+    "dynamic": ("#e07b00", "s", 4.0, 0.55, 2),
+    "limit": ("#2ca02c", "", 1.6, 0.9, 4),
+}
 
 #: Styles of further curves in an overlay (other labels, or a method drawn twice).
 EXTRA_STYLES: Tuple[Tuple[str, str, float, float, int], ...] = (
@@ -537,35 +568,41 @@ def plot_comparison(
     path: Optional[Union[str, "os.PathLike[str]"]] = None,
     live: str = "horizontal_weight",
     dpi: int = 150,
+    limit: Any = None,
 ) -> Figure:
-    """The static and the explicit (dynamic) analysis of one model side by side; a PNG if ``path`` is given.
+    """The static and the explicit (dynamic) analysis of one model side by side, and its limit analysis when
+    ``limit`` is given; a PNG if ``path`` is given.
 
-    The two walls with their mechanisms and joint states (as in :func:`plot_results`; one above the other
-    for a wide wall, side by side for a tall one) under one legend, and the two curves overlaid, each
-    collapse multiplier marked and given in the legend.
-    The figure title gives the difference of the multipliers and how far the failed-joint patterns
-    agree (see :func:`masonry_dem.compare.agreement`). Arguments as in :func:`plot_results`.
+    The walls with their mechanisms and joint states (as in :func:`plot_results`; one above the other for a
+    wide wall, side by side for a tall one) under one legend, and the curves overlaid, each collapse
+    multiplier marked and given in the legend; the limit analysis, which has no curve, as a horizontal
+    dashed line at its multiplier. The figure title gives the differences of the multipliers from the
+    static one and how far the failed-joint patterns agree (see :func:`masonry_dem.compare.agreement`).
+    Arguments as in :func:`plot_results`.
     """
     from .compare import agreement, format_difference
 
-    agree = agreement(static, dynamic)
+    agree = agreement(static, dynamic, limit)
+    runs = [("static", static), ("dynamic", dynamic)] + ([("limit", limit)] if limit is not None else [])
+    n_walls = len(runs)
     (xl, xh), (yl, yh) = _wall_limits(model)
     aspect = float((xh - xl) / (yh - yl))
     to_file = path is not None
     if aspect > 1.1:
-        # a wide wall: the two walls one above the other on the left, the curves on the right
+        # a wide wall: the walls one above the other on the left, the curves on the right
         a = min(aspect, 4.0)
-        fig = _new_figure((13.0, float(np.clip(2 * 7.0 / a + 2.6, 6.0, 11.0))), to_file)
-        grid = fig.add_gridspec(3, 2, width_ratios=[1.25, 1.0], height_ratios=[1.0, 1.0, 0.09])
-        wall_cells = [grid[0, 0], grid[1, 0]]
-        curve_cell, legend_cell, legend_columns = grid[0:2, 1], grid[2, :], 8
+        height = float(np.clip(n_walls * 7.0 / a + 2.6, 6.0, 11.0 if n_walls == 2 else 15.0))
+        fig = _new_figure((13.0, height), to_file)
+        grid = fig.add_gridspec(n_walls + 1, 2, width_ratios=[1.25, 1.0], height_ratios=[1.0] * n_walls + [0.09])
+        wall_cells = [grid[k, 0] for k in range(n_walls)]
+        curve_cell, legend_cell, legend_columns = grid[0:n_walls, 1], grid[n_walls, :], 8
     else:
-        # a tall wall: the two walls and the curves side by side
+        # a tall wall: the walls and the curves side by side
         a = max(aspect, 0.4)
-        fig = _new_figure((14.0, 6.5), to_file)
-        grid = fig.add_gridspec(2, 3, width_ratios=[a, a, 1.7], height_ratios=[1.0, 0.09])
-        wall_cells = [grid[0, 0], grid[0, 1]]
-        curve_cell, legend_cell, legend_columns = grid[0, 2], grid[1, :2], 4
+        fig = _new_figure((14.0 if n_walls == 2 else 18.0, 6.5), to_file)
+        grid = fig.add_gridspec(2, n_walls + 1, width_ratios=[a] * n_walls + [1.7], height_ratios=[1.0, 0.09])
+        wall_cells = [grid[0, k] for k in range(n_walls)]
+        curve_cell, legend_cell, legend_columns = grid[0, n_walls], grid[1, :n_walls], 4
     name, factor, unit = _multiplier_label(live)
     symbol = "H" if live == "top_horizontal" else "λ"
 
@@ -575,14 +612,16 @@ def plot_comparison(
             return f"{symbol}u: none"
         return f"{symbol}u = {lam * factor:.4g}{unit}" if live == "top_horizontal" else f"{symbol}u = {lam:.4f}"
 
-    for cell, (method, res) in zip(wall_cells, (("static", static), ("dynamic", dynamic))):
+    for cell, (method, res) in zip(wall_cells, runs):
         n_failed = agree[f"failed_{method}"]
         failed = f"{n_failed} failed joint" + ("" if n_failed == 1 else "s")
+        if method == "limit":
+            failed += " in the collapse mechanism"
         ax = fig.add_subplot(cell)
         _draw_wall(ax, model, res, legend=False, heading=f"{method}: {res.status}, {lam_text(res)}\n{failed}")
 
     ax_curve = fig.add_subplot(curve_cell)
-    _draw_curve_overlay(ax_curve, (("static", static), ("dynamic", dynamic)), live)
+    _draw_curve_overlay(ax_curve, runs, live)
 
     ax_legend = fig.add_subplot(legend_cell)
     ax_legend.axis("off")
@@ -591,11 +630,19 @@ def plot_comparison(
     diff = agree["multiplier_relative_difference"]
     diff_text = f"multipliers differ by {format_difference(diff)}" if diff is not None else "no multiplier to compare"
     head = f"{title} — " if title else ""
-    fig.suptitle(
+    text = (
         f"{head}static vs dynamic: {diff_text}; failed joints {agree['failed_static']} and "
-        f"{agree['failed_dynamic']}, {agree['failed_common']} in common (Jaccard {agree['jaccard']:.2f})",
-        fontsize=12,
+        f"{agree['failed_dynamic']}, {agree['failed_common']} in common (Jaccard {agree['jaccard']:.2f})"
     )
+    if limit is not None:
+        diff_l = agree["multiplier_relative_difference_limit"]
+        text += (
+            f"\nlimit analysis vs static: "
+            + (f"multipliers differ by {format_difference(diff_l)}" if diff_l is not None else "no multiplier to compare")
+            + f"; failed joints {agree['failed_limit']}, {agree['failed_common_limit']} in common with static "
+            f"(Jaccard {agree['jaccard_limit']:.2f})"
+        )
+    fig.suptitle(text, fontsize=12)
     if path is not None:
         fig.savefig(path, dpi=dpi)
     return fig
@@ -624,8 +671,18 @@ def _draw_curve_overlay(ax: Any, runs: Sequence[Tuple[str, Any]], live: str) -> 
             head = f"{method}: {'H' if live == 'top_horizontal' else 'λu'} = {value}"
         else:
             head = f"{method}: {res.status}"
-        work = f"{res.iterations:,} {'time steps' if res.method == 'dynamic' else 'iterations'}"
+        kind = {"dynamic": "time steps", "limit": "interior-point iterations"}.get(str(res.method), "iterations")
+        work = f"{res.iterations:,} {kind}"
         text = f"{head} ({work}, {res.elapsed_s:.3g} s)"
+        if not len(lam):  # no load path (a limit analysis): its multiplier across the plot
+            if np.isfinite(lam_u):
+                ax.axhline(lam_u, color=color, linestyle="--", linewidth=width, alpha=alpha, zorder=order, label=text)
+                values.append(lam_u)
+            else:
+                ax.plot([], [], "--", color=color, linewidth=width, label=text)
+            if str(res.status) in STATUS_NOTES and res.error:
+                ax.plot([], [], " ", label=f"{method} {res.status}: {res.error}")
+            continue
         markevery = max(1, len(lam) // 40)
         ax.plot(
             disp,
@@ -645,8 +702,8 @@ def _draw_curve_overlay(ax: Any, runs: Sequence[Tuple[str, Any]], live: str) -> 
             size = 8 if width < 2 else 12
             ax.plot([disp[k]], [lam[k]], marker, color=color, markersize=size, markerfacecolor="none", zorder=5)
         values += [float(v) for v in lam if np.isfinite(v)] + ([lam_u] if np.isfinite(lam_u) else [])
-        if res.status == "failed" and res.error:
-            ax.plot([], [], " ", label=f"{method} failed: {res.error}")
+        if str(res.status) in STATUS_NOTES and res.error:
+            ax.plot([], [], " ", label=f"{method} {res.status}: {res.error}")
     if values:
         lo, hi = min(0.0, min(values)), max(values)
         if hi > lo:
@@ -655,4 +712,7 @@ def _draw_curve_overlay(ax: Any, runs: Sequence[Tuple[str, Any]], live: str) -> 
     ax.set_ylabel(label)
     ax.grid(True, alpha=0.3)
     ax.legend(loc="lower right", fontsize=8)
-    ax.set_title("load curves (open marker: collapse or peak)", fontsize=10)
+    limits = any(not len(np.asarray(res.curve_multiplier)) for _, res in runs)
+    ax.set_title(
+        "load curves (open marker: collapse or peak" + ("; dashed: limit analysis)" if limits else ")"), fontsize=10
+    )

@@ -1,8 +1,9 @@
 """A progress bar for long analyses, fed by the solvers' ``progress`` callback.
 
-The solvers (``Model.solve_static``, ``Model.solve_dynamic``, ``Model.simulate``) call
+The solvers (``Model.solve_static``, ``Model.solve_dynamic``, ``Model.simulate``, ``Model.solve_limit``) call
 ``progress(step, multiplier, displacement, fraction)`` now and then: after each converged step (static),
-every few thousand time steps (explicit). :class:`ProgressBar` is such a callable; it draws a tqdm bar
+every few thousand time steps (explicit), after each interior-point iteration (limit analysis: the step is
+the iteration, displacement and fraction are NaN; the bar counts "iterations" with ``unit="iterations"``). :class:`ProgressBar` is such a callable; it draws a tqdm bar
 on a stream (stderr by default):
 
 >>> from masonry_dem.progress import progress_bar
@@ -37,11 +38,17 @@ _FORMAT_FRACTION = "{desc} {percentage:3.0f}%|{bar}| [{elapsed}<{remaining}]"
 
 
 def progress_text(
-    step: int, multiplier: float, displacement: float, fraction: float, live: str = "horizontal_weight"
+    step: int,
+    multiplier: float,
+    displacement: float,
+    fraction: float,
+    live: str = "horizontal_weight",
+    unit: str = "steps",
 ) -> str:
     """The numbers shown by the bar: ``λ = 0.6425, 12,345 steps``; the control displacement in mm is
     added when ``fraction`` is known (displacement control). With ``live = "top_horizontal"`` the
-    multiplier is a force in N, shown as ``H = 56.9 kN``."""
+    multiplier is a force in N, shown as ``H = 56.9 kN``. ``unit``: the word after the count
+    ("iterations" for a limit analysis)."""
     if not math.isfinite(multiplier):
         lam = "λ = -" if live != "top_horizontal" else "H = -"
     elif live == "top_horizontal":
@@ -52,7 +59,7 @@ def progress_text(
     if math.isfinite(fraction) and math.isfinite(displacement):
         mm = round(displacement * 1e3, 6) or 0.0  # no -0 nor 1e-20 for a displacement that is nil
         parts.append(f"u = {mm:.4g} mm")
-    parts.append(f"{int(step):,} steps")
+    parts.append(f"{int(step):,} {unit}")
     return ", ".join(parts)
 
 
@@ -85,6 +92,7 @@ class ProgressBar:
             the multiplier.
         interval: the bar is redrawn at most every ``interval`` seconds (default :data:`DEFAULT_INTERVAL`).
         leave: keep the last state of the bar on screen when closed (default: erase it).
+        unit: the word after the count (default "steps"; "iterations" for a limit analysis).
 
     Raises:
         ImportError: tqdm is not installed (use :func:`progress_bar` to fall back to no bar).
@@ -97,11 +105,13 @@ class ProgressBar:
         live: str = "horizontal_weight",
         interval: Optional[float] = None,
         leave: bool = False,
+        unit: str = "steps",
     ) -> None:
         from tqdm import tqdm  # lazily: tqdm is optional
 
         self.label = label
         self.live = live
+        self.unit = unit
         self.interval = DEFAULT_INTERVAL if interval is None else float(interval)
         self.calls = 0
         self.last: Optional[Tuple[int, float, float, float]] = None
@@ -141,7 +151,7 @@ class ProgressBar:
                 bar.bar_format = _FORMAT_FRACTION if known else _FORMAT_OPEN
             if known:
                 bar.n = int(round(min(max(fraction, 0.0), 1.0) * _TICKS))
-            text = progress_text(step, float(multiplier), float(displacement), fraction, self.live)
+            text = progress_text(step, float(multiplier), float(displacement), fraction, self.live, self.unit)
             bar.set_description_str(f"{self.label}: {text}", refresh=False)
             bar.refresh()
         except Exception:  # never let a drawing problem reach the solver
@@ -174,6 +184,7 @@ def progress_bar(
     live: str = "horizontal_weight",
     enabled: bool = True,
     leave: bool = False,
+    unit: str = "steps",
 ) -> Union[ProgressBar, NullProgress]:
     """A :class:`ProgressBar`, or a :class:`NullProgress` when ``enabled`` is false or tqdm is missing.
 
@@ -183,6 +194,6 @@ def progress_bar(
     if not enabled:
         return NullProgress()
     try:
-        return ProgressBar(label, file=file, live=live, leave=leave)
+        return ProgressBar(label, file=file, live=live, leave=leave, unit=unit)
     except ImportError:
         return NullProgress()

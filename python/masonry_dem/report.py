@@ -24,6 +24,8 @@ __all__ = [
     "interface_categories",
     "interface_jumps",
     "format_multiplier",
+    "format_status",
+    "certificate_text",
     "summary",
 ]
 
@@ -173,7 +175,8 @@ def _family_counts(indices: Sequence[int], families: Sequence[str]) -> str:
 
 
 def describe_mechanism(model: Any, results: Any) -> str:
-    """One line on the mechanism (``Results.mechanism``, the last displacement increment).
+    """One line on the mechanism (``Results.mechanism``: the last displacement increment, or the collapse
+    velocities of a limit analysis).
 
     It says how many wall blocks move; the parts they form (blocks held together by interfaces
     that the crack does not cross), each turning (clockwise or not, about its instantaneous centre
@@ -182,15 +185,17 @@ def describe_mechanism(model: Any, results: Any) -> str:
     rects = np.asarray(model.rects, dtype=np.float64)
     n = int(model.n_blocks)
     mech = np.asarray(results.mechanism, dtype=np.float64)
+    # a limit analysis has no increments: its mechanism is the collapse velocities, zero without a collapse
+    nothing = "none (no collapse)" if str(getattr(results, "method", "")) == "limit" else "none (no displacement increment)"
     if mech.shape != (len(rects), 3) or not np.all(np.isfinite(mech)):
-        return "none (no displacement increment)"
+        return nothing
     # The bodies that may move: the wall blocks and the top beam (not the base).
     top = model.top_index
     bodies = list(range(n)) + ([int(top)] if top is not None else [])
     cm = corner_motion(rects, mech)
     peak = float(max(cm[i] for i in bodies))
     if not peak > 0:
-        return "none (no displacement increment)"
+        return nothing
     moving = [i for i in bodies if cm[i] > MOVING_FRACTION * peak]
     n_moving = sum(1 for i in moving if i < n)
     beam = " and the top beam" if top is not None and int(top) in moving else ""  # the beam is no wall block
@@ -239,8 +244,59 @@ def format_multiplier(value: float, live: str = "horizontal_weight") -> str:
     return f"{value:.4f}"
 
 
+#: Statuses that come with a reason in ``Results.error``, and what they mean in a word.
+STATUS_NOTES = {
+    "failed": "the solver failed",
+    "no_equilibrium": "the wall cannot stand under its dead loads",
+    "unbounded": "the live load finds no mechanism",
+    "stalled": "the path stopped below the limit-analysis collapse multiplier",
+}
+
+
+def format_status(results: Any) -> str:
+    """The status for people: ``collapse``, or ``no_equilibrium (<reason>)`` for the statuses that have a
+    reason (failed, and no_equilibrium / unbounded of a limit analysis)."""
+    status = str(results.status)
+    if status in STATUS_NOTES:
+        reason = " ".join(str(results.error or STATUS_NOTES[status]).split())
+        return f"{status} ({reason})"
+    return status
+
+
+def _sci(x: Any) -> str:
+    return "-" if x is None or not math.isfinite(float(x)) else f"{float(x):.1e}"
+
+
+def certificate_text(results: Any, live: str = "horizontal_weight") -> List[str]:
+    """The lines on a limit analysis's certificate (empty for the other methods, or without one): the
+    residuals and the gap of the interior point, the associative upper bound and the non-associative
+    sequence when the joints are non-associative, and a note when cohesion or tensile strength were taken
+    at their peak."""
+    cert = getattr(results, "certificate", None)
+    if not cert:
+        return []
+    lines = [
+        f"primal residual {_sci(cert.get('primal_residual'))}, dual residual {_sci(cert.get('dual_residual'))}, "
+        f"duality gap {_sci(cert.get('duality_gap'))} ({int(cert.get('iterations') or 0)} interior-point iterations)"
+    ]
+    bound = cert.get("upper_bound")
+    if bound is not None and math.isfinite(float(bound)):
+        n = int(cert.get("sequence") or 0)
+        settled = "converged" if cert.get("sequence_converged") else "not converged"
+        lines.append(
+            f"non-associative joints: the multiplier is an estimate from {_plural(n, 'program')} after the "
+            f"associative one ({settled}); associative upper bound {format_multiplier(float(bound), live)}"
+        )
+    if cert.get("peak_strengths"):
+        lines.append("cohesion and tensile strength taken at their peak (no softening, no loss at failure)")
+    return lines
+
+
 def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight") -> str:
-    """The short human summary printed by ``masonry-dem run`` (several lines, no trailing newline)."""
+    """The short human summary printed by ``masonry-dem run`` (several lines, no trailing newline).
+
+    A limit analysis (method "limit") has no load path: its joint states are those of the collapse
+    mechanism, and a ``certificate`` line (or lines) replaces the count of steps."""
     states: Dict[str, int] = dict(results.joint_states)
     joint_text = ", ".join(f"{int(states.get(k, 0))} {k}" for k in ("elastic", "sliding", "rocking", "open"))
     # an interface that slides and rocks at once counts in both (the result file's convention): say how many,
@@ -248,15 +304,23 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
     both = interface_categories(getattr(results, "interface_states", ())).count("sliding + rocking")
     if both:
         joint_text += f" ({both} both sliding and rocking)"
+    limit = str(results.method) == "limit"
     lines = [
         title,
         f"  blocks:              {model.n_blocks}",
         f"  interfaces:          {model.n_interfaces}",
-        f"  method:              {results.method}",
-        f"  status:              {results.status}" + (f" ({results.error})" if results.status == "failed" else ""),
+        f"  method:              {results.method}" + (" (limit analysis)" if limit else ""),
+        f"  status:              {format_status(results)}",
         f"  collapse multiplier: {format_multiplier(float(results.collapse_multiplier), live)}",
-        f"  joint states:        {joint_text}",
+        f"  joint states:        {joint_text}" + ("; of the collapse mechanism" if limit and results.status == "collapse" else ""),
         f"  mechanism:           {describe_mechanism(model, results)}",
-        f"  elapsed:             {results.elapsed_s:.3g} s ({results.steps} steps, {results.iterations} iterations)",
     ]
+    if limit:
+        for k, text in enumerate(certificate_text(results, live)):
+            lines.append(f"  {'certificate:' if k == 0 else '':<21}{text}")
+        lines.append(f"  elapsed:             {results.elapsed_s:.3g} s ({results.iterations} interior-point iterations)")
+    else:
+        lines.append(
+            f"  elapsed:             {results.elapsed_s:.3g} s ({results.steps} steps, {results.iterations} iterations)"
+        )
     return "\n".join(lines)

@@ -1,13 +1,13 @@
 """Validation against reference answers: ``masonry-dem validate``.
 
 Every case file of a folder that carries a ``[reference]`` table (see :mod:`masonry_dem.case`) is run with
-the static solver, the explicit (dynamic) one, or both, and its collapse multiplier is compared with the
-reference::
+the static solver, the explicit (dynamic) one and limit analysis (or some of them), and its collapse
+multiplier is compared with the reference::
 
     relative error = |lambda - lambda_ref| / |lambda_ref|
 
-A case *passes* when every method run on it ended without failure, gave a finite multiplier, and its
-relative error is within the case's tolerance. Case files without a ``[reference]`` table are skipped
+A case *passes* when every method run on it ended without failure (a limit analysis's "no_equilibrium" or
+"unbounded" counts as one), gave a finite multiplier, and its relative error is within the case's tolerance. Case files without a ``[reference]`` table are skipped
 (and listed as such).
 
 :func:`collect` reads the folder, :func:`validate_case` runs one case, :func:`table_header`,
@@ -38,17 +38,27 @@ __all__ = [
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
-#: The values of ``--method``: which solvers validate runs.
-METHOD_CHOICES = ("static", "dynamic", "both")
+#: The values of ``--method``: which solvers validate runs ("both": static and dynamic; "all": the three).
+METHOD_CHOICES = ("static", "dynamic", "limit", "both", "all")
+#: The methods in the order of the table's columns, with their column names.
+METHODS = ("static", "dynamic", "limit")
+COLUMN_NAMES = {"static": "static", "dynamic": "explicit", "limit": "limit"}
+#: Statuses that count as a failed run.
+FAILED_STATUSES = ("failed", "no_equilibrium", "unbounded", "stalled")
 #: A solver call: (case, model, method) -> Results.
 Solve = Callable[[Case, Any, str], Any]
 
 
 def methods_of(choice: str) -> Tuple[str, ...]:
-    """The methods run for a ``--method`` choice: "static", "dynamic" or "both"."""
+    """The methods run for a ``--method`` choice: "static", "dynamic", "limit", "both" (static and dynamic)
+    or "all" (the three)."""
     if choice not in METHOD_CHOICES:
-        raise ValueError(f"method: expected one of static, dynamic, both, got {choice!r}")
-    return ("static", "dynamic") if choice == "both" else (choice,)
+        raise ValueError(f"method: expected one of {', '.join(METHOD_CHOICES)}, got {choice!r}")
+    if choice == "both":
+        return ("static", "dynamic")
+    if choice == "all":
+        return METHODS
+    return (choice,)
 
 
 @dataclass
@@ -64,7 +74,8 @@ class ValidationRow:
         multipliers: {method: collapse multiplier} of the methods run (NaN when none).
         elapsed: {method: elapsed_s} [s].
         errors: {method: relative error} (NaN when the multiplier is not finite).
-        failures: {method: reason} for the runs whose status is "failed".
+        failures: {method: reason} for the runs whose status is "failed" (or, for limit analysis,
+            "no_equilibrium" or "unbounded").
     """
 
     name: str
@@ -135,7 +146,7 @@ def _relative_error(value: float, reference: float) -> float:
 
 
 def validate_case(
-    path: PathLike, case: Case, methods: Sequence[str] = ("static", "dynamic"), solve: Optional[Solve] = None
+    path: PathLike, case: Case, methods: Sequence[str] = METHODS, solve: Optional[Solve] = None
 ) -> ValidationRow:
     """Run ``case`` (which has a reference) with each of ``methods`` and compare it with its reference.
 
@@ -154,13 +165,16 @@ def validate_case(
     )
     model = case.build_model()
     for method in methods:
+        if method not in ref.get("methods", METHODS):
+            continue  # the reference does not apply to this method (shown as "-")
         results = solve(case, model, method)
         lam = float(results.collapse_multiplier)
         row.multipliers[method] = lam
         row.elapsed[method] = float(results.elapsed_s)
         row.errors[method] = _relative_error(lam, row.reference)
-        if results.status == "failed":
-            row.failures[method] = str(results.error or "unknown reason")
+        if results.status in FAILED_STATUSES:
+            reason = str(results.error or "unknown reason")
+            row.failures[method] = reason if results.status == "failed" else f"{results.status}: {reason}"
     return row
 
 
@@ -168,7 +182,8 @@ def validate_case(
 # The table
 # --------------------------------------------------------------------------------------------------
 
-_HEAD = ("case", "reference", "static", "explicit", "error", "time", "verdict")
+_HEAD = ("case", "reference", "static", "explicit", "limit", "error", "time", "verdict")
+_TIME = 6  # the column of the times
 
 
 def _percent(x: float) -> str:
@@ -195,32 +210,36 @@ def _seconds(t: float) -> str:
     return f"{t:.3f} s" if t < 1 else f"{t:.1f} s"
 
 
+def _time_head(methods: Sequence[str]) -> str:
+    return "time (" + " / ".join(COLUMN_NAMES.get(m, m) for m in methods) + ")"
+
+
 def _widths(names: Sequence[str], methods: Sequence[str]) -> List[int]:
     time_width = 9 * len(methods) + 3 * (len(methods) - 1)
-    return [max([len(_HEAD[0])] + [len(n) for n in names]), 16, 10, 10, 8, max(time_width, 4), 7]
+    widths = [max([len(_HEAD[0])] + [len(n) for n in names]), 16, 10, 10, 10, 8, max(time_width, 4), 7]
+    widths[_TIME] = max(widths[_TIME], len(_time_head(methods)))
+    return widths
 
 
 def table_header(names: Sequence[str], methods: Sequence[str]) -> str:
     """The header of the table (two lines) for cases named ``names`` run with ``methods``."""
     widths = _widths(names, methods)
-    time_head = "time (" + " / ".join("static" if m == "static" else "explicit" for m in methods) + ")"
     head = list(_HEAD)
-    head[5] = time_head
-    widths[5] = max(widths[5], len(time_head))
+    head[_TIME] = _time_head(methods)
     line = "  ".join(h.ljust(w) for h, w in zip(head, widths)).rstrip()
     return line + "\n" + "-" * len(line)
 
 
 def table_row(row: ValidationRow, names: Sequence[str], methods: Sequence[str]) -> str:
-    """One line of the table: case, reference (± tolerance), static, explicit, error, time, verdict."""
+    """One line of the table: case, reference (± tolerance), static, explicit, limit, error, time, verdict
+    ("-" for a method not run)."""
     widths = _widths(names, methods)
-    time_head = "time (" + " / ".join("static" if m == "static" else "explicit" for m in methods) + ")"
-    widths[5] = max(widths[5], len(time_head))
     cells = [
         row.name,
         f"{_value(row.reference, row.live)} ±{_percent(row.tolerance)}",
         _value(row.multipliers.get("static"), row.live),
         _value(row.multipliers.get("dynamic"), row.live),
+        _value(row.multipliers.get("limit"), row.live),
         _percent(row.error),
         _time(row, methods),
         row.verdict(),
@@ -243,13 +262,13 @@ def table_footer(rows: Sequence[ValidationRow], skipped: Sequence[Path]) -> str:
 
 def validate_folder(
     directory: PathLike,
-    method: str = "both",
+    method: str = "all",
     solve: Optional[Solve] = None,
     echo: Optional[Callable[[str], None]] = None,
 ) -> Tuple[List[ValidationRow], List[Path]]:
     """Validate every case of ``directory`` that has a [reference]; return the rows and the skipped files.
 
-    ``method``: "static", "dynamic" or "both". ``echo`` (e.g. ``print``) receives the table line by line
+    ``method``: "static", "dynamic", "limit", "both" (static and dynamic) or "all". ``echo`` (e.g. ``print``) receives the table line by line
     as the cases run.
     """
     methods = methods_of(method)

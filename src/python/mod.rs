@@ -5,7 +5,8 @@ use crate::error::Error;
 use crate::geometry::{self, FirstCourse, Rect, RunningBond};
 use crate::joint::JointLaw;
 use crate::model::{JointLaws, LiveLoad, Model, ModelSpec, TopBeam};
-use crate::results::Results;
+use crate::limit::{self, LimitOptions};
+use crate::results::{Results, Status};
 use crate::explicit::{self, Damping, DynamicOptions, ExplicitOptions, QsControl, TimeHistory};
 use crate::static_solver::{self, Control, StaticOptions};
 use numpy::ndarray::Array2;
@@ -15,6 +16,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use std::time::Instant;
 
 create_exception!(
     _core,
@@ -497,6 +499,61 @@ impl PyModel {
         or_raised(PyResults { inner: res }, raised)
     }
 
+    /// Limit analysis: the collapse multiplier as a linear program (see _core.pyi). Releases the
+    /// GIL; Ctrl-C stops it between interior-point iterations and returns a Results with status
+    /// "failed" and error "interrupted by the user" (nothing of the unfinished program is kept).
+    /// Options left out (None) take the core's defaults (`LimitOptions::default()`).
+    #[pyo3(signature = (tolerance=None, max_iterations=None, max_sequence=None, progress=None))]
+    fn solve_limit(
+        &self,
+        py: Python<'_>,
+        tolerance: Option<f64>,
+        max_iterations: Option<i64>,
+        max_sequence: Option<i64>,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<PyResults> {
+        let defaults = LimitOptions::default();
+        let max_iterations = max_iterations.unwrap_or(defaults.max_iterations as i64);
+        let max_sequence = max_sequence.unwrap_or(defaults.max_sequence as i64);
+        if max_iterations < 1 {
+            return Err(InputError::new_err(format!(
+                "max_iterations must be at least 1, got {max_iterations}"
+            )));
+        }
+        if max_sequence < 0 {
+            return Err(InputError::new_err(format!(
+                "max_sequence must be >= 0, got {max_sequence}"
+            )));
+        }
+        let opts = LimitOptions {
+            tolerance: tolerance.unwrap_or(defaults.tolerance),
+            max_iterations: max_iterations as usize,
+            max_sequence: max_sequence as usize,
+            ..defaults
+        };
+        let model = &self.inner;
+        let raised = Mutex::new(None);
+        let start = Instant::now();
+        let res = py.detach(|| {
+            guarded(|| {
+                // the callback's step counts the interior-point iterations over all the programs
+                let mut count = 0usize;
+                let mut monitor = |p: &limit::LimitProgress| {
+                    count += 1;
+                    report(&progress, &raised, count, p.multiplier, f64::NAN, f64::NAN, false)
+                };
+                match limit::limit_analysis_with(model, &opts, &mut monitor) {
+                    // stopped by Ctrl-C or by the callback: an unfinished program certifies
+                    // nothing, so the result holds no multiplier (the callback's exception, if
+                    // any, is raised below instead)
+                    Err(Error::Interrupted) => Ok(interrupted_limit(model, start)),
+                    r => r,
+                }
+            })
+        })?;
+        or_raised(PyResults { inner: res }, raised)
+    }
+
     /// Quasi-static analysis with the explicit solver (see _core.pyi).
     #[pyo3(signature = (control="load", steps=200, max_displacement=0.002, control_block=None, tolerance=1e-3, unbalanced_ratio=1e-5, damping="local", damping_coefficient=0.8, time_step=None, safety=0.8, threads=0, progress=None))]
     #[allow(clippy::too_many_arguments)]
@@ -698,6 +755,31 @@ impl PyTimeHistory {
     }
 }
 
+/// The Results of a limit analysis stopped before its end: status "failed", no multiplier, no
+/// mechanism, no certificate (as the other solvers report an interrupted run).
+fn interrupted_limit(model: &Model, start: Instant) -> Results {
+    let nb = model.n_blocks();
+    let m = model.interfaces().len();
+    Results {
+        method: "limit",
+        status: Status::Failed,
+        error: Some(Error::Interrupted.to_string()),
+        collapse_multiplier: f64::NAN,
+        curve_multiplier: vec![],
+        curve_displacement: vec![],
+        control_block: model.default_control_block(),
+        displacements: vec![[0.0; 3]; nb],
+        mechanism: vec![[0.0; 3]; nb],
+        interface_forces: vec![[0.0; 3]; m],
+        interface_states: vec![0; m],
+        broken: vec![false; m],
+        iterations: 0,
+        steps: 0,
+        elapsed_s: start.elapsed().as_secs_f64(),
+        certificate: None,
+    }
+}
+
 /// Results of an analysis (see _core.pyi).
 #[pyclass(name = "Results", module = "masonry_dem._core")]
 struct PyResults {
@@ -780,6 +862,23 @@ impl PyResults {
     #[getter]
     fn elapsed_s(&self) -> f64 {
         self.inner.elapsed_s
+    }
+    /// The limit analysis's certificate as a dict, None for the other methods (and for an
+    /// interrupted limit analysis).
+    #[getter]
+    fn certificate<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(c) = self.inner.certificate else { return Ok(None) };
+        let d = PyDict::new(py);
+        d.set_item("multiplier", if c.multiplier.is_nan() { None } else { Some(c.multiplier) })?;
+        d.set_item("primal_residual", c.primal_residual)?;
+        d.set_item("dual_residual", c.dual_residual)?;
+        d.set_item("duality_gap", c.duality_gap)?;
+        d.set_item("iterations", c.iterations)?;
+        d.set_item("upper_bound", if c.upper_bound.is_nan() { None } else { Some(c.upper_bound) })?;
+        d.set_item("sequence", c.sequence)?;
+        d.set_item("sequence_converged", c.sequence_converged)?;
+        d.set_item("peak_strengths", c.peak_strengths)?;
+        Ok(Some(d))
     }
     fn __repr__(&self) -> String {
         format!(

@@ -414,7 +414,7 @@ def test_bad_format(tmp_path: Path, text: str, expected: str) -> None:
         ("[base]\nkind = 'free'\n", 'base.kind: expected one of "fixed", "none", got "free"'),
         ("[top]\nrotation = 'pinned'\n", 'top.rotation: expected one of "fixed", "free", got "pinned"'),
         ("[loads]\nlive = 'wind'\n", 'loads.live: expected one of "horizontal_weight", "top_horizontal", got "wind"'),
-        ("[analysis]\nmethod = 'explicit'\n", 'analysis.method: expected one of "static", "dynamic", got "explicit"'),
+        ("[analysis]\nmethod = 'explicit'\n", 'analysis.method: expected one of "static", "dynamic", "limit", got "explicit"'),
         (
             "[analysis]\ncontrol = 'arc-length'\n",
             'analysis.control: expected one of "load", "displacement", got "arc-length"',
@@ -609,7 +609,7 @@ def test_core_input_error_in_solver_names_the_file(tmp_path: Path) -> None:
 
 
 def test_unknown_method_argument(tmp_path: Path) -> None:
-    with pytest.raises(md.InputError, match='method: expected one of "static", "dynamic", got "fem"'):
+    with pytest.raises(md.InputError, match='method: expected one of "static", "dynamic", "limit", got "fem"'):
         load_text(tmp_path, MINIMAL).run(method="fem")
 
 

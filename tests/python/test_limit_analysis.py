@@ -1,12 +1,25 @@
-"""The static solver's collapse multiplier against limit analysis, on walls of dry associative joints.
+"""Limit analysis on walls of dry associative joints: the static solver and `Model.solve_limit` against a linear program.
 
 With dilatancy equal to friction the joints are associative and the static theorem of limit analysis gives the exact
 collapse multiplier: the optimum of a linear program (benches/limit_analysis.py, solved by SciPy's HiGHS), written
-from the model's blocks and interfaces alone, independently of the solvers. Every converged state of the static
-solver is an equilibrium within the strength domain, so its multiplier cannot exceed the optimum (up to the two
-solvers' round-off, 1e-9 here); from below it must reach the exact value within the tolerance of the reference tests
-for exact values (test_reference.py: 0.5%). The walls: Ferris & Tin-Loi's wall 1 and running-bond walls of other
-slenderness, friction, bond and with an opening, 33 to 105 blocks.
+from the model's blocks and interfaces alone, independently of the solvers.
+
+The static solver: every converged state is an equilibrium within the strength domain, so its multiplier cannot
+exceed the optimum (up to the two solvers' round-off, 1e-9 here); from below it must reach the exact value within the
+tolerance of the reference tests for exact values (test_reference.py: 0.5%). The walls: Ferris & Tin-Loi's wall 1
+and running-bond walls of other slenderness, friction, bond and with an opening, 33 to 105 blocks.
+
+`Model.solve_limit` solves the same program (its own interior point in the core): its multiplier must equal HiGHS's
+to 1e-6 relative, and never exceed it by more than 1e-6 (above the optimum would not be an equilibrium within the
+domain), with status "collapse", on Ferris & Tin-Loi's walls 1 to 6 and on 20 seeded random walls of 10 to 500 blocks
+(benches/limit_analysis.py's `random_wall`); on a random wall that cannot stand (HiGHS: infeasible) its status must
+be "no_equilibrium".
+
+Ferris & Tin-Loi's walls (Int. J. Mech. Sci. 43, 2001, 209-224): 1 and 2 are the case files of examples/. The
+geometry of 3 to 6 is taken from the public re-run of the six walls in HybriDFEM (github.com/thlgrs/HybriDFEM-3.1,
+Legacy/Examples/F&TL Walls (WCEE 2024)/Lin_Geom/Ferris&Tin-Loi_Wall3..6/Pushover_F&TL-*.py), courses of whole and
+half blocks (0.4 x 0.175 m) and openings one block wide; wall 6 has 146 blocks, as the paper's widest wall is
+described. The paper itself was not available to check them against.
 """
 
 import importlib.util
@@ -45,3 +58,67 @@ def test_static_collapse_is_the_limit_analysis_multiplier(courses, length, first
     # the static theorem: an equilibrium within the domain is a lower bound
     assert lam <= exact * (1.0 + 1e-9), f"{model.n_blocks} blocks: {lam} above the limit load {exact}"
     assert lam >= exact * (1.0 - 0.005), f"{model.n_blocks} blocks: {lam} below the limit load {exact} by more than 0.5%"
+
+
+# Ferris & Tin-Loi walls 3 to 6 as courses of md.pattern (bottom to top; lengths in block lengths, negative: a gap)
+_W3 = {"e": [1, 1, 1, 1], "u": [0.5, 1, 1, 1, 0.5], "we": [1, 0.5, -1, 0.5, 1], "wu": [0.5, 1, -1, 1, 0.5]}
+_W4 = {"e": [0.5, 1, 1, 1, 1, 0.5], "u": [1] * 5, "we": [0.5, 0.5, -1, 0.5, 0.5, -1, 0.5, 0.5], "wu": [1, -1, 1, -1, 1]}
+_W5 = {"e": [0.5, 1, 1, 0.5], "u": [1] * 3, "we": [0.5, 0.5, -1, 0.5, 0.5], "wu": [1, -1, 1]}
+_W6 = {"e": [0.5] + [1] * 6 + [0.5], "u": [1] * 7, "we": [1, 0.5, -1, 0.5, 1, 0.5, -1, 0.5, 1],
+       "wu": [0.5, 1, -1, 1, 1, -1, 1, 0.5]}
+_WINDOW = ["wu", "we", "wu", "we", "wu"]
+FERRIS_TINLOI_PATTERNS = {
+    # wall: (courses, block count)
+    3: ([_W3[c] for c in ["e", "u", "e", "wu", "we", "wu", "we", "wu", "e", "u", "e"]], 46),
+    4: ([_W4[c] for c in ["e", "u", "e", "wu", "we", "wu", "we", "wu", "e", "u", "e"]], 55),
+    5: ([_W5[c] for c in ["e", "u", "e", *_WINDOW, "e", "u", "e", *_WINDOW, "e", "u", "e"]], 61),
+    6: ([_W6[c] for c in ["e", "u", "e", "u", *_WINDOW, "u", "e", "u", *_WINDOW, "u", "e", "u", "e"]], 146),
+}
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+def ferris_tinloi_wall(number):
+    """Ferris & Tin-Loi's wall `number` (1 to 6), mu = 0.65, associative (dilatancy = friction)."""
+    if number in (1, 2):
+        case = md.load_case(EXAMPLES / f"ferris-tinloi-wall{number}.toml")
+        kwargs = dict(case.model_kwargs)
+        joints = {family: dict(law) for family, law in kwargs["joints"].items()}
+        for law in joints.values():
+            if "friction" in law:
+                law["dilatancy"] = law["friction"]
+        kwargs["joints"] = joints
+        model = md.Model(**kwargs)
+        return model, joints["default"]["friction"]
+    rows, n_blocks = FERRIS_TINLOI_PATTERNS[number]
+    blocks = md.pattern(0.4, 0.175, rows)
+    assert len(blocks) == n_blocks
+    return md.Model(blocks, gravity=10.0, joints={"default": {"friction": 0.65, "dilatancy": 0.65}}), 0.65
+
+
+def check_limit_against_lp(model, mu):
+    exact, message = limit_analysis.collapse_multiplier(model, mu)
+    assert exact > 0.0, message  # NaN (no optimum) fails too
+    res = model.solve_limit()
+    assert res.status == "collapse", res.error
+    lam = res.collapse_multiplier
+    assert isinstance(res.certificate, dict)
+    assert lam <= exact * (1.0 + 1e-6), f"{model.n_blocks} blocks: {lam} above the limit load {exact}"
+    assert abs(lam - exact) <= 1e-6 * exact, f"{model.n_blocks} blocks: {lam} against the limit load {exact}"
+
+
+@pytest.mark.parametrize("number", [1, 2, 3, 4, 5, 6])
+def test_solve_limit_on_ferris_tinloi_walls(number):
+    check_limit_against_lp(*ferris_tinloi_wall(number))
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_solve_limit_on_random_walls(seed):
+    check_limit_against_lp(*limit_analysis.random_wall(seed))
+
+
+def test_solve_limit_on_a_random_wall_that_cannot_stand():
+    # seed 263: a lintel course of 0.3 m blocks over a 0.7 m opening, friction 0.35, too weakly held by its ends
+    model, mu = limit_analysis.random_wall(263)
+    exact, message = limit_analysis.collapse_multiplier(model, mu)
+    assert "infeasible" in message.lower(), (exact, message)
+    assert model.solve_limit().status == "no_equilibrium"

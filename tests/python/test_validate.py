@@ -59,10 +59,22 @@ def table_rows(stdout: str) -> dict:
 
 def test_reference_table_parsed() -> None:
     case = md.parse_case(CASE + '[reference]\ncollapse_multiplier = 0.65\ntolerance = 0.005\nsource = "closed form"\n')
-    assert case.reference == {"collapse_multiplier": 0.65, "tolerance": 0.005, "source": "closed form"}
+    every = ("static", "dynamic", "limit")
+    assert case.reference == {"collapse_multiplier": 0.65, "tolerance": 0.005, "source": "closed form", "methods": every}
     case = md.parse_case(CASE + "[reference]\ncollapse_multiplier = 1\n")
-    assert case.reference == {"collapse_multiplier": 1.0, "tolerance": 0.01, "source": ""}
+    assert case.reference == {"collapse_multiplier": 1.0, "tolerance": 0.01, "source": "", "methods": every}
+    case = md.parse_case(CASE + '[reference]\ncollapse_multiplier = 1\nmethods = ["static"]\n')
+    assert case.reference["methods"] == ("static",)
     assert md.parse_case(CASE).reference is None
+
+
+def test_a_reference_applies_to_its_methods_only(tmp_path) -> None:
+    # J4D's reference (an experiment) names the static and explicit solvers: limit analysis is not run on it
+    case = md.load_case(Path(__file__).resolve().parents[2] / "examples" / "j4d-shear-wall.toml")
+    assert case.reference["methods"] == ("static", "dynamic")
+    ran = []
+    row = validate.validate_case("j4d", case, ("limit",), solve=lambda c, m, method: ran.append(method))
+    assert ran == [] and "limit" not in row.multipliers
 
 
 @pytest.mark.parametrize(
@@ -73,6 +85,8 @@ def test_reference_table_parsed() -> None:
         ('collapse_multiplier = "0.65"', "collapse_multiplier"),
         ("collapse_multiplier = 0.65\ntolerance = 1.5", "tolerance"),
         ("collapse_multiplier = 0.65\ntolerance = 0", "tolerance"),
+        ('collapse_multiplier = 0.65\nmethods = ["exact"]', "methods"),
+        ("collapse_multiplier = 0.65\nmethods = []", "methods"),
         ("collapse_multiplier = 0.65\nsource = 3", "source"),
     ],
 )
@@ -170,14 +184,14 @@ def test_validate_both_methods(tmp_path: Path) -> None:
         shutil.copy(EXAMPLES / name, tmp_path)
     text = (EXAMPLES / "single-block-sliding.toml").read_text()
     (tmp_path / "no-reference.toml").write_text(text.split("[reference]")[0])
-    proc = masonry_dem("validate", str(tmp_path), "--quiet")  # --method both is the default
+    proc = masonry_dem("validate", str(tmp_path), "--quiet", "--method", "both")  # the default is all three
     assert proc.returncode == 0, (proc.stdout, proc.stderr)
     rows = table_rows(proc.stdout)
     assert set(rows) == {"single-block-rocking", "single-block-sliding"}
     for cells in rows.values():
         assert cells[-1] == "pass"
-        assert cells[2] != "-" and cells[3] != "-"  # static and explicit
-        assert " / " in cells[5]  # a time for each
+        assert cells[2] != "-" and cells[3] != "-" and cells[4] == "-"  # static and explicit, not limit
+        assert cells[6].count(" / ") == 1  # a time for each
     assert float(rows["single-block-rocking"][3]) == pytest.approx(1 / 3, rel=0.005)
     assert "skipped no-reference.toml: no [reference] table" in proc.stdout
 
