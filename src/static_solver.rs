@@ -15,6 +15,12 @@
 //!   takes lambda as the unknown in its place (the matrix gets a column `-f_live`), so the path is
 //!   followed through the peak and after it.
 //!
+//! - **A collapse is checked** on walls of associative dry joints, where limit analysis gives the
+//!   exact multiplier ([`exact_by_limit_analysis`]): a load-control path that stops converging
+//!   more than [`COLLAPSE_EVIDENCE`] `tolerance` below it goes on at fixed multipliers, and is
+//!   reported `Stalled`, not `Collapse`, if it cannot reach it. The limit analysis's certificate
+//!   and mechanism come with the result.
+//!
 //! Joint histories are committed only at converged steps, so a failed step leaves no trace.
 
 use crate::error::{check_steps, Error};
