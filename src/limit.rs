@@ -96,6 +96,10 @@ const REDUCED_ACCURACY: f64 = 100.0;
 /// lambda = 1), beyond which no multiplier in the range reaches them.
 const STRENGTH_CAP: f64 = 1e4;
 
+/// Gondzio's centrality correctors per iteration, at most (10^4 blocks: 69 iterations without,
+/// 55 with one, 51 with two, 47 with three, for about the same time).
+const CORRECTORS: usize = 1;
+
 /// Steps of iterative refinement of a solve of the normal equations, at most.
 const REFINEMENTS: usize = 2;
 
@@ -656,11 +660,41 @@ impl Program {
             // corrector
             let rxs: Vec<f64> = (0..nx).map(|i| sigma * mu - p.x[i] * p.s[i] - aff.dx[i] * aff.ds[i]).collect();
             let rtv: Vec<f64> = (0..m).map(|i| sigma * mu - p.t[i] * p.v[i] - aff.dt[i] * aff.dv[i]).collect();
-            let Some(d) = self.direction(&p, &res, &rxs, &rtv, &theta, &u, fu) else {
+            let Some(mut d) = self.direction(&p, &res, &rxs, &rtv, &theta, &u, fu) else {
                 return Ok(done(failed));
             };
-            let eta = 0.995;
-            let ap = (eta * max_step(&p.x, &d.dx).min(max_step(&p.t, &d.dt))).min(1.0);
+            // Gondzio's centrality correctors: aim a longer step at products within [0.1, 10]
+            // of the target, where the predictor-corrector's step left them outside; kept while
+            // they lengthen the step (one solve each, against a factorization per iteration)
+            let steps = |d: &Direction| {
+                (max_step(&p.x, &d.dx).min(max_step(&p.t, &d.dt)), max_step(&p.s, &d.ds).min(max_step(&p.v, &d.dv)))
+            };
+            let (mut rxs, mut rtv) = (rxs, rtv);
+            let target = sigma * mu;
+            for _ in 0..CORRECTORS {
+                let (ap, ad) = steps(&d);
+                if ap.min(ad) >= 0.9 {
+                    break;
+                }
+                let (ap_t, ad_t) = ((1.5 * ap + 0.1).min(1.0), (1.5 * ad + 0.1).min(1.0));
+                let fix = |v: f64| {
+                    let c = v.clamp(0.1 * target, 10.0 * target) - v;
+                    c.max(-10.0 * target)
+                };
+                let rxs2: Vec<f64> = (0..nx).map(|i| rxs[i] + fix((p.x[i] + ap_t * d.dx[i]) * (p.s[i] + ad_t * d.ds[i]))).collect();
+                let rtv2: Vec<f64> = (0..m).map(|i| rtv[i] + fix((p.t[i] + ap_t * d.dt[i]) * (p.v[i] + ad_t * d.dv[i]))).collect();
+                let Some(d2) = self.direction(&p, &res, &rxs2, &rtv2, &theta, &u, fu) else {
+                    break;
+                };
+                let (ap2, ad2) = steps(&d2);
+                if ap2 + ad2 < 1.01 * (ap + ad) {
+                    break;
+                }
+                d = d2;
+                rxs = rxs2;
+                rtv = rtv2;
+            }
+            let eta = 0.995;            let ap = (eta * max_step(&p.x, &d.dx).min(max_step(&p.t, &d.dt))).min(1.0);
             let ad = (eta * max_step(&p.s, &d.ds).min(max_step(&p.v, &d.dv))).min(1.0);
             let step = |v: &mut [f64], dv: &[f64], a: f64| v.iter_mut().zip(dv).for_each(|(v, d)| *v += a * d);
             step(&mut p.x, &d.dx, ap);
