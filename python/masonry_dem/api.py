@@ -35,7 +35,7 @@ import numpy as np
 
 from ._core import InputError
 from .case import JOINT_STATE_KEYS, certificate_dict, result_dict
-from .export import _atomic_write
+from .atomic import write_text
 
 __all__ = [
     "mortar_joint",
@@ -247,17 +247,13 @@ def to_json(results: Any, path: PathLike, model: Any, title: Optional[str] = Non
     """Write the result file of case-format.md (see :func:`masonry_dem.result_dict`) to ``path``.
 
     ``model`` is the Model the results came from (numbers of blocks and interfaces); ``title`` defaults
-    to "untitled". The file is written under a temporary name in its folder, then renamed. Returns the
-    dict written.
+    to "untitled". The file is written atomically (:mod:`masonry_dem.atomic`): under a temporary name in
+    its folder, then renamed. Returns the dict written.
     """
     data = result_dict(results, model, "untitled" if title is None else str(title))
     text = json.dumps(data, indent=2, allow_nan=False) + "\n"
 
-    def write(tmp: str) -> None:
-        with open(tmp, "x", encoding="utf-8", newline="\n") as f:
-            f.write(text)
-
-    _atomic_write(path, write, ".json")
+    write_text(path, text)
     return data
 
 

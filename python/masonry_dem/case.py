@@ -24,7 +24,7 @@ import os
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Union
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
@@ -749,9 +749,16 @@ def certificate_dict(certificate: Optional[Mapping[str, Any]]) -> Optional[Dict[
     return out
 
 
-def write_result_json(path: PathLike, results: Any, model: Any, title: str) -> Dict[str, Any]:
-    """Write the result file (see :func:`result_dict`) to ``path``; return the dict written."""
+def write_result_json(
+    path: PathLike, results: Any, model: Any, title: str, *, inputs: Iterable[PathLike] = ()
+) -> Dict[str, Any]:
+    """Write the result file (see :func:`result_dict`) to ``path``; return the dict written.
+
+    The file is written atomically (:func:`masonry_dem.atomic.write_text`): a target that is not a regular
+    file, or is one of ``inputs`` (the case file), is refused with InputError."""
+    from .atomic import write_text
+
     data = result_dict(results, model, title)
     text = json.dumps(data, indent=2, allow_nan=False)
-    Path(path).write_text(text + "\n", encoding="utf-8")
+    write_text(path, text + "\n", inputs=inputs)
     return data

@@ -16,6 +16,13 @@ them side by side (see :mod:`masonry_dem.compare`).
 ``--method limit`` is limit analysis (``Model.solve_limit``): the collapse multiplier as a linear program,
 with its certificate; no load path (the curve is empty, the CSV has its header only).
 
+Output files (--json, --csv, --vtk, --plot) are checked before the analysis: one that exists and is not a
+regular file (a folder, a device, a FIFO), the case file itself, or a file given for two outputs is refused
+(exit status 2). Each is written atomically (:mod:`masonry_dem.atomic`: a temporary file in its folder,
+then renamed; a failure or Ctrl-C keeps the previous file), all of them before the summary is printed. A
+plot name without a suffix gets ".png" ("wrote" names the file written). A closed stdout (``| head -1``) is
+not an error, and a character stdout cannot show is printed as "?".
+
 A progress bar (tqdm, if installed) is drawn on stderr while a solver runs, when stderr is a terminal
 and ``--quiet`` is not given.
 
@@ -29,11 +36,13 @@ computed, ``compare`` does not start the second method). Errors are one line on 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
+import signal
 import sys
 import textwrap
 from pathlib import Path
-from typing import Any, Optional, Sequence
+from typing import Any, Iterator, List, Optional, Sequence, Tuple
 
 from ._core import InputError, MasonryError, __version__
 from .case import ERROR_STATUSES, Case, load_case, write_result_json
@@ -249,11 +258,95 @@ def _error(message: str, status: int) -> int:
     return status
 
 
-def _prepare(path: str) -> None:
+def _prepare(path: Any) -> None:
     """Create the folder of an output file."""
     parent = Path(path).parent
     if str(parent):
         parent.mkdir(parents=True, exist_ok=True)
+
+
+def _print(text: str = "", flush: bool = False) -> None:
+    """Print a line on stdout. A closed stdout (``| head -1``) is not an error: the rest of the output goes
+    to the null device and the command goes on (files written, exit status as if printed)."""
+    try:
+        print(text, flush=flush)
+    except BrokenPipeError:
+        _stdout_to_devnull()
+
+
+def _stdout_to_devnull() -> None:
+    """Point stdout at the null device (so that later prints and the flush at exit do not fail)."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, AttributeError, ValueError):
+        sys.stdout = open(os.devnull, "w")  # noqa: SIM115 (until exit)
+
+
+def _tolerant_output() -> None:
+    """Never fail on a character stdout's encoding cannot show (an ASCII stdout and a title with an
+    accent): it is printed as "?" (stderr already escapes it)."""
+    reconfigure = getattr(sys.stdout, "reconfigure", None)
+    if reconfigure is not None:
+        try:
+            reconfigure(errors="replace")
+        except (ValueError, OSError, TypeError):
+            pass
+
+
+@contextlib.contextmanager
+def _terminate_raises() -> Iterator[None]:
+    """While the output files are written, SIGTERM (``kill``) raises KeyboardInterrupt, so that a
+    temporary file is removed and the previous target is kept (SIGKILL cannot be caught)."""
+
+    def handler(signum: int, frame: Any) -> None:
+        raise KeyboardInterrupt
+
+    try:
+        previous = signal.signal(signal.SIGTERM, handler)
+    except (ValueError, OSError, AttributeError):  # not the main thread, or no SIGTERM
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _check_outputs(targets: Sequence[Any], inputs: Sequence[Any]) -> None:
+    """Refuse, before any analysis, an output file that cannot be written safely (not a regular file,
+    the case file itself) and a file given for two outputs (InputError). Other errors (a folder that is a
+    file, no permission) are left to the writing, which reports them (exit status 1)."""
+    from .atomic import check_target
+
+    seen = {}
+    for target in targets:
+        try:
+            resolved = os.path.realpath(check_target(target, inputs))
+        except OSError:  # e.g. its folder is a file: reported when it is written
+            continue
+        if resolved in seen:
+            also = "" if str(seen[resolved]) == str(target) else f" (also as {seen[resolved]})"
+            raise InputError(f"{target} is given for two outputs{also}")
+        seen[resolved] = target
+
+
+def _output_targets(
+    json_path: Optional[str], plot_path: Optional[str], vtk_prefix: Optional[str] = None, csv_path: Optional[str] = None
+) -> Tuple[List[Any], Optional[Any]]:
+    """The files the outputs go to, and the plot's file (".png" added when the name has no suffix)."""
+    targets: List[Any] = [p for p in (json_path, csv_path) if p]
+    if vtk_prefix:
+        prefix = vtk_prefix[: -len(".vtu")] if vtk_prefix.endswith(".vtu") else vtk_prefix
+        targets += [prefix + "-blocks.vtu", prefix + "-interfaces.vtu"]
+    plot_file = None
+    if plot_path:
+        from .plot import figure_path
+
+        plot_file = figure_path(plot_path)
+        targets.append(plot_file)
+    return targets, plot_file
 
 
 def _execute(
@@ -264,37 +357,49 @@ def _execute(
     quiet: bool = False,
     vtk_prefix: Optional[str] = None,
     csv_path: Optional[str] = None,
+    inputs: Sequence[Any] = (),
 ) -> int:
-    """Build, solve, report and write the outputs; return the exit status (errors are raised)."""
+    """Build, solve, write the outputs, then report; return the exit status (errors are raised).
+
+    The output files are checked before the analysis (``inputs``: the case file, never overwritten) and
+    written before the summary is printed, so that a closed stdout cannot lose them."""
     method = case.check_method(method)
+    targets, plot_file = _output_targets(json_path, plot_path, vtk_prefix, csv_path)
+    _check_outputs(targets, inputs)
     model = case.build_model()
     results = _solve(case, model, method, quiet)
     live = str(case.model_kwargs.get("live", "horizontal_weight"))
-    print(summary(case.title, model, results, live), flush=True)
 
+    wrote: List[Any] = []
+    write_error = None
     try:
-        if json_path:
-            _prepare(json_path)
-            write_result_json(json_path, results, model, case.title)
-            print(f"  wrote {json_path}")
-        if csv_path:
-            from .export import write_curve_csv
+        with _terminate_raises():
+            if json_path:
+                _prepare(json_path)
+                write_result_json(json_path, results, model, case.title, inputs=inputs)
+                wrote.append(json_path)
+            if csv_path:
+                from .export import write_curve_csv
 
-            write_curve_csv(results, csv_path)
-            print(f"  wrote {csv_path}")
-        if vtk_prefix:
-            from .export import write_vtk
+                wrote.append(write_curve_csv(results, csv_path, inputs=inputs))
+            if vtk_prefix:
+                from .export import write_vtk
 
-            for written in write_vtk(model, results, vtk_prefix):
-                print(f"  wrote {written}")
-        if plot_path:
-            from .plot import report_figure
+                wrote.extend(write_vtk(model, results, vtk_prefix, inputs=inputs))
+            if plot_path:
+                from .plot import report_figure
 
-            _prepare(plot_path)
-            report_figure(model, results, title=case.title, path=plot_path, live=live)
-            print(f"  wrote {plot_path}")
+                _prepare(plot_file)
+                report_figure(model, results, title=case.title, path=plot_file, live=live)
+                wrote.append(plot_file)
     except OSError as exc:
-        return _error(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}", EXIT_FAILURE)
+        write_error = f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}"
+
+    _print(summary(case.title, model, results, live), flush=True)
+    for written in wrote:
+        _print(f"  wrote {written}")
+    if write_error is not None:
+        return _error(write_error, EXIT_FAILURE)
 
     if _interrupted(results):
         return _error("interrupted", EXIT_INTERRUPTED)
@@ -305,10 +410,14 @@ def _execute(
     return EXIT_OK
 
 
-def _compare(case: Case, json_path: Optional[str], plot_path: Optional[str], quiet: bool = False) -> int:
-    """Run the three methods on one model, print them side by side, write the outputs; return the exit status."""
+def _compare(
+    case: Case, json_path: Optional[str], plot_path: Optional[str], quiet: bool = False, inputs: Sequence[Any] = ()
+) -> int:
+    """Run the three methods on one model, write the outputs, print them side by side; return the exit status."""
     from .compare import comparison_text, write_comparison_json
 
+    targets, plot_file = _output_targets(json_path, plot_path)
+    _check_outputs(targets, inputs)
     model = case.build_model()
     static = _solve(case, model, "static", quiet)
     if _interrupted(static):  # Ctrl-C during a run: do not start the next
@@ -318,21 +427,29 @@ def _compare(case: Case, json_path: Optional[str], plot_path: Optional[str], qui
         raise KeyboardInterrupt
     limit = _solve(case, model, "limit", quiet)
     live = str(case.model_kwargs.get("live", "horizontal_weight"))
-    print(comparison_text(static, dynamic, model, case.title, live, limit=limit), flush=True)
 
+    wrote: List[Any] = []
+    write_error = None
     try:
-        if json_path:
-            _prepare(json_path)
-            write_comparison_json(json_path, static, dynamic, model, case.title, limit=limit)
-            print(f"  wrote {json_path}")
-        if plot_path:
-            from .plot import plot_comparison
+        with _terminate_raises():
+            if json_path:
+                _prepare(json_path)
+                write_comparison_json(json_path, static, dynamic, model, case.title, limit=limit, inputs=inputs)
+                wrote.append(json_path)
+            if plot_path:
+                from .plot import plot_comparison
 
-            _prepare(plot_path)
-            plot_comparison(model, static, dynamic, title=case.title, path=plot_path, live=live, limit=limit)
-            print(f"  wrote {plot_path}")
+                _prepare(plot_file)
+                plot_comparison(model, static, dynamic, title=case.title, path=plot_file, live=live, limit=limit)
+                wrote.append(plot_file)
     except OSError as exc:
-        return _error(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}", EXIT_FAILURE)
+        write_error = f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}"
+
+    _print(comparison_text(static, dynamic, model, case.title, live, limit=limit), flush=True)
+    for written in wrote:
+        _print(f"  wrote {written}")
+    if write_error is not None:
+        return _error(write_error, EXIT_FAILURE)
 
     if _interrupted(limit):
         return _error("interrupted", EXIT_INTERRUPTED)
@@ -364,7 +481,7 @@ def _validate(directory: Optional[str], method: str, quiet: bool = False) -> int
         return results
 
     def echo(line: str) -> None:
-        print(line, flush=True)
+        _print(line, flush=True)
 
     from .validate import collect
 
@@ -377,6 +494,15 @@ def _validate(directory: Optional[str], method: str, quiet: bool = False) -> int
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
     """Run the command line with ``argv`` (default: ``sys.argv[1:]``); return the exit status."""
+    _tolerant_output()
+    try:
+        return _main(argv)
+    except BrokenPipeError:  # stdout closed while argparse printed (--help | head -1): not an error
+        _stdout_to_devnull()
+        return EXIT_OK
+
+
+def _main(argv: Optional[Sequence[str]]) -> int:
     args = build_parser().parse_args(argv)
     try:
         if args.command in ("run", "compare"):
@@ -384,9 +510,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                 case = load_case(args.case)
             except OSError as exc:
                 return _error(f"cannot read {args.case}: {exc.strerror or exc}", EXIT_INPUT)
+            inputs = [args.case]
             if args.command == "compare":
-                return _compare(case, args.json, args.plot, args.quiet)
-            return _execute(case, args.method, args.json, args.plot, args.quiet, args.vtk, args.csv)
+                return _compare(case, args.json, args.plot, args.quiet, inputs=inputs)
+            return _execute(case, args.method, args.json, args.plot, args.quiet, args.vtk, args.csv, inputs=inputs)
         if args.command == "validate":
             return _validate(args.directory, args.method, args.quiet)
         from .default_case import default_case

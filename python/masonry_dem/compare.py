@@ -34,8 +34,7 @@ from __future__ import annotations
 import json
 import math
 import os
-from pathlib import Path
-from typing import Any, Dict, List, Optional, Union
+from typing import Any, Dict, Iterable, List, Optional, Union
 
 import numpy as np
 
@@ -125,11 +124,21 @@ def comparison_dict(static: Any, dynamic: Any, model: Any, title: str, limit: An
 
 
 def write_comparison_json(
-    path: Union[str, "os.PathLike[str]"], static: Any, dynamic: Any, model: Any, title: str, limit: Any = None
+    path: Union[str, "os.PathLike[str]"],
+    static: Any,
+    dynamic: Any,
+    model: Any,
+    title: str,
+    limit: Any = None,
+    *,
+    inputs: Iterable[Union[str, "os.PathLike[str]"]] = (),
 ) -> Dict[str, Any]:
-    """Write the comparison file to ``path``; return the dict written."""
+    """Write the comparison file to ``path`` atomically (refused if not a regular file or one of
+    ``inputs``, see :mod:`masonry_dem.atomic`); return the dict written."""
+    from .atomic import write_text
+
     data = comparison_dict(static, dynamic, model, title, limit)
-    Path(path).write_text(json.dumps(data, indent=2, allow_nan=False) + "\n", encoding="utf-8")
+    write_text(path, json.dumps(data, indent=2, allow_nan=False) + "\n", inputs=inputs)
     return data
 
 

@@ -18,18 +18,20 @@ converged step (lambda, or the force in N for ``live = "top_horizontal"``; the h
 the control point in m). A limit analysis has no curve: its file is the header alone, and its blocks file has
 zero ``displacement`` and ``rotation`` and the collapse velocities as ``mechanism``.
 
-Every file is written under a temporary name in its folder and then renamed, so that a reader never sees
-half a file.
+Every file is written atomically (:mod:`masonry_dem.atomic`): under a temporary name in its folder, synced,
+then renamed, so that a reader never sees half a file; a target that is not a regular file (a folder, a
+device, a FIFO) is refused with InputError.
 """
 
 from __future__ import annotations
 
 import os
-import uuid
 from pathlib import Path
-from typing import Any, Callable, Tuple, Union
+from typing import Any, Iterable, Tuple, Union
 
 import numpy as np
+
+from .atomic import atomic_file, atomic_path, check_target
 
 __all__ = ["write_vtk", "write_curve_csv", "block_mesh", "interface_mesh", "CSV_HEADER", "FAMILY_CODES"]
 
@@ -40,25 +42,6 @@ CSV_HEADER = "multiplier,displacement_m"
 
 #: Codes of the interface families in the ``family`` field.
 FAMILY_CODES = {"bed": 0, "head": 1, "base": 2, "top": 3}
-
-
-def _atomic_write(path: PathLike, write: Callable[[str], None], suffix: str) -> None:
-    """Call ``write(tmp)`` on a temporary name next to ``path``, then rename it to ``path``.
-
-    The temporary file is created by ``write`` itself (so it gets the usual permissions, not mkstemp's
-    0600); its name is unique to this process and call."""
-    path = Path(path)
-    folder = path.parent if str(path.parent) else Path(".")
-    tmp = str(folder / f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp{suffix}")
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
 
 
 def _field(values: Any, shape: Tuple[int, ...]) -> np.ndarray:
@@ -147,7 +130,9 @@ def interface_mesh(model: Any, results: Any) -> Any:
     )
 
 
-def write_vtk(model: Any, results: Any, path_prefix: PathLike) -> Tuple[Path, Path]:
+def write_vtk(
+    model: Any, results: Any, path_prefix: PathLike, *, inputs: Iterable[PathLike] = ()
+) -> Tuple[Path, Path]:
     """Write ``PATH_PREFIX-blocks.vtu`` and ``PATH_PREFIX-interfaces.vtu`` (VTK unstructured grids).
 
     Args:
@@ -155,6 +140,8 @@ def write_vtk(model: Any, results: Any, path_prefix: PathLike) -> Tuple[Path, Pa
         results: its :class:`masonry_dem.Results` (the last converged step).
         path_prefix: the files' path without the ``-blocks.vtu`` / ``-interfaces.vtu`` ending; a trailing
             ``.vtu`` is dropped. The folder is created if missing.
+        inputs: files that must not be overwritten (the case file): a target that is one of them, or
+            that is not a regular file, is refused with InputError before either file is written.
     Returns:
         The paths of the blocks file and of the interfaces file.
     """
@@ -162,33 +149,36 @@ def write_vtk(model: Any, results: Any, path_prefix: PathLike) -> Tuple[Path, Pa
     if prefix.endswith(".vtu"):
         prefix = prefix[: -len(".vtu")]
     blocks_path, faces_path = Path(prefix + "-blocks.vtu"), Path(prefix + "-interfaces.vtu")
+    inputs = list(inputs)
+    for path in (blocks_path, faces_path):
+        check_target(path, inputs)
     blocks_path.parent.mkdir(parents=True, exist_ok=True)
     for path, mesh in ((blocks_path, block_mesh(model, results)), (faces_path, interface_mesh(model, results))):
-        _atomic_write(path, lambda tmp, mesh=mesh: mesh.write(tmp, file_format="vtu"), ".vtu")
+        atomic_path(path, lambda tmp, mesh=mesh: mesh.write(tmp, file_format="vtu"), inputs=inputs)
     return blocks_path, faces_path
 
 
-def write_curve_csv(results: Any, path: PathLike) -> Path:
+def write_curve_csv(results: Any, path: PathLike, *, inputs: Iterable[PathLike] = ()) -> Path:
     """Write the load curve as CSV: header ``multiplier,displacement_m``, one row per converged step.
 
     ``multiplier`` is lambda (the force on the top beam in N with ``live = "top_horizontal"``),
     ``displacement_m`` the horizontal displacement of the control point [m]. Numbers are written with 17
     significant digits (they read back exactly); non-finite values as ``nan``. Read it back with
-    ``numpy.loadtxt(path, delimiter=",", skiprows=1)``. Returns the path.
+    ``numpy.loadtxt(path, delimiter=",", skiprows=1)``. A target that is not a regular file (``/dev/null``,
+    a FIFO, a folder) or is one of ``inputs`` (the case file) is refused with InputError. Returns the path.
     """
     lam = np.asarray(results.curve_multiplier, dtype=np.float64).reshape(-1)
     disp = np.asarray(results.curve_displacement, dtype=np.float64).reshape(-1)
     if len(lam) != len(disp):
         raise ValueError(f"the curve has {len(lam)} multipliers but {len(disp)} displacements")
     path = Path(path)
+    inputs = list(inputs)
+    check_target(path, inputs)
     if str(path.parent):
         path.parent.mkdir(parents=True, exist_ok=True)
 
-    def write(tmp: str) -> None:
-        with open(tmp, "x", encoding="ascii", newline="\n") as f:
-            f.write(CSV_HEADER + "\n")
-            for a, b in zip(lam, disp):
-                f.write(f"{a:.17g},{b:.17g}\n")
-
-    _atomic_write(path, write, ".csv")
+    with atomic_file(path, "w", encoding="ascii", newline="\n", inputs=inputs) as f:
+        f.write(CSV_HEADER + "\n")
+        for a, b in zip(lam, disp):
+            f.write(f"{a:.17g},{b:.17g}\n")
     return path

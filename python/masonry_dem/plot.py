@@ -27,6 +27,9 @@ Figures (written as PNG with the Agg canvas when a ``path`` is given, else made 
 A limit analysis's result has a mechanism (the collapse velocities) and a crack pattern (the joint states of
 that mechanism) but no load path: no curve, no deformed shape (its panels say so instead of drawing one).
 
+A figure's file is :func:`figure_path` of the ``path`` given (".png" added when it has no suffix, as matplotlib
+does), written atomically (:mod:`masonry_dem.atomic`) by :func:`save_figure`.
+
 Geometry in m; displacements plotted in mm. Matplotlib is imported when this module is.
 """
 
@@ -41,6 +44,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Polygon, Rectangle
 
+from .atomic import atomic_file
 from .report import (
     STATUS_NOTES,
     CRACK_TOLERANCE,
@@ -64,6 +68,8 @@ __all__ = [
     "report_figure",
     "plot_results",
     "plot_comparison",
+    "figure_path",
+    "save_figure",
     "interface_categories",
     "STATE_STYLES",
 ]
@@ -131,8 +137,43 @@ def plot_results(
     head = f"{title} — " if title else ""
     fig.suptitle(f"{head}{results.method}, {results.status}, {lam_text}", fontsize=13)
     if path is not None:
-        fig.savefig(path, dpi=dpi)
+        save_figure(fig, path, dpi=dpi)
     return fig
+
+
+def figure_path(path: Union[str, "os.PathLike[str]"]) -> "os.PathLike[str]":
+    """The file a figure given ``path`` is written to: ``path`` itself when it has a suffix (its format,
+    e.g. ".png", ".pdf", ".svg"), else ``path`` + "." + rcParams["savefig.format"] (".png" by default), as
+    matplotlib's ``savefig`` does. A suffix that is not a format matplotlib can write is an InputError."""
+    from pathlib import Path
+
+    import matplotlib
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    from ._core import InputError
+
+    p = Path(path)
+    if not p.suffix:
+        return p.with_name(p.name + "." + str(matplotlib.rcParams["savefig.format"]).lower())
+    fmt = p.suffix[1:].lower()
+    supported = FigureCanvasBase.get_supported_filetypes()
+    if fmt not in supported:
+        raise InputError(
+            f"cannot write the figure {path}: unknown format {p.suffix!r} (use one of "
+            + ", ".join("." + k for k in sorted(supported))
+            + ")"
+        )
+    return p
+
+
+def save_figure(fig: Figure, path: Union[str, "os.PathLike[str]"], dpi: int = 150) -> "os.PathLike[str]":
+    """Write ``fig`` to :func:`figure_path` (``path``) atomically (a temporary file in its folder, then
+    renamed; a target that is not a regular file is refused); return the file written."""
+    target = figure_path(path)
+    fmt = os.path.splitext(os.fspath(target))[1][1:].lower()
+    with atomic_file(target, "wb") as f:
+        fig.savefig(f, format=fmt, dpi=dpi)
+    return target
 
 
 def _new_figure(size: Tuple[float, float], to_file: bool) -> Figure:
@@ -491,7 +532,7 @@ def report_figure(
     head = f"{title} — " if title else ""
     fig.suptitle(f"{head}{results.method}, {results.status}, {_lam_text(results, live)}", fontsize=13)
     if path is not None:
-        fig.savefig(path, dpi=dpi)
+        save_figure(fig, path, dpi=dpi)
     return fig
 
 
@@ -644,7 +685,7 @@ def plot_comparison(
         )
     fig.suptitle(text, fontsize=12)
     if path is not None:
-        fig.savefig(path, dpi=dpi)
+        save_figure(fig, path, dpi=dpi)
     return fig
 
 

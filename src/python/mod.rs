@@ -863,7 +863,8 @@ impl PyResults {
     fn elapsed_s(&self) -> f64 {
         self.inner.elapsed_s
     }
-    /// The limit analysis's certificate as a dict, None for the other methods (and for an
+    /// The limit analysis's certificate as a dict: a limit analysis's own, or that of the check
+    /// of a static load-control run on associative dry joints; None otherwise (and for an
     /// interrupted limit analysis).
     #[getter]
     fn certificate<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {

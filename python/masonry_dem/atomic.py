@@ -1,0 +1,188 @@
+"""Atomic output files: every file masonry-dem writes goes through :func:`atomic_file` or :func:`atomic_path`.
+
+The content is written to a temporary file in the target's own folder (a hidden name
+``.NAME.PID.RANDOM.tmp``), flushed and ``fsync``-ed, then renamed over the target with :func:`os.replace`,
+so a reader (or a crash, a kill, a full disk) never leaves a truncated or empty target: it holds either
+its previous content or the new one. The temporary file is removed on any exception, Ctrl-C included.
+
+A target that exists and is not a regular file (a folder, a device such as ``/dev/null``, a FIFO, a
+socket) is refused with :class:`InputError` rather than replaced by a regular file, and so is a target
+that is the same file as one of the ``inputs`` (the case file read). A symbolic link to a file is
+followed: the file it points to is replaced and the link kept. A new file gets the usual permissions
+(0666 less the umask); a replaced one keeps its permission bits.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import stat
+import uuid
+from pathlib import Path
+from typing import IO, Any, Callable, Iterable, Iterator, Optional, Union
+
+from ._core import InputError
+
+__all__ = ["check_target", "atomic_file", "atomic_path", "write_text"]
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+def _same_file(a: Path, b: PathLike) -> bool:
+    try:
+        return os.path.samefile(a, b)
+    except OSError:  # one of them does not exist (or cannot be looked at): not the same file
+        return False
+
+
+def check_target(path: PathLike, inputs: Iterable[PathLike] = ()) -> Path:
+    """The file to replace for output ``path``: ``path`` with symbolic links resolved.
+
+    Raises :class:`InputError` (one line) when the target exists and is not a regular file, or is the
+    same file as one of ``inputs``; OSError when it cannot be looked at (e.g. its folder is a file).
+    Does not create anything.
+    """
+    given = Path(path)
+    if str(path) == "":
+        raise InputError("empty output file name")
+    target = Path(os.path.realpath(given)) if given.is_symlink() else given
+    try:
+        st = os.stat(target)
+    except FileNotFoundError:
+        return target
+    if stat.S_ISDIR(st.st_mode):
+        raise InputError(f"cannot write {path}: it is a folder, not a file")
+    if not stat.S_ISREG(st.st_mode):
+        what = (
+            "a FIFO" if stat.S_ISFIFO(st.st_mode)
+            else "a device" if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode)
+            else "a socket" if stat.S_ISSOCK(st.st_mode)
+            else "not a regular file"
+        )
+        raise InputError(f"cannot write {path}: it is {what}, not a regular file (it is not replaced)")
+    for source in inputs:
+        if _same_file(target, source):
+            raise InputError(f"cannot write {path}: it is the input file {source} (it would be overwritten)")
+    return target
+
+
+def _fsync_folder(folder: Path) -> None:
+    """Make the rename durable (POSIX); silently nothing where folders cannot be opened."""
+    if os.name != "posix":
+        return
+    try:
+        fd = os.open(folder, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
+
+
+def _new_temp(target: Path) -> "tuple[str, int]":
+    """Create (O_EXCL) an empty temporary file next to ``target``; return its name and an open fd."""
+    folder = target.parent if str(target.parent) else Path(".")
+    suffix = target.suffix if len(target.suffix) <= 16 else ""
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0) | getattr(os, "O_NOFOLLOW", 0)
+    for _ in range(100):
+        tmp = str(folder / f".{target.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp{suffix}")
+        try:
+            return tmp, os.open(tmp, flags, 0o666)
+        except FileExistsError:
+            continue
+    raise FileExistsError(f"cannot create a temporary file in {folder}")
+
+
+def _finish(tmp: str, target: Path) -> None:
+    """Keep the permission bits of a file being replaced, rename ``tmp`` onto ``target``, sync the folder."""
+    try:
+        mode = stat.S_IMODE(os.stat(target).st_mode)
+    except OSError:
+        mode = None
+    if mode is not None:
+        try:
+            os.chmod(tmp, mode)
+        except OSError:
+            pass
+    os.replace(tmp, target)
+    _fsync_folder(target.parent if str(target.parent) else Path("."))
+
+
+def _remove(tmp: str) -> None:
+    try:
+        os.unlink(tmp)
+    except OSError:
+        pass
+
+
+@contextlib.contextmanager
+def atomic_file(
+    path: PathLike,
+    mode: str = "w",
+    encoding: Optional[str] = "utf-8",
+    newline: Optional[str] = "\n",
+    inputs: Iterable[PathLike] = (),
+) -> Iterator[IO[Any]]:
+    """Open a temporary file next to ``path`` for writing (``mode`` "w" or "wb"); on a normal exit of the
+    ``with`` block flush, fsync and rename it onto ``path``; on an exception remove it (``path`` untouched).
+
+    ``path`` is checked first (:func:`check_target`). The folder must exist.
+    """
+    if mode not in ("w", "wb"):
+        raise ValueError(f"atomic_file: mode must be 'w' or 'wb', not {mode!r}")
+    target = check_target(path, inputs)
+    tmp, fd = _new_temp(target)
+    try:
+        try:
+            if mode == "wb":
+                f: IO[Any] = os.fdopen(fd, "wb")
+            else:
+                f = os.fdopen(fd, "w", encoding=encoding, newline=newline)
+        except BaseException:
+            os.close(fd)
+            raise
+        with f:
+            yield f
+            f.flush()
+            os.fsync(f.fileno())
+        check_target(path, inputs)  # nothing was put in its place meanwhile
+        _finish(tmp, target)
+    except BaseException:
+        _remove(tmp)
+        raise
+
+
+def atomic_path(
+    path: PathLike, write: Callable[[str], None], inputs: Iterable[PathLike] = ()
+) -> Path:
+    """Call ``write(tmp)`` with the name of a temporary file next to ``path`` (it exists, empty; ``write``
+    may overwrite it, e.g. a library that only takes a file name), then fsync it and rename it onto
+    ``path``; on an exception remove it. Returns ``path`` as a Path."""
+    target = check_target(path, inputs)
+    tmp, fd = _new_temp(target)
+    try:
+        os.close(fd)
+        write(tmp)
+        fd = os.open(tmp, os.O_RDWR | getattr(os, "O_BINARY", 0))
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+        check_target(path, inputs)
+        _finish(tmp, target)
+    except BaseException:
+        _remove(tmp)
+        raise
+    return Path(path)
+
+
+def write_text(
+    path: PathLike, text: str, encoding: str = "utf-8", inputs: Iterable[PathLike] = ()
+) -> Path:
+    """Write ``text`` to ``path`` atomically (newlines as "\\n"); return ``path`` as a Path."""
+    with atomic_file(path, "w", encoding=encoding, newline="\n", inputs=inputs) as f:
+        f.write(text)
+    return Path(path)
