@@ -296,7 +296,8 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
     """The short human summary printed by ``masonry-dem run`` (several lines, no trailing newline).
 
     A limit analysis (method "limit") has no load path: its joint states are those of the collapse
-    mechanism, and a ``certificate`` line (or lines) replaces the count of steps."""
+    mechanism, and a ``certificate`` line (or lines) replaces the count of steps. A static run checked
+    against limit analysis (associative dry joints) gets a ``checked against`` line with the exact value."""
     states: Dict[str, int] = dict(results.joint_states)
     joint_text = ", ".join(f"{int(states.get(k, 0))} {k}" for k in ("elastic", "sliding", "rocking", "open"))
     # an interface that slides and rocks at once counts in both (the result file's convention): say how many,
@@ -320,6 +321,13 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
             lines.append(f"  {'certificate:' if k == 0 else '':<21}{text}")
         lines.append(f"  elapsed:             {results.elapsed_s:.3g} s ({results.iterations} interior-point iterations)")
     else:
+        cert = getattr(results, "certificate", None)
+        if cert and cert.get("multiplier") is not None:
+            # a static run checked against limit analysis (associative dry joints: the exact multiplier)
+            lines.append(
+                f"  checked against:     limit analysis, {format_multiplier(float(cert['multiplier']), live)} "
+                f"(exact for these associative dry joints; duality gap {_sci(cert.get('duality_gap'))})"
+            )
         lines.append(
             f"  elapsed:             {results.elapsed_s:.3g} s ({results.steps} steps, {results.iterations} iterations)"
         )

@@ -480,3 +480,20 @@ def test_plots_of_a_limit_result(tmp_path: Path, wall1: tuple) -> None:
         plot.plot_curve(ax, static, limit)
         plot.plot_mechanism(ax, model, limit)
         plot.plot_cracks(ax, model, limit)
+
+
+def test_a_static_collapse_on_associative_dry_joints_carries_its_check() -> None:
+    """Load control on wall 1 (psi = mu, dry): the collapse comes with limit analysis's certificate, whose
+    multiplier is the exact 0.6429 (0.642857...) and the static one within 10 tolerances (1e-3) below it;
+    the summary says so. With psi = 0 (non-associative) limit analysis is no exact check: no certificate."""
+    case = md.load_case(WALL1)
+    model = case.build_model()
+    res = model.solve_static(control="load")
+    assert res.status == "collapse", res.error
+    cert = res.certificate
+    assert cert is not None and abs(cert["multiplier"] - 0.6429) <= 1e-4
+    assert cert["multiplier"] * (1 - 1e-3) <= res.collapse_multiplier <= cert["multiplier"] * (1 + 1e-9)
+    assert "checked against:     limit analysis, 0.6429" in summary(case.title, model, res)
+    kwargs = dict(case.model_kwargs)
+    kwargs["joints"] = {"default": {**kwargs["joints"]["default"], "dilatancy": 0.0}}
+    assert md.Model(**kwargs).solve_static(control="load").certificate is None
