@@ -80,6 +80,11 @@ impl Default for JointLaw {
     }
 }
 
+/// The largest friction coefficient accepted (tan(phi) = 20, phi = 87.1 deg): masonry joints have
+/// 0.3 to 1, a joint meant not to slide may be given 10, and a number above 20 is most likely a
+/// friction angle in degrees (typically 25 to 45).
+pub const MAX_FRICTION: f64 = 20.0;
+
 impl JointLaw {
     /// Mortar-joint stiffnesses from the mortar's moduli and the joint thickness: kN = E/e, kT = G/e.
     pub fn mortar_stiffness(self, young: f64, shear: f64, joint_thickness: f64) -> Self {
@@ -95,6 +100,19 @@ impl JointLaw {
         positive(&format!("{what}.normal_stiffness"), self.normal_stiffness)?;
         positive(&format!("{what}.shear_stiffness"), self.shear_stiffness)?;
         non_negative(&format!("{what}.friction"), self.friction)?;
+        if self.friction > MAX_FRICTION {
+            // most likely a friction angle in degrees
+            let hint = if self.friction < 90.0 {
+                format!("; a friction angle of {} deg is friction = {:.3}", self.friction, self.friction.to_radians().tan())
+            } else {
+                String::new()
+            };
+            return Err(Error::input(format!(
+                "{what}.friction = {} is mu = tan(phi), a coefficient, and must be at most {MAX_FRICTION} (phi = {:.1} deg){hint}",
+                self.friction,
+                MAX_FRICTION.atan().to_degrees()
+            )));
+        }
         non_negative(&format!("{what}.cohesion"), self.cohesion)?;
         non_negative(&format!("{what}.tensile_strength"), self.tensile_strength)?;
         non_negative(&format!("{what}.dilatancy"), self.dilatancy)?;

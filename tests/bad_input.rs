@@ -96,6 +96,14 @@ fn bad_numbers_name_their_key() {
         }),
         "joints.bed.friction",
     );
+    // an angle in degrees given for tan(phi): refused, with the coefficient it most likely means
+    refused(
+        bad(JointLaw {
+            friction: 35.0,
+            ..JointLaw::default()
+        }),
+        "joints.bed.friction = 35 is mu = tan(phi), a coefficient, and must be at most 20 (phi = 87.1 deg); a friction angle of 35 deg is friction = 0.700",
+    );
     refused(
         bad(JointLaw {
             normal_stiffness: 0.0,

@@ -145,6 +145,7 @@ CASES: List[Tuple[str, Union[Edit, str, bytes], Tuple[str, ...]]] = [
     ),
     # [joints]
     ("friction-negative", setting("joints.friction", -0.1), ("joints.friction",)),
+    ("friction-in-degrees", setting("joints.friction", 35), ("joints.friction = 35", "tan(phi)", "friction = 0.700")),
     ("bed-normal-stiffness-zero", setting("joints.bed.normal_stiffness", 0), ("joints.bed.normal_stiffness",)),
     ("base-shear-stiffness-inf", setting("joints.base.shear_stiffness", Raw("inf")), ("joints.base.shear_stiffness",)),
     ("head-dilatancy-above-friction", setting("joints.head.dilatancy", 0.9), ("joints.head.dilatancy",)),
