@@ -21,6 +21,7 @@ import difflib
 import json
 import math
 import os
+import re
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -150,7 +151,7 @@ class _Table:
                 where = f"in [{path}]" if path else "at the top level"
                 close = difflib.get_close_matches(key, allowed, n=1)
                 hint = f" (did you mean '{close[0]}'?)" if close else f" (allowed: {', '.join(allowed)})"
-                raise self.error(f"unknown key '{key}' {where}{hint}")
+                raise self.error(f"unknown key '{_short(key)}' {where}{hint}")
 
     # -- messages ----------------------------------------------------------------------------------
 
@@ -416,12 +417,44 @@ def load_case(path: PathLike) -> Case:
             with the file name (as given) and names the key.
     """
     source = os.fspath(path)
-    data = Path(path).read_bytes()
+    with open(path, "rb") as f:
+        data = f.read(MAX_CASE_BYTES + 1)  # never more: /dev/zero or a huge file is refused, not read
+    if len(data) > MAX_CASE_BYTES:
+        raise InputError(f"{source}: larger than the limit of {MAX_CASE_BYTES // 2**20} MiB for a case file")
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise InputError(f"{source}: not a UTF-8 text file ({exc.reason} at byte {exc.start})") from None
+    # a byte-order mark, as some editors write at the start of UTF-8 files, is not part of the TOML
+    text = text[1:] if text.startswith("\ufeff") else text
     return parse_case(text, source=source, default_title=Path(path).stem)
+
+
+#: The largest case file read [bytes]: a wall of 10^5 blocks listed one per line takes about 5 MB.
+MAX_CASE_BYTES = 64 * 2**20
+
+
+def _short(name: str, limit: int = 60) -> str:
+    """A key for a message: itself, or its start and its length when it is long (a message must not echo
+    a megabyte back)."""
+    return name if len(name) <= limit else f"{name[:limit]}... ({len(name):,} characters)"
+
+
+def _duplicate_key(text: str, message: str) -> Optional[str]:
+    """The message for TOML's refusal of a key given twice ("Cannot overwrite a value (at line L, column
+    C)", "Cannot declare ... twice"), naming the key and its line; None for other errors."""
+    if "overwrite" not in message and "twice" not in message:
+        return None
+    found = re.search(r"at line (\d+)", message)
+    if not found:
+        return None
+    line_no = int(found.group(1))
+    lines = text.splitlines()
+    line = lines[line_no - 1].strip() if 0 < line_no <= len(lines) else ""
+    name = line.strip("[]").strip() if line.startswith("[") else line.split("=", 1)[0].strip()
+    if not name:
+        return None
+    return f"duplicate key '{_short(name)}' (line {line_no}): a key or table may be given only once"
 
 
 def parse_case(text: str, source: str = "<string>", default_title: str = "untitled") -> Case:
@@ -429,6 +462,9 @@ def parse_case(text: str, source: str = "<string>", default_title: str = "untitl
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
+        duplicate = _duplicate_key(text, str(exc))
+        if duplicate:
+            raise InputError(f"{source}: invalid TOML: {duplicate}") from None
         raise InputError(f"{source}: invalid TOML: {exc}") from None
     except ValueError as exc:  # tomllib lets int() refuse integers of more than 4300 digits
         raise InputError(f"{source}: invalid TOML: {exc}") from None

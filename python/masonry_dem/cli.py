@@ -42,7 +42,7 @@ import signal
 import sys
 import textwrap
 from pathlib import Path
-from typing import Any, Iterator, List, Optional, Sequence, Tuple
+from typing import Any, Iterator, List, NoReturn, Optional, Sequence, Tuple
 
 from ._core import InputError, MasonryError, __version__
 from .case import ERROR_STATUSES, Case, load_case, write_result_json
@@ -58,9 +58,16 @@ DEMO_PLOT = os.path.join("out", "demo.png")
 EXAMPLES_DIR = Path(__file__).resolve().parents[2] / "examples"
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse, with its errors on one line (the usage is for --help)."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(EXIT_INPUT, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of ``masonry-dem`` (subcommands ``run``, ``compare`` and ``demo``)."""
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog=PROG,
         description="Nonlinear in-plane analysis of masonry walls of rigid blocks with Mohr-Coulomb joints.",
         formatter_class=argparse.RawDescriptionHelpFormatter,

@@ -16,6 +16,8 @@ from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 import pytest
 
+import masonry_dem as md
+
 
 class Raw(str):
     """A TOML value written as is (nan, inf, a 400-digit integer)."""
@@ -234,3 +236,47 @@ def test_a_missing_file_is_named(tmp_path: Path) -> None:
     assert proc.returncode == 2
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and "no-such-case.toml" in lines[0] and "Traceback" not in proc.stderr
+
+
+# --------------------------------------------------------------------------------------------------
+# Files and arguments that used to give long or cryptic messages
+# --------------------------------------------------------------------------------------------------
+
+WALL1_CASE = Path(__file__).resolve().parents[2] / "examples" / "ferris-tinloi-wall1.toml"
+
+
+def test_an_argument_error_is_one_line() -> None:
+    proc = subprocess.run([sys.executable, "-m", "masonry_dem", "run"], capture_output=True, text=True)
+    assert proc.returncode == 2
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and "CASE.toml" in lines[0] and "--help" in lines[0], proc.stderr
+
+
+def test_a_byte_order_mark_is_accepted(tmp_path: Path) -> None:
+    path = tmp_path / "bom.toml"
+    path.write_bytes(b"\xef\xbb\xbf" + WALL1_CASE.read_bytes())
+    assert md.load_case(path).title == md.load_case(WALL1_CASE).title
+
+
+def test_a_long_unknown_key_is_not_echoed_whole(tmp_path: Path) -> None:
+    path = tmp_path / "long.toml"
+    key = "k" * 100_000
+    path.write_text(WALL1_CASE.read_text().replace("[geometry]", f"[geometry]\n{key} = 1", 1))
+    with pytest.raises(md.InputError) as err:
+        md.load_case(path)
+    assert len(str(err.value)) < 500 and "100,000 characters" in str(err.value)
+
+
+@pytest.mark.parametrize(
+    "text, name, line",
+    [("format = 1\nformat = 1\n", "format", 2), ("[geometry]\nthickness = 1\n[geometry]\n", "geometry", 3)],
+)
+def test_a_duplicate_key_is_named(text: str, name: str, line: int) -> None:
+    with pytest.raises(md.InputError, match=rf"duplicate key '{name}' \(line {line}\)"):
+        md.parse_case(text)
+
+
+def test_a_case_file_beyond_the_size_limit_is_refused_unread() -> None:
+    # /dev/zero never ends: read whole, it took the machine's memory
+    with pytest.raises(md.InputError, match="larger than the limit"):
+        md.load_case("/dev/zero")
