@@ -96,8 +96,8 @@ const REDUCED_ACCURACY: f64 = 100.0;
 /// lambda = 1), beyond which no multiplier in the range reaches them.
 const STRENGTH_CAP: f64 = 1e4;
 
-/// Gondzio's centrality correctors per iteration, at most (10^4 blocks: 69 iterations without,
-/// 55 with one, 51 with two, 47 with three, for about the same time).
+/// Gondzio's centrality correctors per iteration, at most: more cut iterations but not time
+/// (BENCHMARKS.md).
 const CORRECTORS: usize = 1;
 
 /// Steps of iterative refinement of a solve of the normal equations, at most.
@@ -236,6 +236,9 @@ struct Program {
     dofs: Vec<[u32; 6]>,
     /// per interface: its 6 x 3 block of the equilibrium matrix, scaled (columns N, T, 2M/l)
     cols: Vec<[[f64; 3]; 6]>,
+    /// per interface: its 6 x 5 block of the standard form's equilibrium matrix (`columns`),
+    /// kept while the faces do not change: the interior point's products read it many times
+    acols: Vec<[[f64; NV]; 6]>,
     /// the value slots of each interface's 6 x 6 block in the normal matrix
     slots: Vec<[u32; 36]>,
     /// the faces' right-hand sides of each interface over the force scale: Coulomb (c A, or
@@ -357,7 +360,9 @@ impl Program {
             })
             .collect();
         let slope = coulomb.iter().map(|c| c.1).collect();
-        Ok(Program { m, n, eq, dofs, cols, slots, hc, ht, slope, coulomb, f_dead, f_live, force, length, live, normal })
+        let mut lp = Program { m, n, eq, dofs, cols, acols: vec![], slots, hc, ht, slope, coulomb, f_dead, f_live, force, length, live, normal };
+        lp.acols = (0..m).map(|k| lp.columns(k).0).collect();
+        Ok(lp)
     }
 
     /// lambda in its own units from a scaled solution.
@@ -372,6 +377,7 @@ impl Program {
             self.hc[k] = (ca - (mu - tp) * normals[k]).max(0.0);
             self.slope[k] = tp;
         }
+        self.acols = (0..self.m).map(|k| self.columns(k).0).collect();
     }
 
     /// The columns of interface k in the scaled equilibrium matrix (6 rows x 5 variables), and
@@ -465,7 +471,7 @@ impl Program {
             *o = -f * lam;
         }
         for k in 0..self.m {
-            let (a, _) = self.columns(k);
+            let a = &self.acols[k];
             let xk = &x[NV * k..NV * k + NV];
             for (r, &d) in self.dofs[k].iter().enumerate() {
                 if d != NO_EQ {
@@ -478,7 +484,7 @@ impl Program {
     /// `A^T y` into `out` (lambda's row, `-f_live . y`, left out).
     fn apply_t(&self, y: &[f64], out: &mut [f64]) {
         for k in 0..self.m {
-            let (a, _) = self.columns(k);
+            let a = &self.acols[k];
             let o = &mut out[NV * k..NV * k + NV];
             o.fill(0.0);
             for (r, &d) in self.dofs[k].iter().enumerate() {
@@ -711,7 +717,7 @@ impl Program {
     fn assemble(&mut self, theta: &[f64]) {
         self.normal.values_mut().fill(0.0);
         for k in 0..self.m {
-            let (a, _) = self.columns(k);
+            let a = &self.acols[k];
             let th = &theta[NV * k..NV * k + NV];
             let slots = self.slots[k];
             let vals = self.normal.values_mut();

@@ -310,7 +310,7 @@ impl SparseLu {
             ));
         }
         self.factorized = Factor::None;
-        if self.symmetric(largest) && self.factorize_llt(LltRegularization::default())?.is_some() {
+        if self.symmetric(largest) && self.factorize_llt()? {
             return Ok(());
         }
         if self.n <= DENSE_LU_MAX {
@@ -345,15 +345,11 @@ impl SparseLu {
             return Err(Error::Convergence("the matrix has a non-finite entry".into()));
         }
         self.factorized = Factor::None;
-        self.ensure_llt()?;
         let n = self.n;
-        let parts = self.llt.as_mut().unwrap();
+        let parts = self.permuted_parts()?;
         if parts.ldlt_buf.is_none() {
             let req = parts.symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default());
             parts.ldlt_buf = Some(MemBuffer::try_new(req).map_err(|_| out_of_memory(n, "factorization"))?);
-        }
-        for (v, &s) in parts.permuted_values.iter_mut().zip(&parts.src) {
-            *v = self.values[s];
         }
         let mat = SparseColMatRef::new(parts.permuted.as_ref(), &parts.permuted_values);
         let reg = LdltRegularization { dynamic_regularization_signs: None, dynamic_regularization_delta: 0.0, dynamic_regularization_epsilon: 0.0 };
@@ -373,27 +369,37 @@ impl SparseLu {
         Ok(())
     }
 
-    /// The numeric Cholesky of the current values (the symbolic analysis done once); None if
+    /// The numeric Cholesky of the current values (the symbolic analysis done once); false if
     /// a pivot is not positive.
-    fn factorize_llt(&mut self, reg: LltRegularization<f64>) -> Result<Option<()>> {
+    fn factorize_llt(&mut self) -> Result<bool> {
+        let parts = self.permuted_parts()?;
+        let mat = SparseColMatRef::new(parts.permuted.as_ref(), &parts.permuted_values);
+        let ok = parts
+            .symbolic
+            .factorize_numeric_llt(
+                &mut parts.l_values,
+                mat,
+                parts.side,
+                LltRegularization::default(),
+                Par::Seq,
+                MemStack::new(&mut parts.factor_buf),
+                Default::default(),
+            )
+            .is_ok();
+        if ok {
+            self.factorized = Factor::Llt;
+        }
+        Ok(ok)
+    }
+
+    /// The Cholesky's parts (analysed once) with the current values permuted into them.
+    fn permuted_parts(&mut self) -> Result<&mut LltParts> {
         self.ensure_llt()?;
         let parts = self.llt.as_mut().unwrap();
         for (v, &s) in parts.permuted_values.iter_mut().zip(&parts.src) {
             *v = self.values[s];
         }
-        let mat = SparseColMatRef::new(parts.permuted.as_ref(), &parts.permuted_values);
-        let info = parts.symbolic.factorize_numeric_llt(
-            &mut parts.l_values,
-            mat,
-            parts.side,
-            reg,
-            Par::Seq,
-            MemStack::new(&mut parts.factor_buf),
-            Default::default(),
-        );
-        Ok(info.ok().map(|_| {
-            self.factorized = Factor::Llt;
-        }))
+        Ok(parts)
     }
 
     /// The dense LU with partial pivoting of a small non-symmetric matrix (a zero pivot shows

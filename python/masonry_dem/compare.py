@@ -172,77 +172,33 @@ def comparison_text(
     diff = agree["multiplier_relative_difference"]
     ratio = agree["elapsed_ratio"]
     what = "peak horizontal force" if live == "top_horizontal" else "collapse multiplier"
+    runs = [("static", static), ("dynamic", dynamic)] + ([("limit", limit)] if limit is not None else [])
+    results = [res for _, res in runs]
+    ratio_l = agree.get("elapsed_ratio_limit")
+    ratios = [f"dynamic / static = {ratio:.3g}" if ratio is not None else ""]
+    failed = [str(agree["failed_static"]), str(agree["failed_dynamic"])]
+    work = [f"{agree['iterations_static']:,} iterations", f"{agree['time_steps_dynamic']:,} time steps"]
+    common = f"{agree['failed_common']} in common, Jaccard index {agree['jaccard']:.2f}"
     if limit is None:
-        rows = [
-            ("", "static", "dynamic", ""),
-            ("status:", str(static.status), str(dynamic.status), ""),
-            (
-                f"{what}:",
-                _multiplier(float(static.collapse_multiplier), live),
-                _multiplier(float(dynamic.collapse_multiplier), live),
-                "difference " + format_difference(diff),
-            ),
-            (
-                "failed joints:",
-                str(agree["failed_static"]),
-                str(agree["failed_dynamic"]),
-                f"{agree['failed_common']} in common, Jaccard index {agree['jaccard']:.2f}",
-            ),
-            (
-                "work:",
-                f"{agree['iterations_static']:,} iterations",
-                f"{agree['time_steps_dynamic']:,} time steps",
-                "",
-            ),
-            (
-                "elapsed:",
-                _seconds(float(static.elapsed_s)),
-                _seconds(float(dynamic.elapsed_s)),
-                f"dynamic / static = {ratio:.3g}" if ratio is not None else "",
-            ),
-        ]
+        difference = "difference " + format_difference(diff)
         head = f"{title}: static and explicit (dynamic) solvers"
-        runs = (("static", static), ("dynamic", dynamic))
     else:
-        ratio_l = agree["elapsed_ratio_limit"]
-        ratios = [f"dynamic / static = {ratio:.3g}" if ratio is not None else "",
-                  f"limit / static = {ratio_l:.3g}" if ratio_l is not None else ""]
-        rows = [
-            ("", "static", "dynamic", "limit", ""),
-            ("status:", str(static.status), str(dynamic.status), str(limit.status), ""),
-            (
-                f"{what}:",
-                _multiplier(float(static.collapse_multiplier), live),
-                _multiplier(float(dynamic.collapse_multiplier), live),
-                _multiplier(float(limit.collapse_multiplier), live),
-                f"difference from static: dynamic {format_difference(diff)}, "
-                f"limit {format_difference(agree['multiplier_relative_difference_limit'])}",
-            ),
-            (
-                "failed joints:",
-                str(agree["failed_static"]),
-                str(agree["failed_dynamic"]),
-                str(agree["failed_limit"]),
-                f"with static: dynamic {agree['failed_common']} in common, Jaccard index {agree['jaccard']:.2f}; "
-                f"limit {agree['failed_common_limit']} in common, Jaccard index {agree['jaccard_limit']:.2f}",
-            ),
-            (
-                "work:",
-                f"{agree['iterations_static']:,} iterations",
-                f"{agree['time_steps_dynamic']:,} time steps",
-                f"{agree['iterations_limit']:,} iterations",
-                "",
-            ),
-            (
-                "elapsed:",
-                _seconds(float(static.elapsed_s)),
-                _seconds(float(dynamic.elapsed_s)),
-                _seconds(float(limit.elapsed_s)),
-                ", ".join(r for r in ratios if r),
-            ),
-        ]
+        difference = (f"difference from static: dynamic {format_difference(diff)}, "
+                      f"limit {format_difference(agree['multiplier_relative_difference_limit'])}")
+        common = (f"with static: dynamic {common}; "
+                  f"limit {agree['failed_common_limit']} in common, Jaccard index {agree['jaccard_limit']:.2f}")
+        ratios.append(f"limit / static = {ratio_l:.3g}" if ratio_l is not None else "")
+        failed.append(str(agree["failed_limit"]))
+        work.append(f"{agree['iterations_limit']:,} iterations")
         head = f"{title}: static and explicit (dynamic) solvers and limit analysis"
-        runs = (("static", static), ("dynamic", dynamic), ("limit", limit))
+    rows = [
+        ("", *(name for name, _ in runs), ""),
+        ("status:", *(str(r.status) for r in results), ""),
+        (f"{what}:", *(_multiplier(float(r.collapse_multiplier), live) for r in results), difference),
+        ("failed joints:", *failed, common),
+        ("work:", *work, ""),
+        ("elapsed:", *(_seconds(float(r.elapsed_s)) for r in results), ", ".join(r for r in ratios if r)),
+    ]
     columns = len(rows[0]) - 1
     widths = [max(len(r[i]) for r in rows) + 2 for i in range(columns)]
     lines: List[str] = [

@@ -95,6 +95,16 @@ fn rects_from(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Rect>> {
         .collect()
 }
 
+/// A count from Python (an int, possibly negative) as a usize of at least `min`; the error names
+/// `what`.
+fn count(what: &str, value: i64, min: i64) -> PyResult<usize> {
+    if value < min {
+        let bound = if min == 0 { ">= 0".to_string() } else { format!("at least {min}") };
+        return Err(InputError::new_err(format!("{what} must be {bound}, got {value}")));
+    }
+    usize::try_from(value).map_err(|_| InputError::new_err(format!("{what} = {value} is too large")))
+}
+
 fn rects_to_py<'py>(py: Python<'py>, rects: &[Rect]) -> Bound<'py, PyArray2<f64>> {
     let flat: Vec<f64> = rects
         .iter()
@@ -468,21 +478,11 @@ impl PyModel {
                 )))
             }
         };
-        if steps < 1 {
-            return Err(InputError::new_err(format!(
-                "analysis.steps must be at least 1, got {steps}"
-            )));
-        }
-        if max_iterations < 1 {
-            return Err(InputError::new_err(format!(
-                "max_iterations must be at least 1, got {max_iterations}"
-            )));
-        }
         let opts = StaticOptions {
             control,
-            steps: steps as usize,
+            steps: count("analysis.steps", steps, 1)?,
             tolerance,
-            max_iterations: max_iterations as usize,
+            max_iterations: count("max_iterations", max_iterations, 1)?,
             control_block,
             ..StaticOptions::default()
         };
@@ -513,22 +513,10 @@ impl PyModel {
         progress: Option<Py<PyAny>>,
     ) -> PyResult<PyResults> {
         let defaults = LimitOptions::default();
-        let max_iterations = max_iterations.unwrap_or(defaults.max_iterations as i64);
-        let max_sequence = max_sequence.unwrap_or(defaults.max_sequence as i64);
-        if max_iterations < 1 {
-            return Err(InputError::new_err(format!(
-                "max_iterations must be at least 1, got {max_iterations}"
-            )));
-        }
-        if max_sequence < 0 {
-            return Err(InputError::new_err(format!(
-                "max_sequence must be >= 0, got {max_sequence}"
-            )));
-        }
         let opts = LimitOptions {
             tolerance: tolerance.unwrap_or(defaults.tolerance),
-            max_iterations: max_iterations as usize,
-            max_sequence: max_sequence as usize,
+            max_iterations: max_iterations.map_or(Ok(defaults.max_iterations), |v| count("max_iterations", v, 1))?,
+            max_sequence: max_sequence.map_or(Ok(defaults.max_sequence), |v| count("max_sequence", v, 0))?,
             ..defaults
         };
         let model = &self.inner;
