@@ -16,6 +16,10 @@ pub enum Error {
     /// The run was stopped by the caller (Ctrl-C from Python, or a progress callback).
     #[error("interrupted by the user")]
     Interrupted,
+    /// The memory a model or an analysis needs cannot be allocated (checked before allocating:
+    /// the message says how much it would need).
+    #[error("{0}")]
+    OutOfMemory(String),
 }
 
 impl Error {
@@ -62,6 +66,40 @@ pub(crate) fn check_steps(steps: usize) -> Result<()> {
     if steps > MAX_STEPS {
         return Err(Error::input(format!(
             "analysis.steps = {steps} is more than the limit of {MAX_STEPS} increments"
+        )));
+    }
+    Ok(())
+}
+
+/// Memory a model takes per block (rectangles, interfaces, loads) [bytes], measured on
+/// running-bond walls (about 3 interfaces a block).
+pub const MODEL_BYTES_PER_BLOCK: f64 = 1.2e3;
+
+/// Memory an analysis takes per block (solver state, sparse matrix and its factorization)
+/// [bytes], measured on running-bond walls: an order of magnitude for messages and checks.
+pub const ANALYSIS_BYTES_PER_BLOCK: f64 = 1.0e4;
+
+/// A size in bytes for people ("2.4 GB").
+pub fn format_bytes(bytes: f64) -> String {
+    if bytes >= 1e9 {
+        format!("{:.1} GB", bytes / 1e9)
+    } else {
+        format!("{:.0} MB", (bytes / 1e6).max(1.0))
+    }
+}
+
+/// Checks, before allocating, that `bytes` of memory can be had at all: asks the allocator for
+/// them at once and gives them back untouched (the operating system maps pages only when
+/// written). A refusal (more than the machine's memory and swap, or the process's address-space
+/// limit) is an [`Error::OutOfMemory`] that names `what` and the size, instead of an abort in
+/// the middle of the work.
+pub fn check_memory(what: &str, bytes: f64) -> Result<()> {
+    let n = if bytes.is_finite() && bytes > 0.0 { bytes.min(isize::MAX as f64) as usize } else { 0 };
+    let mut probe: Vec<u8> = Vec::new();
+    if probe.try_reserve_exact(n).is_err() {
+        return Err(Error::OutOfMemory(format!(
+            "{what} needs about {}, more memory than this machine (or this process) can allocate",
+            format_bytes(bytes)
         )));
     }
     Ok(())

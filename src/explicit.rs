@@ -1247,6 +1247,8 @@ pub fn solve(model: &Model, opts: &ExplicitOptions) -> Result<Results, Error> {
 
 /// As [`solve`], calling `monitor` after each settled level (return false to stop).
 pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut(&Progress) -> bool) -> Result<Results, Error> {
+    model.check_analysis_memory("an explicit analysis")?;
+    model.check_strength_range()?;
     let start = Instant::now();
     check_steps(opts.steps)?;
     if !(opts.tolerance > 0.0 && opts.tolerance < 1.0) {
@@ -1380,7 +1382,8 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
                             return Ok(finish(model, s, Status::Failed, Some(Error::Interrupted), curve_l, curve_u, None, control_block, start));
                         }
                         if lam_conv > 1e3 * scale {
-                            return Ok(finish(model, s, Status::Completed, None, curve_l, curve_u, None, control_block, start));
+                            let e = Error::Convergence(crate::results::unbounded_message(lam_conv));
+                            return Ok(finish(model, s, Status::Unbounded, Some(e), curve_l, curve_u, None, control_block, start));
                         }
                     }
                     Level::Stopped => {
@@ -1470,17 +1473,15 @@ fn finish(
     let scale = (0..nb).map(|i| mech[3 * i].hypot(mech[3 * i + 1])).fold(0.0, f64::max);
     let work: f64 = mech.iter().zip(model.live_load()).map(|(v, f)| v * f).sum();
     let scale = if scale > 0.0 { work.signum() / scale } else { 0.0 };
-    // load control that ends without collapse has no collapse multiplier
-    let collapse_multiplier = if status == Status::Completed && mechanism_is_none(&mech) {
-        f64::NAN
-    } else {
-        crate::results::peak(&curve_l)
-    };
+    // the largest lambda at which the wall settled; a collapse multiplier only with a collapse
+    let last_equilibrium = crate::results::peak(&curve_l);
+    let collapse_multiplier = if status == Status::Collapse { last_equilibrium } else { f64::NAN };
     Results {
         method: "dynamic",
         status,
         error: err.map(|e| e.to_string()),
         collapse_multiplier,
+        last_equilibrium,
         curve_multiplier: curve_l,
         curve_displacement: curve_u,
         control_block,
@@ -1496,10 +1497,6 @@ fn finish(
     }
 }
 
-fn mechanism_is_none(m: &[f64]) -> bool {
-    m.iter().all(|&x| x == 0.0)
-}
-
 /// Integrates the equations of motion in time (free motion, base acceleration).
 pub fn simulate(model: &Model, opts: &DynamicOptions) -> Result<TimeHistory, Error> {
     simulate_with(model, opts, &mut |_| true)
@@ -1507,6 +1504,7 @@ pub fn simulate(model: &Model, opts: &DynamicOptions) -> Result<TimeHistory, Err
 
 /// As [`simulate`], calling `monitor` every few thousand steps (return false to stop).
 pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnMut(&Progress) -> bool) -> Result<TimeHistory, Error> {
+    model.check_analysis_memory("a time history")?;
     let start = Instant::now();
     if !(opts.duration.is_finite() && opts.duration > 0.0) {
         return Err(Error::input(format!("duration must be a finite number > 0, got {}", opts.duration)));

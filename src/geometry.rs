@@ -194,7 +194,18 @@ fn remove_openings(blocks: Vec<Rect>, openings: &[Rect], what: &str) -> Result<V
 }
 
 /// The largest number of blocks a model may have; larger requests are refused before allocating.
-pub const MAX_BLOCKS: usize = 20_000_000;
+/// A model of this size takes about 2.4 GB and an analysis of it about 20 GB more.
+pub const MAX_BLOCKS: usize = 2_000_000;
+
+/// The refusal of `count` blocks, above [`MAX_BLOCKS`], with the memory they would need.
+pub(crate) fn too_many_blocks(what: &str, count: f64) -> Error {
+    use crate::error::{format_bytes, ANALYSIS_BYTES_PER_BLOCK, MODEL_BYTES_PER_BLOCK};
+    Error::input(format!(
+        "{what}: about {count:.0} blocks, more than the limit of {MAX_BLOCKS} (the model would take about {} of memory, an analysis about {} more)",
+        format_bytes(count * MODEL_BYTES_PER_BLOCK),
+        format_bytes(count * ANALYSIS_BYTES_PER_BLOCK)
+    ))
+}
 
 /// Refuses walls whose height `courses * block_height` is not a finite number.
 fn check_height(what: &str, block_height: f64, courses: usize) -> Result<()> {
@@ -208,9 +219,7 @@ fn check_height(what: &str, block_height: f64, courses: usize) -> Result<()> {
 
 fn check_count(what: &str, estimate: f64) -> Result<()> {
     if !(estimate <= MAX_BLOCKS as f64) {
-        return Err(Error::input(format!(
-            "{what}: about {estimate:.0} blocks requested, more than the limit of {MAX_BLOCKS}"
-        )));
+        return Err(too_many_blocks(what, estimate));
     }
     Ok(())
 }

@@ -191,12 +191,18 @@ pub enum BlockKind {
     Top,
 }
 
+/// Blocks (or grid cells) between two polls of [`detect`]: about 10 ms of work.
+pub const POLL_EVERY: usize = 16_384;
+
 /// Finds every pair of blocks that share a stretch of boundary of positive length, and refuses
-/// overlapping blocks (naming both). `names` gives the label of a block for messages.
+/// overlapping blocks (naming both). `names` gives the label of a block for messages; `poll` is
+/// called every [`POLL_EVERY`] blocks or cells, and `false` stops the search
+/// ([`Error::Interrupted`]).
 pub fn detect(
     rects: &[Rect],
     kinds: &[BlockKind],
     name: impl Fn(usize) -> String,
+    poll: &mut dyn FnMut() -> bool,
 ) -> Result<Vec<Interface>> {
     if rects.is_empty() {
         return Ok(vec![]);
@@ -232,6 +238,9 @@ pub fn detect(
     let cell_of = |x: f64, lo: f64| ((x - lo) / cell).floor() as i64;
     let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::with_capacity(rects.len());
     for (i, r) in rects.iter().enumerate() {
+        if i % POLL_EVERY == POLL_EVERY - 1 && !poll() {
+            return Err(Error::Interrupted);
+        }
         for cx in cell_of(r.x0 - tol, xmin)..=cell_of(r.x1 + tol, xmin) {
             for cy in cell_of(r.y0 - tol, ymin)..=cell_of(r.y1 + tol, ymin) {
                 grid.entry((cx, cy)).or_default().push(i);
@@ -241,7 +250,10 @@ pub fn detect(
     let mut out = Vec::new();
     let mut keys: Vec<_> = grid.keys().copied().collect();
     keys.sort_unstable();
-    for key in keys {
+    for (visited, key) in keys.into_iter().enumerate() {
+        if visited % POLL_EVERY == POLL_EVERY - 1 && !poll() {
+            return Err(Error::Interrupted);
+        }
         let members = &grid[&key];
         for (p, &i) in members.iter().enumerate() {
             for &j in &members[p + 1..] {
@@ -254,10 +266,8 @@ pub fn detect(
                 if w < -tol || h < -tol {
                     continue; // apart
                 }
-                // handle each pair once: in the cell holding the lower-left corner of the intersection
-                if (cell_of(ix0, xmin), cell_of(iy0, ymin)) != key {
-                    continue;
-                }
+                // an overlap is refused in the first cell that sees it (before the test below: all
+                // the copies of one block would otherwise be paired in every cell they share)
                 if w > tol && h > tol {
                     return Err(Error::input(format!(
                         "{} and {} overlap (intersection {:.6} x {:.6} m)",
@@ -266,6 +276,10 @@ pub fn detect(
                         w,
                         h
                     )));
+                }
+                // handle each pair once: in the cell holding the lower-left corner of the intersection
+                if (cell_of(ix0, xmin), cell_of(iy0, ymin)) != key {
+                    continue;
                 }
                 let (lo, hi, c, n, l) = if w > tol {
                     // horizontal contact: the lower block is a

@@ -80,6 +80,11 @@ impl Default for JointLaw {
     }
 }
 
+/// The range of shear_stiffness / normal_stiffness a joint law may have: the one in which the
+/// static and explicit solvers give wall 1's collapse multiplier within 1% in load and
+/// displacement control (at 1e3, load control stopped 20% below it, non-associative).
+pub const STIFFNESS_RATIO: (f64, f64) = (1e-3, 1e2);
+
 /// The largest friction coefficient accepted (tan(phi) = 20, phi = 87.1 deg): masonry joints have
 /// 0.3 to 1, a joint meant not to slide may be given 10, and a number above 20 is most likely a
 /// friction angle in degrees (typically 25 to 45).
@@ -99,6 +104,13 @@ impl JointLaw {
     pub fn validate(&self, what: &str) -> Result<()> {
         positive(&format!("{what}.normal_stiffness"), self.normal_stiffness)?;
         positive(&format!("{what}.shear_stiffness"), self.shear_stiffness)?;
+        let ratio = self.shear_stiffness / self.normal_stiffness;
+        if !(STIFFNESS_RATIO.0..=STIFFNESS_RATIO.1).contains(&ratio) {
+            return Err(Error::input(format!(
+                "{what}.shear_stiffness / normal_stiffness = {ratio:.3e} is outside {:e} .. {:e}, the range in which the solvers give the collapse load of the reference walls (Ferris & Tin-Loi wall 1 at kT/kN = 1e3: 20% low); masonry joints have kT/kN of about 0.1 to 1",
+                STIFFNESS_RATIO.0, STIFFNESS_RATIO.1
+            )));
+        }
         non_negative(&format!("{what}.friction"), self.friction)?;
         if self.friction > MAX_FRICTION {
             // most likely a friction angle in degrees

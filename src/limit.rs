@@ -119,6 +119,8 @@ pub fn limit_analysis_with(
     opts: &LimitOptions,
     monitor: &mut dyn FnMut(&LimitProgress) -> bool,
 ) -> Result<Results> {
+    model.check_analysis_memory("a limit analysis")?;
+    model.check_strength_range()?;
     validate(opts)?;
     model.check_supports()?;
     let start = Instant::now();
@@ -882,6 +884,7 @@ impl Program {
             status,
             error,
             collapse_multiplier: if collapse { lam } else { f64::NAN },
+            last_equilibrium: if collapse { lam } else { f64::NAN },
             curve_multiplier: vec![],
             curve_displacement: vec![],
             control_block: model.default_control_block(),

@@ -103,6 +103,15 @@ impl Default for ModelSpec {
     }
 }
 
+/// The largest settlement of the wall into its base joints under the dead loads, as a fraction
+/// of the wall's size, that a model may have (the solvers' small-displacement limit is 0.1).
+pub const SETTLEMENT_LIMIT: f64 = 0.01;
+
+/// The largest cohesion or tensile strength, as a multiple of the mean vertical stress of the
+/// wall's weight at its base, that a model with the horizontal-weight live load may have: no
+/// joint this strong can fail at a multiplier within the solvers' range (1e3 the load scale).
+pub const STRENGTH_RANGE: f64 = 1e6;
+
 /// A wall of rigid blocks joined by interfaces, with supports and loads.
 #[derive(Debug, Clone)]
 pub struct Model {
@@ -128,8 +137,24 @@ pub struct Model {
 }
 
 impl Model {
+    /// Checks, before an analysis allocates, that the memory it needs can be had
+    /// ([`crate::error::check_memory`]); `what` names the analysis.
+    pub(crate) fn check_analysis_memory(&self, what: &str) -> Result<()> {
+        let n = self.n_blocks() as f64;
+        crate::error::check_memory(
+            &format!("{what} of {} blocks", self.n_blocks()),
+            n * crate::error::ANALYSIS_BYTES_PER_BLOCK,
+        )
+    }
+
     /// Builds and checks a model; the error names the key or block at fault.
     pub fn new(spec: ModelSpec) -> Result<Model> {
+        Model::new_with(spec, &mut || true)
+    }
+
+    /// [`Model::new`], calling `poll` every few thousand blocks of the search for interfaces (a
+    /// second at a million blocks): `false` stops it with [`Error::Interrupted`].
+    pub fn new_with(spec: ModelSpec, poll: &mut dyn FnMut() -> bool) -> Result<Model> {
         positive("geometry.thickness", spec.thickness)?;
         positive("geometry.density", spec.density)?;
         non_negative("loads.gravity", spec.gravity)?;
@@ -137,11 +162,12 @@ impl Model {
             return Err(Error::input("geometry: the wall has no blocks"));
         }
         if spec.blocks.len() > MAX_BLOCKS {
-            return Err(Error::input(format!(
-                "geometry: {} blocks, more than the limit of {MAX_BLOCKS}",
-                spec.blocks.len()
-            )));
+            return Err(crate::geometry::too_many_blocks("geometry", spec.blocks.len() as f64));
         }
+        crate::error::check_memory(
+            &format!("a model of {} blocks", spec.blocks.len()),
+            spec.blocks.len() as f64 * crate::error::MODEL_BYTES_PER_BLOCK,
+        )?;
         for (i, r) in spec.blocks.iter().enumerate() {
             r.validate(&format!("block {i}"))?;
         }
@@ -196,7 +222,7 @@ impl Model {
             return Err(Error::input("loads.live = \"horizontal_weight\" needs gravity > 0 (the live load is lambda times the weights)"));
         }
         let name = |i: usize| block_name(i, n_wall, base, top, &rects);
-        let interfaces = detect(&rects, &kinds, name)?;
+        let interfaces = detect(&rects, &kinds, name, poll)?;
         let mut touched = vec![false; rects.len()];
         for it in &interfaces {
             touched[it.a] = true;
@@ -263,7 +289,7 @@ impl Model {
             LiveLoad::HorizontalWeight => (0..n_wall).for_each(|i| f_live[3 * i] = weight[i]),
             LiveLoad::TopHorizontal => f_live[3 * top.unwrap()] = 1.0,
         }
-        Ok(Model {
+        let model = Model {
             rects,
             kinds,
             n_wall,
@@ -283,7 +309,85 @@ impl Model {
             f_dead,
             f_live,
             held,
-        })
+        };
+        model.check_scales()?;
+        Ok(model)
+    }
+
+    /// The key of the joint law of interfaces of family `f` ("joints" or "joints.bed", ...).
+    fn law_key(&self, f: Family) -> String {
+        let set = match f {
+            Family::Bed => self.laws.bed.is_some(),
+            Family::Head => self.laws.head.is_some(),
+            Family::Base => self.laws.base.is_some(),
+            Family::Top => self.laws.top.is_some(),
+        };
+        if set {
+            format!("joints.{}", f.name())
+        } else {
+            "joints".into()
+        }
+    }
+
+    /// Refuses numbers each valid alone whose scales together leave the solvers nothing to
+    /// resolve: interface stiffnesses that overflow, and joints so soft that the dead loads
+    /// alone would move the wall out of the small-displacement model.
+    fn check_scales(&self) -> Result<()> {
+        for (k, (it, sec)) in self.interfaces.iter().zip(&self.sections).enumerate() {
+            let l = self.laws.of(it.family);
+            let (kn, kt, kr) = (l.normal_stiffness * sec.area, l.shear_stiffness * sec.area, l.normal_stiffness * sec.inertia);
+            if !(kn.is_finite() && kt.is_finite() && kr.is_finite()) {
+                return Err(Error::input(format!(
+                    "interface {k} ({} / {}): its stiffness ({}.normal_stiffness or shear_stiffness times the area, thickness x length = {:e} m2) is not finite: check geometry.thickness and the joints' stiffness",
+                    self.block_name(it.a),
+                    self.block_name(it.b),
+                    self.law_key(it.family),
+                    sec.area
+                )));
+            }
+        }
+        let size = self.size();
+        // the dead loads are carried to the base through its interfaces: their settlement
+        let base_stiffness: f64 = self
+            .interfaces
+            .iter()
+            .zip(&self.sections)
+            .filter(|(it, _)| it.family == Family::Base)
+            .map(|(it, sec)| self.laws.of(it.family).normal_stiffness * sec.area)
+            .sum();
+        let vertical: f64 = self.f_dead.iter().skip(1).step_by(3).sum::<f64>().abs();
+        if base_stiffness > 0.0 {
+            let settlement = vertical / base_stiffness;
+            if !(settlement <= SETTLEMENT_LIMIT * size) {
+                return Err(Error::input(format!(
+                    "under its dead loads ({vertical:.3e} N) the wall would sink about {settlement:.3e} m into its base joints (joints' normal_stiffness x base area = {base_stiffness:.3e} N/m), more than {SETTLEMENT_LIMIT} of its size ({size:.3e} m): the small-displacement model does not hold; check loads.gravity, geometry.density and the joints' stiffness"
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Refuses, for the analyses that raise lambda until collapse, joints whose cohesion or
+    /// tensile strength is more than [`STRENGTH_RANGE`] times the stress of the wall's own
+    /// weight: no multiplier within their range breaks them, and the answer would be about the
+    /// solvers' limits, not the wall (time histories accept them: a joint meant never to yield).
+    pub(crate) fn check_strength_range(&self) -> Result<()> {
+        if self.live == LiveLoad::HorizontalWeight {
+            let (x0, x1) = self.rects.iter().fold((f64::MAX, f64::MIN), |(a, b), r| (a.min(r.x0), b.max(r.x1)));
+            let stress = self.weight.iter().sum::<f64>() / ((x1 - x0) * self.thickness);
+            for it in &self.interfaces {
+                let l = self.laws.of(it.family);
+                for (name, value) in [("cohesion", l.cohesion), ("tensile_strength", l.tensile_strength)] {
+                    if value > STRENGTH_RANGE * stress {
+                        return Err(Error::input(format!(
+                            "{}.{name} = {value:e} Pa is more than {STRENGTH_RANGE:e} times the stress of the wall's own weight ({stress:.3e} Pa at its base): no load within the solvers' range can break such a joint (for joints meant not to fail, 1e3 times that stress is plenty)",
+                            self.law_key(it.family)
+                        )));
+                    }
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Dofs held, at the position they reach under the dead loads, from then on (the top beam's
@@ -448,6 +552,14 @@ impl Model {
     /// Live load pattern for lambda = 1 (3 per block).
     pub fn live_load(&self) -> &[f64] {
         &self.f_live
+    }
+
+    /// The same model with the live load reversed (a wall pushed towards -x as a problem of
+    /// its own, for limit analysis).
+    pub fn with_live_reversed(&self) -> Model {
+        let mut m = self.clone();
+        m.f_live.iter_mut().for_each(|f| *f = -*f);
+        m
     }
 
     /// The default control block: the top beam if there is one, else the highest wall block at

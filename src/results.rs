@@ -20,6 +20,10 @@ pub enum Status {
     /// (exact for associative dry joints): not a collapse. The curve holds the path, `error`
     /// both numbers.
     Stalled,
+    /// The path left the small-displacement model (block translations beyond a tenth of the
+    /// wall's size) while lambda still rose: not a collapse. `last_equilibrium` holds the
+    /// largest lambda reached.
+    DisplacementLimit,
 }
 
 impl Status {
@@ -31,6 +35,7 @@ impl Status {
             Status::NoEquilibrium => "no_equilibrium",
             Status::Unbounded => "unbounded",
             Status::Stalled => "stalled",
+            Status::DisplacementLimit => "displacement_limit",
         }
     }
 }
@@ -53,8 +58,12 @@ pub struct Results {
     pub status: Status,
     pub error: Option<String>,
     /// lambda at collapse (load control) or the peak of the curve (displacement control);
-    /// NaN when no step converged.
+    /// NaN unless the status is `Collapse`: a number is a collapse only with its evidence.
     pub collapse_multiplier: f64,
+    /// The largest lambda of an equilibrium the analysis found (load control: the last
+    /// converged step; displacement control: the peak of the curve), whatever the status; NaN
+    /// when none converged. Equal to `collapse_multiplier` on a collapse.
+    pub last_equilibrium: f64,
     /// lambda at each converged step, from the dead-load state (lambda = 0) on.
     pub curve_multiplier: Vec<f64>,
     /// Horizontal displacement of the control block's centroid [m] at each converged step.
@@ -135,4 +144,12 @@ impl Results {
 /// towards -x under displacement control has negative multipliers). NaN for an empty curve.
 pub fn peak(curve: &[f64]) -> f64 {
     curve.iter().cloned().fold(f64::NAN, |p, x| if p.is_nan() || x.abs() > p.abs() { x } else { p })
+}
+
+/// The reason of an incremental path that ends `Unbounded`: lambda passed 1e3 times its natural
+/// scale (the multiplier that the live load's size suggests) with the wall still standing.
+pub fn unbounded_message(lambda: f64) -> String {
+    format!(
+        "lambda reached {lambda:.4e}, 1e3 times the load scale, with the wall still standing: the live load finds no mechanism within the range of multipliers (joints too strong for it, or supports that carry it)"
+    )
 }

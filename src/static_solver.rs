@@ -18,8 +18,13 @@
 //! - **A collapse is checked** on walls of associative dry joints, where limit analysis gives the
 //!   exact multiplier ([`exact_by_limit_analysis`]): a load-control path that stops converging
 //!   more than [`COLLAPSE_EVIDENCE`] `tolerance` below it goes on at fixed multipliers, and is
-//!   reported `Stalled`, not `Collapse`, if it cannot reach it. The limit analysis's certificate
-//!   and mechanism come with the result.
+//!   reported `Stalled`, not `Collapse`, if it cannot reach it (a displacement-control path that
+//!   peaks below it: at once). The limit analysis's certificate and mechanism come with the
+//!   result.
+//! - **Other ends are not a collapse**: a path that leaves the small-displacement model with
+//!   lambda still rising ends `DisplacementLimit`, one that passes 1e3 times the load scale
+//!   `Unbounded`, a displacement-control path that reaches `max_displacement` rising
+//!   `Completed`; `collapse_multiplier` is then NaN and `last_equilibrium` the largest lambda.
 //!
 //! Joint histories are committed only at converged steps, so a failed step leaves no trace.
 
@@ -57,6 +62,11 @@ pub struct StaticOptions {
     /// Block whose horizontal centroid displacement is the curve's abscissa (and the driven
     /// dof under displacement control); default [`Model::default_control_block`].
     pub control_block: Option<usize>,
+    /// Displacement control: where the path reaches `max_displacement` with lambda still
+    /// rising, go on by as much again (the same number of steps), until a peak or a plateau,
+    /// or status `DisplacementLimit` at a tenth of the wall's size. Off: the path ends at
+    /// `max_displacement` with status `Completed`.
+    pub until_collapse: bool,
 }
 
 impl Default for StaticOptions {
@@ -68,6 +78,7 @@ impl Default for StaticOptions {
             max_iterations: 50,
             residual_tolerance: 1e-9,
             control_block: None,
+            until_collapse: false,
         }
     }
 }
@@ -101,6 +112,14 @@ const STALL_ITERATIONS: usize = 8;
 /// Fixed-multiplier attempts of [`Solver::check_collapse`] to reach the exact collapse.
 const REACH_ATTEMPTS: usize = 20;
 
+/// A load-control path is still rising when the last step's slope would raise lambda by more
+/// than this many tolerances over as much work again (the plateau test uses one).
+const RISING: f64 = 10.0;
+
+/// A path that stops converging with block translations beyond this fraction of the
+/// small-displacement limit, lambda still rising, ends at that limit (not a collapse).
+const NEAR_LIMIT: f64 = 0.25;
+
 /// The shortest wall time between two polls of the monitor within a step [s].
 const POLL_INTERVAL: f64 = 0.1;
 
@@ -116,6 +135,8 @@ pub fn solve_with(
     opts: &StaticOptions,
     monitor: &mut dyn FnMut(&Progress) -> bool,
 ) -> Result<Results, Error> {
+    model.check_analysis_memory("a static analysis")?;
+    model.check_strength_range()?;
     let start = Instant::now();
     let mut s = Solver::new(model, opts, Box::new(|p: &Progress| monitor(p)))?;
     let mut outcome = match opts.control {
@@ -123,8 +144,9 @@ pub fn solve_with(
         Control::Displacement { max_displacement } => s.displacement_control(max_displacement),
     };
     let mut evidence = None;
-    if opts.control == Control::Load && outcome.0 == Status::Collapse && exact_by_limit_analysis(model) {
-        match s.check_collapse() {
+    let checked = matches!(outcome.0, Status::Collapse | Status::DisplacementLimit);
+    if checked && exact_by_limit_analysis(model) {
+        match s.check_collapse(outcome) {
             Ok((checked, lp)) => {
                 outcome = checked;
                 evidence = lp;
@@ -550,15 +572,19 @@ impl<'a, 'm> Solver<'a, 'm> {
         }
     }
 
+    /// The largest block translation component of `u` [m].
+    fn max_translation(&self, u: &[f64]) -> f64 {
+        (0..self.model.n_blocks())
+            .map(|i| u[3 * i].abs().max(u[3 * i + 1].abs()))
+            .fold(0.0, f64::max)
+    }
+
     fn check_u(&self) -> Result<(), Error> {
         let big = self.u.iter().map(|v| v.abs()).fold(0.0, f64::max);
         if !big.is_finite() {
             return Err(Error::Convergence("non-finite displacement".into()));
         }
-        let nb = self.model.n_blocks();
-        let tmax = (0..nb)
-            .map(|i| self.u[3 * i].abs().max(self.u[3 * i + 1].abs()))
-            .fold(0.0, f64::max);
+        let tmax = self.max_translation(&self.u);
         if tmax > self.u_limit {
             return Err(Error::Convergence(format!(
                 "displacements grew beyond {:.3e} m (the small-displacement model no longer holds)",
@@ -1084,7 +1110,8 @@ impl<'a, 'm> Solver<'a, 'm> {
                         k_best = k_last;
                     }
                     if conv.lambda > max_lambda {
-                        return (Status::Completed, None);
+                        let e = Error::Convergence(crate::results::unbounded_message(conv.lambda));
+                        return (Status::Unbounded, Some(e));
                     }
                     if k_last.max(0.0) * conv.work <= tol * conv.lambda.abs().max(1e-3 * scale) {
                         // a plateau of the path need not be the collapse: the state of a wall at
@@ -1148,6 +1175,18 @@ impl<'a, 'm> Solver<'a, 'm> {
                                 prev.as_ref().map(|p| conv.u.iter().zip(&p.u).map(|(a, b)| a - b).collect())
                             });
                             self.evaluate();
+                            // a wall of soft joints can creep to the small-displacement limit
+                            // with lambda still rising: the path ends there, not at a collapse
+                            let rising = k_last.max(0.0) * conv.work > RISING * tol * conv.lambda.abs().max(1e-3 * scale);
+                            if rising && self.max_translation(&conv.u) > NEAR_LIMIT * self.u_limit {
+                                return (
+                                    Status::DisplacementLimit,
+                                    Some(Error::Convergence(format!(
+                                        "the path reached the small-displacement limit ({:.3e} m of block translation) at lambda = {:.6} with lambda still rising: not a collapse",
+                                        self.u_limit, conv.lambda
+                                    ))),
+                                );
+                            }
                             return (Status::Collapse, None);
                         }
                         Err(e) => return (Status::Failed, Some(e)),
@@ -1202,8 +1241,17 @@ impl<'a, 'm> Solver<'a, 'm> {
     /// their plateau beyond the small-displacement limit on the path and stand within it at a
     /// fixed lambda). Reaching the band below the exact value is the collapse; otherwise the status is `Stalled`, with both
     /// numbers. The limit analysis's result is returned as the evidence.
-    fn check_collapse(&mut self) -> Result<(Outcome, Option<Results>), Error> {
-        let model = self.model;
+    fn check_collapse(&mut self, outcome: Outcome) -> Result<(Outcome, Option<Results>), Error> {
+        // a wall pushed towards -x (displacement control, negative max_displacement) is the
+        // program of the reversed live load; its multipliers are negative on the curve
+        let reversed = matches!(self.opts.control, Control::Displacement { max_displacement } if max_displacement < 0.0);
+        let flipped;
+        let model = if reversed {
+            flipped = self.model.with_live_reversed();
+            &flipped
+        } else {
+            self.model
+        };
         let lp = {
             let mut polled = Instant::now();
             let last = Progress {
@@ -1228,13 +1276,27 @@ impl<'a, 'm> Solver<'a, 'm> {
             })?
         };
         if lp.status != Status::Collapse {
-            return Ok(((Status::Collapse, None), None));
+            return Ok((outcome, None));
         }
         let exact = lp.collapse_multiplier;
         let band = exact * (1.0 - COLLAPSE_EVIDENCE * self.opts.tolerance);
-        let found = self.curve_l.last().copied().unwrap_or(f64::NAN);
+        let found = match self.opts.control {
+            Control::Load => self.curve_l.last().copied().unwrap_or(f64::NAN),
+            Control::Displacement { .. } => crate::results::peak(&self.curve_l).abs(),
+        };
         if found >= band {
             return Ok(((Status::Collapse, None), Some(lp)));
+        }
+        if let Control::Displacement { .. } = self.opts.control {
+            // the path went through its peak: nothing to go on with at a fixed multiplier
+            if outcome.0 == Status::DisplacementLimit {
+                return Ok((outcome, Some(lp)));
+            }
+            let msg = format!(
+                "the path peaked at |lambda| = {found:.6}, {:.2}% below the collapse multiplier of limit analysis, {exact:.6} (exact for these associative dry joints): not a collapse",
+                100.0 * (exact - found) / exact
+            );
+            return Ok(((Status::Stalled, Some(Error::Convergence(msg))), Some(lp)));
         }
         // go on towards the exact value at fixed multipliers, from the last converged state
         let target = exact * (1.0 - 0.5 * COLLAPSE_EVIDENCE * self.opts.tolerance);
@@ -1280,6 +1342,9 @@ impl<'a, 'm> Solver<'a, 'm> {
         self.evaluate();
         if reached >= band {
             return Ok(((Status::Collapse, None), Some(lp)));
+        }
+        if outcome.0 == Status::DisplacementLimit {
+            return Ok((outcome, Some(lp)));
         }
         let msg = format!(
             "Newton stopped converging at lambda = {reached:.6}, {:.2}% below the collapse multiplier of limit analysis, {exact:.6} (exact for these associative dry joints): not a collapse",
@@ -1350,100 +1415,121 @@ impl<'a, 'm> Solver<'a, 'm> {
         }
         let cd = self.control_dof;
         let u_start = self.u[cd];
-        let target = u_start + max_disp;
-        let base_step = max_disp / self.opts.steps as f64;
+        let mut max_disp = max_disp;
+        let mut target = u_start + max_disp;
+        let mut base_step = max_disp / self.opts.steps as f64;
         let mut step = base_step;
-        let min_step = base_step.abs() / 4096.0;
+        let mut min_step = base_step.abs() / 4096.0;
         let mut u_conv = self.u.clone();
         let mut lam_conv = self.lambda;
         let mut k0: Option<f64> = None; // initial stiffness d lambda / d u
         let mut k_last = f64::NAN;
         let mut streak = 0;
         let mut last: Option<(f64, f64)> = None; // previous step and the lambda before it
-        while (target - u_conv[cd]) * max_disp.signum() > 1e-12 * max_disp.abs() {
-            let remaining = target - u_conv[cd];
-            let h = if step.abs() > remaining.abs() {
-                remaining
-            } else {
-                step
-            };
-            // predictor: the previous increment, scaled to this step (exact on a plateau)
-            if let Some((h_prev, lam_prev)) = last {
-                let r = h / h_prev;
-                for (d, e) in self.eq.iter().enumerate() {
-                    if e.is_some() {
-                        self.u[d] = u_conv[d] + r * (u_conv[d] - self.u_prev[d]);
-                    }
-                }
-                self.lambda = lam_conv + r * (lam_conv - lam_prev);
-            }
-            self.u[cd] = u_conv[cd] + h;
-            let jumped = match self.newton_disp() {
-                Ok(_) => false,
-                Err(Error::Interrupted) => return (Status::Failed, Some(Error::Interrupted)),
-                Err(e) => {
-                    self.u.copy_from_slice(&u_conv);
-                    self.lambda = lam_conv;
-                    streak = 0;
-                    step *= 0.5;
-                    if step.abs() >= min_step {
-                        continue;
-                    }
-                    // a snap-back: no equilibrium near the converged state at the next
-                    // displacement; follow the wall's jump by dynamic relaxation, then refine.
-                    // Only joints with cohesion or tensile strength can lose strength suddenly;
-                    // in a dry wall the failure is Newton's, and reported.
-                    let next = if base_step.abs() < remaining.abs() { base_step } else { remaining };
-                    match self.can_lose_strength().then(|| self.jump(u_conv[cd] + next)) {
-                        Some(Ok(())) => true,
-                        Some(Err(Error::Interrupted)) => {
-                            return (Status::Failed, Some(Error::Interrupted))
-                        }
-                        _ => {
-                            self.u.copy_from_slice(&u_conv);
-                            self.lambda = lam_conv;
-                            self.evaluate();
-                            return (Status::Failed, Some(e));
+        loop {
+            while (target - u_conv[cd]) * max_disp.signum() > 1e-12 * max_disp.abs() {
+                let remaining = target - u_conv[cd];
+                let h = if step.abs() > remaining.abs() {
+                    remaining
+                } else {
+                    step
+                };
+                // predictor: the previous increment, scaled to this step (exact on a plateau)
+                if let Some((h_prev, lam_prev)) = last {
+                    let r = h / h_prev;
+                    for (d, e) in self.eq.iter().enumerate() {
+                        if e.is_some() {
+                            self.u[d] = u_conv[d] + r * (u_conv[d] - self.u_prev[d]);
                         }
                     }
+                    self.lambda = lam_conv + r * (lam_conv - lam_prev);
                 }
+                self.u[cd] = u_conv[cd] + h;
+                let jumped = match self.newton_disp() {
+                    Ok(_) => false,
+                    Err(Error::Interrupted) => return (Status::Failed, Some(Error::Interrupted)),
+                    Err(e) => {
+                        self.u.copy_from_slice(&u_conv);
+                        self.lambda = lam_conv;
+                        streak = 0;
+                        step *= 0.5;
+                        if step.abs() >= min_step {
+                            continue;
+                        }
+                        // a snap-back: no equilibrium near the converged state at the next
+                        // displacement; follow the wall's jump by dynamic relaxation, then refine.
+                        // Only joints with cohesion or tensile strength can lose strength suddenly;
+                        // in a dry wall the failure is Newton's, and reported.
+                        let next = if base_step.abs() < remaining.abs() { base_step } else { remaining };
+                        match self.can_lose_strength().then(|| self.jump(u_conv[cd] + next)) {
+                            Some(Ok(())) => true,
+                            Some(Err(Error::Interrupted)) => {
+                                return (Status::Failed, Some(Error::Interrupted))
+                            }
+                            _ => {
+                                self.u.copy_from_slice(&u_conv);
+                                self.lambda = lam_conv;
+                                self.evaluate();
+                                return (Status::Failed, Some(e));
+                            }
+                        }
+                    }
+                };
+                if jumped {
+                    // a jump is no increment to extrapolate, nor a slope
+                    last = None;
+                    step = base_step;
+                } else {
+                    last = Some((h, lam_conv));
+                    let k = (self.lambda - lam_conv) / h;
+                    k0.get_or_insert(k);
+                    k_last = k;
+                    // grow back only after a run of successes: on a plateau a step that has just
+                    // failed tends to fail again
+                    streak += 1;
+                    if step.abs() < base_step.abs() && streak >= 4 {
+                        step *= 2.0;
+                        streak = 0;
+                    }
+                }
+                self.u_prev.copy_from_slice(&u_conv);
+                u_conv.copy_from_slice(&self.u);
+                lam_conv = self.lambda;
+                // going on until collapse, the path's length is not known
+                let frac = if self.opts.until_collapse { f64::NAN } else { (u_conv[cd] - u_start) / max_disp };
+                if let Err(e) = self.commit(frac) {
+                    return (Status::Failed, Some(e));
+                }
+            }
+            self.evaluate();
+            let peak = crate::results::peak(&self.curve_l);
+            let softened = lam_conv.abs() < peak.abs() * (1.0 - 1e-3);
+            let flat = match k0 {
+                Some(k0) if k0 != 0.0 => (k_last / k0).abs() < 1e-3,
+                _ => false,
             };
-            if jumped {
-                // a jump is no increment to extrapolate, nor a slope
-                last = None;
-                step = base_step;
-            } else {
-                last = Some((h, lam_conv));
-                let k = (self.lambda - lam_conv) / h;
-                k0.get_or_insert(k);
-                k_last = k;
-                // grow back only after a run of successes: on a plateau a step that has just
-                // failed tends to fail again
-                streak += 1;
-                if step.abs() < base_step.abs() && streak >= 4 {
-                    step *= 2.0;
-                    streak = 0;
-                }
+            if softened || flat {
+                return (Status::Collapse, None);
             }
-            self.u_prev.copy_from_slice(&u_conv);
-            u_conv.copy_from_slice(&self.u);
-            lam_conv = self.lambda;
-            let frac = (u_conv[cd] - u_start) / max_disp;
-            if let Err(e) = self.commit(frac) {
-                return (Status::Failed, Some(e));
+            if !self.opts.until_collapse {
+                return (Status::Completed, None);
             }
-        }
-        self.evaluate();
-        let peak = crate::results::peak(&self.curve_l);
-        let softened = lam_conv.abs() < peak.abs() * (1.0 - 1e-3);
-        let flat = match k0 {
-            Some(k0) if k0 != 0.0 => (k_last / k0).abs() < 1e-3,
-            _ => false,
-        };
-        if softened || flat {
-            (Status::Collapse, None)
-        } else {
-            (Status::Completed, None)
+            // lambda still rises: go on by as much again, up to the small-displacement limit
+            let limit = 0.1 * self.model.size();
+            if 2.0 * max_disp.abs() > limit {
+                return (
+                    Status::DisplacementLimit,
+                    Some(Error::Convergence(format!(
+                        "the control block moved {:.3e} m, near the small-displacement limit ({limit:.3e} m, a tenth of the wall's size), with lambda = {lam_conv:.6} still rising: not a collapse",
+                        max_disp.abs()
+                    ))),
+                );
+            }
+            max_disp *= 2.0;
+            target = u_start + max_disp;
+            base_step *= 2.0;
+            step = base_step;
+            min_step = base_step.abs() / 4096.0;
         }
     }
 
@@ -1469,7 +1555,7 @@ impl<'a, 'm> Solver<'a, 'm> {
         } else {
             0.0
         };
-        let collapse_multiplier = match self.opts.control {
+        let last_equilibrium = match self.opts.control {
             Control::Load => self.curve_l.last().copied().unwrap_or(f64::NAN),
             Control::Displacement { .. } => crate::results::peak(&self.curve_l),
         };
@@ -1477,13 +1563,8 @@ impl<'a, 'm> Solver<'a, 'm> {
             method: "static",
             status,
             error: err.map(|e| e.to_string()),
-            collapse_multiplier: if (status == Status::Completed && self.opts.control == Control::Load)
-                || status == Status::Stalled
-            {
-                f64::NAN
-            } else {
-                collapse_multiplier
-            },
+            collapse_multiplier: if status == Status::Collapse { last_equilibrium } else { f64::NAN },
+            last_equilibrium,
             curve_multiplier: self.curve_l,
             curve_displacement: self.curve_u,
             control_block: self.control_dof / 3,

@@ -662,12 +662,13 @@ fn translation(strategy: impl Strategy<Value = (WallCase, f64, f64)>) {
         let a = solve(&wall.model(), &dopts).unwrap();
         let b = solve(&wall.shifted(dx, dy).model(), &dopts).unwrap();
         prop_assert_eq!(a.status, b.status, "{:?} / {:?}", a.error, b.error);
-        let peak = a.collapse_multiplier.abs();
+        // the peak of the curve, whatever the status (a path of 2 mm may end before collapse)
+        let peak = a.last_equilibrium.abs();
         prop_assert!(
-            (a.collapse_multiplier - b.collapse_multiplier).abs() <= CURVE_TOL * peak,
+            (a.last_equilibrium - b.last_equilibrium).abs() <= CURVE_TOL * peak,
             "peak {} -> {} after a shift of ({dx}, {dy})",
-            a.collapse_multiplier,
-            b.collapse_multiplier
+            a.last_equilibrium,
+            b.last_equilibrium
         );
         // Round-off may decide a step cut differently (seen: 36 and 33 steps for a shift of
         // -33 m, same peak to 1e-12), and then the curves sample different displacements; where

@@ -26,13 +26,11 @@ from ._core import (
     InputError,
     MasonryError,
     MechanismError,
-    Model,
     Results,
     TimeHistory,
     __version__,
-    pattern,
-    running_bond,
 )
+from ._checked import Model, pattern, running_bond
 from .case import Case, load_case, parse_case, result_dict, run_case, write_result_json
 from .export import write_curve_csv, write_vtk
 from .api import (

@@ -111,7 +111,7 @@ class Model:
         self,
         control: Literal["load", "displacement"] = "load",
         steps: int = 200,
-        max_displacement: float = 0.002,
+        max_displacement: Optional[float] = None,
         control_block: Optional[int] = None,
         tolerance: float = 1e-4,
         max_iterations: int = 50,
@@ -123,9 +123,20 @@ class Model:
         the live load's work; the collapse multiplier is the peak or the plateau of lambda, to
         `tolerance` (relative). control="displacement": drive the horizontal displacement of
         control_block (default: the top beam if any, else the highest block at the right end)
-        to max_displacement [m] in `steps` increments, through the peak and after it.
-        Releases the GIL; returns Results with status "collapse", "completed" or "failed"
-        (never raises for a solver failure; the error is in Results.error).
+        to max_displacement [m] in `steps` increments, through the peak and after it; without
+        max_displacement (None), from 2 mm on by as much again, `steps` increments each time,
+        until a peak or a plateau of lambda.
+        Returns Results with status "collapse" (with its evidence: a peak, a plateau with no
+        equilibrium just above, and on associative dry joints the limit-analysis multiplier),
+        "completed" (the requested displacement reached, lambda still rising), "stalled" (load
+        control stopped converging below the limit-analysis multiplier), "displacement_limit"
+        (the path left the small-displacement model, a tenth of the wall's size, with lambda
+        still rising) or "failed"; collapse_multiplier is NaN unless "collapse", and
+        last_equilibrium holds the largest lambda found in equilibrium. Never raises for a
+        solver failure (the reason is in Results.error).
+        Releases the GIL. Ctrl-C stops it within a fraction of a second and raises
+        KeyboardInterrupt, with the partial Results as the exception's `results` attribute; an
+        exception raised by `progress` is raised the same way.
         progress: optional callable(step, multiplier, displacement, fraction) called after each
         converged step (fraction in [0, 1] under displacement control, NaN otherwise)."""
     def solve_dynamic(
@@ -152,8 +163,10 @@ class Model:
         its equation. damping: "local" (Cundall, coefficient alpha in [0, 1)), "viscous"
         (mass-proportional, coefficient c [1/s]) or "none". time_step [s]: None for the automatic
         stable step (safety * the stability limit); a user step above the limit is an InputError.
-        threads: threads of the interface loop (0: all cores). Releases the GIL; Ctrl-C stops it
-        and returns what was computed. progress: as in solve_static, every few thousand steps."""
+        threads: threads of the interface loop (0: all cores). Status and multipliers as in
+        solve_static (here the path always ends at max_displacement, default 2 mm). Releases the
+        GIL; Ctrl-C raises KeyboardInterrupt with the partial Results as its `results` attribute.
+        progress: as in solve_static, every few thousand steps."""
     def solve_limit(
         self,
         tolerance: Optional[float] = None,
@@ -179,8 +192,9 @@ class Model:
         "failed" (the interior point did not converge); the reason is in Results.error, and
         collapse_multiplier is NaN unless the status is "collapse". No load path: the curve is
         empty, displacements are zeros and steps is 0; iterations counts interior-point iterations.
-        Releases the GIL; Ctrl-C stops it between iterations and returns a Results with status
-        "failed" and error "interrupted by the user" (no multiplier, no certificate).
+        Releases the GIL; Ctrl-C stops it between iterations and raises KeyboardInterrupt, whose
+        `results` attribute is a Results with status "failed" and error "interrupted by the
+        user" (no multiplier, no certificate).
         progress: optional callable(iteration, multiplier, nan, nan) called after each
         interior-point iteration (iterations counted over all the programs; multiplier: the
         current estimate). An exception raised by it stops the analysis and is raised again."""
@@ -206,7 +220,8 @@ class Model:
         accelerations [m/s2]), linear between samples. live_multiplier: lambda held constant.
         large_rotations: block kinematics with finite rotations (needed for rocking); False uses
         the linearized kinematics of the static solver. Records every record_every-th step.
-        Releases the GIL; Ctrl-C stops it and returns what was computed (status "failed")."""
+        Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory
+        computed so far as its `results` attribute."""
     def critical_time_step(self) -> float:
         """The stability limit of the explicit solver's time step [s] (Gershgorin bound)."""
 
@@ -239,9 +254,10 @@ class _Certificate(TypedDict):
 
 class Results:
     method: str  # "static" | "dynamic" | "limit"
-    status: str  # "collapse" | "completed" | "failed" | "no_equilibrium" | "unbounded" (these two: limit) | "stalled" (static)
-    error: Optional[str]  # why, when the status is "failed", "no_equilibrium" or "unbounded"
-    collapse_multiplier: float  # lambda at collapse, or the peak of the curve (NaN if none)
+    status: str  # "collapse" | "completed" | "failed" | "no_equilibrium" | "unbounded" (these two: limit) | "stalled" | "displacement_limit" (static)
+    error: Optional[str]  # why, when the status is "failed", "no_equilibrium", "unbounded", "stalled" or "displacement_limit"
+    collapse_multiplier: float  # lambda at collapse, or the peak of the curve; NaN unless the status is "collapse"
+    last_equilibrium: float  # the largest lambda found in equilibrium (load control: the last step), whatever the status; NaN if none
     curve_multiplier: FloatArray  # (k,) lambda at each converged step, from 0 (empty for "limit")
     curve_displacement: FloatArray  # (k,) horizontal displacement of the control point [m] (empty for "limit")
     control_block: int

@@ -192,7 +192,8 @@ def _check_model(func: str, results: Any, model: Any) -> None:
 def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dict[str, Any]:
     """Everything in a Results as plain Python values (lists, ints, floats, str, None), for json.dumps.
 
-    Keys: method, status, error (None unless failed), collapse_multiplier (None if NaN), curve
+    Keys: method, status, error (None unless failed), collapse_multiplier (None unless the status is
+    "collapse"), last_equilibrium (the largest multiplier of an equilibrium found, None if none), curve
     {multiplier, displacement [m]}, control_block, displacements ((n_all, 3) u1 [m], u2 [m], phi [rad]),
     mechanism ((n_all, 3)), interface_forces ((m, 3) N [N], T [N], M [N m]), interface_states (bit flags:
     1 open, 2 sliding, 4 rocking; 0 elastic), broken, joint_states {elastic, sliding, rocking, open},
@@ -211,6 +212,7 @@ def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dic
         "status": str(results.status),
         "error": str(results.error) if results.error else None,
         "collapse_multiplier": _float(results.collapse_multiplier),
+        "last_equilibrium": _float(getattr(results, "last_equilibrium", float("nan"))),
         "curve": {
             "multiplier": _floats(results.curve_multiplier),
             "displacement": _floats(results.curve_displacement),

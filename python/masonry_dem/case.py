@@ -343,9 +343,10 @@ class Case:
         method = self.check_method(method)
         if method == "limit":
             return {}
+        kwargs = {k: v for k, v in self.analysis_kwargs.items() if not (k == "max_displacement" and v is None)}
         if method == "dynamic":
-            return {**self.analysis_kwargs, **self.dynamic_kwargs}
-        return dict(self.analysis_kwargs)
+            kwargs.update(self.dynamic_kwargs)
+        return kwargs
 
     def solve(
         self,
@@ -582,14 +583,16 @@ def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_titl
 
     # [analysis]
     an_t = top.table("analysis", ANALYSIS_KEYS + DYNAMIC_KEYS)
-    method, control, max_disp, steps = "static", "load", 0.002, 200
+    method, control, steps = "static", "load", 200
+    max_disp: Optional[float] = None  # static: until collapse; dynamic: the core's default
     tolerance: Dict[str, float] = {}
     dynamic: Dict[str, Any] = {}
     if an_t is not None:
         method = an_t.string("method", "static", METHODS)
         control = an_t.string("control", "load", ("load", "displacement"))
         an_t.string("control_point", "top", ("top",))
-        max_disp = an_t.number("max_displacement", 0.002, _positive)
+        if "max_displacement" in an_t:
+            max_disp = an_t.number("max_displacement", check=_positive)
         steps = an_t.integer("steps", 200, minimum=1)
         if "tolerance" in an_t:
             tolerance["tolerance"] = an_t.number("tolerance", check=_open_unit)
@@ -720,7 +723,7 @@ CERTIFICATE_KEYS = (
     "peak_strengths",
 )
 #: The statuses that come with a reason in ``Results.error`` (and an ``error`` key in the result file).
-ERROR_STATUSES = ("failed", "no_equilibrium", "unbounded", "stalled")
+ERROR_STATUSES = ("failed", "no_equilibrium", "unbounded", "stalled", "displacement_limit")
 
 
 def _json_float(x: Any) -> Optional[float]:
@@ -742,7 +745,10 @@ def result_dict(results: Any, model: Any, title: str) -> Dict[str, Any]:
     keys of :data:`CERTIFICATE_KEYS` (``upper_bound`` null unless some joint is non-associative), or null
     when the run was interrupted; so does a static load-control analysis of associative dry joints, whose
     collapse is checked against limit analysis (its certificate is the evidence). ``error`` is written with
-    the statuses that have a reason: "failed", "no_equilibrium", "unbounded" and "stalled".
+    the statuses that have a reason: "failed", "no_equilibrium", "unbounded", "stalled" and
+    "displacement_limit". ``collapse_multiplier`` is null unless the status is "collapse";
+    ``last_equilibrium`` is the largest multiplier at which the wall was found in equilibrium (equal to
+    ``collapse_multiplier`` on a collapse; null when none was found).
     """
     states = getattr(results, "joint_states", None) or {}
     out: Dict[str, Any] = {
@@ -753,6 +759,7 @@ def result_dict(results: Any, model: Any, title: str) -> Dict[str, Any]:
         "blocks": int(model.n_blocks),
         "interfaces": int(model.n_interfaces),
         "collapse_multiplier": _json_float(results.collapse_multiplier),
+        "last_equilibrium": _json_float(getattr(results, "last_equilibrium", math.nan)),
         "curve": {
             "multiplier": [_json_float(x) for x in np.asarray(results.curve_multiplier, dtype=float)],
             "displacement": [_json_float(x) for x in np.asarray(results.curve_displacement, dtype=float)],

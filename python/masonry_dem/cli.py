@@ -27,10 +27,12 @@ A progress bar (tqdm, if installed) is drawn on stderr while a solver runs, when
 and ``--quiet`` is not given.
 
 Exit status: 0 on success; 1 when an analysis fails or gives no collapse multiplier (status "failed",
-"no_equilibrium" / "unbounded" of a limit analysis, or "stalled": a static path that stopped below the
-limit-analysis multiplier; the reason is printed, the JSON and plot are still written) or another error occurs; 2 for bad input (an invalid case file, a missing
-file, bad arguments); 130 when interrupted (Ctrl-C; ``run`` still prints and writes what was
-computed, ``compare`` does not start the second method). Errors are one line on stderr, ``masonry-dem: error: ...``.
+"no_equilibrium" / "unbounded" of a limit analysis, "stalled": a static path that stopped below the
+limit-analysis multiplier, or "displacement_limit": a path that left the small-displacement model with
+lambda still rising; the reason is printed, the JSON and plot are still written) or another error occurs; 2 for bad input (an invalid case file, a missing
+file, bad arguments); 130 when interrupted (Ctrl-C stops a solver within a fraction of a second; ``run``
+still prints and writes the result file and the CSV of what was computed, but draws no plot and writes no
+VTK; ``compare`` and ``validate`` start no further run and write nothing). Errors are one line on stderr, ``masonry-dem: error: ...``.
 """
 
 from __future__ import annotations
@@ -253,11 +255,6 @@ def _solve(case: Case, model: Any, method: str, quiet: bool) -> Any:
         return case.solve(model, method, progress=bar or None)
 
 
-def _interrupted(results: Any) -> bool:
-    """Whether a run was stopped by Ctrl-C (the core returns what it had, status "failed")."""
-    return results.status == "failed" and "interrupted" in str(results.error or "")
-
-
 def _error(message: str, status: int) -> int:
     """Print one error line on stderr and return the exit status."""
     line = " ".join(str(message).split())  # one line, whatever the message holds
@@ -374,7 +371,16 @@ def _execute(
     targets, plot_file = _output_targets(json_path, plot_path, vtk_prefix, csv_path)
     _check_outputs(targets, inputs)
     model = case.build_model()
-    results = _solve(case, model, method, quiet)
+    interrupted = False
+    try:
+        results = _solve(case, model, method, quiet)
+    except KeyboardInterrupt as exc:
+        # Ctrl-C: the solver stopped at once; keep what it computed (the result file and the curve),
+        # but draw nothing after the interrupt
+        results = getattr(exc, "results", None)
+        if results is None:
+            raise
+        interrupted = True
     live = str(case.model_kwargs.get("live", "horizontal_weight"))
 
     wrote: List[Any] = []
@@ -389,11 +395,11 @@ def _execute(
                 from .export import write_curve_csv
 
                 wrote.append(write_curve_csv(results, csv_path, inputs=inputs))
-            if vtk_prefix:
+            if vtk_prefix and not interrupted:
                 from .export import write_vtk
 
                 wrote.extend(write_vtk(model, results, vtk_prefix, inputs=inputs))
-            if plot_path:
+            if plot_path and not interrupted:
                 from .plot import report_figure
 
                 _prepare(plot_file)
@@ -408,8 +414,9 @@ def _execute(
     if write_error is not None:
         return _error(write_error, EXIT_FAILURE)
 
-    if _interrupted(results):
-        return _error("interrupted", EXIT_INTERRUPTED)
+    if interrupted:
+        skipped = [name for name, given in (("plot", plot_path), ("VTK files", vtk_prefix)) if given]
+        return _error("interrupted" + (f" (no {' or '.join(skipped)} drawn)" if skipped else ""), EXIT_INTERRUPTED)
     if results.status == "failed":
         return _error(f"the analysis failed: {results.error or 'unknown reason'}", EXIT_FAILURE)
     if results.status in ERROR_STATUSES:  # no_equilibrium, unbounded: no collapse multiplier
@@ -426,12 +433,9 @@ def _compare(
     targets, plot_file = _output_targets(json_path, plot_path)
     _check_outputs(targets, inputs)
     model = case.build_model()
+    # Ctrl-C during a run raises KeyboardInterrupt: the next is not started, nothing is written
     static = _solve(case, model, "static", quiet)
-    if _interrupted(static):  # Ctrl-C during a run: do not start the next
-        raise KeyboardInterrupt
     dynamic = _solve(case, model, "dynamic", quiet)
-    if _interrupted(dynamic):
-        raise KeyboardInterrupt
     limit = _solve(case, model, "limit", quiet)
     live = str(case.model_kwargs.get("live", "horizontal_weight"))
 
@@ -458,8 +462,6 @@ def _compare(
     if write_error is not None:
         return _error(write_error, EXIT_FAILURE)
 
-    if _interrupted(limit):
-        return _error("interrupted", EXIT_INTERRUPTED)
     runs = (("static", static), ("dynamic", dynamic), ("limit", limit))
     failed = [
         f"{name}: {'' if res.status == 'failed' else res.status + ': '}{res.error or 'unknown reason'}"
@@ -482,10 +484,7 @@ def _validate(directory: Optional[str], method: str, quiet: bool = False) -> int
         return _error(f"{what}: {folder}{hint}", EXIT_INPUT)
 
     def solve(case: Case, model: Any, method: str) -> Any:
-        results = _solve(case, model, method, quiet)
-        if _interrupted(results):
-            raise KeyboardInterrupt
-        return results
+        return _solve(case, model, method, quiet)  # Ctrl-C raises KeyboardInterrupt: the table stops
 
     def echo(line: str) -> None:
         _print(line, flush=True)

@@ -180,8 +180,9 @@ def describe_mechanism(model: Any, results: Any) -> str:
 
     It says how many wall blocks move; the parts they form (blocks held together by interfaces
     that the crack does not cross), each turning (clockwise or not, about its instantaneous centre
-    [m]) or sliding; and the crack: the interfaces across which the mechanism slips, opens, or
-    rocks (opens at one end only), counted by family. An interface may both slip and open."""
+    [m]) or sliding; and the crack: the interfaces across which the mechanism slips, separates (a gap at
+    both ends), or rocks (a gap at one end only), counted by family. An interface may both slip and
+    separate. ("open" is kept for the joint states: an interface at its tension cut-off, carrying nothing.)"""
     rects = np.asarray(model.rects, dtype=np.float64)
     n = int(model.n_blocks)
     mech = np.asarray(results.mechanism, dtype=np.float64)
@@ -228,7 +229,7 @@ def describe_mechanism(model: Any, results: Any) -> str:
     if cracked.any():
         pieces = [
             f"{len(ks)} {what} ({_family_counts(ks, families)})"
-            for ks, what in ((slips, "slip"), (opens, "open"), (rocks, "rock"))
+            for ks, what in ((slips, "slip"), (opens, "separate"), (rocks, "rock"))
             if ks
         ]
         text += f"; the crack runs through {_plural(int(cracked.sum()), 'interface')}: " + ", ".join(pieces)
@@ -250,6 +251,7 @@ STATUS_NOTES = {
     "no_equilibrium": "the wall cannot stand under its dead loads",
     "unbounded": "the live load finds no mechanism",
     "stalled": "the path stopped below the limit-analysis collapse multiplier",
+    "displacement_limit": "the path left the small-displacement model with lambda still rising",
 }
 
 
@@ -306,6 +308,7 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
     if both:
         joint_text += f" ({both} both sliding and rocking)"
     limit = str(results.method) == "limit"
+    collapse = str(results.status) == "collapse"
     lines = [
         title,
         f"  blocks:              {model.n_blocks}",
@@ -313,9 +316,17 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
         f"  method:              {results.method}" + (" (limit analysis)" if limit else ""),
         f"  status:              {format_status(results)}",
         f"  collapse multiplier: {format_multiplier(float(results.collapse_multiplier), live)}",
-        f"  joint states:        {joint_text}" + ("; of the collapse mechanism" if limit and results.status == "collapse" else ""),
-        f"  mechanism:           {describe_mechanism(model, results)}",
     ]
+    last = float(getattr(results, "last_equilibrium", math.nan))
+    if not collapse and math.isfinite(last):
+        # no collapse shown: the largest multiplier at which the wall was found in equilibrium, for what it is
+        lines.append(f"  last equilibrium:    {format_multiplier(last, live)} (not a collapse)")
+    if limit:
+        lines.append(f"  joint states:        {joint_text}" + ("; of the collapse mechanism" if collapse else ""))
+    else:
+        lines.append(f"  joint states:        {joint_text}; at the last equilibrium")
+    # a mechanism is a claim of collapse too: none without one
+    lines.append(f"  mechanism:           {describe_mechanism(model, results) if collapse else 'none (no collapse)'}")
     if limit:
         for k, text in enumerate(certificate_text(results, live)):
             lines.append(f"  {'certificate:' if k == 0 else '':<21}{text}")

@@ -1,5 +1,6 @@
 //! PyO3 bindings: the module `masonry_dem._core`. A thin layer: argument conversion, the error
-//! mapping, the GIL released during analyses, Ctrl-C checked between steps, panics caught.
+//! mapping, the GIL released during analyses and model building, Ctrl-C polled there and raised
+//! as KeyboardInterrupt with the partial results, panics caught.
 
 use crate::error::Error;
 use crate::geometry::{self, FirstCourse, Rect, RunningBond};
@@ -49,6 +50,7 @@ fn to_py(e: Error) -> PyErr {
         Error::Mechanism(m) => MechanismError::new_err(m),
         Error::Convergence(m) => ConvergenceError::new_err(m),
         Error::Interrupted => MasonryError::new_err("interrupted by the user"),
+        Error::OutOfMemory(m) => pyo3::exceptions::PyMemoryError::new_err(m),
     }
 }
 
@@ -122,6 +124,10 @@ fn rows3<'py>(py: Python<'py>, v: &[[f64; 3]]) -> Bound<'py, PyArray2<f64>> {
         .into_pyarray(py)
 }
 
+/// Displacement control without a max_displacement starts with this one [m] and goes on, as
+/// much again each time, until collapse (`StaticOptions::until_collapse`).
+const UNTIL_COLLAPSE_START: f64 = 0.002;
+
 /// Called from a run with the GIL released: takes the GIL, checks for Ctrl-C and, unless the
 /// call is a poll (a check within a long step), calls the user's progress callback; false stops
 /// the run. An exception raised by the callback stops it too and is kept in `raised`, to be
@@ -136,7 +142,10 @@ fn report(
     poll: bool,
 ) -> bool {
     Python::attach(|py| {
-        if py.check_signals().is_err() {
+        if let Err(e) = py.check_signals() {
+            // Ctrl-C (KeyboardInterrupt, or what the program's signal handler raised): stop and
+            // raise it once the run has stopped, with the partial results
+            *raised.lock().unwrap_or_else(|p| p.into_inner()) = Some(e);
             return false;
         }
         if poll {
@@ -155,10 +164,19 @@ fn report(
     })
 }
 
-/// The callback's exception, if it raised one, else `value`.
-fn or_raised<T>(value: T, raised: Mutex<Option<PyErr>>) -> PyResult<T> {
+/// `value`, or the exception that stopped the run (KeyboardInterrupt on Ctrl-C, or the one the
+/// progress callback raised), with `value`, the partial results, as its `results` attribute.
+fn or_raised<T>(py: Python<'_>, value: T, raised: Mutex<Option<PyErr>>) -> PyResult<Py<T>>
+where
+    T: pyo3::PyClass + Into<pyo3::PyClassInitializer<T>>,
+{
+    let value = Py::new(py, value)?;
     match raised.into_inner().unwrap_or_else(|p| p.into_inner()) {
-        Some(e) => Err(e),
+        Some(e) => {
+            // an exception whose instances take no attributes is raised as it is
+            let _ = e.value(py).setattr("results", value);
+            Err(e)
+        }
         None => Ok(value),
     }
 }
@@ -296,7 +314,7 @@ fn law_from(d: &Bound<'_, PyAny>, base: JointLaw, what: &str) -> PyResult<JointL
 }
 
 /// A wall of rigid blocks joined by zero-thickness Mohr-Coulomb interfaces (see _core.pyi).
-#[pyclass(name = "Model", module = "masonry_dem._core")]
+#[pyclass(name = "Model", module = "masonry_dem._core", subclass)]
 struct PyModel {
     inner: Model,
 }
@@ -307,6 +325,7 @@ impl PyModel {
     #[pyo3(signature = (blocks, thickness=1.0, density=1000.0, base=true, top_rotation=None, top_force=vec![0.0, 0.0], joints=None, gravity=9.81, live="horizontal_weight", top_vertical="free"))]
     #[allow(clippy::too_many_arguments)]
     fn new(
+        py: Python<'_>,
         blocks: &Bound<'_, PyAny>,
         thickness: f64,
         density: f64,
@@ -391,9 +410,19 @@ impl PyModel {
             gravity,
             live,
         };
-        Ok(PyModel {
-            inner: guarded(|| Model::new(spec))?,
-        })
+        // the GIL released (a million blocks take seconds), polling Ctrl-C
+        let raised = Mutex::new(None);
+        let built = py.detach(|| {
+            guarded(|| {
+                Model::new_with(spec, &mut || {
+                    report(&None, &raised, 0, f64::NAN, f64::NAN, f64::NAN, true)
+                })
+            })
+        });
+        if let Some(e) = raised.into_inner().unwrap_or_else(|p| p.into_inner()) {
+            return Err(e);
+        }
+        Ok(PyModel { inner: built? })
     }
 
     /// Fix dof (0: u1 [m], 1: u2 [m], 2: phi [rad]) of a block at a prescribed value.
@@ -454,24 +483,27 @@ impl PyModel {
             .collect()
     }
 
-    /// Static incremental analysis (see _core.pyi). Releases the GIL; Ctrl-C stops it between
-    /// steps and returns what was computed (status "failed", error "interrupted by the user").
-    #[pyo3(signature = (control="load", steps=200, max_displacement=0.002, control_block=None, tolerance=1e-4, max_iterations=50, progress=None))]
+    /// Static incremental analysis (see _core.pyi). Releases the GIL; Ctrl-C stops it within a
+    /// step and raises KeyboardInterrupt with what was computed (status "failed", error
+    /// "interrupted by the user") as its `results`.
+    #[pyo3(signature = (control="load", steps=200, max_displacement=None, control_block=None, tolerance=1e-4, max_iterations=50, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_static(
         &self,
         py: Python<'_>,
         control: &str,
         steps: i64,
-        max_displacement: f64,
+        max_displacement: Option<f64>,
         control_block: Option<usize>,
         tolerance: f64,
         max_iterations: i64,
         progress: Option<Py<PyAny>>,
-    ) -> PyResult<PyResults> {
+    ) -> PyResult<Py<PyResults>> {
         let control = match control {
             "load" => Control::Load,
-            "displacement" => Control::Displacement { max_displacement },
+            "displacement" => Control::Displacement {
+                max_displacement: max_displacement.unwrap_or(UNTIL_COLLAPSE_START),
+            },
             o => {
                 return Err(InputError::new_err(format!(
                     "analysis.control must be \"load\" or \"displacement\", got {o:?}"
@@ -480,6 +512,7 @@ impl PyModel {
         };
         let opts = StaticOptions {
             control,
+            until_collapse: max_displacement.is_none(),
             steps: count("analysis.steps", steps, 1)?,
             tolerance,
             max_iterations: count("max_iterations", max_iterations, 1)?,
@@ -496,12 +529,13 @@ impl PyModel {
                 static_solver::solve_with(model, &opts, &mut monitor)
             })
         })?;
-        or_raised(PyResults { inner: res }, raised)
+        or_raised(py, PyResults { inner: res }, raised)
     }
 
     /// Limit analysis: the collapse multiplier as a linear program (see _core.pyi). Releases the
-    /// GIL; Ctrl-C stops it between interior-point iterations and returns a Results with status
-    /// "failed" and error "interrupted by the user" (nothing of the unfinished program is kept).
+    /// GIL; Ctrl-C stops it between interior-point iterations and raises KeyboardInterrupt whose
+    /// `results` has status "failed" and error "interrupted by the user" (nothing of the
+    /// unfinished program is kept).
     /// Options left out (None) take the core's defaults (`LimitOptions::default()`).
     #[pyo3(signature = (tolerance=None, max_iterations=None, max_sequence=None, progress=None))]
     fn solve_limit(
@@ -511,7 +545,7 @@ impl PyModel {
         max_iterations: Option<i64>,
         max_sequence: Option<i64>,
         progress: Option<Py<PyAny>>,
-    ) -> PyResult<PyResults> {
+    ) -> PyResult<Py<PyResults>> {
         let defaults = LimitOptions::default();
         let opts = LimitOptions {
             tolerance: tolerance.unwrap_or(defaults.tolerance),
@@ -532,14 +566,14 @@ impl PyModel {
                 };
                 match limit::limit_analysis_with(model, &opts, &mut monitor) {
                     // stopped by Ctrl-C or by the callback: an unfinished program certifies
-                    // nothing, so the result holds no multiplier (the callback's exception, if
-                    // any, is raised below instead)
+                    // nothing, so the partial result holds no multiplier (attached below to the
+                    // exception that stopped it)
                     Err(Error::Interrupted) => Ok(interrupted_limit(model, start)),
                     r => r,
                 }
             })
         })?;
-        or_raised(PyResults { inner: res }, raised)
+        or_raised(py, PyResults { inner: res }, raised)
     }
 
     /// Quasi-static analysis with the explicit solver (see _core.pyi).
@@ -560,7 +594,7 @@ impl PyModel {
         safety: f64,
         threads: i64,
         progress: Option<Py<PyAny>>,
-    ) -> PyResult<PyResults> {
+    ) -> PyResult<Py<PyResults>> {
         let control = match control {
             "load" => QsControl::Load,
             "displacement" => QsControl::Displacement { max_displacement },
@@ -593,7 +627,7 @@ impl PyModel {
                 explicit::solve_with(model, &opts, &mut monitor)
             })
         })?;
-        or_raised(PyResults { inner: res }, raised)
+        or_raised(py, PyResults { inner: res }, raised)
     }
 
     /// Time history with the explicit solver (see _core.pyi).
@@ -615,7 +649,7 @@ impl PyModel {
         large_rotations: bool,
         threads: i64,
         progress: Option<Py<PyAny>>,
-    ) -> PyResult<PyTimeHistory> {
+    ) -> PyResult<Py<PyTimeHistory>> {
         if record_every < 1 {
             return Err(InputError::new_err(format!("record_every must be at least 1, got {record_every}")));
         }
@@ -653,7 +687,7 @@ impl PyModel {
                 explicit::simulate_with(model, &opts, &mut monitor)
             })
         })?;
-        or_raised(PyTimeHistory { inner: h }, raised)
+        or_raised(py, PyTimeHistory { inner: h }, raised)
     }
 
     /// The stability limit of the explicit solver's time step [s].
@@ -753,6 +787,7 @@ fn interrupted_limit(model: &Model, start: Instant) -> Results {
         status: Status::Failed,
         error: Some(Error::Interrupted.to_string()),
         collapse_multiplier: f64::NAN,
+        last_equilibrium: f64::NAN,
         curve_multiplier: vec![],
         curve_displacement: vec![],
         control_block: model.default_control_block(),
@@ -791,6 +826,10 @@ impl PyResults {
     #[getter]
     fn collapse_multiplier(&self) -> f64 {
         self.inner.collapse_multiplier
+    }
+    #[getter]
+    fn last_equilibrium(&self) -> f64 {
+        self.inner.last_equilibrium
     }
     #[getter]
     fn curve_multiplier<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {

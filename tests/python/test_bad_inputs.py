@@ -14,6 +14,7 @@ import sys
 from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
+import numpy as np
 import pytest
 
 import masonry_dem as md
@@ -134,6 +135,14 @@ CASES: List[Tuple[str, Union[Edit, str, bytes], Tuple[str, ...]]] = [
     ("block-three-numbers", blocks([[0, 0, 1]]), ("geometry.blocks[0]",)),
     ("block-huge-integer", blocks([[0, 0, Raw("1" + "0" * 400), 1]]), ("geometry.blocks[0][2]",)),
     ("block-area-underflows", blocks([[0, 0, 1e-170, 1e-170]]), ("block 0",)),
+    (
+        "ten-million-blocks",
+        several(setting("geometry.running_bond.courses", 10_000), setting("geometry.running_bond.length", 400.0)),
+        ("limit of 2000000", "GB"),
+    ),
+    ("thickness-overflows-stiffness", setting("geometry.thickness", 1e300), ("stiffness", "geometry.thickness")),
+    ("density-sinks-the-wall", setting("geometry.density", 1e300), ("sink", "small-displacement", "geometry.density")),
+    ("gravity-sinks-the-wall", setting("loads.gravity", 1e300), ("sink", "small-displacement", "loads.gravity")),
     # [base], [top]
     ("no-support", setting("base.kind", "none"), ("no support",)),
     ("base-kind-unknown", setting("base.kind", "floating"), ("base.kind",)),
@@ -155,6 +164,10 @@ CASES: List[Tuple[str, Union[Edit, str, bytes], Tuple[str, ...]]] = [
     ("tensile-strength-string", setting("joints.tensile_strength", "strong"), ("joints.tensile_strength", "number")),
     ("fracture-energy-alone", setting("joints.fracture_energy_tension", 10.0), ("joints.fracture_energy_tension",)),
     ("joints-typo", setting("joints.frictoin", 0.6), ("frictoin",)),
+    ("stiffness-ratio-1e3", setting("joints.shear_stiffness", 1e13), ("shear_stiffness / normal_stiffness", "1e-3 .. 1e2")),
+    ("cohesion-unbreakable", setting("joints.cohesion", 1e14), ("joints.cohesion = 1e14", "own weight", "1e3 times")),
+    ("tensile-strength-1e300", setting("joints.tensile_strength", 1e300), ("joints.tensile_strength", "own weight")),
+    ("bed-cohesion-unbreakable", setting("joints.bed.cohesion", 1e20), ("joints.bed.cohesion",)),
     ("joints-unknown-family", setting("joints.corner", {"friction": 0.5}), ("corner",)),
     # [loads]
     ("gravity-negative", setting("loads.gravity", -9.81), ("loads.gravity",)),
@@ -280,3 +293,75 @@ def test_a_case_file_beyond_the_size_limit_is_refused_unread() -> None:
     # /dev/zero never ends: read whole, it took the machine's memory
     with pytest.raises(md.InputError, match="larger than the limit"):
         md.load_case("/dev/zero")
+
+
+@pytest.mark.parametrize(
+    "call, needles",
+    [
+        (lambda: md.running_bond("a", 0.175, 6, 2.0), ("running_bond", "'block_length' = 'a'", "real number")),
+        (lambda: md.running_bond(0.4, 0.175, 6.5, 2.0), ("running_bond", "'courses' = 6.5", "integer")),
+        (lambda: md.running_bond(0.4, 0.175, 2**70, 2.0), ("running_bond", "'courses'", "out of range")),
+        (lambda: md.Model(md.running_bond(0.4, 0.175, 6, 2.0), thickness="thick"), ("Model", "'thickness'")),
+        (lambda: WALL().solve_static(steps="ten"), ("Model.solve_static", "'steps' = 'ten'")),
+        (lambda: WALL().solve_static(steps=10**30), ("Model.solve_static", "'steps'", "out of range")),
+        (lambda: WALL().solve_static(control=1), ("Model.solve_static", "'control' = 1")),
+        (lambda: WALL().solve_dynamic(tolerance=[1e-3]), ("Model.solve_dynamic", "'tolerance'")),
+        (lambda: WALL().solve_limit(max_iterations=1.5), ("Model.solve_limit", "'max_iterations' = 1.5")),
+        (lambda: WALL().simulate("1 s"), ("Model.simulate", "'duration' = '1 s'")),
+        (lambda: WALL().fix(-1, 0), ("Model.fix", "'block' = -1", "out of range")),
+    ],
+)
+def test_a_wrong_argument_type_in_the_api_is_an_input_error(call: Any, needles: Tuple[str, ...]) -> None:
+    """The API raises InputError (not TypeError or OverflowError) naming the function and the argument."""
+    with pytest.raises(md.InputError) as info:
+        call()
+    for needle in needles:
+        assert needle in str(info.value), (needle, str(info.value))
+
+
+def WALL() -> md.Model:
+    return md.Model(md.running_bond(0.4, 0.175, 6, 2.0), gravity=10.0)
+
+
+def test_an_exception_of_the_progress_callback_is_not_turned_into_an_input_error() -> None:
+    def progress(*args: Any) -> None:
+        raise TypeError("the user's own")
+
+    with pytest.raises(TypeError, match="the user's own") as info:
+        WALL().solve_static(progress=progress)
+    assert info.value.results.status == "failed"  # type: ignore[attr-defined]
+
+
+def test_many_identical_blocks_are_refused_at_once() -> None:
+    # every copy of a block shares all its grid cells with the others: the pairs of a cell were all
+    # compared before the overlap was reported (200,000 blocks: minutes)
+    rects = np.tile([[0.0, 0.0, 1.0, 1.0]], (200_000, 1))
+    with pytest.raises(md.InputError, match=r"block 0 \[0, 0, 1, 1\] and block 1 \[0, 0, 1, 1\] overlap"):
+        md.Model(rects)
+
+
+def test_a_time_history_accepts_joints_meant_never_to_fail() -> None:
+    # the strength range limits the analyses that raise lambda to collapse, not a free vibration
+    model = md.Model(md.running_bond(0.4, 0.175, 2, 0.8), gravity=10.0,
+                     joints={"default": {"friction": 0.65, "cohesion": 1e15, "tensile_strength": 1e15}})
+    assert model.simulate(0.001).status == "completed"
+    with pytest.raises(md.InputError, match="own weight"):
+        model.solve_static()
+
+
+def test_a_model_beyond_the_memory_is_a_memory_error() -> None:
+    """Under an address-space limit (ulimit -v) a model that needs more is refused with MemoryError before
+    it allocates, with the memory it needs, instead of the process aborting."""
+    script = """
+import resource
+resource.setrlimit(resource.RLIMIT_AS, (2_000_000_000, resource.RLIM_INFINITY))
+import masonry_dem as md
+blocks = md.running_bond(0.4, 0.175, 870, 870.0)  # 1.9 million blocks: about 2.3 GB as a model
+try:
+    md.Model(blocks)
+except MemoryError as exc:
+    print("MemoryError:", exc)
+"""
+    proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert "MemoryError: a model of 1892685 blocks needs about 2.3 GB" in proc.stdout, (proc.stdout, proc.stderr)

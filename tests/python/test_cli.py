@@ -284,7 +284,8 @@ def test_failed_status(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: 
 
 
 def interrupted_solve(real_solve, log: List[str]):  # type: ignore[no-untyped-def]
-    """A Case.solve whose static run comes back as the core returns it after Ctrl-C."""
+    """A Case.solve whose static run is stopped by Ctrl-C, as the core does it: KeyboardInterrupt with the
+    partial Results as its ``results`` attribute."""
 
     def solve(self: Case, model: md.Model, method: Optional[str] = None, progress: Optional[Progress] = None) -> object:
         log.append(str(method))
@@ -294,23 +295,26 @@ def interrupted_solve(real_solve, log: List[str]):  # type: ignore[no-untyped-de
         names = [n for n in dir(r) if not n.startswith("_") and not callable(getattr(r, n))]
         fake = SimpleNamespace(**{n: getattr(r, n) for n in names})
         fake.status, fake.error = "failed", "interrupted by the user"
-        return fake
+        exc = KeyboardInterrupt()
+        exc.results = fake  # type: ignore[attr-defined]
+        raise exc
 
     return solve
 
 
 def test_interrupted(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
-    """Ctrl-C: run prints and writes what was computed and exits with 130; compare does not start the
-    second method."""
+    """Ctrl-C: run writes the result file of what was computed, draws no plot, and exits with 130; compare
+    does not start the second method."""
     log: List[str] = []
     monkeypatch.setattr(Case, "solve", interrupted_solve(Case.solve, log))
-    out = tmp_path / "r.json"
+    out, png = tmp_path / "r.json", tmp_path / "r.png"
     case = str(EXAMPLES / "single-block-sliding.toml")
-    assert cli.main(["run", case, "--method", "static", "--json", str(out)]) == 130
+    assert cli.main(["run", case, "--method", "static", "--json", str(out), "--plot", str(png)]) == 130
     captured = capsys.readouterr()
-    assert captured.err.strip() == "masonry-dem: error: interrupted"
+    assert captured.err.strip() == "masonry-dem: error: interrupted (no plot drawn)"
     assert "interrupted by the user" in captured.out
     assert json.loads(out.read_text())["status"] == "failed"
+    assert not png.exists()
     log.clear()
     assert cli.main(["compare", case]) == 130
     assert log == ["static"]

@@ -87,7 +87,7 @@ def test_describe_rotation_about_toe() -> None:
     text = describe_mechanism(model, results)
     assert text.startswith("2 of 2 blocks move as one part, turning clockwise about (2.00, 0.00) m;"), text
     # the base lifts under the left block and hinges at the toe under the right one; the head joint stays closed
-    assert text.endswith("the crack runs through 2 interfaces: 1 open (1 base), 1 rock (1 base)"), text
+    assert text.endswith("the crack runs through 2 interfaces: 1 separate (1 base), 1 rock (1 base)"), text
 
 
 def test_describe_sliding_and_parts() -> None:
@@ -96,7 +96,7 @@ def test_describe_sliding_and_parts() -> None:
     text = describe_mechanism(model, results)
     assert text == (
         "1 of 2 blocks moves as one part, sliding at +0 deg from +x; "
-        "the crack runs through 2 interfaces: 1 slip (1 base), 1 open (1 head)"
+        "the crack runs through 2 interfaces: 1 slip (1 base), 1 separate (1 head)"
     ), text
     mech = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 0.5], [0, 0, 0]])
     model, results = synthetic(mech, [2, 4, 1], ["base", "base", "head"])

@@ -23,6 +23,7 @@ KEYS = [
     "blocks",
     "interfaces",
     "collapse_multiplier",
+    "last_equilibrium",
     "curve",
     "joint_states",
     "elapsed_s",
@@ -36,6 +37,7 @@ def fake_results(**overrides: Any) -> SimpleNamespace:
         status="collapse",
         error=None,
         collapse_multiplier=0.6429,
+        last_equilibrium=0.6429,
         curve_multiplier=np.array([0.0, 0.3, 0.6429]),
         curve_displacement=np.array([0.0, 1e-5, 4e-5]),
         joint_states={"open": 5, "rocking": 12, "sliding": 10, "elastic": 60},
@@ -55,7 +57,7 @@ def test_shape() -> None:
     assert data["title"] == "Ferris & Tin-Loi wall 1"
     assert data["method"] == "static" and data["status"] == "collapse"
     assert data["blocks"] == 33 and data["interfaces"] == 83
-    assert data["collapse_multiplier"] == 0.6429
+    assert data["collapse_multiplier"] == 0.6429 and data["last_equilibrium"] == 0.6429
     assert data["curve"] == {"multiplier": [0.0, 0.3, 0.6429], "displacement": [0.0, 1e-5, 4e-5]}
     assert list(data["joint_states"]) == ["elastic", "sliding", "rocking", "open"]
     assert data["joint_states"] == {"elastic": 60, "sliding": 10, "rocking": 12, "open": 5}

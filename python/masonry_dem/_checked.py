@@ -1,0 +1,72 @@
+"""The core's entry points for users, with a wrong argument type reported as :class:`InputError`.
+
+The compiled core converts its arguments itself: a string where a number belongs, a float where an integer
+belongs, or an integer too large for it raise TypeError or OverflowError there. The user-facing
+``Model``, ``running_bond`` and ``pattern`` re-raise them as InputError (a subclass of MasonryError), with
+the function and the argument named, so that one ``except masonry_dem.InputError`` catches every bad
+input. An exception raised by a progress callback is the user's own and passes unchanged (it carries the
+partial results as its ``results`` attribute).
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+import re
+import reprlib
+from typing import Any, Callable, TypeVar
+
+from . import _core
+from ._core import InputError
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def _argument(exc: BaseException, func: Callable[..., Any], args: Any, kwargs: Any) -> str:
+    """The argument at fault, as "'steps' = 'x'": the core notes "while processing 'steps'" on the exception
+    (PyO3), and the value is the one passed. Empty when unknown."""
+    names = [m.group(1) for note in getattr(exc, "__notes__", ()) for m in [re.search(r"processing '(\w+)'", str(note))] if m]
+    if not names:
+        return ""
+    try:
+        value = inspect.signature(func).bind(*args, **kwargs).arguments.get(names[0], inspect.Parameter.empty)
+    except (TypeError, ValueError):
+        value = inspect.Parameter.empty
+    shown = "" if value is inspect.Parameter.empty else f" = {reprlib.repr(value)}"
+    return f"'{names[0]}'{shown}: "
+
+
+def input_errors(func: F, name: str) -> F:
+    """``func`` with TypeError / OverflowError of its arguments raised as InputError naming ``name``."""
+
+    @functools.wraps(func)
+    def checked(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return func(*args, **kwargs)
+        except (TypeError, OverflowError) as exc:
+            if hasattr(exc, "results"):  # raised by the progress callback: the user's own exception
+                raise
+            reason = "an integer out of range" if isinstance(exc, OverflowError) else str(exc)
+            raise InputError(f"{name}: {_argument(exc, func, args, kwargs)}{reason}") from None
+
+    return checked  # type: ignore[return-value]
+
+
+running_bond = input_errors(_core.running_bond, "running_bond")
+pattern = input_errors(_core.pattern, "pattern")
+
+
+class Model(_core.Model):
+    __doc__ = _core.Model.__doc__
+    __module__ = "masonry_dem"
+
+    def __new__(cls, *args: Any, **kwargs: Any) -> "Model":
+        return input_errors(_core.Model.__new__, "Model")(cls, *args, **kwargs)  # type: ignore[no-any-return]
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:  # built by __new__ (the core's constructor)
+        pass
+
+
+for _name in ("fix", "solve_static", "solve_limit", "solve_dynamic", "simulate"):
+    setattr(Model, _name, input_errors(getattr(_core.Model, _name), f"Model.{_name}"))
+del _name
