@@ -134,9 +134,11 @@ class Model:
         still rising) or "failed"; collapse_multiplier is NaN unless "collapse", and
         last_equilibrium holds the largest lambda found in equilibrium. Never raises for a
         solver failure (the reason is in Results.error).
-        Releases the GIL. Ctrl-C stops it within a fraction of a second and raises
-        KeyboardInterrupt, with the partial Results as the exception's `results` attribute; an
-        exception raised by `progress` is raised the same way.
+        Runs in a thread of its own, the GIL released. Ctrl-C raises KeyboardInterrupt within a
+        fraction of a second, with the partial Results as the exception's `results` attribute
+        (None when the run is inside one long sparse factorization, 10^5 blocks and more: it
+        then finishes that in the background and stops); an exception raised by `progress` is
+        raised the same way.
         progress: optional callable(step, multiplier, displacement, fraction) called after each
         converged step (fraction in [0, 1] under displacement control, NaN otherwise)."""
     def solve_dynamic(

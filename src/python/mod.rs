@@ -12,12 +12,13 @@ use crate::explicit::{self, Damping, DynamicOptions, ExplicitOptions, QsControl,
 use crate::static_solver::{self, Control, StaticOptions};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
-use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{mpsc, Arc, Mutex};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 create_exception!(
     _core,
@@ -128,56 +129,120 @@ fn rows3<'py>(py: Python<'py>, v: &[[f64; 3]]) -> Bound<'py, PyArray2<f64>> {
 /// much again each time, until collapse (`StaticOptions::until_collapse`).
 const UNTIL_COLLAPSE_START: f64 = 0.002;
 
-/// Called from a run with the GIL released: takes the GIL, checks for Ctrl-C and, unless the
-/// call is a poll (a check within a long step), calls the user's progress callback; false stops
-/// the run. An exception raised by the callback stops it too and is kept in `raised`, to be
-/// raised again once the run has stopped.
-fn report(
-    progress: &Option<Py<PyAny>>,
-    raised: &Mutex<Option<PyErr>>,
-    step: usize,
-    multiplier: f64,
-    displacement: f64,
-    fraction: f64,
-    poll: bool,
-) -> bool {
-    Python::attach(|py| {
-        if let Err(e) = py.check_signals() {
-            // Ctrl-C (KeyboardInterrupt, or what the program's signal handler raised): stop and
-            // raise it once the run has stopped, with the partial results
-            *raised.lock().unwrap_or_else(|p| p.into_inner()) = Some(e);
+/// A run of the core in a thread of its own, while the calling thread, the GIL released, waits
+/// for it and checks for Ctrl-C every [`SIGNAL_POLL`] (Python handles signals in its main thread
+/// only). Ctrl-C, or an exception of the user's progress callback, sets `stop`, which the run's
+/// monitor sees at its next poll (at most 0.1 s apart, but not within one sparse factorization
+/// or ordering: seconds at 10^5 blocks); a run that has not stopped [`GRACE`] after Ctrl-C is
+/// left to finish in the background, and the exception is raised without its results.
+struct Run {
+    progress: Option<Py<PyAny>>,
+    raised: Mutex<Option<PyErr>>,
+    stop: AtomicBool,
+}
+
+/// How often the waiting thread checks for Ctrl-C.
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// How long the waiting thread waits, after Ctrl-C, for the run's partial results.
+const GRACE: Duration = Duration::from_millis(300);
+
+impl Run {
+    fn new(progress: Option<Py<PyAny>>) -> Arc<Run> {
+        Arc::new(Run { progress, raised: Mutex::new(None), stop: AtomicBool::new(false) })
+    }
+
+    /// Keeps the first exception that stops the run.
+    fn raise(&self, e: PyErr) {
+        let mut slot = self.raised.lock().unwrap_or_else(|p| p.into_inner());
+        if slot.is_none() {
+            *slot = Some(e);
+        }
+        self.stop.store(true, Ordering::SeqCst);
+    }
+
+    /// The run's monitor: false once stopped; otherwise, unless the call is a poll (a check
+    /// within a long step), calls the user's progress callback (taking the GIL).
+    fn report(&self, step: usize, multiplier: f64, displacement: f64, fraction: f64, poll: bool) -> bool {
+        if self.stop.load(Ordering::SeqCst) {
             return false;
         }
         if poll {
             return true;
         }
-        match progress {
-            Some(cb) => match cb.call1(py, (step, multiplier, displacement, fraction)) {
-                Ok(_) => true,
-                Err(e) => {
-                    *raised.lock().unwrap_or_else(|p| p.into_inner()) = Some(e);
-                    false
-                }
-            },
-            None => true,
-        }
-    })
-}
+        let Some(cb) = &self.progress else { return true };
+        Python::attach(|py| match cb.call1(py, (step, multiplier, displacement, fraction)) {
+            Ok(_) => true,
+            Err(e) => {
+                self.raise(e);
+                false
+            }
+        })
+    }
 
-/// `value`, or the exception that stopped the run (KeyboardInterrupt on Ctrl-C, or the one the
-/// progress callback raised), with `value`, the partial results, as its `results` attribute.
-fn or_raised<T>(py: Python<'_>, value: T, raised: Mutex<Option<PyErr>>) -> PyResult<Py<T>>
-where
-    T: pyo3::PyClass + Into<pyo3::PyClassInitializer<T>>,
-{
-    let value = Py::new(py, value)?;
-    match raised.into_inner().unwrap_or_else(|p| p.into_inner()) {
-        Some(e) => {
-            // an exception whose instances take no attributes is raised as it is
-            let _ = e.value(py).setattr("results", value);
-            Err(e)
+    /// Runs `work` in its own thread and waits for it, checking for Ctrl-C; None when it was
+    /// left to finish in the background after Ctrl-C.
+    fn execute<R: Send + 'static>(
+        self: &Arc<Self>,
+        py: Python<'_>,
+        work: impl FnOnce(Arc<Run>) -> R + Send + 'static,
+    ) -> PyResult<Option<R>> {
+        let (tx, rx) = mpsc::channel();
+        let run = Arc::clone(self);
+        std::thread::Builder::new()
+            .name("masonry-dem".into())
+            .stack_size(64 << 20)
+            .spawn(move || {
+                let _ = tx.send(work(run));
+            })
+            .map_err(|e| MasonryError::new_err(format!("cannot start the analysis thread: {e}")))?;
+        let this = &**self;
+        Ok(py.detach(move || {
+            let mut stopped: Option<Instant> = None;
+            loop {
+                match rx.recv_timeout(SIGNAL_POLL) {
+                    Ok(r) => return Some(r),
+                    Err(mpsc::RecvTimeoutError::Disconnected) => return None,
+                    Err(mpsc::RecvTimeoutError::Timeout) => {}
+                }
+                match stopped {
+                    Some(t) if t.elapsed() >= GRACE => return None,
+                    Some(_) => {}
+                    None => {
+                        if let Some(e) = Python::attach(|py| py.check_signals().err()) {
+                            this.raise(e);
+                        }
+                        if this.stop.load(Ordering::SeqCst) {
+                            stopped = Some(Instant::now());
+                        }
+                    }
+                }
+            }
+        }))
+    }
+
+    /// The outcome for Python: the value, or the exception that stopped the run (KeyboardInterrupt
+    /// on Ctrl-C, or the progress callback's) with the partial results as its `results`
+    /// attribute (None when the run was left to finish in the background).
+    fn finish<T>(&self, py: Python<'_>, outcome: Option<PyResult<T>>) -> PyResult<Py<T>>
+    where
+        T: pyo3::PyClass + Into<pyo3::PyClassInitializer<T>>,
+    {
+        let raised = self.raised.lock().unwrap_or_else(|p| p.into_inner()).take();
+        match (outcome, raised) {
+            (Some(Ok(v)), None) => Py::new(py, v),
+            (Some(Err(e)), None) => Err(e),
+            (None, None) => Err(MasonryError::new_err("internal error (please report it): the analysis thread ended without a result")),
+            (outcome, Some(e)) => {
+                let partial = match outcome {
+                    Some(Ok(v)) => Py::new(py, v)?.into_any(),
+                    _ => py.None(),
+                };
+                // an exception whose instances take no attributes is raised as it is
+                let _ = e.value(py).setattr("results", partial);
+                Err(e)
+            }
         }
-        None => Ok(value),
     }
 }
 
@@ -316,7 +381,7 @@ fn law_from(d: &Bound<'_, PyAny>, base: JointLaw, what: &str) -> PyResult<JointL
 /// A wall of rigid blocks joined by zero-thickness Mohr-Coulomb interfaces (see _core.pyi).
 #[pyclass(name = "Model", module = "masonry_dem._core", subclass)]
 struct PyModel {
-    inner: Model,
+    inner: Arc<Model>,
 }
 
 #[pymethods]
@@ -410,25 +475,29 @@ impl PyModel {
             gravity,
             live,
         };
-        // the GIL released (a million blocks take seconds), polling Ctrl-C
-        let raised = Mutex::new(None);
+        // the GIL released (a million blocks take seconds), polling Ctrl-C in this thread
+        let mut raised = None;
         let built = py.detach(|| {
             guarded(|| {
-                Model::new_with(spec, &mut || {
-                    report(&None, &raised, 0, f64::NAN, f64::NAN, f64::NAN, true)
+                Model::new_with(spec, &mut || match Python::attach(|py| py.check_signals()) {
+                    Ok(()) => true,
+                    Err(e) => {
+                        raised = Some(e);
+                        false
+                    }
                 })
             })
         });
-        if let Some(e) = raised.into_inner().unwrap_or_else(|p| p.into_inner()) {
+        if let Some(e) = raised {
             return Err(e);
         }
-        Ok(PyModel { inner: built? })
+        Ok(PyModel { inner: Arc::new(built?) })
     }
 
     /// Fix dof (0: u1 [m], 1: u2 [m], 2: phi [rad]) of a block at a prescribed value.
     #[pyo3(signature = (block, dof, value=0.0))]
     fn fix(&mut self, block: usize, dof: usize, value: f64) -> PyResult<()> {
-        self.inner.fix(block, dof, value).map_err(to_py)
+        Arc::make_mut(&mut self.inner).fix(block, dof, value).map_err(to_py)
     }
 
     #[getter]
@@ -519,17 +588,16 @@ impl PyModel {
             control_block,
             ..StaticOptions::default()
         };
-        let model = &self.inner;
-        let raised = Mutex::new(None);
-        let res = py.detach(|| {
+        let model = Arc::clone(&self.inner);
+        let run = Run::new(progress);
+        let res = run.execute(py, move |run| {
             guarded(|| {
-                let mut monitor = |p: &static_solver::Progress| {
-                    report(&progress, &raised, p.step, p.multiplier, p.displacement, p.fraction, p.poll)
-                };
-                static_solver::solve_with(model, &opts, &mut monitor)
+                let mut monitor =
+                    |p: &static_solver::Progress| run.report(p.step, p.multiplier, p.displacement, p.fraction, p.poll);
+                static_solver::solve_with(&model, &opts, &mut monitor).map(|inner| PyResults { inner })
             })
         })?;
-        or_raised(py, PyResults { inner: res }, raised)
+        run.finish(py, res)
     }
 
     /// Limit analysis: the collapse multiplier as a linear program (see _core.pyi). Releases the
@@ -553,27 +621,28 @@ impl PyModel {
             max_sequence: max_sequence.map_or(Ok(defaults.max_sequence), |v| count("max_sequence", v, 0))?,
             ..defaults
         };
-        let model = &self.inner;
-        let raised = Mutex::new(None);
+        let model = Arc::clone(&self.inner);
+        let run = Run::new(progress);
         let start = Instant::now();
-        let res = py.detach(|| {
+        let res = run.execute(py, move |run| {
             guarded(|| {
                 // the callback's step counts the interior-point iterations over all the programs
                 let mut count = 0usize;
                 let mut monitor = |p: &limit::LimitProgress| {
                     count += 1;
-                    report(&progress, &raised, count, p.multiplier, f64::NAN, f64::NAN, false)
+                    run.report(count, p.multiplier, f64::NAN, f64::NAN, false)
                 };
-                match limit::limit_analysis_with(model, &opts, &mut monitor) {
+                match limit::limit_analysis_with(&model, &opts, &mut monitor) {
                     // stopped by Ctrl-C or by the callback: an unfinished program certifies
-                    // nothing, so the partial result holds no multiplier (attached below to the
+                    // nothing, so the partial result holds no multiplier (attached to the
                     // exception that stopped it)
-                    Err(Error::Interrupted) => Ok(interrupted_limit(model, start)),
+                    Err(Error::Interrupted) => Ok(interrupted_limit(&model, start)),
                     r => r,
                 }
+                .map(|inner| PyResults { inner })
             })
         })?;
-        or_raised(py, PyResults { inner: res }, raised)
+        run.finish(py, res)
     }
 
     /// Quasi-static analysis with the explicit solver (see _core.pyi).
@@ -618,16 +687,16 @@ impl PyModel {
             control_block,
             ..ExplicitOptions::default()
         };
-        let model = &self.inner;
-        let raised = Mutex::new(None);
-        let res = py.detach(|| {
+        let model = Arc::clone(&self.inner);
+        let run = Run::new(progress);
+        let res = run.execute(py, move |run| {
             guarded(|| {
                 let mut monitor =
-                    |p: &explicit::Progress| report(&progress, &raised, p.step, p.multiplier, p.displacement, p.fraction, false);
-                explicit::solve_with(model, &opts, &mut monitor)
+                    |p: &explicit::Progress| run.report(p.step, p.multiplier, p.displacement, p.fraction, false);
+                explicit::solve_with(&model, &opts, &mut monitor).map(|inner| PyResults { inner })
             })
         })?;
-        or_raised(py, PyResults { inner: res }, raised)
+        run.finish(py, res)
     }
 
     /// Time history with the explicit solver (see _core.pyi).
@@ -678,16 +747,16 @@ impl PyModel {
             large_rotations,
             threads: threads as usize,
         };
-        let model = &self.inner;
-        let raised = Mutex::new(None);
-        let h = py.detach(|| {
+        let model = Arc::clone(&self.inner);
+        let run = Run::new(progress);
+        let h = run.execute(py, move |run| {
             guarded(|| {
                 let mut monitor =
-                    |p: &explicit::Progress| report(&progress, &raised, p.step, p.multiplier, p.displacement, p.fraction, false);
-                explicit::simulate_with(model, &opts, &mut monitor)
+                    |p: &explicit::Progress| run.report(p.step, p.multiplier, p.displacement, p.fraction, false);
+                explicit::simulate_with(&model, &opts, &mut monitor).map(|inner| PyTimeHistory { inner })
             })
         })?;
-        or_raised(py, PyTimeHistory { inner: h }, raised)
+        run.finish(py, h)
     }
 
     /// The stability limit of the explicit solver's time step [s].
