@@ -702,7 +702,8 @@ impl Program {
                 rxs = rxs2;
                 rtv = rtv2;
             }
-            let eta = 0.995;            let ap = (eta * max_step(&p.x, &d.dx).min(max_step(&p.t, &d.dt))).min(1.0);
+            let eta = 0.995;
+            let ap = (eta * max_step(&p.x, &d.dx).min(max_step(&p.t, &d.dt))).min(1.0);
             let ad = (eta * max_step(&p.s, &d.ds).min(max_step(&p.v, &d.dv))).min(1.0);
             let step = |v: &mut [f64], dv: &[f64], a: f64| v.iter_mut().zip(dv).for_each(|(v, d)| *v += a * d);
             step(&mut p.x, &d.dx, ap);
