@@ -39,9 +39,6 @@ pub mod model;
 pub mod results;
 pub mod static_solver;
 
-#[cfg(feature = "python")]
-mod python;
-
 pub use error::{Error, Result};
 pub use model::{Model, ModelSpec};
 pub use results::{Results, Status};

@@ -2,14 +2,14 @@
 //! mapping, the GIL released during analyses and model building, Ctrl-C polled there and raised
 //! as KeyboardInterrupt with the partial results, panics caught.
 
-use crate::error::Error;
-use crate::geometry::{self, FirstCourse, Rect, RunningBond};
-use crate::joint::JointLaw;
-use crate::model::{JointLaws, LiveLoad, Model, ModelSpec, TopBeam};
-use crate::limit::{self, LimitOptions};
-use crate::results::{Results, Status};
-use crate::explicit::{self, Damping, DynamicOptions, ExplicitOptions, QsControl, TimeHistory};
-use crate::static_solver::{self, Control, StaticOptions};
+use masonry_dem::error::Error;
+use masonry_dem::geometry::{self, FirstCourse, Rect, RunningBond};
+use masonry_dem::joint::JointLaw;
+use masonry_dem::model::{JointLaws, LiveLoad, Model, ModelSpec, TopBeam};
+use masonry_dem::limit::{self, LimitOptions};
+use masonry_dem::results::{Results, Status};
+use masonry_dem::explicit::{self, Damping, DynamicOptions, ExplicitOptions, QsControl, TimeHistory};
+use masonry_dem::static_solver::{self, Control, StaticOptions};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
 use std::sync::atomic::{AtomicBool, Ordering};
