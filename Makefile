@@ -22,7 +22,9 @@ develop: $(VENV)/.deps
 demo: develop
 	$(VENV)/bin/masonry-dem demo --plot out/demo.png
 
+# clippy on every crate and target, warnings as errors, then the Rust tests
 rust-test:
+	cargo clippy --release --workspace --all-targets -q -- -D warnings
 	cargo test --release
 
 py-test: develop

@@ -951,6 +951,7 @@ impl<'a> Integrator<'a> {
         // one dof: the same operations for every kind of damping; the mass is read only by
         // viscous damping (local damping and none do not touch it: 8 bytes a dof less per step)
         #[inline(always)]
+        #[allow(clippy::too_many_arguments)]
         fn dof(damping: Damping, kick: Option<f64>, a: &mut f64, v: &mut f64, free: bool, fe: f64, fi: f64, im: f64, m: impl FnOnce() -> f64) {
             if !free {
                 *a = 0.0;
@@ -1674,6 +1675,7 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
 }
 
 #[cfg(test)]
+#[allow(clippy::needless_range_loop)] // matrices with their indices, as in the formulas
 mod tests {
     use super::*;
     use crate::geometry::{running_bond, FirstCourse, Rect, RunningBond};

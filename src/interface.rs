@@ -55,6 +55,7 @@ impl Interface {
     }
 
     /// Builds the interface and its `B` matrix from the two blocks' centroids.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         a: usize,
         b: usize,
@@ -325,6 +326,6 @@ pub fn detect(
             }
         }
     }
-    out.sort_by(|p, q| (p.a, p.b).cmp(&(q.a, q.b)));
+    out.sort_by_key(|p| (p.a, p.b));
     Ok(out)
 }

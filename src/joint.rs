@@ -324,8 +324,9 @@ fn factor_k<const K: usize>(g: &mut [[f64; 3]; 3]) -> Option<Lu> {
         lu.piv[col] = p as u8;
         for row in col + 1..K {
             let f = g[row][col] / g[col][col];
-            for c2 in col..K {
-                g[row][c2] -= f * g[col][c2];
+            let pivot_row = g[col];
+            for (x, p) in g[row][col..].iter_mut().zip(&pivot_row[col..]) {
+                *x -= f * p;
             }
             lu.l[row][col] = f;
         }

@@ -28,6 +28,10 @@
 //! assert!((res.collapse_multiplier - 0.6429).abs() < 0.01 * 0.6429);
 //! ```
 
+// `!(x <= limit)` is how the checks refuse NaN together with the values out of range: the
+// negated comparison is meant
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod error;
 pub mod explicit;
 pub mod geometry;

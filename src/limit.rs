@@ -557,8 +557,8 @@ impl Program {
                 *r = b - *r;
             }
             self.apply_t(&p.y, &mut aty);
-            for i in 0..nx {
-                res.rc[i] = -aty[i] - p.s[i];
+            for ((rc, a), s) in res.rc.iter_mut().zip(&aty).zip(&p.s) {
+                *rc = -a - s;
             }
             for i in 0..m {
                 let j = self.bounded(i);
@@ -627,8 +627,8 @@ impl Program {
             }
             // Theta = 1 / (s / x + v / t), and the normal matrix A Theta A^T (lambda's column
             // apart: the system is bordered)
-            for i in 0..nx {
-                theta[i] = p.s[i] / p.x[i];
+            for ((th, s), x) in theta.iter_mut().zip(&p.s).zip(&p.x) {
+                *th = s / x;
             }
             for i in 0..m {
                 theta[self.bounded(i)] += p.v[i] / p.t[i];

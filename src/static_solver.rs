@@ -183,6 +183,13 @@ pub const COLLAPSE_EVIDENCE: f64 = 10.0;
 /// Outcome of a run: status, and the reason when it failed.
 type Outcome = (Status, Option<Error>);
 
+/// Where each interface's 6 x 6 block of the tangent goes in the sparse matrix's values.
+type Slots = Vec<[u32; 36]>;
+
+/// The bordered system of displacement control: its factorization, the interfaces' slots, and
+/// the (dof, slot) of each entry of the live load's column (lambda's, in place of the control dof).
+type DispSystem = (SparseLu, Slots, Vec<(usize, u32)>);
+
 struct Solver<'a, 'm> {
     model: &'a Model,
     /// called after each converged step, and polled between Newton iterations
@@ -212,8 +219,8 @@ struct Solver<'a, 'm> {
     tangents_current: bool,
     fint: Vec<f64>,
     rhs: Vec<f64>,
-    load_sys: Option<(SparseLu, Vec<[u32; 36]>)>,
-    disp_sys: Option<(SparseLu, Vec<[u32; 36]>, Vec<(usize, u32)>)>,
+    load_sys: Option<(SparseLu, Slots)>,
+    disp_sys: Option<DispSystem>,
     /// the joint tangents and the system (displacement control or not, stabilization) of the
     /// last factorization: Newton refactorizes only when one of them has changed
     fact_tangents: Vec<[[f64; 3]; 3]>,

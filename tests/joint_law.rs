@@ -2,6 +2,9 @@
 //! domain in the D-metric when psi = phi (closest point), the tangent matches finite
 //! differences, and a joint that failed has lost its cohesion and tensile strength.
 
+// matrices are written with their indices, as in the formulas
+#![allow(clippy::needless_range_loop)]
+
 use masonry_dem::joint::{
     admissible, return_map, JointLaw, JointState, Section, OPEN, ROCKING, SLIDING,
 };

@@ -1,4 +1,4 @@
-//! Property tests (issue 6, robustness): invariants of the joint law and of the solvers on
+//! Property tests: invariants of the joint law and of the solvers on
 //! random inputs drawn by proptest.
 //!
 //! - the return mapping stays in the strength domain, its consistent tangent matches central
@@ -11,6 +11,9 @@
 //!
 //! Case counts are kept small enough for `make test` (the whole file runs in well under a
 //! minute in release mode); failures are shrunk by proptest and printed with the minimal input.
+
+// matrices are written with their indices, as in the formulas
+#![allow(clippy::needless_range_loop)]
 
 mod common;
 
@@ -729,6 +732,7 @@ const CURVE_TOL: f64 = 1e-6;
 ///   or by -2 mm once shifted by 1e-9 m in x;
 /// - 4 blocks in one course (mu = 0.842, beam of fixed rotation under 4.3 kN): peaks 2.54802
 ///   and 2.54887, both runs stopping at u = 4.9e-5 m.
+///
 /// With psi = phi the same walls give the same curves with 30 to 240 steps, and mirror.
 ///
 /// The control block is the wall's top right block (its image in the mirror), also under a

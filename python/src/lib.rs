@@ -780,9 +780,12 @@ struct PyTimeHistory {
 }
 
 fn history3<'py>(py: Python<'py>, v: &[[f64; 3]], n_blocks: usize) -> Bound<'py, numpy::PyArray3<f64>> {
-    let k = if n_blocks == 0 { 0 } else { v.len() / n_blocks };
-    let flat: Vec<f64> = v.iter().flatten().copied().collect();
-    numpy::ndarray::Array3::from_shape_vec((k, n_blocks, 3), flat).unwrap().into_pyarray(py)
+    let k = v.len().checked_div(n_blocks).unwrap_or(0);
+    let flat: Vec<f64> = v[..k * n_blocks].iter().flatten().copied().collect();
+    // the shape matches the data by construction: no panic can come from here
+    numpy::ndarray::Array3::from_shape_vec((k, n_blocks, 3), flat)
+        .unwrap_or_else(|_| numpy::ndarray::Array3::zeros((0, n_blocks, 3)))
+        .into_pyarray(py)
 }
 
 #[pymethods]
