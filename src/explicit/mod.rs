@@ -1,0 +1,246 @@
+//! The explicit ("molecular dynamics") solver: velocity-Verlet integration of the blocks'
+//! equations of motion `M a = f_ext(t) - f_int(u) - f_damp`, with a diagonal mass (m, m, J).
+//! It never assembles or factorizes a matrix. Interface forces come from the same joint law as
+//! the static solver ([`crate::joint::return_map`]), applied to the increments of each time step
+//! (histories are committed at every step).
+//!
+//! - Time step: `safety * 2 / omega_max`, with `omega_max` bounded from above by Gershgorin's
+//!   theorem on the elastic interface stiffnesses (so the step is stable), unless given.
+//! - Damping: local non-viscous (Cundall: `-alpha |f| sign(v)` per dof; the default of
+//!   quasi-static runs) or mass-proportional viscous (`-c m v`).
+//! - Quasi-static load control: each load level is relaxed until the unbalanced-force ratio is
+//!   below a tolerance; a level at which the wall runs away (or does not settle) is a failure,
+//!   and the collapse multiplier is bracketed by halving the load step, as in the static solver.
+//! - Quasi-static displacement control: the control dof is driven; lambda follows from the
+//!   control dof's own equation (the condition of the static solver's bordered system).
+//! - Time histories: free motion from initial conditions, or a horizontal base acceleration
+//!   (inertial forces `-m a_g(t)` in the frame of the base).
+//!
+//! The interface loop is the hot path: flat arrays, no allocation per step, parallel over
+//! parts of the interfaces with rayon (each interface writes only its own slot, and each part
+//! the force sums of the blocks whose interfaces are all in it; a gather forms the others).
+//!
+//! Here: the options, the time history and the stability limit. The interface pass is in
+//! `pass`, the integrator in `integrator`, the quasi-static drivers (and the relaxations the
+//! static solver borrows) in `quasi_static`, time histories in `time_history`.
+
+use crate::error::{check_steps, Error};
+use crate::interface::{Family, Interface};
+use crate::joint::{return_map_forces_prepared, return_map_forces_warm, JointLaw, JointState, Kinds, Response, Section, APEX};
+use crate::model::{LiveLoad, Model};
+use crate::results::{Results, Status};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// Damping of the explicit solver.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Damping {
+    None,
+    /// Local non-viscous damping (Cundall): a force `-alpha |f| sign(v)` on each dof, `alpha` in [0, 1).
+    Local(f64),
+    /// Mass-proportional viscous damping `-c m v` [1/s].
+    Viscous(f64),
+}
+
+/// How the quasi-static analysis is driven.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum QsControl {
+    Load,
+    Displacement { max_displacement: f64 },
+}
+
+/// The largest number of threads of the interface loop (`analysis.threads`).
+pub const MAX_THREADS: usize = 1024;
+/// The largest number of time steps of one time history ([`simulate`]).
+pub const MAX_TIME_STEPS: usize = 1_000_000_000_000;
+/// The largest number of values a time history may record (displacements and velocities: 6 per
+/// block and record, 8 bytes each); larger requests are refused before allocating.
+pub const MAX_RECORDED_VALUES: usize = 250_000_000;
+
+/// Options of the quasi-static explicit analysis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExplicitOptions {
+    pub control: QsControl,
+    /// Load levels or displacement stages (a hint, as for the static solver).
+    pub steps: usize,
+    /// Relative width of the bracket on the collapse multiplier.
+    pub tolerance: f64,
+    /// A level is settled when |unbalanced forces| <= ratio * |applied forces|.
+    pub unbalanced_ratio: f64,
+    pub damping: Damping,
+    /// Time step [s]; None: automatic.
+    pub time_step: Option<f64>,
+    /// Fraction of the stability limit used by the automatic time step.
+    pub safety: f64,
+    /// Time steps allowed to settle one level before it counts as not settling.
+    pub max_steps_per_level: usize,
+    /// Threads of the interface loop; 0: all cores.
+    pub threads: usize,
+    pub control_block: Option<usize>,
+}
+
+impl Default for ExplicitOptions {
+    fn default() -> Self {
+        ExplicitOptions {
+            control: QsControl::Load,
+            steps: 200,
+            tolerance: 1e-3,
+            unbalanced_ratio: 1e-5,
+            damping: Damping::Local(0.8),
+            time_step: None,
+            safety: 0.8,
+            max_steps_per_level: 200_000,
+            threads: 0,
+            control_block: None,
+        }
+    }
+}
+
+/// Options of a dynamic time history.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicOptions {
+    /// Duration [s].
+    pub duration: f64,
+    pub time_step: Option<f64>,
+    pub safety: f64,
+    pub damping: Damping,
+    /// Initial (u1, u2, phi) of every block; None: zero.
+    pub initial_displacement: Option<Vec<[f64; 3]>>,
+    /// Initial velocities of every block; None: zero.
+    pub initial_velocity: Option<Vec<[f64; 3]>>,
+    /// Horizontal base acceleration history: times [s] and accelerations [m/s2], linear between
+    /// samples, zero outside.
+    pub base_acceleration: Option<(Vec<f64>, Vec<f64>)>,
+    /// Live load multiplier held constant during the run.
+    pub live_multiplier: f64,
+    /// Record every n-th step.
+    pub record_every: usize,
+    /// Finite rotations of the blocks (rocking); false: the linearized kinematics.
+    pub large_rotations: bool,
+    pub threads: usize,
+}
+
+impl Default for DynamicOptions {
+    fn default() -> Self {
+        DynamicOptions {
+            duration: 1.0,
+            time_step: None,
+            safety: 0.8,
+            damping: Damping::None,
+            initial_displacement: None,
+            initial_velocity: None,
+            base_acceleration: None,
+            live_multiplier: 0.0,
+            record_every: 1,
+            large_rotations: true,
+            threads: 0,
+        }
+    }
+}
+
+/// A recorded time history.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimeHistory {
+    pub status: Status,
+    pub error: Option<String>,
+    pub time_step: f64,
+    pub times: Vec<f64>,
+    /// Blocks in each record.
+    pub n_blocks: usize,
+    /// (u1, u2, phi) of every block at each recorded time, flat and record-major: record k is
+    /// `displacements[k * n_blocks..(k + 1) * n_blocks]` (see [`TimeHistory::displacement`]).
+    pub displacements: Vec<[f64; 3]>,
+    /// Velocities, laid out as `displacements`.
+    pub velocities: Vec<[f64; 3]>,
+    /// Kinetic energy [J] at each recorded time.
+    pub kinetic_energy: Vec<f64>,
+    /// Elastic energy stored in the joints [J].
+    pub elastic_energy: Vec<f64>,
+    /// Work done on the blocks by the external loads (dead, live, base inertia) [J].
+    pub external_work: Vec<f64>,
+    /// Energy dissipated by damping and joint plasticity [J].
+    pub dissipated: Vec<f64>,
+    pub steps: usize,
+    pub elapsed_s: f64,
+}
+
+impl TimeHistory {
+    /// (u1, u2, phi) of every block at record `k`.
+    pub fn displacement(&self, k: usize) -> &[[f64; 3]] {
+        &self.displacements[k * self.n_blocks..(k + 1) * self.n_blocks]
+    }
+    /// Velocities of every block at record `k`.
+    pub fn velocity(&self, k: usize) -> &[[f64; 3]] {
+        &self.velocities[k * self.n_blocks..(k + 1) * self.n_blocks]
+    }
+}
+
+/// Whether the monitor is due at step `k`: every 4,096 steps, or when 0.1 s of wall time have
+/// passed since it was last called (on a large wall 4,096 steps take minutes, and Ctrl-C must
+/// stop a run within half a second).
+fn monitor_due(k: usize, last: &mut Instant) -> bool {
+    if k % 4096 == 4095 || last.elapsed().as_secs_f64() >= 0.1 {
+        *last = Instant::now();
+        true
+    } else {
+        false
+    }
+}
+
+/// Progress reported to a monitor; it returns false to stop the run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Progress {
+    pub step: usize,
+    pub multiplier: f64,
+    pub displacement: f64,
+    /// Fraction of the run done (NaN if unknown).
+    pub fraction: f64,
+}
+
+/// The stable time step of the model: `2 / omega_max` with a Gershgorin bound on `omega_max`.
+pub fn critical_time_step(model: &Model) -> f64 {
+    let nb = model.n_blocks();
+    let mut row = vec![0.0; 3 * nb];
+    for (k, it) in model.interfaces().iter().enumerate() {
+        let law = model.law(k);
+        let s = &model.sections()[k];
+        let d = [law.normal_stiffness * s.area, law.shear_stiffness * s.area, law.normal_stiffness * s.inertia];
+        let dofs = it.dofs();
+        let b = &it.b_mat;
+        for i in 0..6 {
+            for j in 0..6 {
+                let kij = d[0] * b[0][i] * b[0][j] + d[1] * b[1][i] * b[1][j] + d[2] * b[2][i] * b[2][j];
+                row[dofs[i]] += kij.abs();
+            }
+        }
+    }
+    let fixed = model.fixed();
+    let mut w2: f64 = 0.0;
+    for i in 0..nb {
+        let mm = [model.mass()[i], model.mass()[i], model.inertia()[i]];
+        for k in 0..3 {
+            if !fixed[3 * i + k] {
+                w2 = w2.max(row[3 * i + k] / mm[k]);
+            }
+        }
+    }
+    if w2 > 0.0 {
+        2.0 / w2.sqrt()
+    } else {
+        f64::INFINITY
+    }
+}
+
+mod integrator;
+mod pass;
+mod quasi_static;
+#[cfg(test)]
+mod tests;
+mod time_history;
+
+use integrator::*;
+use pass::*;
+pub use integrator::Stepper;
+pub(crate) use quasi_static::{relax_at_displacement, relax_dead_state};
+pub use quasi_static::{solve, solve_with};
+pub use time_history::{simulate, simulate_with};
