@@ -19,7 +19,7 @@ import numpy as np
 import masonry_dem as md
 
 CASE = Path(__file__).resolve().parent.parent / "examples" / "j4d-shear-wall.toml"
-PEAK, AT_3MM = 57e3, 35e3  # experimental figures of the benchmarks README [N]
+PEAK, AT_3MM = 57e3, 35e3  # experimental figures of docs/references.md, section 3 [N]
 
 
 def variant(case: md.Case, *, brittle: bool = False, free: bool = False, lourenco_k: bool = False) -> md.Case:

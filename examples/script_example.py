@@ -5,7 +5,7 @@ Run from the repository root:
     .venv/bin/python examples/script_example.py [OUT.png]
 
 It prints both collapse multipliers, how far they agree, and writes a figure (default out/script_example.png).
-SI units throughout: m, N, Pa, kg, s. Reference (benchmarks README, section 2): 0.6429 with associative flow.
+SI units throughout: m, N, Pa, kg, s. Reference (docs/references.md, section 2): 0.6429 with associative flow.
 """
 
 import sys

@@ -1,5 +1,5 @@
 //! The explicit solver in time, no damping: sliding on an inclined plane, Housner's rocking
-//! block, and energy conservation with elastic joints (../shared/benchmarks/README.md).
+//! block, and energy conservation with elastic joints (docs/references.md, section 1).
 
 mod common;
 use common::*;

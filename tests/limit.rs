@@ -1,5 +1,5 @@
 //! Limit analysis against closed forms, the exact values of Ferris & Tin-Loi's walls
-//! (../shared/benchmarks/README.md: 0.6429 and 0.5800 with psi = phi), and the statuses of walls
+//! (docs/references.md, section 2: 0.6429 and 0.5800 with psi = phi), and the statuses of walls
 //! that cannot stand or cannot fail. The comparison with an independent LP solver is in
 //! tests/python/test_limit_analysis.py.
 

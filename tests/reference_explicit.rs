@@ -1,4 +1,4 @@
-//! The explicit solver against the references (../shared/benchmarks/README.md) and against the
+//! The explicit solver against the references (docs/references.md, sections 1 and 2) and against the
 //! static solver: quasi-static collapse multipliers within 2%.
 
 mod common;

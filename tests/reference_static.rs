@@ -1,5 +1,5 @@
 //! The static solver against closed forms and exact limit-analysis values
-//! (../shared/benchmarks/README.md). Tolerances are those of the issue.
+//! (docs/references.md, sections 1 and 2).
 
 mod common;
 use common::*;

@@ -256,7 +256,7 @@ class _Certificate(TypedDict):
 
 class Results:
     method: str  # "static" | "dynamic" | "limit"
-    status: str  # "collapse" | "completed" | "failed" | "no_equilibrium" | "unbounded" (these two: limit) | "stalled" | "displacement_limit" (static)
+    status: str  # "collapse" | "completed" | "failed" | "unbounded" | "no_equilibrium" (limit) | "stalled" | "displacement_limit" (static)
     error: Optional[str]  # why, when the status is "failed", "no_equilibrium", "unbounded", "stalled" or "displacement_limit"
     collapse_multiplier: float  # lambda at collapse, or the peak of the curve; NaN unless the status is "collapse"
     last_equilibrium: float  # the largest lambda found in equilibrium (load control: the last step), whatever the status; NaN if none

@@ -16,7 +16,7 @@ Conversions (the compiled ``Results`` cannot be subclassed, so these are plain f
 
 * :func:`to_dict`: everything in a Results as plain Python (lists, ints, floats; NaN becomes None), ready
   for ``json.dumps``; with the model also the block rectangles and the interface geometry and families.
-* :func:`to_json`: the result file of case-format.md (:func:`masonry_dem.result_dict`), written under a
+* :func:`to_json`: the result file of docs/case-format.md (:func:`masonry_dem.result_dict`), written under a
   temporary name and renamed.
 * :func:`to_dataframe` / :func:`interfaces_dataframe`: pandas DataFrames of the curve and of the
   interfaces, when pandas is installed (it is not a dependency of masonry-dem; without it they raise
@@ -246,7 +246,7 @@ def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dic
 
 
 def to_json(results: Any, path: PathLike, model: Any, title: Optional[str] = None) -> Dict[str, Any]:
-    """Write the result file of case-format.md (see :func:`masonry_dem.result_dict`) to ``path``.
+    """Write the result file of docs/case-format.md (see :func:`masonry_dem.result_dict`) to ``path``.
 
     ``model`` is the Model the results came from (numbers of blocks and interfaces); ``title`` defaults
     to "untitled". The file is written atomically (:mod:`masonry_dem.atomic`): under a temporary name in

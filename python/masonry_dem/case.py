@@ -1,6 +1,6 @@
 """Case files (TOML, format 1) and result files (JSON, format 1).
 
-The keys are a public contract, described in ``case-format.md``; this module follows it exactly:
+The keys are a public contract, described in ``docs/case-format.md``; this module follows it exactly:
 
 * :func:`load_case` reads a case file, :func:`parse_case` a TOML string, :func:`case_from_dict` an
   already parsed table. Every key and type is checked by name before anything is computed; a bad
@@ -56,7 +56,7 @@ FORMAT = 1
 
 PathLike = Union[str, "os.PathLike[str]"]
 
-# Keys of a joint law, in the order of case-format.md, and the interface families that may override them.
+# Keys of a joint law, in the order of docs/case-format.md, and the interface families that may override them.
 # the joint-law keys come from the core, which defines the law
 LAW_KEYS = tuple(_core.JOINT_LAW_KEYS)
 FAMILIES = ("bed", "head", "base", "top")
@@ -386,7 +386,7 @@ class Case:
 def load_case(path: PathLike) -> Case:
     """Read and check a case file (TOML, format 1).
 
-    The keys are those of ``case-format.md``. [analysis] also takes these optional keys:
+    The keys are those of ``docs/case-format.md``. [analysis] also takes these optional keys:
 
     ========================  ===================================================================
     ``tolerance``             0 < x < 1: relative precision of the collapse multiplier, for both
@@ -733,7 +733,7 @@ def _json_float(x: Any) -> Optional[float]:
 
 
 def result_dict(results: Any, model: Any, title: str) -> Dict[str, Any]:
-    """The result file of case-format.md as a dict, ready for ``json.dump``.
+    """The result file of docs/case-format.md as a dict, ready for ``json.dump``.
 
     ``results`` is a :class:`masonry_dem.Results`, ``model`` the :class:`masonry_dem.Model` it came
     from (for the numbers of blocks and interfaces). Non-finite numbers become None (JSON null): a

@@ -3,7 +3,7 @@
 Blocks 0.4 x 0.175 m in running bond, 6 courses, 2.0 m long, the lowest course starting with a half block,
 thickness 1 m, density 1000 kg/m3, g = 10 m/s2, dry joints with friction 0.65 and associative flow
 (dilatancy 0.65), penalty stiffnesses 1e10 N/m3; horizontal forces lambda * W_i, load control.
-Reference collapse multiplier 0.6429 (see the benchmarks README, section 2).
+Reference collapse multiplier 0.6429 (see docs/references.md, section 2).
 """
 
 from __future__ import annotations

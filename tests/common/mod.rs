@@ -1,5 +1,5 @@
 #![allow(dead_code)]
-//! Builders of the reference cases of ../shared/benchmarks/README.md.
+//! Builders of the reference cases of docs/references.md.
 
 use masonry_dem::geometry::{running_bond, FirstCourse, Rect, RunningBond};
 use masonry_dem::joint::JointLaw;

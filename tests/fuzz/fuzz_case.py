@@ -1,7 +1,7 @@
 """Coverage-guided fuzzing (atheris) of the case-file reader and of model building.
 
 Each input is either read as the text of a case file (raw mode: the fuzzer mutates bytes, starting from
-the examples) or, when its first byte is 0, turned into a structured case (every key of case-format.md, each given a value drawn
+the examples) or, when its first byte is 0, turned into a structured case (every key of docs/case-format.md, each given a value drawn
 from a list of troublemakers: NaN, infinities, zero, negative and huge numbers, 400-digit integers,
 strings, booleans, arrays, tables). The case is loaded with :func:`masonry_dem.parse_case`; if it loads,
 its model is built and, for a wall of at most MAX_SOLVE_BLOCKS blocks, a one-step static analysis is run.

@@ -3,7 +3,7 @@
 the result file (certificate, null multiplier), plots and exports of a result that has no curve.
 
 The values: Ferris & Tin-Loi wall 1 with associative joints (psi = phi) has the exact limit multiplier
-0.642857... (published 0.6429, ../shared/benchmarks/README.md section 2); the single blocks and the stack have
+0.642857... (published 0.6429, docs/references.md, section 2); the single blocks and the stack have
 closed forms (section 1). Everything else here is about the plumbing and holds whatever the multiplier.
 """
 

@@ -1,4 +1,4 @@
-"""The example case files against their references (../shared/benchmarks/README.md), through the
+"""The example case files against their references (docs/references.md), through the
 case-file loader and the compiled core: the same numbers a user gets from `masonry-dem run`."""
 
 from pathlib import Path
@@ -10,7 +10,7 @@ import masonry_dem as md
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
-# file, reference collapse multiplier, relative tolerance (the issue's)
+# file, reference collapse multiplier (docs/references.md, sections 1 and 2), relative tolerance
 CASES = [
     ("single-block-sliding.toml", 0.65, 0.005),
     ("single-block-rocking.toml", 1.0 / 3.0, 0.005),

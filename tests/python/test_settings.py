@@ -3,7 +3,7 @@
 incremental path (static load control, static displacement control, the explicit solver), with associative
 (psi = mu) and non-associative (psi = 0) joints; settings outside the ranges the solvers resolve are refused.
 
-References (benchmarks README, section 2): 0.6429, the exact limit analysis of this discrete model with
+References (docs/references.md, section 2): 0.6429, the exact limit analysis of this discrete model with
 psi = mu; 0.640, the iterative LP estimate with psi = 0."""
 
 from __future__ import annotations
