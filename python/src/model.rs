@@ -1,0 +1,402 @@
+//! `Model`: building it, its geometry, and its analyses (static, limit, explicit, time history).
+
+use crate::*;
+
+/// Displacement control without a max_displacement starts with this one [m] and goes on, as
+/// much again each time, until collapse (`StaticOptions::until_collapse`).
+pub(crate) const UNTIL_COLLAPSE_START: f64 = 0.002;
+
+/// A wall of rigid blocks joined by zero-thickness Mohr-Coulomb interfaces (see _core.pyi).
+#[pyclass(name = "Model", module = "masonry_dem._core", subclass)]
+pub(crate) struct PyModel {
+    pub(crate) inner: Arc<Model>,
+}
+
+#[pymethods]
+impl PyModel {
+    #[new]
+    #[pyo3(signature = (blocks, thickness=1.0, density=1000.0, base=true, top_rotation=None, top_force=vec![0.0, 0.0], joints=None, gravity=9.81, live="horizontal_weight", top_vertical="free"))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        blocks: &Bound<'_, PyAny>,
+        thickness: f64,
+        density: f64,
+        base: bool,
+        top_rotation: Option<&str>,
+        top_force: Vec<f64>,
+        joints: Option<&Bound<'_, PyDict>>,
+        gravity: f64,
+        live: &str,
+        top_vertical: &str,
+    ) -> PyResult<Self> {
+        let blocks = rects_from(blocks, "blocks")?;
+        if top_force.len() != 2 {
+            return Err(InputError::new_err(format!(
+                "top.force: expected 2 numbers [Fx, Fy] in N, got {}",
+                top_force.len()
+            )));
+        }
+        let vertical_held = match top_vertical {
+            "free" => false,
+            "held" => true,
+            o => {
+                return Err(InputError::new_err(format!(
+                    "top.vertical must be \"free\" or \"held\", got {o:?}"
+                )))
+            }
+        };
+        if vertical_held && top_rotation.is_none() {
+            return Err(InputError::new_err(
+                "top.vertical = \"held\" needs a top beam (top.rotation)",
+            ));
+        }
+        let top = match top_rotation {
+            None => None,
+            Some(r @ ("fixed" | "free")) => Some(TopBeam {
+                rotation_fixed: r == "fixed",
+                force: [top_force[0], top_force[1]],
+                vertical_held,
+            }),
+            Some(o) => {
+                return Err(InputError::new_err(format!(
+                    "top.rotation must be \"fixed\" or \"free\", got {o:?}"
+                )))
+            }
+        };
+        let live = match live {
+            "horizontal_weight" => LiveLoad::HorizontalWeight,
+            "top_horizontal" => LiveLoad::TopHorizontal,
+            o => {
+                return Err(InputError::new_err(format!(
+                    "loads.live must be \"horizontal_weight\" or \"top_horizontal\", got {o:?}"
+                )))
+            }
+        };
+        let mut laws = JointLaws::default();
+        if let Some(j) = joints {
+            if let Some(d) = j.get_item("default")? {
+                laws.default = law_from(&d, JointLaw::default(), "joints")?;
+            }
+            for (k, v) in j.iter() {
+                let fam: String = k.extract()?;
+                let slot = match fam.as_str() {
+                    "default" => continue,
+                    "bed" => &mut laws.bed,
+                    "head" => &mut laws.head,
+                    "base" => &mut laws.base,
+                    "top" => &mut laws.top,
+                    o => return Err(InputError::new_err(format!(
+                        "joints: unknown family {o:?} (expected default, bed, head, base or top)"
+                    ))),
+                };
+                *slot = Some(law_from(&v, laws.default, &format!("joints.{fam}"))?);
+            }
+        }
+        let spec = ModelSpec {
+            blocks,
+            thickness,
+            density,
+            base,
+            top,
+            joints: laws,
+            gravity,
+            live,
+        };
+        // the GIL released (a million blocks take seconds), polling Ctrl-C in this thread
+        let mut raised = None;
+        let built = py.detach(|| {
+            guarded(|| {
+                Model::new_with(spec, &mut || match Python::attach(|py| py.check_signals()) {
+                    Ok(()) => true,
+                    Err(e) => {
+                        raised = Some(e);
+                        false
+                    }
+                })
+            })
+        });
+        if let Some(e) = raised {
+            return Err(e);
+        }
+        Ok(PyModel { inner: Arc::new(built?) })
+    }
+
+    /// Fix dof (0: u1 [m], 1: u2 [m], 2: phi [rad]) of a block at a prescribed value.
+    #[pyo3(signature = (block, dof, value=0.0))]
+    fn fix(&mut self, block: usize, dof: usize, value: f64) -> PyResult<()> {
+        Arc::make_mut(&mut self.inner).fix(block, dof, value).map_err(to_py)
+    }
+
+    #[getter]
+    fn n_blocks(&self) -> usize {
+        self.inner.n_wall()
+    }
+    #[getter]
+    fn n_interfaces(&self) -> usize {
+        self.inner.interfaces().len()
+    }
+    #[getter]
+    fn base_index(&self) -> Option<usize> {
+        self.inner.base()
+    }
+    #[getter]
+    fn top_index(&self) -> Option<usize> {
+        self.inner.top()
+    }
+    #[getter]
+    fn rects<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        rects_to_py(py, self.inner.rects())
+    }
+    #[getter]
+    fn weights<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.weight().to_vec().into_pyarray(py)
+    }
+    #[getter]
+    fn interface_blocks<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
+        let it = self.inner.interfaces();
+        let flat: Vec<i64> = it.iter().flat_map(|i| [i.a as i64, i.b as i64]).collect();
+        Array2::from_shape_vec((it.len(), 2), flat)
+            .unwrap()
+            .into_pyarray(py)
+    }
+    #[getter]
+    fn interface_geometry<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let it = self.inner.interfaces();
+        let flat: Vec<f64> = it
+            .iter()
+            .flat_map(|i| [i.c[0], i.c[1], i.n[0], i.n[1], i.l])
+            .collect();
+        Array2::from_shape_vec((it.len(), 5), flat)
+            .unwrap()
+            .into_pyarray(py)
+    }
+    #[getter]
+    fn interface_family(&self) -> Vec<&'static str> {
+        self.inner
+            .interfaces()
+            .iter()
+            .map(|i| i.family.name())
+            .collect()
+    }
+
+    /// Static incremental analysis (see _core.pyi). Releases the GIL; Ctrl-C stops it within a
+    /// step and raises KeyboardInterrupt with what was computed (status "failed", error
+    /// "interrupted by the user") as its `results`.
+    #[pyo3(signature = (control="load", steps=200, max_displacement=None, control_block=None, tolerance=1e-4, max_iterations=50, progress=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn solve_static(
+        &self,
+        py: Python<'_>,
+        control: &str,
+        steps: i64,
+        max_displacement: Option<f64>,
+        control_block: Option<usize>,
+        tolerance: f64,
+        max_iterations: i64,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Py<PyResults>> {
+        let control = match control {
+            "load" => Control::Load,
+            "displacement" => Control::Displacement {
+                max_displacement: max_displacement.unwrap_or(UNTIL_COLLAPSE_START),
+            },
+            o => {
+                return Err(InputError::new_err(format!(
+                    "analysis.control must be \"load\" or \"displacement\", got {o:?}"
+                )))
+            }
+        };
+        let opts = StaticOptions {
+            control,
+            until_collapse: max_displacement.is_none(),
+            steps: count("analysis.steps", steps, 1)?,
+            tolerance,
+            max_iterations: count("max_iterations", max_iterations, 1)?,
+            control_block,
+            ..StaticOptions::default()
+        };
+        let model = Arc::clone(&self.inner);
+        let run = Run::new(progress);
+        let res = run.execute(py, move |run| {
+            guarded(|| {
+                let mut monitor =
+                    |p: &static_solver::Progress| run.report(p.step, p.multiplier, p.displacement, p.fraction, p.poll);
+                static_solver::solve_with(&model, &opts, &mut monitor).map(|inner| PyResults { inner })
+            })
+        })?;
+        run.finish(py, res)
+    }
+
+    /// Limit analysis: the collapse multiplier as a linear program (see _core.pyi). Releases the
+    /// GIL; Ctrl-C stops it between interior-point iterations and raises KeyboardInterrupt whose
+    /// `results` has status "failed" and error "interrupted by the user" (nothing of the
+    /// unfinished program is kept).
+    /// Options left out (None) take the core's defaults (`LimitOptions::default()`).
+    #[pyo3(signature = (tolerance=None, max_iterations=None, max_sequence=None, progress=None))]
+    fn solve_limit(
+        &self,
+        py: Python<'_>,
+        tolerance: Option<f64>,
+        max_iterations: Option<i64>,
+        max_sequence: Option<i64>,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Py<PyResults>> {
+        let defaults = LimitOptions::default();
+        let opts = LimitOptions {
+            tolerance: tolerance.unwrap_or(defaults.tolerance),
+            max_iterations: max_iterations.map_or(Ok(defaults.max_iterations), |v| count("max_iterations", v, 1))?,
+            max_sequence: max_sequence.map_or(Ok(defaults.max_sequence), |v| count("max_sequence", v, 0))?,
+            ..defaults
+        };
+        let model = Arc::clone(&self.inner);
+        let run = Run::new(progress);
+        let start = Instant::now();
+        let res = run.execute(py, move |run| {
+            guarded(|| {
+                // the callback's step counts the interior-point iterations over all the programs
+                let mut count = 0usize;
+                let mut monitor = |p: &limit::LimitProgress| {
+                    count += 1;
+                    run.report(count, p.multiplier, f64::NAN, f64::NAN, false)
+                };
+                match limit::limit_analysis_with(&model, &opts, &mut monitor) {
+                    // stopped by Ctrl-C or by the callback: an unfinished program certifies
+                    // nothing, so the partial result holds no multiplier (attached to the
+                    // exception that stopped it)
+                    Err(Error::Interrupted) => Ok(interrupted_limit(&model, start)),
+                    r => r,
+                }
+                .map(|inner| PyResults { inner })
+            })
+        })?;
+        run.finish(py, res)
+    }
+
+    /// Quasi-static analysis with the explicit solver (see _core.pyi).
+    #[pyo3(signature = (control="load", steps=200, max_displacement=0.002, control_block=None, tolerance=1e-3, unbalanced_ratio=1e-5, damping="local", damping_coefficient=0.8, time_step=None, safety=0.8, threads=0, progress=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn solve_dynamic(
+        &self,
+        py: Python<'_>,
+        control: &str,
+        steps: i64,
+        max_displacement: f64,
+        control_block: Option<usize>,
+        tolerance: f64,
+        unbalanced_ratio: f64,
+        damping: &str,
+        damping_coefficient: f64,
+        time_step: Option<f64>,
+        safety: f64,
+        threads: i64,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Py<PyResults>> {
+        let control = match control {
+            "load" => QsControl::Load,
+            "displacement" => QsControl::Displacement { max_displacement },
+            o => return Err(InputError::new_err(format!("analysis.control must be \"load\" or \"displacement\", got {o:?}"))),
+        };
+        if steps < 1 {
+            return Err(InputError::new_err(format!("analysis.steps must be at least 1, got {steps}")));
+        }
+        if threads < 0 {
+            return Err(InputError::new_err(format!("threads must be >= 0, got {threads}")));
+        }
+        let opts = ExplicitOptions {
+            control,
+            steps: steps as usize,
+            tolerance,
+            unbalanced_ratio,
+            damping: damping_from(damping, damping_coefficient)?,
+            time_step,
+            safety,
+            threads: threads as usize,
+            control_block,
+            ..ExplicitOptions::default()
+        };
+        let model = Arc::clone(&self.inner);
+        let run = Run::new(progress);
+        let res = run.execute(py, move |run| {
+            guarded(|| {
+                let mut monitor =
+                    |p: &explicit::Progress| run.report(p.step, p.multiplier, p.displacement, p.fraction, false);
+                explicit::solve_with(&model, &opts, &mut monitor).map(|inner| PyResults { inner })
+            })
+        })?;
+        run.finish(py, res)
+    }
+
+    /// Time history with the explicit solver (see _core.pyi).
+    #[pyo3(signature = (duration, time_step=None, safety=0.8, damping="none", damping_coefficient=0.0, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=0.0, record_every=1, large_rotations=true, threads=0, progress=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn simulate(
+        &self,
+        py: Python<'_>,
+        duration: f64,
+        time_step: Option<f64>,
+        safety: f64,
+        damping: &str,
+        damping_coefficient: f64,
+        initial_displacements: Option<&Bound<'_, PyAny>>,
+        initial_velocities: Option<&Bound<'_, PyAny>>,
+        base_acceleration: Option<&Bound<'_, PyAny>>,
+        live_multiplier: f64,
+        record_every: i64,
+        large_rotations: bool,
+        threads: i64,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Py<PyTimeHistory>> {
+        if record_every < 1 {
+            return Err(InputError::new_err(format!("record_every must be at least 1, got {record_every}")));
+        }
+        if threads < 0 {
+            return Err(InputError::new_err(format!("threads must be >= 0, got {threads}")));
+        }
+        let base_acceleration = match base_acceleration.filter(|o| !o.is_none()) {
+            None => None,
+            Some(o) => {
+                let (t, a): (Vec<f64>, Vec<f64>) = o.extract().map_err(|_| {
+                    InputError::new_err("base_acceleration: expected (times, accelerations), two sequences of numbers")
+                })?;
+                Some((t, a))
+            }
+        };
+        let opts = DynamicOptions {
+            duration,
+            time_step,
+            safety,
+            damping: damping_from(damping, damping_coefficient)?,
+            initial_displacement: rows3_from(initial_displacements, "initial_displacements")?,
+            initial_velocity: rows3_from(initial_velocities, "initial_velocities")?,
+            base_acceleration,
+            live_multiplier,
+            record_every: record_every as usize,
+            large_rotations,
+            threads: threads as usize,
+        };
+        let model = Arc::clone(&self.inner);
+        let run = Run::new(progress);
+        let h = run.execute(py, move |run| {
+            guarded(|| {
+                let mut monitor =
+                    |p: &explicit::Progress| run.report(p.step, p.multiplier, p.displacement, p.fraction, false);
+                explicit::simulate_with(&model, &opts, &mut monitor).map(|inner| PyTimeHistory { inner })
+            })
+        })?;
+        run.finish(py, h)
+    }
+
+    /// The stability limit of the explicit solver's time step [s].
+    fn critical_time_step(&self) -> f64 {
+        explicit::critical_time_step(&self.inner)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Model({} blocks, {} interfaces)",
+            self.inner.n_wall(),
+            self.inner.interfaces().len()
+        )
+    }
+}
