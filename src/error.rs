@@ -71,12 +71,12 @@ pub(crate) fn check_steps(steps: usize) -> Result<()> {
     Ok(())
 }
 
-/// Memory a model takes per block (rectangles, interfaces, loads) [bytes], measured on
+/// Memory a model takes per block (rectangles, interfaces, loads), in bytes, measured on
 /// running-bond walls (about 3 interfaces a block).
 pub const MODEL_BYTES_PER_BLOCK: f64 = 1.2e3;
 
-/// Memory an analysis takes per block (solver state, sparse matrix and its factorization)
-/// [bytes], measured on running-bond walls: an order of magnitude for messages and checks.
+/// Memory an analysis takes per block (solver state, sparse matrix and its factorization),
+/// in bytes, measured on running-bond walls: an order of magnitude for messages and checks.
 pub const ANALYSIS_BYTES_PER_BLOCK: f64 = 1.0e4;
 
 /// A size in bytes for people ("2.4 GB").

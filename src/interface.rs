@@ -37,11 +37,11 @@ impl Family {
 pub struct Interface {
     pub a: usize,
     pub b: usize,
-    /// Centroid of the shared segment [m].
+    /// Centroid of the shared segment \[m\].
     pub c: [f64; 2],
     /// Unit normal from a to b: (0, 1) for a bed joint, (1, 0) for a head joint.
     pub n: [f64; 2],
-    /// Length of the shared segment [m].
+    /// Length of the shared segment \[m\].
     pub l: f64,
     pub family: Family,
     /// `B` (3 x 6, row-major): jumps (dN, dT, dphi) from the dof (u1, u2, phi) of a then b.
@@ -167,7 +167,7 @@ pub struct LargeKinematics {
     pub rb: [f64; 2],
     /// cos and sin of the relative rotation.
     pub rel: [f64; 2],
-    /// Eccentricity of the slip point along t [m].
+    /// Eccentricity of the slip point along t \[m\].
     pub e: f64,
 }
 

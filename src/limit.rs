@@ -22,7 +22,7 @@
 //! variables (the four rays of two contact points, and the segment between the domain's two
 //! vertices for joints with strength). Each iteration solves the normal equations
 //! `A Theta A^T dy = r`, whose matrix is assembled exactly as the stiffness matrix is (one 3 x 3
-//! block per interface, on the same pattern) and factorized by [`crate::linalg`] (LDL^T on the
+//! block per interface, on the same pattern) and factorized by the crate's `linalg` module (LDL^T on the
 //! sparse Cholesky's symbolic analysis, which is done once), each solve refined twice on the
 //! exact operator. lambda, a free variable, borders the system: two solves with one
 //! factorization. The dual variables of the equilibrium rows are the block velocities of the

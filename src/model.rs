@@ -1,7 +1,7 @@
 //! The model: blocks, interfaces, joint laws, supports and loads.
 //!
 //! Block numbering: wall blocks `0..n_wall` in the order given, then the base (if any), then
-//! the top beam (if any). Each block has 3 dof at its centroid: u1, u2 [m], phi [rad]; the global
+//! the top beam (if any). Each block has 3 dof at its centroid: u1, u2 \[m\], phi \[rad\]; the global
 //! dof index of dof k of block i is `3 i + k`.
 //!
 //! ```
@@ -62,7 +62,7 @@ pub enum LiveLoad {
 pub struct TopBeam {
     /// Whether the beam's rotation is fixed (kept horizontal).
     pub rotation_fixed: bool,
-    /// Dead force [Fx, Fy] on the beam [N].
+    /// Dead force [Fx, Fy] on the beam \[N\].
     pub force: [f64; 2],
     /// Whether the beam's vertical position is held once the dead loads are on (the vertical
     /// force on it is then a reaction that changes with the live load); false: the vertical
@@ -75,7 +75,7 @@ pub struct TopBeam {
 pub struct ModelSpec {
     /// Wall blocks.
     pub blocks: Vec<Rect>,
-    /// Out-of-plane thickness s [m].
+    /// Out-of-plane thickness s \[m\].
     pub thickness: f64,
     /// Density [kg/m3].
     pub density: f64,
@@ -473,7 +473,7 @@ impl Model {
     pub fn rects(&self) -> &[Rect] {
         &self.rects
     }
-    /// The size of the model [m]: the larger side of the box around every block (base and top
+    /// The size of the model \[m\]: the larger side of the box around every block (base and top
     /// beam included). It does not depend on where the wall stands.
     pub fn size(&self) -> f64 {
         let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
@@ -503,7 +503,7 @@ impl Model {
     pub fn live(&self) -> LiveLoad {
         self.live
     }
-    /// Mass of each block [kg].
+    /// Mass of each block \[kg\].
     pub fn mass(&self) -> &[f64] {
         &self.mass
     }
@@ -511,7 +511,7 @@ impl Model {
     pub fn inertia(&self) -> &[f64] {
         &self.inertia
     }
-    /// Weight of each block [N] (0 for the base and the top beam).
+    /// Weight of each block \[N\] (0 for the base and the top beam).
     pub fn weight(&self) -> &[f64] {
         &self.weight
     }
@@ -545,7 +545,7 @@ impl Model {
     pub fn prescribed(&self) -> &[f64] {
         &self.prescribed
     }
-    /// Dead loads (3 per block: Fx, Fy [N], moment [N m]).
+    /// Dead loads (3 per block: Fx, Fy \[N\], moment [N m]).
     pub fn dead_load(&self) -> &[f64] {
         &self.f_dead
     }

@@ -66,15 +66,15 @@ pub struct Results {
     pub last_equilibrium: f64,
     /// lambda at each converged step, from the dead-load state (lambda = 0) on.
     pub curve_multiplier: Vec<f64>,
-    /// Horizontal displacement of the control block's centroid [m] at each converged step.
+    /// Horizontal displacement of the control block's centroid \[m\] at each converged step.
     pub curve_displacement: Vec<f64>,
     pub control_block: usize,
-    /// (u1 [m], u2 [m], phi [rad]) of every block at the last converged step.
+    /// (u1 \[m\], u2 \[m\], phi \[rad\]) of every block at the last converged step.
     pub displacements: Vec<[f64; 3]>,
     /// The collapse mechanism (the last increment), scaled so that the largest block
     /// translation is 1.
     pub mechanism: Vec<[f64; 3]>,
-    /// (N [N], T [N], M [N m]) of every interface at the last converged step; N > 0 in tension.
+    /// (N \[N\], T \[N\], M [N m]) of every interface at the last converged step; N > 0 in tension.
     pub interface_forces: Vec<[f64; 3]>,
     /// OPEN | SLIDING | ROCKING bits of every interface (0: elastic).
     pub interface_states: Vec<u8>,

@@ -68,7 +68,7 @@ pub struct ExplicitOptions {
     /// A level is settled when |unbalanced forces| <= ratio * |applied forces|.
     pub unbalanced_ratio: f64,
     pub damping: Damping,
-    /// Time step [s]; None: automatic.
+    /// Time step \[s\]; None: automatic.
     pub time_step: Option<f64>,
     /// Fraction of the stability limit used by the automatic time step.
     pub safety: f64,
@@ -99,7 +99,7 @@ impl Default for ExplicitOptions {
 /// Options of a dynamic time history.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DynamicOptions {
-    /// Duration [s].
+    /// Duration \[s\].
     pub duration: f64,
     pub time_step: Option<f64>,
     pub safety: f64,
@@ -108,7 +108,7 @@ pub struct DynamicOptions {
     pub initial_displacement: Option<Vec<[f64; 3]>>,
     /// Initial velocities of every block; None: zero.
     pub initial_velocity: Option<Vec<[f64; 3]>>,
-    /// Horizontal base acceleration history: times [s] and accelerations [m/s2], linear between
+    /// Horizontal base acceleration history: times \[s\] and accelerations [m/s2], linear between
     /// samples, zero outside.
     pub base_acceleration: Option<(Vec<f64>, Vec<f64>)>,
     /// Live load multiplier held constant during the run.
@@ -152,13 +152,13 @@ pub struct TimeHistory {
     pub displacements: Vec<[f64; 3]>,
     /// Velocities, laid out as `displacements`.
     pub velocities: Vec<[f64; 3]>,
-    /// Kinetic energy [J] at each recorded time.
+    /// Kinetic energy \[J\] at each recorded time.
     pub kinetic_energy: Vec<f64>,
-    /// Elastic energy stored in the joints [J].
+    /// Elastic energy stored in the joints \[J\].
     pub elastic_energy: Vec<f64>,
-    /// Work done on the blocks by the external loads (dead, live, base inertia) [J].
+    /// Work done on the blocks by the external loads (dead, live, base inertia) \[J\].
     pub external_work: Vec<f64>,
-    /// Energy dissipated by damping and joint plasticity [J].
+    /// Energy dissipated by damping and joint plasticity \[J\].
     pub dissipated: Vec<f64>,
     pub steps: usize,
     pub elapsed_s: f64,

@@ -17,7 +17,7 @@ pub(super) struct Faces {
 }
 
 impl Faces {
-    /// The faces with cohesion `c` and tensile strength `ft` [Pa].
+    /// The faces with cohesion `c` and tensile strength `ft` \[Pa\].
     #[inline(always)]
     pub(super) fn new(law: &JointLaw, sec: &Section, c: f64, ft: f64) -> Self {
         let b = [c * sec.area, c * sec.area, ft * sec.area, ft * sec.area];

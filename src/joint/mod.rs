@@ -54,9 +54,9 @@ pub struct JointLaw {
     pub shear_stiffness: f64,
     /// mu = tan(phi) [-].
     pub friction: f64,
-    /// c [Pa]; lost at the first failure of the joint.
+    /// c \[Pa\]; lost at the first failure of the joint.
     pub cohesion: f64,
-    /// ft [Pa]; lost at the first failure of the joint.
+    /// ft \[Pa\]; lost at the first failure of the joint.
     pub tensile_strength: f64,
     /// tan(psi) [-], between 0 and `friction`; equal to `friction` means associative flow.
     pub dilatancy: f64,
@@ -159,7 +159,7 @@ impl JointLaw {
         self.is_strong() && self.fracture_energy_tension > 0.0 && self.fracture_energy_shear > 0.0
     }
 
-    /// Current (cohesion [Pa], tensile strength [Pa]) of a joint with history `state`.
+    /// Current (cohesion \[Pa\], tensile strength \[Pa\]) of a joint with history `state`.
     pub fn strengths(&self, state: &JointState) -> (f64, f64) {
         if !self.is_strong() || (state.broken && !self.is_softening()) {
             (0.0, 0.0)
@@ -176,11 +176,11 @@ impl JointLaw {
 /// Geometric properties of an interface section.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Section {
-    /// A = l s [m2]
+    /// A = l s \[m2\]
     pub area: f64,
-    /// I = s l^3 / 12 [m4]
+    /// I = s l^3 / 12 \[m4\]
     pub inertia: f64,
-    /// l [m]
+    /// l \[m\]
     pub length: f64,
 }
 
@@ -203,17 +203,17 @@ pub struct JointState {
     /// The joint has lost its cohesion and tensile strength (at its first failure if brittle;
     /// once both have softened below 0.1% of their initial values otherwise).
     pub broken: bool,
-    /// Largest plastic opening (gap) reached on the cut-off and rocking faces [m] (drives the
+    /// Largest plastic opening (gap) reached on the cut-off and rocking faces \[m\] (drives the
     /// softening of the tensile strength).
     pub opening: f64,
-    /// Accumulated plastic slip [m] (drives softening).
+    /// Accumulated plastic slip \[m\] (drives softening).
     pub slip: f64,
 }
 
 /// What the return mapping gives back.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Response {
-    /// (N [N], T [N], M [N m])
+    /// (N \[N\], T \[N\], M [N m])
     pub force: [f64; 3],
     /// The updated history (to be committed once the step has converged).
     pub state: JointState,

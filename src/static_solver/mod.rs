@@ -45,7 +45,7 @@ use std::time::Instant;
 pub enum Control {
     /// Raise lambda until collapse.
     Load,
-    /// Drive the horizontal displacement of the control block by `max_displacement` [m].
+    /// Drive the horizontal displacement of the control block by `max_displacement` \[m\].
     Displacement { max_displacement: f64 },
 }
 
@@ -125,7 +125,7 @@ const RISING: f64 = 10.0;
 /// small-displacement limit, lambda still rising, ends at that limit (not a collapse).
 const NEAR_LIMIT: f64 = 0.25;
 
-/// The shortest wall time between two polls of the monitor within a step [s].
+/// The shortest wall time between two polls of the monitor within a step \[s\].
 const POLL_INTERVAL: f64 = 0.1;
 
 /// Runs a static analysis. Bad options or an unsupported model are an `Err`; a solver failure

@@ -395,7 +395,7 @@ impl<'a, 'm> Solver<'a, 'm> {
         }
     }
 
-    /// The largest block translation component of `u` [m].
+    /// The largest block translation component of `u` \[m\].
     pub(super) fn max_translation(&self, u: &[f64]) -> f64 {
         (0..self.model.n_blocks())
             .map(|i| u[3 * i].abs().max(u[3 * i + 1].abs()))
