@@ -9,6 +9,7 @@
 //! - [`static_solver`]: the static incremental solver (load or displacement control);
 //! - [`limit`]: limit analysis (the collapse multiplier as a linear program, with its certificate);
 //! - [`explicit`]: the explicit (molecular dynamics) solver: quasi-static analyses and time histories;
+//! - [`analysis`]: what the incremental analyses share (how the load is driven, progress);
 //! - [`results`]: what an analysis returns; [`error`]: the error type.
 //!
 //! Units are SI throughout: m, N, Pa, kg, s.
@@ -32,6 +33,7 @@
 // negated comparison is meant
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod analysis;
 pub mod error;
 pub mod explicit;
 pub mod geometry;

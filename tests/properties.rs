@@ -17,7 +17,7 @@
 
 mod common;
 
-use masonry_dem::explicit::{self, ExplicitOptions, QsControl};
+use masonry_dem::explicit::{self, ExplicitOptions};
 use masonry_dem::geometry::{running_bond, FirstCourse, Rect, RunningBond};
 use masonry_dem::joint::{admissible, return_map, JointLaw, JointState, Section, SLIDING};
 use masonry_dem::model::{JointLaws, Model, ModelSpec, TopBeam};
@@ -607,7 +607,7 @@ fn e_same_input_same_bits_explicit_one_thread() {
             threads: 1,
             steps: 20,
             tolerance: 1e-2,
-            control: if disp { QsControl::Displacement { max_displacement: 1e-3 } } else { QsControl::Load },
+            control: if disp { Control::Displacement { max_displacement: 1e-3 } } else { Control::Load },
             ..ExplicitOptions::default()
         };
         let a = explicit::solve(&model, &opts).unwrap();

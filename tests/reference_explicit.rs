@@ -63,9 +63,9 @@ fn ferris_wall2_non_associative() {
 
 #[test]
 fn displacement_control_of_wall1_peaks_at_the_collapse_multiplier() {
-    use masonry_dem::explicit::QsControl;
+    use masonry_dem::explicit::Control;
     let m = ferris(6, dry(0.65, 0.65, 1e10));
-    let opts = ExplicitOptions { control: QsControl::Displacement { max_displacement: 0.002 }, steps: 40, threads: 1, ..Default::default() };
+    let opts = ExplicitOptions { control: Control::Displacement { max_displacement: 0.002 }, steps: 40, threads: 1, ..Default::default() };
     let r = solve(&m, &opts).unwrap();
     assert_ne!(r.status, Status::Failed, "{:?}", r.error);
     assert_close(r.collapse_multiplier, 0.6429, 0.02, "wall 1 peak, explicit displacement control");

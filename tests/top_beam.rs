@@ -89,9 +89,9 @@ fn a_held_beam_takes_the_dilation_of_a_sliding_joint() {
 
 #[test]
 fn the_explicit_solver_holds_the_beam_too() {
-    use masonry_dem::explicit::{solve as solve_explicit, ExplicitOptions, QsControl};
+    use masonry_dem::explicit::{solve as solve_explicit, ExplicitOptions};
     let m = dilatant(true);
-    let opts = ExplicitOptions { control: QsControl::Displacement { max_displacement: 2e-5 }, steps: 20, ..Default::default() };
+    let opts = ExplicitOptions { control: Control::Displacement { max_displacement: 2e-5 }, steps: 20, ..Default::default() };
     let r = solve_explicit(&m, &opts).unwrap();
     assert_ne!(r.status, Status::Failed, "{:?}", r.error);
     let t = m.top().unwrap();

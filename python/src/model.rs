@@ -293,8 +293,8 @@ impl PyModel {
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Py<PyResults>> {
         let control = match control {
-            "load" => QsControl::Load,
-            "displacement" => QsControl::Displacement { max_displacement },
+            "load" => Control::Load,
+            "displacement" => Control::Displacement { max_displacement },
             o => return Err(InputError::new_err(format!("analysis.control must be \"load\" or \"displacement\", got {o:?}"))),
         };
         if steps < 1 {

@@ -30,6 +30,8 @@ use crate::joint::{return_map_forces_prepared, return_map_forces_warm, JointLaw,
 use crate::model::{LiveLoad, Model};
 use crate::results::{Results, Status};
 use rayon::prelude::*;
+
+pub use crate::analysis::{Control, Progress};
 use std::time::Instant;
 
 /// Damping of the explicit solver.
@@ -42,12 +44,6 @@ pub enum Damping {
     Viscous(f64),
 }
 
-/// How the quasi-static analysis is driven.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum QsControl {
-    Load,
-    Displacement { max_displacement: f64 },
-}
 
 /// The largest number of threads of the interface loop (`analysis.threads`).
 pub const MAX_THREADS: usize = 1024;
@@ -60,7 +56,7 @@ pub const MAX_RECORDED_VALUES: usize = 250_000_000;
 /// Options of the quasi-static explicit analysis.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ExplicitOptions {
-    pub control: QsControl,
+    pub control: Control,
     /// Load levels or displacement stages (a hint, as for the static solver).
     pub steps: usize,
     /// Relative width of the bracket on the collapse multiplier.
@@ -82,7 +78,7 @@ pub struct ExplicitOptions {
 impl Default for ExplicitOptions {
     fn default() -> Self {
         ExplicitOptions {
-            control: QsControl::Load,
+            control: Control::Load,
             steps: 200,
             tolerance: 1e-3,
             unbalanced_ratio: 1e-5,
@@ -187,15 +183,6 @@ fn monitor_due(k: usize, last: &mut Instant) -> bool {
     }
 }
 
-/// Progress reported to a monitor; it returns false to stop the run.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Progress {
-    pub step: usize,
-    pub multiplier: f64,
-    pub displacement: f64,
-    /// Fraction of the run done (NaN if unknown).
-    pub fraction: f64,
-}
 
 /// The stable time step of the model: `2 / omega_max` with a Gershgorin bound on `omega_max`.
 pub fn critical_time_step(model: &Model) -> f64 {

@@ -46,7 +46,7 @@ pub(crate) fn relax_dead_state(
             }
         }
         if monitor_due(k, &mut last) {
-            let p = Progress { step: k + 1, multiplier: 0.0, displacement: f64::NAN, fraction: f64::NAN };
+            let p = Progress { step: k + 1, multiplier: 0.0, displacement: f64::NAN, fraction: f64::NAN, poll: false };
             if !monitor(&p) {
                 return Err(Error::Interrupted);
             }
@@ -128,7 +128,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
         return Err(Error::input(format!("control block {control_block} does not exist (the model has {nb} blocks)")));
     }
     let cd = 3 * control_block;
-    if let QsControl::Displacement { max_displacement } = opts.control {
+    if let Control::Displacement { max_displacement } = opts.control {
         if !(max_displacement.is_finite() && max_displacement != 0.0) {
             return Err(Error::input(format!("analysis.max_displacement must be a finite non-zero length, got {max_displacement}")));
         }
@@ -180,7 +180,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
                 }
             }
             if monitor_due(k, &mut last) {
-                let p = Progress { step: s.steps, multiplier: *lam, displacement: s.u[cd], fraction: f64::NAN };
+                let p = Progress { step: s.steps, multiplier: *lam, displacement: s.u[cd], fraction: f64::NAN, poll: false };
                 if !monitor(&p) {
                     return Level::Stopped;
                 }
@@ -219,7 +219,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
         s.a.fill(0.0);
     };
     match opts.control {
-        QsControl::Load => {
+        Control::Load => {
             let scale = match model.live() {
                 LiveLoad::HorizontalWeight => 1.0,
                 LiveLoad::TopHorizontal => (model.weight().iter().sum::<f64>() + fd.iter().map(|x| x.abs()).sum::<f64>()).max(1.0),
@@ -238,7 +238,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
                         s.v.fill(0.0);
                         curve_l.push(l);
                         curve_u.push(s.u[cd]);
-                        let p = Progress { step: s.steps, multiplier: l, displacement: s.u[cd], fraction: f64::NAN };
+                        let p = Progress { step: s.steps, multiplier: l, displacement: s.u[cd], fraction: f64::NAN, poll: false };
                         if !monitor(&p) {
                             return Ok(finish(model, s, Status::Failed, Some(Error::Interrupted), curve_l, curve_u, None, control_block, start));
                         }
@@ -265,7 +265,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
             let e = Error::Convergence(format!("no collapse bracket after {max_levels} load levels"));
             Ok(finish(model, s, Status::Failed, Some(e), curve_l, curve_u, mechanism, control_block, start))
         }
-        QsControl::Displacement { max_displacement } => {
+        Control::Displacement { max_displacement } => {
             let u_start = s.u[cd];
             let stages = opts.steps;
             let mut prev = save(&s);
@@ -297,7 +297,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
                 prev = save(&s);
                 curve_l.push(lam);
                 curve_u.push(s.u[cd]);
-                let p = Progress { step: s.steps, multiplier: lam, displacement: s.u[cd], fraction: k as f64 / stages as f64 };
+                let p = Progress { step: s.steps, multiplier: lam, displacement: s.u[cd], fraction: k as f64 / stages as f64, poll: false };
                 if !monitor(&p) {
                     return Ok(finish(model, s, Status::Failed, Some(Error::Interrupted), curve_l, curve_u, Some(mech), control_block, start));
                 }

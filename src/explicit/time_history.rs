@@ -165,7 +165,7 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
             record(&mut h, &s, t, work);
         }
         if monitor_due(n - 1, &mut last) {
-            let p = Progress { step: n, multiplier: lam, displacement: f64::NAN, fraction: n as f64 / n_steps as f64 };
+            let p = Progress { step: n, multiplier: lam, displacement: f64::NAN, fraction: n as f64 / n_steps as f64, poll: false };
             if !monitor(&p) {
                 h.status = Status::Failed;
                 h.error = Some(Error::Interrupted.to_string());

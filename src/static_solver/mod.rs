@@ -40,14 +40,8 @@ use crate::model::{LiveLoad, Model};
 use crate::results::{Results, Status};
 use std::time::Instant;
 
-/// How the load is driven.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Control {
-    /// Raise lambda until collapse.
-    Load,
-    /// Drive the horizontal displacement of the control block by `max_displacement` \[m\].
-    Displacement { max_displacement: f64 },
-}
+pub use crate::analysis::{Control, Progress};
+
 
 /// Options of the static solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -88,19 +82,6 @@ impl Default for StaticOptions {
     }
 }
 
-/// Reported after each converged step; the callback returns `false` to stop the run.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Progress {
-    pub step: usize,
-    pub multiplier: f64,
-    pub displacement: f64,
-    /// Fraction of the requested path done, in [0, 1] (displacement control), or NaN.
-    pub fraction: f64,
-    /// True for a poll during a long computation (at most every 0.1 s, between Newton
-    /// iterations), which repeats the figures of the last converged step: a display may skip
-    /// it; returning false stops the run all the same.
-    pub poll: bool,
-}
 
 /// Newton at a fixed lambda stops when the residual has not fallen for this many iterations in
 /// a row. Each such iteration tries all 12 step lengths of the line search. With 5, the probe
