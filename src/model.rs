@@ -334,9 +334,7 @@ impl Model {
     /// alone would move the wall out of the small-displacement model.
     fn check_scales(&self) -> Result<()> {
         for (k, (it, sec)) in self.interfaces.iter().zip(&self.sections).enumerate() {
-            let l = self.laws.of(it.family);
-            let (kn, kt, kr) = (l.normal_stiffness * sec.area, l.shear_stiffness * sec.area, l.normal_stiffness * sec.inertia);
-            if !(kn.is_finite() && kt.is_finite() && kr.is_finite()) {
+            if !crate::joint::stiffness(self.laws.of(it.family), sec).iter().all(|k| k.is_finite()) {
                 return Err(Error::input(format!(
                     "interface {k} ({} / {}): its stiffness ({}.normal_stiffness or shear_stiffness times the area, thickness x length = {:e} m2) is not finite: check geometry.thickness and the joints' stiffness",
                     self.block_name(it.a),

@@ -209,7 +209,7 @@ impl<'a> Integrator<'a> {
     /// displacements `u` and joint histories `states` of a state past the dead loads, with the
     /// dofs held after them held. The static solver's explicit by-products start from it.
     pub(super) fn damped_from(model: &'a Model, u: &[f64], states: &[JointState]) -> Result<Self, Error> {
-        let mut s = Integrator::new(model, None, 0.8, Damping::Local(0.8), 1)?;
+        let mut s = Integrator::new(model, None, SAFETY, Damping::Local(LOCAL_DAMPING), 1)?;
         s.u.copy_from_slice(u);
         s.set_states(states);
         s.hold();
@@ -465,11 +465,8 @@ impl<'a> Integrator<'a> {
     pub(super) fn elastic_energy(&self) -> f64 {
         let mut e = 0.0;
         for (k, f) in self.forces.iter().enumerate() {
-            let (law, s) = (self.law(k), &self.model.sections()[k]);
-            e += 0.5
-                * (f[0] * f[0] / (law.normal_stiffness * s.area)
-                    + f[1] * f[1] / (law.shear_stiffness * s.area)
-                    + f[2] * f[2] / (law.normal_stiffness * s.inertia));
+            let d = crate::joint::stiffness(self.law(k), &self.model.sections()[k]);
+            e += 0.5 * (f[0] * f[0] / d[0] + f[1] * f[1] / d[1] + f[2] * f[2] / d[2]);
         }
         e
     }

@@ -45,6 +45,12 @@ pub enum Damping {
 }
 
 
+/// The default fraction of the stability limit taken as the time step.
+pub const SAFETY: f64 = 0.8;
+
+/// The default coefficient of local damping (alpha) of quasi-static runs and relaxations.
+pub const LOCAL_DAMPING: f64 = 0.8;
+
 /// The largest number of threads of the interface loop (`analysis.threads`).
 pub const MAX_THREADS: usize = 1024;
 /// The largest number of time steps of one time history ([`simulate`]).
@@ -82,9 +88,9 @@ impl Default for ExplicitOptions {
             steps: 200,
             tolerance: 1e-3,
             unbalanced_ratio: 1e-5,
-            damping: Damping::Local(0.8),
+            damping: Damping::Local(LOCAL_DAMPING),
             time_step: None,
-            safety: 0.8,
+            safety: SAFETY,
             max_steps_per_level: 200_000,
             threads: 0,
             control_block: None,
@@ -121,7 +127,7 @@ impl Default for DynamicOptions {
         DynamicOptions {
             duration: 1.0,
             time_step: None,
-            safety: 0.8,
+            safety: SAFETY,
             damping: Damping::None,
             initial_displacement: None,
             initial_velocity: None,
@@ -191,7 +197,7 @@ pub fn critical_time_step(model: &Model) -> f64 {
     for (k, it) in model.interfaces().iter().enumerate() {
         let law = model.law(k);
         let s = &model.sections()[k];
-        let d = [law.normal_stiffness * s.area, law.shear_stiffness * s.area, law.normal_stiffness * s.inertia];
+        let d = crate::joint::stiffness(law, s);
         let dofs = it.dofs();
         let b = &it.b_mat;
         for i in 0..6 {

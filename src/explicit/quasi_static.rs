@@ -21,7 +21,7 @@ pub(crate) fn relax_dead_state(
     model: &Model,
     monitor: &mut dyn FnMut(&Progress) -> bool,
 ) -> Result<(Vec<f64>, Vec<JointState>), Error> {
-    let mut s = Integrator::new(model, None, 0.8, Damping::Local(0.8), 1)?;
+    let mut s = Integrator::new(model, None, SAFETY, Damping::Local(LOCAL_DAMPING), 1)?;
     let fd = model.dead_load().to_vec();
     let mut set_ext = |f: &mut [f64], _: &[f64]| f.copy_from_slice(&fd);
     let limit = 1e-2 * model.size();

@@ -56,9 +56,10 @@ pub(super) fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 // Active sets tried, smallest first: single faces, then edges, then corners
 // (1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14; bit j: face j), in `map`.
 
-/// D = diag(kN A, kT A, kN I).
+/// The elastic stiffness of an interface, `D = diag(kN A, kT A, kN I)` (its diagonal): the one
+/// place it is written, for the joint law and every solver.
 #[inline(always)]
-pub(super) fn stiffness(law: &JointLaw, sec: &Section) -> [f64; 3] {
+pub fn stiffness(law: &JointLaw, sec: &Section) -> [f64; 3] {
     [law.normal_stiffness * sec.area, law.shear_stiffness * sec.area, law.normal_stiffness * sec.inertia]
 }
 
