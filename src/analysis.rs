@@ -1,6 +1,11 @@
 //! What the incremental analyses share: how the load is driven and what a run reports to its
 //! monitor.
 
+/// The default `max_displacement` of displacement control \[m\]: the path of the explicit
+/// solver, and the first stretch of the static solver's when it goes on until collapse
+/// (`StaticOptions::until_collapse`).
+pub const DEFAULT_MAX_DISPLACEMENT: f64 = 0.002;
+
 /// How the load of a quasi-static analysis (static or explicit) is driven.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Control {

@@ -110,14 +110,17 @@ class Model:
     def solve_static(
         self,
         control: Literal["load", "displacement"] = "load",
-        steps: int = 200,
+        steps: Optional[int] = None,
         max_displacement: Optional[float] = None,
         control_block: Optional[int] = None,
-        tolerance: float = 1e-4,
-        max_iterations: int = 50,
+        tolerance: Optional[float] = None,
+        max_iterations: Optional[int] = None,
         progress: Optional[Callable[[int, float, float, float], None]] = None,
     ) -> "Results":
         """Static incremental analysis (Newton with the consistent tangent).
+
+        Options left out (None) take the core's defaults: steps 200, tolerance 1e-4,
+        max_iterations 50 (Newton iterations before a step is cut).
 
         control="load": raise lambda until collapse, following the equilibrium path in steps of
         the live load's work; the collapse multiplier is the peak or the plateau of lambda, to
@@ -144,20 +147,24 @@ class Model:
     def solve_dynamic(
         self,
         control: Literal["load", "displacement"] = "load",
-        steps: int = 200,
-        max_displacement: float = 0.002,
+        steps: Optional[int] = None,
+        max_displacement: Optional[float] = None,
         control_block: Optional[int] = None,
-        tolerance: float = 1e-3,
-        unbalanced_ratio: float = 1e-5,
-        damping: Literal["local", "viscous", "none"] = "local",
-        damping_coefficient: float = 0.8,
+        tolerance: Optional[float] = None,
+        unbalanced_ratio: Optional[float] = None,
+        damping: Optional[Literal["local", "viscous", "none"]] = None,
+        damping_coefficient: Optional[float] = None,
         time_step: Optional[float] = None,
-        safety: float = 0.8,
-        threads: int = 0,
+        safety: Optional[float] = None,
+        threads: Optional[int] = None,
         progress: Optional[Callable[[int, float, float, float], None]] = None,
     ) -> "Results":
         """Quasi-static analysis with the explicit (molecular dynamics) solver; the same Results
         as solve_static, with method "dynamic" and `iterations` = time steps.
+
+        Options left out (None) take the core's defaults: steps 200, max_displacement 0.002 m,
+        tolerance 1e-3, unbalanced_ratio 1e-5, damping "local" with coefficient 0.8, safety 0.8,
+        threads 0 (all cores).
 
         control="load": each load level is relaxed until |unbalanced| <= unbalanced_ratio *
         |applied|; the collapse multiplier is bracketed to `tolerance`. control="displacement":
@@ -204,19 +211,23 @@ class Model:
         self,
         duration: float,
         time_step: Optional[float] = None,
-        safety: float = 0.8,
-        damping: Literal["local", "viscous", "none"] = "none",
-        damping_coefficient: float = 0.0,
+        safety: Optional[float] = None,
+        damping: Optional[Literal["local", "viscous", "none"]] = None,
+        damping_coefficient: Optional[float] = None,
         initial_displacements: Optional[npt.ArrayLike] = None,
         initial_velocities: Optional[npt.ArrayLike] = None,
         base_acceleration: Optional[tuple[npt.ArrayLike, npt.ArrayLike]] = None,
-        live_multiplier: float = 0.0,
-        record_every: int = 1,
-        large_rotations: bool = True,
-        threads: int = 0,
+        live_multiplier: Optional[float] = None,
+        record_every: Optional[int] = None,
+        large_rotations: Optional[bool] = None,
+        threads: Optional[int] = None,
         progress: Optional[Callable[[int, float, float, float], None]] = None,
     ) -> "TimeHistory":
-        """Time history with the explicit solver: free motion from initial conditions
+        """Time history with the explicit solver. Options left out (None) take the core's
+        defaults: safety 0.8, damping "none" (coefficient 0), live_multiplier 0, record_every 1,
+        large_rotations True, threads 0 (all cores).
+
+        Free motion from initial conditions
         (initial_displacements / initial_velocities: (n_all, 3) arrays of u1 [m], u2 [m],
         phi [rad] and their rates) and/or a horizontal base acceleration given as (times [s],
         accelerations [m/s2]), linear between samples. live_multiplier: lambda held constant.

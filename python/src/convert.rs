@@ -56,6 +56,17 @@ pub(crate) fn rows3<'py>(py: Python<'py>, v: &[[f64; 3]]) -> Bound<'py, PyArray2
         .into_pyarray(py)
 }
 
+/// The damping given by its kind and coefficient, each left out (None) taking the one of
+/// `default` (the core's default options).
+pub(crate) fn damping_over(kind: Option<&str>, coefficient: Option<f64>, default: Damping) -> PyResult<Damping> {
+    let (default_kind, default_coefficient) = match default {
+        Damping::None => ("none", 0.0),
+        Damping::Local(c) => ("local", c),
+        Damping::Viscous(c) => ("viscous", c),
+    };
+    damping_from(kind.unwrap_or(default_kind), coefficient.unwrap_or(default_coefficient))
+}
+
 pub(crate) fn damping_from(kind: &str, coefficient: f64) -> PyResult<Damping> {
     match kind {
         "local" => Ok(Damping::Local(coefficient)),

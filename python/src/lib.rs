@@ -12,7 +12,7 @@ use masonry_dem::joint::JointLaw;
 use masonry_dem::model::{JointLaws, LiveLoad, Model, ModelSpec, TopBeam};
 use masonry_dem::limit::{self, LimitOptions};
 use masonry_dem::results::{Results, Status};
-use masonry_dem::analysis::Control;
+use masonry_dem::analysis::{Control, DEFAULT_MAX_DISPLACEMENT};
 use masonry_dem::explicit::{self, Damping, DynamicOptions, ExplicitOptions, TimeHistory};
 use masonry_dem::static_solver::{self, StaticOptions};
 use numpy::ndarray::Array2;

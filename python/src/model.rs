@@ -2,10 +2,6 @@
 
 use crate::*;
 
-/// Displacement control without a max_displacement starts with this one [m] and goes on, as
-/// much again each time, until collapse (`StaticOptions::until_collapse`).
-pub(crate) const UNTIL_COLLAPSE_START: f64 = 0.002;
-
 /// A wall of rigid blocks joined by zero-thickness Mohr-Coulomb interfaces (see _core.pyi).
 #[pyclass(name = "Model", module = "masonry_dem._core", subclass)]
 pub(crate) struct PyModel {
@@ -183,23 +179,25 @@ impl PyModel {
     /// Static incremental analysis (see _core.pyi). Releases the GIL; Ctrl-C stops it within a
     /// step and raises KeyboardInterrupt with what was computed (status "failed", error
     /// "interrupted by the user") as its `results`.
-    #[pyo3(signature = (control="load", steps=200, max_displacement=None, control_block=None, tolerance=1e-4, max_iterations=50, progress=None))]
+    /// Options left out (None) take the core's defaults (`StaticOptions::default()`).
+    #[pyo3(signature = (control="load", steps=None, max_displacement=None, control_block=None, tolerance=None, max_iterations=None, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_static(
         &self,
         py: Python<'_>,
         control: &str,
-        steps: i64,
+        steps: Option<i64>,
         max_displacement: Option<f64>,
         control_block: Option<usize>,
-        tolerance: f64,
-        max_iterations: i64,
+        tolerance: Option<f64>,
+        max_iterations: Option<i64>,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Py<PyResults>> {
+        let defaults = StaticOptions::default();
         let control = match control {
             "load" => Control::Load,
             "displacement" => Control::Displacement {
-                max_displacement: max_displacement.unwrap_or(UNTIL_COLLAPSE_START),
+                max_displacement: max_displacement.unwrap_or(DEFAULT_MAX_DISPLACEMENT),
             },
             o => {
                 return Err(InputError::new_err(format!(
@@ -210,11 +208,11 @@ impl PyModel {
         let opts = StaticOptions {
             control,
             until_collapse: max_displacement.is_none(),
-            steps: count("analysis.steps", steps, 1)?,
-            tolerance,
-            max_iterations: count("max_iterations", max_iterations, 1)?,
+            steps: steps.map_or(Ok(defaults.steps), |v| count("analysis.steps", v, 1))?,
+            tolerance: tolerance.unwrap_or(defaults.tolerance),
+            max_iterations: max_iterations.map_or(Ok(defaults.max_iterations), |v| count("max_iterations", v, 1))?,
             control_block,
-            ..StaticOptions::default()
+            ..defaults
         };
         let model = Arc::clone(&self.inner);
         let run = Run::new(progress);
@@ -274,46 +272,42 @@ impl PyModel {
     }
 
     /// Quasi-static analysis with the explicit solver (see _core.pyi).
-    #[pyo3(signature = (control="load", steps=200, max_displacement=0.002, control_block=None, tolerance=1e-3, unbalanced_ratio=1e-5, damping="local", damping_coefficient=0.8, time_step=None, safety=0.8, threads=0, progress=None))]
+    /// Options left out (None) take the core's defaults (`ExplicitOptions::default()`).
+    #[pyo3(signature = (control="load", steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_dynamic(
         &self,
         py: Python<'_>,
         control: &str,
-        steps: i64,
-        max_displacement: f64,
+        steps: Option<i64>,
+        max_displacement: Option<f64>,
         control_block: Option<usize>,
-        tolerance: f64,
-        unbalanced_ratio: f64,
-        damping: &str,
-        damping_coefficient: f64,
+        tolerance: Option<f64>,
+        unbalanced_ratio: Option<f64>,
+        damping: Option<&str>,
+        damping_coefficient: Option<f64>,
         time_step: Option<f64>,
-        safety: f64,
-        threads: i64,
+        safety: Option<f64>,
+        threads: Option<i64>,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Py<PyResults>> {
+        let defaults = ExplicitOptions::default();
         let control = match control {
             "load" => Control::Load,
-            "displacement" => Control::Displacement { max_displacement },
+            "displacement" => Control::Displacement { max_displacement: max_displacement.unwrap_or(DEFAULT_MAX_DISPLACEMENT) },
             o => return Err(InputError::new_err(format!("analysis.control must be \"load\" or \"displacement\", got {o:?}"))),
         };
-        if steps < 1 {
-            return Err(InputError::new_err(format!("analysis.steps must be at least 1, got {steps}")));
-        }
-        if threads < 0 {
-            return Err(InputError::new_err(format!("threads must be >= 0, got {threads}")));
-        }
         let opts = ExplicitOptions {
             control,
-            steps: steps as usize,
-            tolerance,
-            unbalanced_ratio,
-            damping: damping_from(damping, damping_coefficient)?,
+            steps: steps.map_or(Ok(defaults.steps), |v| count("analysis.steps", v, 1))?,
+            tolerance: tolerance.unwrap_or(defaults.tolerance),
+            unbalanced_ratio: unbalanced_ratio.unwrap_or(defaults.unbalanced_ratio),
+            damping: damping_over(damping, damping_coefficient, defaults.damping)?,
             time_step,
-            safety,
-            threads: threads as usize,
+            safety: safety.unwrap_or(defaults.safety),
+            threads: threads.map_or(Ok(defaults.threads), |v| count("threads", v, 0))?,
             control_block,
-            ..ExplicitOptions::default()
+            ..defaults
         };
         let model = Arc::clone(&self.inner);
         let run = Run::new(progress);
@@ -328,31 +322,27 @@ impl PyModel {
     }
 
     /// Time history with the explicit solver (see _core.pyi).
-    #[pyo3(signature = (duration, time_step=None, safety=0.8, damping="none", damping_coefficient=0.0, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=0.0, record_every=1, large_rotations=true, threads=0, progress=None))]
+    /// Options left out (None) take the core's defaults (`DynamicOptions::default()`).
+    #[pyo3(signature = (duration, time_step=None, safety=None, damping=None, damping_coefficient=None, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=None, record_every=None, large_rotations=None, threads=None, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate(
         &self,
         py: Python<'_>,
         duration: f64,
         time_step: Option<f64>,
-        safety: f64,
-        damping: &str,
-        damping_coefficient: f64,
+        safety: Option<f64>,
+        damping: Option<&str>,
+        damping_coefficient: Option<f64>,
         initial_displacements: Option<&Bound<'_, PyAny>>,
         initial_velocities: Option<&Bound<'_, PyAny>>,
         base_acceleration: Option<&Bound<'_, PyAny>>,
-        live_multiplier: f64,
-        record_every: i64,
-        large_rotations: bool,
-        threads: i64,
+        live_multiplier: Option<f64>,
+        record_every: Option<i64>,
+        large_rotations: Option<bool>,
+        threads: Option<i64>,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Py<PyTimeHistory>> {
-        if record_every < 1 {
-            return Err(InputError::new_err(format!("record_every must be at least 1, got {record_every}")));
-        }
-        if threads < 0 {
-            return Err(InputError::new_err(format!("threads must be >= 0, got {threads}")));
-        }
+        let defaults = DynamicOptions::default();
         let base_acceleration = match base_acceleration.filter(|o| !o.is_none()) {
             None => None,
             Some(o) => {
@@ -365,15 +355,15 @@ impl PyModel {
         let opts = DynamicOptions {
             duration,
             time_step,
-            safety,
-            damping: damping_from(damping, damping_coefficient)?,
+            safety: safety.unwrap_or(defaults.safety),
+            damping: damping_over(damping, damping_coefficient, defaults.damping)?,
             initial_displacement: rows3_from(initial_displacements, "initial_displacements")?,
             initial_velocity: rows3_from(initial_velocities, "initial_velocities")?,
             base_acceleration,
-            live_multiplier,
-            record_every: record_every as usize,
-            large_rotations,
-            threads: threads as usize,
+            live_multiplier: live_multiplier.unwrap_or(defaults.live_multiplier),
+            record_every: record_every.map_or(Ok(defaults.record_every), |v| count("record_every", v, 1))?,
+            large_rotations: large_rotations.unwrap_or(defaults.large_rotations),
+            threads: threads.map_or(Ok(defaults.threads), |v| count("threads", v, 0))?,
         };
         let model = Arc::clone(&self.inner);
         let run = Run::new(progress);

@@ -44,7 +44,6 @@ pub enum Damping {
     Viscous(f64),
 }
 
-
 /// The default fraction of the stability limit taken as the time step.
 pub const SAFETY: f64 = 0.8;
 
