@@ -39,7 +39,7 @@ from typing import Any, Dict, Iterable, List, Optional, Union
 import numpy as np
 
 from .case import ERROR_STATUSES, FORMAT, result_dict
-from .report import OPEN, SLIDING, _plural, certificate_text
+from .report import OPEN, SLIDING, _plural, certificate_text, format_multiplier
 
 __all__ = [
     "FAILED",
@@ -151,14 +151,6 @@ def format_difference(diff: Optional[float]) -> str:
     return f"{diff:+.2%}"
 
 
-def _multiplier(value: float, live: str) -> str:
-    if not math.isfinite(value):
-        return "none"
-    if live == "top_horizontal":
-        return f"{value / 1e3:.3f} kN"
-    return f"{value:.4f}"
-
-
 def _seconds(value: float) -> str:
     return f"{value:.3g} s" if math.isfinite(value) else "-"
 
@@ -194,7 +186,7 @@ def comparison_text(
     rows = [
         ("", *(name for name, _ in runs), ""),
         ("status:", *(str(r.status) for r in results), ""),
-        (f"{what}:", *(_multiplier(float(r.collapse_multiplier), live) for r in results), difference),
+        (f"{what}:", *(format_multiplier(float(r.collapse_multiplier), live) for r in results), difference),
         ("failed joints:", *failed, common),
         ("work:", *work, ""),
         ("elapsed:", *(_seconds(float(r.elapsed_s)) for r in results), ", ".join(r for r in ratios if r)),

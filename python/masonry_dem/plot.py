@@ -55,6 +55,7 @@ from .report import (
     _plural,
     corner_motion,
     deformed_corners,
+    format_multiplier,
     interface_categories,
     interface_jumps,
 )
@@ -129,11 +130,7 @@ def plot_results(
     _draw_curve(ax_curve, results, live)
 
     label, factor, unit = _multiplier_label(live)
-    lam = float(results.collapse_multiplier)
-    name = "H" if live == "top_horizontal" else "λ"
-    lam_text = f"{name}u = {lam * factor:.4g}{unit}" if live == "top_horizontal" else f"{name}u = {lam:.4f}"
-    if not np.isfinite(lam):
-        lam_text = f"{name}u: none"
+    lam_text = format_multiplier(float(results.collapse_multiplier), live, symbol=True)
     head = f"{title} — " if title else ""
     fig.suptitle(f"{head}{results.method}, {results.status}, {lam_text}", fontsize=13)
     if path is not None:
@@ -478,10 +475,7 @@ def plot_curve(
 
 
 def _lam_text(results: Any, live: str) -> str:
-    lam = float(results.collapse_multiplier)
-    if live == "top_horizontal":
-        return f"Hu = {lam * 1e-3:.4g} kN" if np.isfinite(lam) else "Hu: none"
-    return f"λu = {lam:.4f}" if np.isfinite(lam) else "λu: none"
+    return format_multiplier(float(results.collapse_multiplier), live, symbol=True)
 
 
 def report_figure(
@@ -549,7 +543,7 @@ def _draw_curve(ax: Any, results: Any, live: str) -> None:
             k = int(np.nanargmin(np.abs(lam - lam_u)))  # the point of the curve at the collapse multiplier
             ax.plot([disp[k]], [lam[k]], "o", color="#d62728", markersize=7, zorder=5)
         what = "limit analysis" if _is_limit(results) else "collapse" if results.status == "collapse" else "peak"
-        text = f"{what}: H = {lam_u:.4g}{unit}" if live == "top_horizontal" else f"{what}: λu = {lam_u:.4f}"
+        text = f"{what}: {format_multiplier(float(results.collapse_multiplier), live, symbol=True)}"
         ax.annotate(
             text,
             xy=(0.02, lam_u),
@@ -648,10 +642,7 @@ def plot_comparison(
     symbol = "H" if live == "top_horizontal" else "λ"
 
     def lam_text(res: Any) -> str:
-        lam = float(res.collapse_multiplier)
-        if not np.isfinite(lam):
-            return f"{symbol}u: none"
-        return f"{symbol}u = {lam * factor:.4g}{unit}" if live == "top_horizontal" else f"{symbol}u = {lam:.4f}"
+        return format_multiplier(float(res.collapse_multiplier), live, symbol=True)
 
     for cell, (method, res) in zip(wall_cells, runs):
         n_failed = agree[f"failed_{method}"]
@@ -708,8 +699,7 @@ def _draw_curve_overlay(ax: Any, runs: Sequence[Tuple[str, Any]], live: str) -> 
         disp = np.asarray(res.curve_displacement, dtype=np.float64) * 1e3
         lam_u = float(res.collapse_multiplier) * factor
         if np.isfinite(lam_u):
-            value = f"{lam_u:.4g}{unit}" if live == "top_horizontal" else f"{lam_u:.4f}"
-            head = f"{method}: {'H' if live == 'top_horizontal' else 'λu'} = {value}"
+            head = f"{method}: {format_multiplier(float(res.collapse_multiplier), live, symbol=True)}"
         else:
             head = f"{method}: {res.status}"
         kind = {"dynamic": "time steps", "limit": "interior-point iterations"}.get(str(res.method), "iterations")

@@ -27,6 +27,8 @@ import sys
 import time
 from typing import IO, Any, Optional, Tuple, Union
 
+from .report import format_multiplier
+
 __all__ = ["ProgressBar", "NullProgress", "progress_bar", "progress_text"]
 
 #: Redraw at most this often [s].
@@ -49,12 +51,8 @@ def progress_text(
     added when ``fraction`` is known (displacement control). With ``live = "top_horizontal"`` the
     multiplier is a force in N, shown as ``H = 56.9 kN``. ``unit``: the word after the count
     ("iterations" for a limit analysis)."""
-    if not math.isfinite(multiplier):
-        lam = "λ = -" if live != "top_horizontal" else "H = -"
-    elif live == "top_horizontal":
-        lam = f"H = {multiplier / 1e3:.4g} kN"
-    else:
-        lam = f"λ = {multiplier:.4f}"
+    name = "H" if live == "top_horizontal" else "λ"
+    lam = f"{name} = {format_multiplier(multiplier, live) if math.isfinite(multiplier) else '-'}"
     parts = [lam]
     if math.isfinite(fraction) and math.isfinite(displacement):
         mm = round(displacement * 1e3, 6) or 0.0  # no -0 nor 1e-20 for a displacement that is nil

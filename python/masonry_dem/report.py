@@ -236,13 +236,20 @@ def describe_mechanism(model: Any, results: Any) -> str:
     return text
 
 
-def format_multiplier(value: float, live: str = "horizontal_weight") -> str:
-    """The collapse multiplier for people: 4 decimals, or a force in N with ``live = "top_horizontal"``."""
+def format_multiplier(value: float, live: str = "horizontal_weight", symbol: bool = False) -> str:
+    """A load multiplier for people, the package's one formatter of it (summaries, tables, plots, progress):
+    lambda with 4 decimals, or with ``live = "top_horizontal"`` the horizontal force on the beam in kN (4
+    significant digits); "none" when it is not finite. ``symbol``: its symbol in front, "λu = 0.6429" or
+    "Hu = 56.9 kN" ("λu: none")."""
+    top = live == "top_horizontal"
     if not math.isfinite(value):
-        return "none"
-    if live == "top_horizontal":
-        return f"{value:.1f} N (peak horizontal force on the top beam)"
-    return f"{value:.4f}"
+        text = None
+    else:
+        text = f"{value / 1e3:.4g} kN" if top else f"{value:.4f}"
+    if not symbol:
+        return text or "none"
+    name = "Hu" if top else "λu"
+    return f"{name} = {text}" if text else f"{name}: none"
 
 
 #: Statuses that come with a reason in ``Results.error``, and what they mean in a word.
@@ -315,7 +322,8 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
         f"  interfaces:          {model.n_interfaces}",
         f"  method:              {results.method}" + (" (limit analysis)" if limit else ""),
         f"  status:              {format_status(results)}",
-        f"  collapse multiplier: {format_multiplier(float(results.collapse_multiplier), live)}",
+        f"  collapse multiplier: {format_multiplier(float(results.collapse_multiplier), live)}"
+        + (" (peak horizontal force on the top beam)" if live == "top_horizontal" and collapse else ""),
     ]
     last = float(getattr(results, "last_equilibrium", math.nan))
     if not collapse and math.isfinite(last):

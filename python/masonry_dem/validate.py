@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 from .case import Case, load_case
+from .report import format_multiplier
 
 __all__ = [
     "METHOD_CHOICES",
@@ -195,9 +196,7 @@ def _percent(x: float) -> str:
 def _value(x: Optional[float], live: str) -> str:
     if x is None:
         return "-"
-    if not math.isfinite(x):
-        return "none"
-    return f"{x / 1000:.2f} kN" if live == "top_horizontal" else f"{x:.4f}"
+    return format_multiplier(x, live)
 
 
 def _time(row: ValidationRow, methods: Sequence[str]) -> str:

@@ -114,7 +114,9 @@ def test_describe_no_mechanism() -> None:
 def test_format_multiplier() -> None:
     assert format_multiplier(0.642913) == "0.6429"
     assert format_multiplier(float("nan")) == "none"
-    assert format_multiplier(56912.34, "top_horizontal").startswith("56912.3 N")
+    assert format_multiplier(56912.34, "top_horizontal") == "56.91 kN"
+    assert format_multiplier(0.642913, symbol=True) == "λu = 0.6429"
+    assert format_multiplier(float("nan"), "top_horizontal", symbol=True) == "Hu: none"
 
 
 def test_plot_synthetic(tmp_path: Path) -> None:

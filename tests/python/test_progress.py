@@ -203,7 +203,7 @@ def test_comparison_text_columns() -> None:
     top = comparison_text(
         fake("static", 56900.0, [2], 1, 1.0), fake("dynamic", 57000.0, [2], 1, 1.0), MODEL, "J4D", live="top_horizontal"
     )
-    assert "peak horizontal force:" in top and "56.900 kN" in top
+    assert "peak horizontal force:" in top and "56.9 kN" in top
 
 
 def test_format_difference() -> None:
