@@ -214,16 +214,9 @@ impl PyModel {
             control_block,
             ..defaults
         };
-        let model = Arc::clone(&self.inner);
-        let run = Run::new(progress);
-        let res = run.execute(py, move |run| {
-            guarded(|| {
-                let mut monitor =
-                    |p: &static_solver::Progress| run.report(p.step, p.multiplier, p.displacement, p.fraction, p.poll);
-                static_solver::solve_with(&model, &opts, &mut monitor).map(|inner| PyResults { inner })
-            })
-        })?;
-        run.finish(py, res)
+        analyse(py, &self.inner, progress, move |model, monitor| {
+            static_solver::solve_with(model, &opts, monitor).map(|inner| PyResults { inner })
+        })
     }
 
     /// Limit analysis: the collapse multiplier as a linear program (see _core.pyi). Releases the
@@ -309,16 +302,9 @@ impl PyModel {
             control_block,
             ..defaults
         };
-        let model = Arc::clone(&self.inner);
-        let run = Run::new(progress);
-        let res = run.execute(py, move |run| {
-            guarded(|| {
-                let mut monitor =
-                    |p: &explicit::Progress| run.report(p.step, p.multiplier, p.displacement, p.fraction, false);
-                explicit::solve_with(&model, &opts, &mut monitor).map(|inner| PyResults { inner })
-            })
-        })?;
-        run.finish(py, res)
+        analyse(py, &self.inner, progress, move |model, monitor| {
+            explicit::solve_with(model, &opts, monitor).map(|inner| PyResults { inner })
+        })
     }
 
     /// Time history with the explicit solver (see _core.pyi).
@@ -365,16 +351,9 @@ impl PyModel {
             large_rotations: large_rotations.unwrap_or(defaults.large_rotations),
             threads: threads.map_or(Ok(defaults.threads), |v| count("threads", v, 0))?,
         };
-        let model = Arc::clone(&self.inner);
-        let run = Run::new(progress);
-        let h = run.execute(py, move |run| {
-            guarded(|| {
-                let mut monitor =
-                    |p: &explicit::Progress| run.report(p.step, p.multiplier, p.displacement, p.fraction, false);
-                explicit::simulate_with(&model, &opts, &mut monitor).map(|inner| PyTimeHistory { inner })
-            })
-        })?;
-        run.finish(py, h)
+        analyse(py, &self.inner, progress, move |model, monitor| {
+            explicit::simulate_with(model, &opts, monitor).map(|inner| PyTimeHistory { inner })
+        })
     }
 
     /// The stability limit of the explicit solver's time step [s].

@@ -119,3 +119,25 @@ impl Run {
         }
     }
 }
+
+/// Runs an incremental analysis of `model` (`work`, given the model and the monitor) in a thread
+/// of its own ([`Run`]), its progress reported to the user's `progress` callback.
+pub(crate) fn analyse<T>(
+    py: Python<'_>,
+    model: &Arc<Model>,
+    progress: Option<Py<PyAny>>,
+    work: impl FnOnce(&Model, &mut dyn FnMut(&masonry_dem::analysis::Progress) -> bool) -> Result<T, Error> + Send + 'static,
+) -> PyResult<Py<T>>
+where
+    T: pyo3::PyClass + Into<pyo3::PyClassInitializer<T>> + Send + 'static,
+{
+    let model = Arc::clone(model);
+    let run = Run::new(progress);
+    let res = run.execute(py, move |run| {
+        guarded(|| {
+            let mut monitor = |p: &masonry_dem::analysis::Progress| run.report(p.step, p.multiplier, p.displacement, p.fraction, p.poll);
+            work(&model, &mut monitor)
+        })
+    })?;
+    run.finish(py, res)
+}
