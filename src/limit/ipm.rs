@@ -1,0 +1,403 @@
+//! The primal-dual interior point (Mehrotra's predictor-corrector, Gondzio's correctors) on the
+//! normal equations, assembled on the stiffness matrix's pattern and factorized by `linalg`.
+
+use super::*;
+
+pub(super) fn norm_inf(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// The largest step in (0, 1] that keeps `v + a dv >= 0`.
+pub(super) fn max_step(v: &[f64], dv: &[f64]) -> f64 {
+    v.iter().zip(dv).fold(1.0, |a, (&x, &d)| if d < 0.0 { a.min(-x / d) } else { a })
+}
+
+/// The interior point's iterate. Variables: five per interface (the last, theta, bounded by
+/// 1) and lambda (free); `t`, `v`: theta's upper bounds' slacks and multipliers.
+pub(super) struct Iterate {
+    pub(super) x: Vec<f64>,
+    pub(super) lam: f64,
+    pub(super) s: Vec<f64>,
+    pub(super) t: Vec<f64>,
+    pub(super) v: Vec<f64>,
+    pub(super) y: Vec<f64>,
+}
+
+/// A search direction.
+pub(super) struct Direction {
+    pub(super) dx: Vec<f64>,
+    pub(super) ds: Vec<f64>,
+    pub(super) dt: Vec<f64>,
+    pub(super) dv: Vec<f64>,
+    pub(super) dy: Vec<f64>,
+    pub(super) dlam: f64,
+}
+
+/// The residuals of an iterate: equilibrium, the variables' dual rows, theta's bounds, and
+/// lambda's dual row.
+pub(super) struct Residuals {
+    pub(super) rb: Vec<f64>,
+    pub(super) rc: Vec<f64>,
+    pub(super) ru: Vec<f64>,
+    pub(super) rl: f64,
+}
+
+impl Program {
+    /// The variable bounded by `t[i]`: interface i's theta.
+    #[inline]
+    pub(super) fn bounded(&self, i: usize) -> usize {
+        NV * i + 4
+    }
+
+    /// `A x + lam (-f_live)` (equilibrium of the variables) into `out`.
+    pub(super) fn apply(&self, x: &[f64], lam: f64, out: &mut [f64]) {
+        for (o, f) in out.iter_mut().zip(&self.f_live) {
+            *o = -f * lam;
+        }
+        for k in 0..self.m {
+            let a = &self.acols[k];
+            let xk = &x[NV * k..NV * k + NV];
+            for (r, &d) in self.dofs[k].iter().enumerate() {
+                if d != NO_EQ {
+                    out[d as usize] += (0..NV).map(|j| a[r][j] * xk[j]).sum::<f64>();
+                }
+            }
+        }
+    }
+
+    /// `A^T y` into `out` (lambda's row, `-f_live . y`, left out).
+    pub(super) fn apply_t(&self, y: &[f64], out: &mut [f64]) {
+        for k in 0..self.m {
+            let a = &self.acols[k];
+            let o = &mut out[NV * k..NV * k + NV];
+            o.fill(0.0);
+            for (r, &d) in self.dofs[k].iter().enumerate() {
+                if d != NO_EQ {
+                    let yv = y[d as usize];
+                    for j in 0..NV {
+                        o[j] += a[r][j] * yv;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Solves the scaled program by Mehrotra's predictor-corrector from a fixed start.
+    pub(super) fn solve(
+        &mut self,
+        opts: &LimitOptions,
+        program: usize,
+        monitor: &mut dyn FnMut(&LimitProgress) -> bool,
+    ) -> Result<Solution> {
+        let (m, n) = (self.m, self.n);
+        let nx = NV * m;
+        let range = LAMBDA_RANGE;
+        // b = f_dead - sum P V; the cost is -lambda (lambda free, its own column -f_live)
+        let mut b = self.f_dead.clone();
+        for k in 0..m {
+            let (_, pv) = self.columns(k);
+            for (r, &d) in self.dofs[k].iter().enumerate() {
+                if d != NO_EQ {
+                    b[d as usize] -= pv[r];
+                }
+            }
+        }
+        let b_norm = norm_inf(&b);
+        // the start: the rays of least norm that balance the dead loads at lambda = 0 (one
+        // solve with Theta = 1), shifted inside the positive orthant; theta = 1/2; each
+        // product x s, t v = 1
+        let mut x = vec![1.0; nx];
+        self.assemble(&x);
+        let mut w = b.clone();
+        if self.normal.factorize().is_ok() && self.normal.solve_in_place(&mut w).is_ok() {
+            self.apply_t(&w, &mut x);
+            let shift = (0.1 * norm_inf(&x)).max(1.0);
+            x.iter_mut().for_each(|x| *x = x.max(0.0) + shift);
+        } else {
+            x.fill(1.0);
+        }
+        for k in 0..m {
+            x[NV * k + 4] = 0.5;
+        }
+        let mut p = Iterate {
+            s: x.iter().map(|x| 1.0 / x).collect(),
+            v: vec![2.0; m],
+            t: vec![0.5; m],
+            x,
+            lam: 0.0,
+            y: vec![0.0; n],
+        };
+        let mut res = Residuals { rb: vec![0.0; n], rc: vec![0.0; nx], ru: vec![0.0; m], rl: 0.0 };
+        let mut theta = vec![0.0; nx];
+        let mut u = vec![0.0; n];
+        let mut aty = vec![0.0; nx];
+        let (mut best, mut since_best) = (f64::INFINITY, 0);
+        let ncomp = (nx + m) as f64;
+        for iter in 0..=opts.max_iterations {
+            self.apply(&p.x, p.lam, &mut res.rb);
+            for (r, b) in res.rb.iter_mut().zip(&b) {
+                *r = b - *r;
+            }
+            self.apply_t(&p.y, &mut aty);
+            for ((rc, a), s) in res.rc.iter_mut().zip(&aty).zip(&p.s) {
+                *rc = -a - s;
+            }
+            for i in 0..m {
+                let j = self.bounded(i);
+                res.rc[j] += p.v[i];
+                res.ru[i] = 1.0 - p.x[j] - p.t[i];
+            }
+            // lambda's dual row: -1 + f_live . y = 0
+            res.rl = -1.0 + dot(&self.f_live, &p.y);
+            let mu = (dot(&p.x, &p.s) + dot(&p.t, &p.v)) / ncomp;
+            let lam = p.lam;
+            let primal = (norm_inf(&res.rb) / (1.0 + b_norm)).max(norm_inf(&res.ru));
+            let dual = norm_inf(&res.rc).max(res.rl.abs());
+            // objectives: primal -lambda, dual b y - v (theta's bounds are 1)
+            let dobj = dot(&b, &p.y) - p.v.iter().sum::<f64>();
+            let gap = (-lam - dobj).abs() / (1.0 + lam.abs());
+            let worst = primal.max(dual).max(gap);
+            if !monitor(&LimitProgress { program, iteration: iter, multiplier: lam * self.force / self.live, residual: worst }) {
+                return Err(Error::Interrupted);
+            }
+            // the dual iterates running away along a ray while equilibrium stays violated: the
+            // sign of a program without a feasible point, if the iterations end here
+            // lambda running away beyond its range: the live load finds no mechanism
+            let failed = if norm_inf(&p.y) > 1e12 && primal > 1e-3 {
+                Outcome::Infeasible
+            } else if lam > range {
+                Outcome::Unbounded
+            } else {
+                Outcome::NotConverged
+            };
+            let done = |outcome| Solution {
+                outcome,
+                x: p.x.clone(),
+                lambda: lam,
+                y: p.y.clone(),
+                primal,
+                dual,
+                gap,
+                iterations: iter,
+            };
+            if lam > range * range || (lam > range && primal <= opts.tolerance) {
+                return Ok(done(Outcome::Unbounded));
+            }
+            if worst <= opts.tolerance {
+                return Ok(done(Outcome::Optimal));
+            }
+            // a dual point of objective above the range bounds lambda below -range: no
+            // multiplier in the range balances the dead loads
+            if dual <= 1e-8 && dobj > range {
+                return Ok(done(Outcome::Infeasible));
+            }
+            if worst < 0.5 * best {
+                best = worst;
+                since_best = 0;
+            } else {
+                since_best += 1;
+            }
+            // stalled: rounding bounds the residuals above the tolerance. Within
+            // REDUCED_ACCURACY times it the solution stands (its certificate says how close it
+            // is); a long stall or the last iteration far from it is a failure
+            let near = worst <= REDUCED_ACCURACY * opts.tolerance;
+            if near && since_best >= 5 {
+                return Ok(done(Outcome::Optimal));
+            }
+            if iter == opts.max_iterations || since_best >= 30 || !worst.is_finite() {
+                return Ok(done(if near { Outcome::Optimal } else { failed }));
+            }
+            // Theta = 1 / (s / x + v / t), and the normal matrix A Theta A^T (lambda's column
+            // apart: the system is bordered)
+            for ((th, s), x) in theta.iter_mut().zip(&p.s).zip(&p.x) {
+                *th = s / x;
+            }
+            for i in 0..m {
+                theta[self.bounded(i)] += p.v[i] / p.t[i];
+            }
+            theta.iter_mut().for_each(|t| *t = 1.0 / *t);
+            self.assemble(&theta);
+            // LDL^T on the Cholesky's analysis: the matrix is positive semi-definite, but near
+            // the optimum Theta spans 1e-12 to 1e12 and rounding leaves pivots of either sign
+            // that a Cholesky refuses (the solves' refinement corrects for them); where a pivot
+            // is zero, or a solve not finite, LU with pivoting
+            let mut solved = false;
+            for lu in [false, true] {
+                let ok = if lu { self.normal.factorize().is_ok() } else { self.normal.factorize_ldlt().is_ok() };
+                u.copy_from_slice(&self.f_live);
+                if ok && self.solve_normal(&theta, &mut u).is_some() {
+                    solved = true;
+                    break;
+                }
+            }
+            if !solved {
+                return Ok(done(failed));
+            }
+            let fu = dot(&self.f_live, &u);
+            // predictor
+            let rxs: Vec<f64> = p.x.iter().zip(&p.s).map(|(x, s)| -x * s).collect();
+            let rtv: Vec<f64> = p.t.iter().zip(&p.v).map(|(t, v)| -t * v).collect();
+            let Some(aff) = self.direction(&p, &res, &rxs, &rtv, &theta, &u, fu) else {
+                return Ok(done(failed));
+            };
+            let ap = max_step(&p.x, &aff.dx).min(max_step(&p.t, &aff.dt));
+            let ad = max_step(&p.s, &aff.ds).min(max_step(&p.v, &aff.dv));
+            let comp = |a: &[f64], da: &[f64], b: &[f64], db: &[f64]| {
+                a.iter().zip(da).zip(b.iter().zip(db)).map(|((a, da), (b, db))| (a + ap * da) * (b + ad * db)).sum::<f64>()
+            };
+            let mu_aff = (comp(&p.x, &aff.dx, &p.s, &aff.ds) + comp(&p.t, &aff.dt, &p.v, &aff.dv)) / ncomp;
+            let sigma = (mu_aff / mu).powi(3).min(1.0);
+            // corrector
+            let rxs: Vec<f64> = (0..nx).map(|i| sigma * mu - p.x[i] * p.s[i] - aff.dx[i] * aff.ds[i]).collect();
+            let rtv: Vec<f64> = (0..m).map(|i| sigma * mu - p.t[i] * p.v[i] - aff.dt[i] * aff.dv[i]).collect();
+            let Some(mut d) = self.direction(&p, &res, &rxs, &rtv, &theta, &u, fu) else {
+                return Ok(done(failed));
+            };
+            // Gondzio's centrality correctors: aim a longer step at products within [0.1, 10]
+            // of the target, where the predictor-corrector's step left them outside; kept while
+            // they lengthen the step (one solve each, against a factorization per iteration)
+            let steps = |d: &Direction| {
+                (max_step(&p.x, &d.dx).min(max_step(&p.t, &d.dt)), max_step(&p.s, &d.ds).min(max_step(&p.v, &d.dv)))
+            };
+            let (mut rxs, mut rtv) = (rxs, rtv);
+            let target = sigma * mu;
+            for _ in 0..CORRECTORS {
+                let (ap, ad) = steps(&d);
+                if ap.min(ad) >= 0.9 {
+                    break;
+                }
+                let (ap_t, ad_t) = ((1.5 * ap + 0.1).min(1.0), (1.5 * ad + 0.1).min(1.0));
+                let fix = |v: f64| {
+                    let c = v.clamp(0.1 * target, 10.0 * target) - v;
+                    c.max(-10.0 * target)
+                };
+                let rxs2: Vec<f64> = (0..nx).map(|i| rxs[i] + fix((p.x[i] + ap_t * d.dx[i]) * (p.s[i] + ad_t * d.ds[i]))).collect();
+                let rtv2: Vec<f64> = (0..m).map(|i| rtv[i] + fix((p.t[i] + ap_t * d.dt[i]) * (p.v[i] + ad_t * d.dv[i]))).collect();
+                let Some(d2) = self.direction(&p, &res, &rxs2, &rtv2, &theta, &u, fu) else {
+                    break;
+                };
+                let (ap2, ad2) = steps(&d2);
+                if ap2 + ad2 < 1.01 * (ap + ad) {
+                    break;
+                }
+                d = d2;
+                rxs = rxs2;
+                rtv = rtv2;
+            }
+            let eta = 0.995;
+            let ap = (eta * max_step(&p.x, &d.dx).min(max_step(&p.t, &d.dt))).min(1.0);
+            let ad = (eta * max_step(&p.s, &d.ds).min(max_step(&p.v, &d.dv))).min(1.0);
+            let step = |v: &mut [f64], dv: &[f64], a: f64| v.iter_mut().zip(dv).for_each(|(v, d)| *v += a * d);
+            step(&mut p.x, &d.dx, ap);
+            step(&mut p.t, &d.dt, ap);
+            p.lam += ap * d.dlam;
+            step(&mut p.s, &d.ds, ad);
+            step(&mut p.v, &d.dv, ad);
+            step(&mut p.y, &d.dy, ad);
+        }
+        unreachable!("the loop returns at its last iteration")
+    }
+
+    /// Assembles `sum_k A_k Theta_k A_k^T` (lambda's column left out).
+    pub(super) fn assemble(&mut self, theta: &[f64]) {
+        self.normal.values_mut().fill(0.0);
+        for k in 0..self.m {
+            let a = &self.acols[k];
+            let th = &theta[NV * k..NV * k + NV];
+            let slots = self.slots[k];
+            let vals = self.normal.values_mut();
+            for i in 0..6 {
+                if slots[6 * i + i] == u32::MAX {
+                    continue;
+                }
+                let ai: [f64; NV] = std::array::from_fn(|j| a[i][j] * th[j]);
+                for j in i..6 {
+                    let s = slots[6 * i + j];
+                    if s == u32::MAX {
+                        continue;
+                    }
+                    let v: f64 = (0..NV).map(|q| ai[q] * a[j][q]).sum();
+                    vals[s as usize] += v;
+                    if j != i {
+                        vals[slots[6 * j + i] as usize] += v;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Solves `A Theta A^T z = r` in place with the factorization, refined on the exact operator
+    /// (applied as `A (Theta (A^T z))`, without the matrix, for far less than a solve) while the
+    /// residual exceeds 1e-10 of `r`, at most [`REFINEMENTS`] times: near the optimum rounding
+    /// leaves tiny pivots, and the primal residual would stall without it.
+    pub(super) fn solve_normal(&mut self, theta: &[f64], r: &mut [f64]) -> Option<()> {
+        let rhs = r.to_vec();
+        let norm = norm_inf(&rhs);
+        self.normal.solve_in_place(r).ok()?;
+        let mut t = vec![0.0; theta.len()];
+        let mut az = vec![0.0; self.n];
+        for _ in 0..REFINEMENTS {
+            self.apply_t(r, &mut t);
+            t.iter_mut().zip(theta).for_each(|(t, th)| *t *= th);
+            self.apply(&t, 0.0, &mut az);
+            for (a, b) in az.iter_mut().zip(&rhs) {
+                *a = b - *a;
+            }
+            if norm_inf(&az) <= 1e-10 * norm {
+                break;
+            }
+            self.normal.solve_in_place(&mut az).ok()?;
+            r.iter_mut().zip(&az).for_each(|(r, c)| *r += c);
+        }
+        Some(())
+    }
+
+    /// The Newton direction for the complementarity targets `rxs` (x s) and `rtv` (t v), with
+    /// the normal matrix factorized and `u = M^-1 f_live`; None if a solve fails.
+    ///
+    /// With `Theta = 1 / (s / x + v / t)` and `xi = rc - rxs / x + (rtv - v ru) / t`:
+    /// `dx = Theta (A^T dy - xi)`, `M dy - f_live dlam = rb + A Theta xi` (M = A Theta A^T) and
+    /// lambda's dual row `-f_live . dy = rl`: `dy = M^-1 (q + f_live dlam)`, one solve and `u`.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn direction(
+        &mut self,
+        p: &Iterate,
+        res: &Residuals,
+        rxs: &[f64],
+        rtv: &[f64],
+        theta: &[f64],
+        u: &[f64],
+        fu: f64,
+    ) -> Option<Direction> {
+        let m = self.m;
+        let nx = theta.len();
+        let mut xi: Vec<f64> = (0..nx).map(|i| res.rc[i] - rxs[i] / p.x[i]).collect();
+        for i in 0..m {
+            xi[self.bounded(i)] += (rtv[i] - p.v[i] * res.ru[i]) / p.t[i];
+        }
+        let txi: Vec<f64> = theta.iter().zip(&xi).map(|(t, x)| t * x).collect();
+        let mut q = vec![0.0; self.n];
+        self.apply(&txi, 0.0, &mut q);
+        for (q, r) in q.iter_mut().zip(&res.rb) {
+            *q += r;
+        }
+        self.solve_normal(theta, &mut q)?;
+        // -f . (q + u dlam) = rl
+        let dlam = -(res.rl + dot(&self.f_live, &q)) / fu;
+        let dy: Vec<f64> = q.iter().zip(u).map(|(q, u)| q + dlam * u).collect();
+        let mut dx = vec![0.0; nx];
+        self.apply_t(&dy, &mut dx);
+        for i in 0..nx {
+            dx[i] = theta[i] * (dx[i] - xi[i]);
+        }
+        let ds: Vec<f64> = (0..nx).map(|i| (rxs[i] - p.s[i] * dx[i]) / p.x[i]).collect();
+        let dt: Vec<f64> = (0..m).map(|i| res.ru[i] - dx[self.bounded(i)]).collect();
+        let dv: Vec<f64> = (0..m).map(|i| (rtv[i] - p.v[i] * dt[i]) / p.t[i]).collect();
+        let ok = dx.iter().chain(&dy).chain(&ds).chain(&dv).all(|v| v.is_finite()) && dlam.is_finite();
+        ok.then_some(Direction { dx, ds, dt, dv, dy, dlam })
+    }
+}

@@ -1,0 +1,235 @@
+//! Limit analysis: the collapse multiplier of a model as a linear program (the static theorem),
+//! solved by a primal-dual interior point method on the stiffness matrix's sparsity pattern.
+//!
+//! Maximise lambda subject to equilibrium of every free dof,
+//! `sum_k B_k^T s_k = f_dead + lambda f_live`, with every interface's resultants
+//! `s_k = (N, T, M)` inside the joint law's strength domain: the four planes of
+//! [`crate::joint`] (Coulomb `|T| <= c A - mu N`, rocking `|M| <= (ft A - N) l/2`; together they
+//! imply the tension cut-off `N <= ft A`). Mortar joints enter with their peak strengths (no
+//! softening, no loss of strength at failure). Fixed dofs and the dofs held after the dead
+//! loads (the top beam's vertical position when it is held) are supports: their reactions are
+//! free.
+//!
+//! For dry joints with associative flow (dilatancy = friction) the optimum is the exact collapse
+//! multiplier of the incremental model; for other joints it is an upper bound of it. With
+//! dilatancy below friction [`limit_analysis`] also gives a non-associative estimate: a
+//! sequence of programs in which the shear capacity is fixed from the previous program's normal
+//! forces (Gilbert, Casapulla & Ahmed, 2006). That estimate is a heuristic, neither bound.
+//!
+//! The method: Mehrotra's predictor-corrector on the program scaled to forces of order one
+//! (moments carried as `2 M / l`, rotation rows divided by a length), in standard form: each
+//! interface's resultants are a point of its strength domain written with non-negative
+//! variables (the four rays of two contact points, and the segment between the domain's two
+//! vertices for joints with strength). Each iteration solves the normal equations
+//! `A Theta A^T dy = r`, whose matrix is assembled exactly as the stiffness matrix is (one 3 x 3
+//! block per interface, on the same pattern) and factorized by the crate's `linalg` module (LDL^T on the
+//! sparse Cholesky's symbolic analysis, which is done once), each solve refined twice on the
+//! exact operator. lambda, a free variable, borders the system: two solves with one
+//! factorization. The dual variables of the equilibrium rows are the block velocities of the
+//! collapse mechanism.
+//!
+//! ```
+//! use masonry_dem::geometry::{running_bond, RunningBond, FirstCourse};
+//! use masonry_dem::joint::JointLaw;
+//! use masonry_dem::limit::{limit_analysis, LimitOptions};
+//! use masonry_dem::model::{JointLaws, Model, ModelSpec};
+//!
+//! let blocks = running_bond(&RunningBond { block_length: 0.4, block_height: 0.175, courses: 6,
+//!     length: 2.0, first_course: FirstCourse::Half, openings: vec![] }).unwrap();
+//! let law = JointLaw { friction: 0.65, dilatancy: 0.65, ..JointLaw::default() };
+//! let model = Model::new(ModelSpec { blocks, gravity: 10.0, joints: JointLaws::uniform(law),
+//!     ..ModelSpec::default() }).unwrap();
+//! let res = limit_analysis(&model, &LimitOptions::default()).unwrap();
+//! assert!((res.collapse_multiplier - 0.642857).abs() < 1e-5);
+//! ```
+//!
+//! Here: the options, the entry points and the non-associative sequence. The program is
+//! built in `program`, solved in `ipm`, and turned into Results in `outcome`.
+
+use crate::error::{Error, Result};
+use crate::joint::{JointState, OPEN, ROCKING, SLIDING};
+use crate::linalg::SparseLu;
+use crate::model::Model;
+use crate::results::{Certificate, Results, Status};
+use std::time::Instant;
+
+/// Options of the limit analysis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LimitOptions {
+    /// The interior point stops when the scaled primal and dual residuals and the relative
+    /// duality gap are all below this.
+    pub tolerance: f64,
+    /// Interior-point iterations of one linear program.
+    pub max_iterations: usize,
+    /// Programs of the non-associative sequence (joints with dilatancy below friction); 0
+    /// skips the sequence and reports the associative bound only.
+    pub max_sequence: usize,
+    /// The sequence has converged when lambda changes by less than this fraction between two
+    /// programs.
+    pub sequence_tolerance: f64,
+}
+
+impl Default for LimitOptions {
+    fn default() -> Self {
+        LimitOptions { tolerance: 1e-8, max_iterations: 200, max_sequence: 50, sequence_tolerance: 1e-6 }
+    }
+}
+
+/// Reported after each interior-point iteration; the callback returns `false` to stop.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LimitProgress {
+    /// The program of the non-associative sequence (0: the associative one).
+    pub program: usize,
+    pub iteration: usize,
+    /// The current estimate of lambda.
+    pub multiplier: f64,
+    /// The largest of the scaled residuals and the relative gap.
+    pub residual: f64,
+}
+
+/// lambda beyond this many times the scale of the loads is reported as unbounded (no mechanism
+/// within the range).
+const LAMBDA_RANGE: f64 = 1e4;
+
+/// An interior point whose residuals stop decreasing within this factor of the tolerance
+/// gives its solution, with the residuals in its certificate.
+const REDUCED_ACCURACY: f64 = 100.0;
+
+/// Joints' strengths are capped at this many times the total load (dead plus live at
+/// lambda = 1), beyond which no multiplier in the range reaches them.
+const STRENGTH_CAP: f64 = 1e4;
+
+/// Gondzio's centrality correctors per iteration, at most: more cut iterations but not time
+/// (BENCHMARKS.md).
+const CORRECTORS: usize = 1;
+
+/// Steps of iterative refinement of a solve of the normal equations, at most.
+const REFINEMENTS: usize = 2;
+
+/// The largest `max_iterations` accepted.
+pub const MAX_ITERATIONS: usize = 100_000;
+
+/// Runs a limit analysis. Bad options are an `Err`; a program that could not be solved is a
+/// `Results` with a status that says why.
+pub fn limit_analysis(model: &Model, opts: &LimitOptions) -> Result<Results> {
+    limit_analysis_with(model, opts, &mut |_| true)
+}
+
+/// Runs a limit analysis, calling `monitor` after each interior-point iteration (return
+/// `false` to stop: the result is then an `Err(Error::Interrupted)`).
+pub fn limit_analysis_with(
+    model: &Model,
+    opts: &LimitOptions,
+    monitor: &mut dyn FnMut(&LimitProgress) -> bool,
+) -> Result<Results> {
+    model.check_analysis_memory("a limit analysis")?;
+    model.check_strength_range()?;
+    validate(opts)?;
+    model.check_supports()?;
+    let start = Instant::now();
+    let mut lp = Program::new(model)?;
+    let assoc = lp.solve(opts, 0, monitor)?;
+    let mut iterations = assoc.iterations;
+    let non_assoc = (0..model.interfaces().len()).any(|k| {
+        let l = model.law(k);
+        l.dilatancy < l.friction
+    });
+    let mut cert = Certificate {
+        multiplier: f64::NAN,
+        primal_residual: assoc.primal,
+        dual_residual: assoc.dual,
+        duality_gap: assoc.gap,
+        iterations: assoc.iterations,
+        upper_bound: f64::NAN,
+        sequence: 0,
+        sequence_converged: false,
+        peak_strengths: model.laws_are_strong(),
+    };
+    let mut sol = assoc;
+    if sol.outcome == Outcome::Optimal && non_assoc && opts.max_sequence > 0 {
+        cert.upper_bound = lp.lambda_of(&sol);
+        let mut prev = cert.upper_bound;
+        for program in 1..=opts.max_sequence {
+            // the normal forces of the last program fix each joint's shear capacity
+            let normals: Vec<f64> = lp.resultants(&sol.x).iter().map(|s| s[0]).collect();
+            lp.fix_shear_capacity(&normals);
+            let next = lp.solve(opts, program, monitor)?;
+            iterations += next.iterations;
+            cert.sequence = program;
+            if next.outcome != Outcome::Optimal {
+                sol = next;
+                break;
+            }
+            let lam = lp.lambda_of(&next);
+            sol = next;
+            if (lam - prev).abs() <= opts.sequence_tolerance * prev.abs().max(1e-12) {
+                cert.sequence_converged = true;
+                break;
+            }
+            prev = lam;
+        }
+        cert.primal_residual = sol.primal;
+        cert.dual_residual = sol.dual;
+        cert.duality_gap = sol.gap;
+    }
+    cert.iterations = iterations;
+    let mut res = lp.results(model, &sol, cert, start);
+    if let Some(c) = res.certificate.as_mut() {
+        c.multiplier = res.collapse_multiplier;
+    }
+    Ok(res)
+}
+
+fn validate(opts: &LimitOptions) -> Result<()> {
+    if !(opts.tolerance.is_finite() && opts.tolerance > 0.0 && opts.tolerance < 1e-2) {
+        return Err(Error::input(format!(
+            "analysis.tolerance must lie in (0, 0.01) for a limit analysis, got {}",
+            opts.tolerance
+        )));
+    }
+    if opts.max_iterations == 0 || opts.max_iterations > MAX_ITERATIONS {
+        return Err(Error::input(format!(
+            "analysis.max_iterations must lie in 1..={MAX_ITERATIONS}, got {}",
+            opts.max_iterations
+        )));
+    }
+    if !(opts.sequence_tolerance.is_finite() && opts.sequence_tolerance > 0.0) {
+        return Err(Error::input(format!(
+            "the sequence tolerance must be a finite number > 0, got {}",
+            opts.sequence_tolerance
+        )));
+    }
+    Ok(())
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Outcome {
+    Optimal,
+    /// lambda reached the top of its range
+    Unbounded,
+    /// no equilibrium under the dead loads at any lambda in range (a dual ray)
+    Infeasible,
+    /// the iterations ran out or stalled
+    NotConverged,
+}
+
+/// An interior-point solution, in scaled units.
+struct Solution {
+    outcome: Outcome,
+    /// the variables: five per interface (four rays, theta)
+    x: Vec<f64>,
+    lambda: f64,
+    /// duals of the equilibrium rows (one per equation)
+    y: Vec<f64>,
+    primal: f64,
+    dual: f64,
+    gap: f64,
+    iterations: usize,
+}
+
+mod ipm;
+mod outcome;
+mod program;
+
+use ipm::*;
+use program::*;

@@ -1,0 +1,197 @@
+//! The linear program of a wall: each interface's resultants as a vertex, four rays and a
+//! bounded segment of its strength domain, the equilibrium rows, and the resultants of a solution.
+
+use super::*;
+
+/// The linear program of a model, scaled, in standard form: each interface's resultants are
+/// `s = V + sum_j rho_j R_j + theta dV` with `rho >= 0`, `0 <= theta <= 1`: the strength
+/// domain's recession cone has four rays `R_j = (-1, +-a, +-1)` (in (N, T, 2M/l); a: the Coulomb
+/// slope; the rays of two contact points at the interface's ends), and its vertices are the
+/// two ends `V`, `V + dV` of one segment (equal for joints without strength).
+pub(super) struct Program {
+    pub(super) m: usize,
+    pub(super) n: usize,
+    /// equation of each dof, or None for a support
+    pub(super) eq: Vec<Option<usize>>,
+    /// per interface: the 6 equations of its dofs (NO_EQ: a support)
+    pub(super) dofs: Vec<[u32; 6]>,
+    /// per interface: its 6 x 3 block of the equilibrium matrix, scaled (columns N, T, 2M/l)
+    pub(super) cols: Vec<[[f64; 3]; 6]>,
+    /// per interface: its 6 x 5 block of the standard form's equilibrium matrix (`columns`),
+    /// kept while the faces do not change: the interior point's products read it many times
+    pub(super) acols: Vec<[[f64; NV]; 6]>,
+    /// the value slots of each interface's 6 x 6 block in the normal matrix
+    pub(super) slots: Vec<[u32; 36]>,
+    /// the faces' right-hand sides of each interface over the force scale: Coulomb (c A, or
+    /// the capacity fixed in the non-associative sequence) and tension (ft A); the Coulomb slope
+    pub(super) hc: Vec<f64>,
+    pub(super) ht: Vec<f64>,
+    pub(super) slope: Vec<f64>,
+    /// the strength domain's own (c A over the force scale, mu, tan(psi)) of each interface
+    pub(super) coulomb: Vec<(f64, f64, f64)>,
+    pub(super) f_dead: Vec<f64>,
+    pub(super) f_live: Vec<f64>,
+    /// scales: forces, lengths (rotation rows), the live load
+    pub(super) force: f64,
+    pub(super) length: f64,
+    pub(super) live: f64,
+    pub(super) normal: SparseLu,
+}
+
+pub(super) const NO_EQ: u32 = u32::MAX;
+
+/// Variables per interface: four rays and the position on the vertices' segment.
+pub(super) const NV: usize = 5;
+
+/// The vertex `V`, the segment `dV` and the four rays of a domain
+/// `a N +- T <= hc`, `N +- 2M/l <= ht` (scaled).
+pub(super) fn generators(a: f64, hc: f64, ht: f64) -> [[f64; 3]; 6] {
+    let (v, dv) = if a * ht <= hc {
+        // the cut-off N = ht meets the Coulomb faces at T = +-(hc - a ht)
+        let t = hc - a * ht;
+        ([ht, -t, 0.0], [0.0, 2.0 * t, 0.0])
+    } else {
+        // the Coulomb faces meet at N = hc / a below the cut-off, M within the rocking faces
+        let nc = hc / a;
+        ([nc, 0.0, -(ht - nc)], [0.0, 0.0, 2.0 * (ht - nc)])
+    };
+    [v, dv, [-1.0, a, 1.0], [-1.0, -a, 1.0], [-1.0, a, -1.0], [-1.0, -a, -1.0]]
+}
+
+impl Program {
+    pub(super) fn new(model: &Model) -> Result<Self> {
+        let nb = model.n_blocks();
+        let mut support = model.fixed().to_vec();
+        for &d in model.held_after_dead() {
+            support[d] = true;
+        }
+        let mut eq = vec![None; 3 * nb];
+        let mut n = 0;
+        for (d, e) in eq.iter_mut().enumerate() {
+            if !support[d] {
+                *e = Some(n);
+                n += 1;
+            }
+        }
+        let its = model.interfaces();
+        let m = its.len();
+        // scales: the largest dead force, the mean interface length, the largest live force
+        let (fd, fl) = (model.dead_load(), model.live_load());
+        let trans = |v: &[f64]| (0..nb).flat_map(|i| [v[3 * i].abs(), v[3 * i + 1].abs()]).fold(0.0, f64::max);
+        let live_max = trans(fl).max((0..nb).map(|i| fl[3 * i + 2].abs()).fold(0.0, f64::max));
+        let mut force = trans(fd);
+        if force <= 0.0 {
+            force = if live_max > 0.0 { live_max } else { 1.0 };
+        }
+        let length = its.iter().map(|it| it.l).sum::<f64>() / m.max(1) as f64;
+        let length = if length > 0.0 { length } else { 1.0 };
+        let live = if live_max > 0.0 { live_max } else { 1.0 };
+        let row_scale = |d: usize| if d % 3 == 2 { 1.0 / length } else { 1.0 };
+        let (mut dofs, mut cols) = (Vec::with_capacity(m), Vec::with_capacity(m));
+        let (mut hc, mut ht, mut coulomb) = (Vec::with_capacity(m), Vec::with_capacity(m), Vec::with_capacity(m));
+        let sections = model.sections();
+        for (k, it) in its.iter().enumerate() {
+            let gd = it.dofs();
+            let mut d6 = [NO_EQ; 6];
+            let mut c6 = [[0.0; 3]; 6];
+            for r in 0..6 {
+                d6[r] = eq[gd[r]].map_or(NO_EQ, |e| e as u32);
+                let s = row_scale(gd[r]);
+                c6[r] = [it.b_mat[0][r] * s, it.b_mat[1][r] * s, it.b_mat[2][r] * s * 0.5 * it.l];
+            }
+            dofs.push(d6);
+            cols.push(c6);
+            let law = model.law(k);
+            let (c, ft) = law.strengths(&JointState::default());
+            let a = sections[k].area;
+            hc.push(c * a / force);
+            ht.push(ft * a / force);
+            coulomb.push((c * a / force, law.friction, law.dilatancy));
+        }
+        // strengths beyond STRENGTH_CAP times the total load cannot be reached within lambda's
+        // range: they are capped there (a glued joint), which keeps the program well scaled
+        let total = (0..3 * nb).filter(|&d| eq[d].is_some()).map(|d| (fd[d] / force).abs() + (fl[d] / live).abs()).sum::<f64>();
+        let cap = STRENGTH_CAP * total.max(1.0);
+        hc.iter_mut().chain(ht.iter_mut()).for_each(|h| *h = h.min(cap));
+        coulomb.iter_mut().for_each(|c| c.0 = c.0.min(cap));
+        let free = |d: &usize| eq[*d].is_some();
+        let f_dead = (0..3 * nb).filter(free).map(|d| fd[d] * row_scale(d) / force).collect();
+        let f_live = (0..3 * nb).filter(free).map(|d| fl[d] * row_scale(d) / live).collect();
+        let mut entries = Vec::with_capacity(36 * m);
+        for d6 in &dofs {
+            for &r in d6.iter().filter(|&&r| r != NO_EQ) {
+                for &c in d6.iter().filter(|&&c| c != NO_EQ) {
+                    entries.push((r as usize, c as usize));
+                }
+            }
+        }
+        let normal = SparseLu::new(n, entries)?;
+        let slots = dofs
+            .iter()
+            .map(|d6| {
+                let mut s = [u32::MAX; 36];
+                for (i, &r) in d6.iter().enumerate() {
+                    for (j, &c) in d6.iter().enumerate() {
+                        if r != NO_EQ && c != NO_EQ {
+                            s[6 * i + j] = normal.slot(r as usize, c as usize).expect("in the pattern") as u32;
+                        }
+                    }
+                }
+                s
+            })
+            .collect();
+        let slope = coulomb.iter().map(|c| c.1).collect();
+        let mut lp = Program { m, n, eq, dofs, cols, acols: vec![], slots, hc, ht, slope, coulomb, f_dead, f_live, force, length, live, normal };
+        lp.acols = (0..m).map(|k| lp.columns(k).0).collect();
+        Ok(lp)
+    }
+
+    /// lambda in its own units from a scaled solution.
+    pub(super) fn lambda_of(&self, s: &Solution) -> f64 {
+        s.lambda * self.force / self.live
+    }
+
+    /// Fixes the Coulomb faces' capacity from normal forces (scaled), for the non-associative
+    /// sequence: `|T| + tan(psi) N <= c A - (mu - tan(psi)) N_prev`.
+    pub(super) fn fix_shear_capacity(&mut self, normals: &[f64]) {
+        for (k, &(ca, mu, tp)) in self.coulomb.iter().enumerate() {
+            self.hc[k] = (ca - (mu - tp) * normals[k]).max(0.0);
+            self.slope[k] = tp;
+        }
+        self.acols = (0..self.m).map(|k| self.columns(k).0).collect();
+    }
+
+    /// The columns of interface k in the scaled equilibrium matrix (6 rows x 5 variables), and
+    /// its vertex's contribution `P V` (6 rows).
+    #[inline]
+    pub(super) fn columns(&self, k: usize) -> ([[f64; NV]; 6], [f64; 6]) {
+        let g = generators(self.slope[k], self.hc[k], self.ht[k]);
+        let c6 = &self.cols[k];
+        let mut a = [[0.0; NV]; 6];
+        let mut pv = [0.0; 6];
+        for r in 0..6 {
+            let c = c6[r];
+            let p = |v: [f64; 3]| c[0] * v[0] + c[1] * v[1] + c[2] * v[2];
+            pv[r] = p(g[0]);
+            a[r] = [p(g[2]), p(g[3]), p(g[4]), p(g[5]), p(g[1])];
+        }
+        (a, pv)
+    }
+
+    /// The interfaces' resultants (scaled) of the variables.
+    pub(super) fn resultants(&self, x: &[f64]) -> Vec<[f64; 3]> {
+        (0..self.m)
+            .map(|k| {
+                let g = generators(self.slope[k], self.hc[k], self.ht[k]);
+                let xk = &x[NV * k..NV * k + NV];
+                let mut s = g[0];
+                for (j, gj) in [g[2], g[3], g[4], g[5], g[1]].iter().enumerate() {
+                    for i in 0..3 {
+                        s[i] += xk[j] * gj[i];
+                    }
+                }
+                s
+            })
+            .collect()
+    }
+}
