@@ -28,12 +28,16 @@ fn main() {
     })
     .expect("options");
     println!(
-        "{} blocks: lambda {:.5}, {:?}, {} steps, {} Newton iterations, {:.3} s",
+        "{} blocks: lambda {:.5} (last equilibrium {:.5}), {:?}, {} steps, {} Newton iterations, {:.3} s",
         model.n_blocks(),
         r.collapse_multiplier,
+        r.last_equilibrium,
         r.status,
         r.steps,
         r.iterations,
         r.elapsed_s
     );
+    if let Some(e) = &r.error {
+        println!("  {e}");
+    }
 }

@@ -56,6 +56,16 @@ pub(crate) fn rows3<'py>(py: Python<'py>, v: &[[f64; 3]]) -> Bound<'py, PyArray2
         .into_pyarray(py)
 }
 
+/// How the load is driven: "load", or "displacement" by `max_displacement` (left out: the
+/// core's default, [`DEFAULT_MAX_DISPLACEMENT`]).
+pub(crate) fn control_from(control: &str, max_displacement: Option<f64>) -> PyResult<Control> {
+    match control {
+        "load" => Ok(Control::Load),
+        "displacement" => Ok(Control::Displacement { max_displacement: max_displacement.unwrap_or(DEFAULT_MAX_DISPLACEMENT) }),
+        o => Err(InputError::new_err(format!("analysis.control must be \"load\" or \"displacement\", got {o:?}"))),
+    }
+}
+
 /// The damping given by its kind and coefficient, each left out (None) taking the one of
 /// `default` (the core's default options).
 pub(crate) fn damping_over(kind: Option<&str>, coefficient: Option<f64>, default: Damping) -> PyResult<Damping> {

@@ -194,17 +194,7 @@ impl PyModel {
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Py<PyResults>> {
         let defaults = StaticOptions::default();
-        let control = match control {
-            "load" => Control::Load,
-            "displacement" => Control::Displacement {
-                max_displacement: max_displacement.unwrap_or(DEFAULT_MAX_DISPLACEMENT),
-            },
-            o => {
-                return Err(InputError::new_err(format!(
-                    "analysis.control must be \"load\" or \"displacement\", got {o:?}"
-                )))
-            }
-        };
+        let control = control_from(control, max_displacement)?;
         let opts = StaticOptions {
             control,
             until_collapse: max_displacement.is_none(),
@@ -285,11 +275,7 @@ impl PyModel {
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Py<PyResults>> {
         let defaults = ExplicitOptions::default();
-        let control = match control {
-            "load" => Control::Load,
-            "displacement" => Control::Displacement { max_displacement: max_displacement.unwrap_or(DEFAULT_MAX_DISPLACEMENT) },
-            o => return Err(InputError::new_err(format!("analysis.control must be \"load\" or \"displacement\", got {o:?}"))),
-        };
+        let control = control_from(control, max_displacement)?;
         let opts = ExplicitOptions {
             control,
             steps: steps.map_or(Ok(defaults.steps), |v| count("analysis.steps", v, 1))?,
