@@ -4,9 +4,15 @@
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Error {
     /// Bad input: a non-finite or out-of-range number, a degenerate or overlapping block,
-    /// a block that touches nothing, a wall with no support. The message names the culprit.
-    #[error("{0}")]
-    Input(String),
+    /// a block that touches nothing, a wall with no support.
+    #[error("{reason}")]
+    Input {
+        /// The case-file key at fault ("geometry.thickness", "joints.bed.friction"), when the
+        /// error concerns one key; `None` for errors about blocks, interfaces or the whole wall.
+        key: Option<String>,
+        /// The message, a sentence that names the key, block or interface at fault.
+        reason: String,
+    },
     /// The model is a mechanism before any load is applied (no equilibrium under dead load).
     #[error("{0}")]
     Mechanism(String),
@@ -16,15 +22,33 @@ pub enum Error {
     /// The run was stopped by the caller (Ctrl-C from Python, or a progress callback).
     #[error("interrupted by the user")]
     Interrupted,
-    /// The memory a model or an analysis needs cannot be allocated (checked before allocating:
-    /// the message says how much it would need).
-    #[error("{0}")]
-    OutOfMemory(String),
+    /// The memory a model or an analysis needs cannot be allocated (checked before allocating).
+    #[error("{what} needs about {}, more memory than this machine (or this process) can allocate", format_bytes(*.bytes))]
+    OutOfMemory {
+        /// What needed it ("a model of 1892685 blocks", "static analysis of 10000 blocks").
+        what: String,
+        /// The estimated size \[bytes\].
+        bytes: f64,
+    },
 }
 
 impl Error {
-    pub(crate) fn input(msg: impl Into<String>) -> Self {
-        Error::Input(msg.into())
+    /// Bad input not tied to one key (a block, an interface, the whole wall).
+    pub(crate) fn input(reason: impl Into<String>) -> Self {
+        Error::Input { key: None, reason: reason.into() }
+    }
+
+    /// Bad input at case-file key `key`; `reason` is the whole sentence (it names the key too).
+    pub(crate) fn input_at(key: impl Into<String>, reason: impl Into<String>) -> Self {
+        Error::Input { key: Some(key.into()), reason: reason.into() }
+    }
+
+    /// The case-file key of an input error, if it concerns one.
+    pub fn key(&self) -> Option<&str> {
+        match self {
+            Error::Input { key, .. } => key.as_deref(),
+            _ => None,
+        }
     }
 }
 
@@ -36,7 +60,7 @@ pub(crate) fn positive(what: &str, value: f64) -> Result<f64> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(Error::input(format!(
+        Err(Error::input_at(what, format!(
             "{what} must be a finite number > 0, got {value}"
         )))
     }
@@ -47,7 +71,7 @@ pub(crate) fn non_negative(what: &str, value: f64) -> Result<f64> {
     if value.is_finite() && value >= 0.0 {
         Ok(value)
     } else {
-        Err(Error::input(format!(
+        Err(Error::input_at(what, format!(
             "{what} must be a finite number >= 0, got {value}"
         )))
     }
@@ -61,10 +85,10 @@ pub const MAX_STEPS: usize = 1_000_000;
 /// Check that `analysis.steps` lies in `1..=MAX_STEPS`.
 pub(crate) fn check_steps(steps: usize) -> Result<()> {
     if steps == 0 {
-        return Err(Error::input("analysis.steps must be at least 1"));
+        return Err(Error::input_at("analysis.steps", "analysis.steps must be at least 1"));
     }
     if steps > MAX_STEPS {
-        return Err(Error::input(format!(
+        return Err(Error::input_at("analysis.steps", format!(
             "analysis.steps = {steps} is more than the limit of {MAX_STEPS} increments"
         )));
     }
@@ -97,10 +121,7 @@ pub fn check_memory(what: &str, bytes: f64) -> Result<()> {
     let n = if bytes.is_finite() && bytes > 0.0 { bytes.min(isize::MAX as f64) as usize } else { 0 };
     let mut probe: Vec<u8> = Vec::new();
     if probe.try_reserve_exact(n).is_err() {
-        return Err(Error::OutOfMemory(format!(
-            "{what} needs about {}, more memory than this machine (or this process) can allocate",
-            format_bytes(bytes)
-        )));
+        return Err(Error::OutOfMemory { what: what.to_string(), bytes });
     }
     Ok(())
 }

@@ -83,9 +83,10 @@ fn coord(v: f64) -> String {
 }
 
 /// Which block starts the lowest course of a running bond.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum FirstCourse {
     /// The lowest course starts at x = 0 with a half block.
+    #[default]
     Half,
     /// The lowest course starts at x = 0 with a whole block.
     Full,

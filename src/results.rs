@@ -24,9 +24,23 @@ pub enum Status {
     /// wall's size) while lambda still rose: not a collapse. `last_equilibrium` holds the
     /// largest lambda reached.
     DisplacementLimit,
+    /// The caller stopped the run (Ctrl-C from Python, or a progress callback returning false):
+    /// the curve holds the converged steps, `error` says so.
+    Interrupted,
 }
 
 impl Status {
+    /// The status of a run ended by error `e`: [`Status::Interrupted`] when the caller stopped
+    /// it, [`Status::Failed`] otherwise.
+    pub fn failure(e: &crate::error::Error) -> Status {
+        if matches!(e, crate::error::Error::Interrupted) {
+            Status::Interrupted
+        } else {
+            Status::Failed
+        }
+    }
+
+    /// The name of the status in result files and in Python ("collapse", "stalled", ...).
     pub fn as_str(self) -> &'static str {
         match self {
             Status::Collapse => "collapse",
@@ -36,6 +50,7 @@ impl Status {
             Status::Unbounded => "unbounded",
             Status::Stalled => "stalled",
             Status::DisplacementLimit => "displacement_limit",
+            Status::Interrupted => "interrupted",
         }
     }
 }

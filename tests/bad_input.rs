@@ -8,7 +8,7 @@ use masonry_dem::Error;
 
 fn refused(spec: ModelSpec, needle: &str) {
     match Model::new(spec) {
-        Err(Error::Input(m)) => {
+        Err(Error::Input { reason: m, .. }) => {
             assert!(m.contains(needle), "message {m:?} does not name {needle:?}")
         }
         other => panic!("expected an input error naming {needle:?}, got {other:?}"),
@@ -145,7 +145,7 @@ fn a_wall_without_support_is_refused() {
     })
     .unwrap();
     match solve(&m, &StaticOptions::default()) {
-        Err(Error::Input(msg)) => assert!(msg.contains("no support"), "{msg}"),
+        Err(Error::Input { reason: msg, .. }) => assert!(msg.contains("no support"), "{msg}"),
         other => panic!("expected no support, got {other:?}"),
     }
 }
@@ -165,12 +165,12 @@ fn generators_refuse_bad_parameters() {
         running_bond(&p)
     };
     assert!(
-        matches!(rb(|p| p.block_length = -1.0), Err(Error::Input(m)) if m.contains("block_length"))
+        matches!(rb(|p| p.block_length = -1.0), Err(Error::Input { reason: m, .. }) if m.contains("block_length"))
     );
-    assert!(matches!(rb(|p| p.courses = 0), Err(Error::Input(m)) if m.contains("courses")));
-    assert!(matches!(rb(|p| p.length = 1e12), Err(Error::Input(m)) if m.contains("blocks")));
+    assert!(matches!(rb(|p| p.courses = 0), Err(Error::Input { reason: m, .. }) if m.contains("courses")));
+    assert!(matches!(rb(|p| p.length = 1e12), Err(Error::Input { reason: m, .. }) if m.contains("blocks")));
     assert!(
-        matches!(pattern(0.4, 0.2, &[vec![1.0, 0.0]]), Err(Error::Input(m)) if m.contains("rows[0][1]"))
+        matches!(pattern(0.4, 0.2, &[vec![1.0, 0.0]]), Err(Error::Input { reason: m, .. }) if m.contains("rows[0][1]"))
     );
 }
 
@@ -239,7 +239,7 @@ fn a_model() -> Model {
 
 fn input_message<T: std::fmt::Debug>(r: Result<T, Error>) -> String {
     match r {
-        Err(Error::Input(m)) => m,
+        Err(Error::Input { reason: m, .. }) => m,
         other => panic!("expected an input error, got {other:?}"),
     }
 }
@@ -309,16 +309,16 @@ fn generator_keys_are_case_file_keys() {
         first_course: FirstCourse::Half,
         openings: vec![],
     };
-    assert!(matches!(running_bond(&p), Err(Error::Input(m)) if m.contains("geometry.running_bond.block_height")));
+    assert!(matches!(running_bond(&p), Err(Error::Input { reason: m, .. }) if m.contains("geometry.running_bond.block_height")));
     let tall = RunningBond { block_height: 1e300, courses: 1_000_000_000, length: 0.4, ..p.clone() };
-    assert!(matches!(running_bond(&tall), Err(Error::Input(m)) if m.contains("geometry.running_bond")));
+    assert!(matches!(running_bond(&tall), Err(Error::Input { reason: m, .. }) if m.contains("geometry.running_bond")));
     let bad_opening = RunningBond { block_height: 0.2, openings: vec![Rect::new(1.0, 0.0, 0.0, 1.0)], ..p.clone() };
-    assert!(matches!(running_bond(&bad_opening), Err(Error::Input(m)) if m.contains("geometry.running_bond.openings[0]")));
+    assert!(matches!(running_bond(&bad_opening), Err(Error::Input { reason: m, .. }) if m.contains("geometry.running_bond.openings[0]")));
     // 10^9 blocks: refused by count before allocating
     let huge = RunningBond { block_height: 0.2, length: 4e8, courses: 1000, ..p };
-    assert!(matches!(running_bond(&huge), Err(Error::Input(m)) if m.contains("blocks") && m.contains("limit")));
+    assert!(matches!(running_bond(&huge), Err(Error::Input { reason: m, .. }) if m.contains("blocks") && m.contains("limit")));
     assert!(
-        matches!(pattern(0.4, 0.2, &[vec![1e308; 5]]), Err(Error::Input(m)) if m.contains("geometry.pattern.rows[0][4]"))
+        matches!(pattern(0.4, 0.2, &[vec![1e308; 5]]), Err(Error::Input { reason: m, .. }) if m.contains("geometry.pattern.rows[0][4]"))
     );
 }
 
@@ -348,7 +348,7 @@ fn driving_an_unloaded_top_beam_is_refused() {
     .unwrap();
     let opts = StaticOptions { control: Control::Displacement { max_displacement: 1e-3 }, ..Default::default() };
     match solve(&model, &opts) {
-        Err(Error::Input(m)) => assert!(m.contains("top beam") && m.contains("top.force"), "{m}"),
+        Err(Error::Input { reason: m, .. }) => assert!(m.contains("top beam") && m.contains("top.force"), "{m}"),
         other => panic!("expected an input error, got {other:?}"),
     }
     // with a force on it the beam is tied to the wall by friction: accepted

@@ -35,7 +35,7 @@ fn a_poll_that_says_stop_stops_the_static_solver() {
     })
     .unwrap();
     assert_eq!(polls, 1, "the stop is final: no poll after it");
-    assert_eq!(r.status, Status::Failed);
+    assert_eq!(r.status, Status::Interrupted);
     assert_eq!(r.error.as_deref(), Some(Error::Interrupted.to_string().as_str()));
     assert_eq!(steps, r.steps, "every converged step reported once, polls aside");
     assert_eq!(r.curve_multiplier.len(), r.steps);

@@ -3,6 +3,8 @@
 Block indices: wall blocks are numbered 0..n_wall-1 in the order given; the base (if any) and
 the top beam (if any) come after them (see `Model.base_index`, `Model.top_index`).
 Interface families: "bed", "head", "base", "top".
+An argument left out (None) takes the core's default: the Rust `Default` of the options it belongs
+to, documented in docs/case-format.md under the matching key.
 """
 
 from typing import Callable, Literal, Optional, Sequence, TypedDict
@@ -16,24 +18,17 @@ IntArray = npt.NDArray[np.int64]
 __version__: str
 JOINT_LAW_KEYS: list[str]  # the keys of a joint-law dict (and of [joints] tables)
 
-class MasonryError(Exception):
-    """Base class of every error raised by masonry_dem."""
-
-class InputError(MasonryError):
-    """Bad input: a key, block or interface is named in the message."""
-
-class ConvergenceError(MasonryError):
-    """A solver did not converge (results up to the last converged step are kept where possible)."""
-
-class MechanismError(MasonryError):
-    """The model is a mechanism before any load (e.g. a block that nothing holds)."""
+from .errors import ConvergenceError as ConvergenceError
+from .errors import InputError as InputError
+from .errors import MasonryError as MasonryError
+from .errors import MechanismError as MechanismError
 
 def running_bond(
     block_length: float,
     block_height: float,
     courses: int,
     length: float,
-    first_course: Literal["half", "full"] = "half",
+    first_course: Optional[Literal["half", "full"]] = None,
     openings: Optional[Sequence[Sequence[float]]] = None,
 ) -> FloatArray:
     """Blocks [x0, y0, x1, y1] (shape (n, 4), m) of a running-bond wall standing at y = 0 from x = 0.
@@ -71,16 +66,19 @@ class Model:
     def __init__(
         self,
         blocks: npt.ArrayLike,
-        thickness: float = 1.0,
-        density: float = 1000.0,
-        base: bool = True,
-        top_rotation: Optional[Literal["fixed", "free"]] = None,
-        top_force: Sequence[float] = (0.0, 0.0),
+        thickness: Optional[float] = None,
+        density: Optional[float] = None,
+        base: Optional[bool] = None,
+        top_rotation: Optional[Literal["fixed", "free"]] = None,  # None: no top beam
+        top_force: Optional[Sequence[float]] = None,
         joints: Optional[dict[str, dict[str, float]]] = None,
-        gravity: float = 9.81,
-        live: Literal["horizontal_weight", "top_horizontal"] = "horizontal_weight",
-        top_vertical: Literal["free", "held"] = "free",
+        gravity: Optional[float] = None,
+        live: Optional[Literal["horizontal_weight", "top_horizontal"]] = None,
+        top_vertical: Optional[Literal["free", "held"]] = None,
     ) -> None: ...
+    @property
+    def live(self) -> Literal["horizontal_weight", "top_horizontal"]:
+        """The live load: "horizontal_weight" (lambda times each block's weight) or "top_horizontal" (lambda newtons on the top beam)."""
     def fix(self, block: int, dof: Literal[0, 1, 2], value: float = 0.0) -> None:
         """Fix dof (0: u1 [m], 1: u2 [m], 2: phi [rad]) of a block at a prescribed value."""
     @property
@@ -109,7 +107,7 @@ class Model:
         """Family of each interface: "bed", "head", "base" or "top"."""
     def solve_static(
         self,
-        control: Literal["load", "displacement"] = "load",
+        control: Optional[Literal["load", "displacement"]] = None,
         steps: Optional[int] = None,
         max_displacement: Optional[float] = None,
         control_block: Optional[int] = None,
@@ -146,7 +144,7 @@ class Model:
         converged step (fraction in [0, 1] under displacement control, NaN otherwise)."""
     def solve_dynamic(
         self,
-        control: Literal["load", "displacement"] = "load",
+        control: Optional[Literal["load", "displacement"]] = None,
         steps: Optional[int] = None,
         max_displacement: Optional[float] = None,
         control_block: Optional[int] = None,

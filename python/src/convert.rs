@@ -56,36 +56,6 @@ pub(crate) fn rows3<'py>(py: Python<'py>, v: &[[f64; 3]]) -> Bound<'py, PyArray2
         .into_pyarray(py)
 }
 
-/// How the load is driven: "load", or "displacement" by `max_displacement` (left out: the
-/// core's default, [`DEFAULT_MAX_DISPLACEMENT`]).
-pub(crate) fn control_from(control: &str, max_displacement: Option<f64>) -> PyResult<Control> {
-    match control {
-        "load" => Ok(Control::Load),
-        "displacement" => Ok(Control::Displacement { max_displacement: max_displacement.unwrap_or(DEFAULT_MAX_DISPLACEMENT) }),
-        o => Err(InputError::new_err(format!("analysis.control must be \"load\" or \"displacement\", got {o:?}"))),
-    }
-}
-
-/// The damping given by its kind and coefficient, each left out (None) taking the one of
-/// `default` (the core's default options).
-pub(crate) fn damping_over(kind: Option<&str>, coefficient: Option<f64>, default: Damping) -> PyResult<Damping> {
-    let (default_kind, default_coefficient) = match default {
-        Damping::None => ("none", 0.0),
-        Damping::Local(c) => ("local", c),
-        Damping::Viscous(c) => ("viscous", c),
-    };
-    damping_from(kind.unwrap_or(default_kind), coefficient.unwrap_or(default_coefficient))
-}
-
-pub(crate) fn damping_from(kind: &str, coefficient: f64) -> PyResult<Damping> {
-    match kind {
-        "local" => Ok(Damping::Local(coefficient)),
-        "viscous" => Ok(Damping::Viscous(coefficient)),
-        "none" => Ok(Damping::None),
-        o => Err(InputError::new_err(format!("damping must be \"local\", \"viscous\" or \"none\", got {o:?}"))),
-    }
-}
-
 pub(crate) fn rows3_from(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<Vec<[f64; 3]>>> {
     let Some(o) = obj.filter(|o| !o.is_none()) else { return Ok(None) };
     let rows: Vec<Vec<f64>> = if let Ok(a) = o.extract::<PyReadonlyArray2<f64>>() {
@@ -106,19 +76,27 @@ pub(crate) fn rows3_from(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult
         .map(Some)
 }
 
-/// The keys of a joint law, for both the bindings and the case-file loader (`JOINT_LAW_KEYS`).
-pub(crate) const LAW_KEYS: [&str; 8] = [
-    "normal_stiffness",
-    "shear_stiffness",
-    "friction",
-    "cohesion",
-    "tensile_strength",
-    "dilatancy",
-    "fracture_energy_tension",
-    "fracture_energy_shear",
-];
+/// The joint laws of the `joints` dict: "default" and the families' own, each a dict of
+/// [`JointLaw::KEYS`] over the default law.
+pub(crate) fn laws_from(joints: Option<&Bound<'_, PyDict>>) -> PyResult<JointLaws> {
+    let mut laws = JointLaws::default();
+    let Some(j) = joints else { return Ok(laws) };
+    if let Some(d) = j.get_item("default")? {
+        laws.default = law_from(&d, JointLaw::default(), "joints")?;
+    }
+    for (k, v) in j.iter() {
+        let family: String = k.extract()?;
+        if family == "default" {
+            continue;
+        }
+        let f: Family = family.parse().map_err(to_py)?;
+        *laws.family_mut(f) = Some(law_from(&v, laws.default, &format!("joints.{family}"))?);
+    }
+    Ok(laws)
+}
 
-pub(crate) fn law_from(d: &Bound<'_, PyAny>, base: JointLaw, what: &str) -> PyResult<JointLaw> {
+/// A joint law: the dict's keys (checked by the core) over `base`.
+fn law_from(d: &Bound<'_, PyAny>, base: JointLaw, what: &str) -> PyResult<JointLaw> {
     let d = d
         .cast::<PyDict>()
         .map_err(|_| InputError::new_err(format!("{what}: expected a dict of joint parameters")))?;
@@ -135,22 +113,7 @@ pub(crate) fn law_from(d: &Bound<'_, PyAny>, base: JointLaw, what: &str) -> PyRe
         let x: f64 = v
             .extract()
             .map_err(|_| InputError::new_err(format!("{what}.{key}: expected a number")))?;
-        match key.as_str() {
-            "normal_stiffness" => law.normal_stiffness = x,
-            "shear_stiffness" => law.shear_stiffness = x,
-            "friction" => law.friction = x,
-            "cohesion" => law.cohesion = x,
-            "tensile_strength" => law.tensile_strength = x,
-            "dilatancy" => law.dilatancy = x,
-            "fracture_energy_tension" => law.fracture_energy_tension = x,
-            "fracture_energy_shear" => law.fracture_energy_shear = x,
-            _ => {
-                return Err(InputError::new_err(format!(
-                    "{what}: unknown key {key:?} (expected one of {})",
-                    LAW_KEYS.join(", ")
-                )))
-            }
-        }
+        law.set(what, &key, x).map_err(to_py)?;
     }
     Ok(law)
 }

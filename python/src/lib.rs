@@ -9,54 +9,61 @@
 use masonry_dem::error::Error;
 use masonry_dem::geometry::{self, FirstCourse, Rect, RunningBond};
 use masonry_dem::joint::JointLaw;
-use masonry_dem::model::{JointLaws, LiveLoad, Model, ModelSpec, TopBeam};
+use masonry_dem::model::{JointLaws, Model, ModelSpec, TopBeam};
 use masonry_dem::limit::{self, LimitOptions};
 use masonry_dem::results::{Results, Status};
-use masonry_dem::analysis::{Control, DEFAULT_MAX_DISPLACEMENT};
+use masonry_dem::analysis::Control;
+use masonry_dem::interface::Family;
 use masonry_dem::explicit::{self, Damping, DynamicOptions, ExplicitOptions, TimeHistory};
 use masonry_dem::static_solver::{self, StaticOptions};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{mpsc, Arc, Mutex};
-use pyo3::create_exception;
-use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::time::{Duration, Instant};
 
-create_exception!(
-    _core,
-    MasonryError,
-    PyException,
-    "Base class of every error raised by masonry_dem."
-);
-create_exception!(
-    _core,
-    InputError,
-    MasonryError,
-    "Bad input: the message names the key, block or interface."
-);
-create_exception!(
-    _core,
-    ConvergenceError,
-    MasonryError,
-    "A solver did not converge."
-);
-create_exception!(
-    _core,
-    MechanismError,
-    MasonryError,
-    "The model is a mechanism before any load."
-);
+/// The exceptions are Python classes of `masonry_dem.errors` (each subclasses the standard
+/// exception it is a kind of: `InputError(MasonryError, ValueError)`); the core raises them by name.
+fn py_error(class: &'static str, message: String, key: Option<String>) -> PyErr {
+    Python::attach(|py| {
+        let made = py
+            .import("masonry_dem.errors")
+            .and_then(|m| m.getattr(class))
+            .and_then(|c| c.call1((message.clone(), key)));
+        match made {
+            Ok(e) => PyErr::from_value(e),
+            Err(import_error) => import_error,
+        }
+    })
+}
 
+macro_rules! py_exception {
+    ($name:ident) => {
+        /// Raises `masonry_dem.errors.
+        #[doc = stringify!($name)]
+        /// `.
+        pub(crate) struct $name;
+        impl $name {
+            pub(crate) fn new_err(message: impl Into<String>) -> PyErr {
+                py_error(stringify!($name), message.into(), None)
+            }
+        }
+    };
+}
+py_exception!(MasonryError);
+py_exception!(InputError);
+
+/// The Python exception of a core error, matched by kind.
 fn to_py(e: Error) -> PyErr {
+    let message = e.to_string();
     match e {
-        Error::Input(m) => InputError::new_err(m),
-        Error::Mechanism(m) => MechanismError::new_err(m),
-        Error::Convergence(m) => ConvergenceError::new_err(m),
-        Error::Interrupted => MasonryError::new_err("interrupted by the user"),
-        Error::OutOfMemory(m) => pyo3::exceptions::PyMemoryError::new_err(m),
+        Error::Input { key, reason } => py_error("InputError", reason, key),
+        Error::Mechanism(m) => py_error("MechanismError", m, None),
+        Error::Convergence(m) => py_error("ConvergenceError", m, None),
+        Error::Interrupted => pyo3::exceptions::PyKeyboardInterrupt::new_err(message),
+        Error::OutOfMemory { .. } => pyo3::exceptions::PyMemoryError::new_err(message),
     }
 }
 
@@ -93,11 +100,11 @@ use run::*;
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
-    m.add("JOINT_LAW_KEYS", LAW_KEYS.to_vec())?;
-    m.add("MasonryError", py.get_type::<MasonryError>())?;
-    m.add("InputError", py.get_type::<InputError>())?;
-    m.add("ConvergenceError", py.get_type::<ConvergenceError>())?;
-    m.add("MechanismError", py.get_type::<MechanismError>())?;
+    m.add("JOINT_LAW_KEYS", JointLaw::KEYS.to_vec())?;
+    let errors = py.import("masonry_dem.errors")?;
+    for name in ["MasonryError", "InputError", "ConvergenceError", "MechanismError"] {
+        m.add(name, errors.getattr(name)?)?;
+    }
     m.add_function(wrap_pyfunction!(running_bond, m)?)?;
     m.add_function(wrap_pyfunction!(pattern, m)?)?;
     m.add_class::<PyModel>()?;

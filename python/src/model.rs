@@ -11,93 +11,33 @@ pub(crate) struct PyModel {
 #[pymethods]
 impl PyModel {
     #[new]
-    #[pyo3(signature = (blocks, thickness=1.0, density=1000.0, base=true, top_rotation=None, top_force=vec![0.0, 0.0], joints=None, gravity=9.81, live="horizontal_weight", top_vertical="free"))]
+    #[pyo3(signature = (blocks, thickness=None, density=None, base=None, top_rotation=None, top_force=None, joints=None, gravity=None, live=None, top_vertical=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         blocks: &Bound<'_, PyAny>,
-        thickness: f64,
-        density: f64,
-        base: bool,
+        thickness: Option<f64>,
+        density: Option<f64>,
+        base: Option<bool>,
         top_rotation: Option<&str>,
-        top_force: Vec<f64>,
+        top_force: Option<Vec<f64>>,
         joints: Option<&Bound<'_, PyDict>>,
-        gravity: f64,
-        live: &str,
-        top_vertical: &str,
+        gravity: Option<f64>,
+        live: Option<&str>,
+        top_vertical: Option<&str>,
     ) -> PyResult<Self> {
-        let blocks = rects_from(blocks, "blocks")?;
-        if top_force.len() != 2 {
-            return Err(InputError::new_err(format!(
-                "top.force: expected 2 numbers [Fx, Fy] in N, got {}",
-                top_force.len()
-            )));
-        }
-        let vertical_held = match top_vertical {
-            "free" => false,
-            "held" => true,
-            o => {
-                return Err(InputError::new_err(format!(
-                    "top.vertical must be \"free\" or \"held\", got {o:?}"
-                )))
-            }
-        };
-        if vertical_held && top_rotation.is_none() {
-            return Err(InputError::new_err(
-                "top.vertical = \"held\" needs a top beam (top.rotation)",
-            ));
-        }
-        let top = match top_rotation {
-            None => None,
-            Some(r @ ("fixed" | "free")) => Some(TopBeam {
-                rotation_fixed: r == "fixed",
-                force: [top_force[0], top_force[1]],
-                vertical_held,
-            }),
-            Some(o) => {
-                return Err(InputError::new_err(format!(
-                    "top.rotation must be \"fixed\" or \"free\", got {o:?}"
-                )))
-            }
-        };
-        let live = match live {
-            "horizontal_weight" => LiveLoad::HorizontalWeight,
-            "top_horizontal" => LiveLoad::TopHorizontal,
-            o => {
-                return Err(InputError::new_err(format!(
-                    "loads.live must be \"horizontal_weight\" or \"top_horizontal\", got {o:?}"
-                )))
-            }
-        };
-        let mut laws = JointLaws::default();
-        if let Some(j) = joints {
-            if let Some(d) = j.get_item("default")? {
-                laws.default = law_from(&d, JointLaw::default(), "joints")?;
-            }
-            for (k, v) in j.iter() {
-                let fam: String = k.extract()?;
-                let slot = match fam.as_str() {
-                    "default" => continue,
-                    "bed" => &mut laws.bed,
-                    "head" => &mut laws.head,
-                    "base" => &mut laws.base,
-                    "top" => &mut laws.top,
-                    o => return Err(InputError::new_err(format!(
-                        "joints: unknown family {o:?} (expected default, bed, head, base or top)"
-                    ))),
-                };
-                *slot = Some(law_from(&v, laws.default, &format!("joints.{fam}"))?);
-            }
-        }
+        let d = ModelSpec::default();
+        let top = TopBeam::from_keys(top_rotation, &top_force.unwrap_or(vec![0.0, 0.0]), top_vertical.unwrap_or("free"))
+            .map_err(to_py)?;
         let spec = ModelSpec {
-            blocks,
-            thickness,
-            density,
-            base,
+            blocks: rects_from(blocks, "blocks")?,
+            thickness: thickness.unwrap_or(d.thickness),
+            density: density.unwrap_or(d.density),
+            base: base.unwrap_or(d.base),
             top,
-            joints: laws,
-            gravity,
-            live,
+            joints: laws_from(joints)?,
+            gravity: gravity.unwrap_or(d.gravity),
+            live: live.map_or(Ok(d.live), str::parse).map_err(to_py)?,
         };
         // the GIL released (a million blocks take seconds), polling Ctrl-C in this thread
         let mut raised = None;
@@ -122,6 +62,13 @@ impl PyModel {
     #[pyo3(signature = (block, dof, value=0.0))]
     fn fix(&mut self, block: usize, dof: usize, value: f64) -> PyResult<()> {
         Arc::make_mut(&mut self.inner).fix(block, dof, value).map_err(to_py)
+    }
+
+    /// The live load: "horizontal_weight" (lambda times each block's weight) or "top_horizontal"
+    /// (a force of lambda newtons on the top beam).
+    #[getter]
+    fn live(&self) -> &'static str {
+        self.inner.live().as_str()
     }
 
     #[getter]
@@ -180,12 +127,12 @@ impl PyModel {
     /// step and raises KeyboardInterrupt with what was computed (status "failed", error
     /// "interrupted by the user") as its `results`.
     /// Options left out (None) take the core's defaults (`StaticOptions::default()`).
-    #[pyo3(signature = (control="load", steps=None, max_displacement=None, control_block=None, tolerance=None, max_iterations=None, progress=None))]
+    #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, max_iterations=None, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_static(
         &self,
         py: Python<'_>,
-        control: &str,
+        control: Option<&str>,
         steps: Option<i64>,
         max_displacement: Option<f64>,
         control_block: Option<usize>,
@@ -194,7 +141,7 @@ impl PyModel {
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Py<PyResults>> {
         let defaults = StaticOptions::default();
-        let control = control_from(control, max_displacement)?;
+        let control = Control::from_keys(control, max_displacement, defaults.control).map_err(to_py)?;
         let opts = StaticOptions {
             control,
             until_collapse: max_displacement.is_none(),
@@ -256,12 +203,12 @@ impl PyModel {
 
     /// Quasi-static analysis with the explicit solver (see _core.pyi).
     /// Options left out (None) take the core's defaults (`ExplicitOptions::default()`).
-    #[pyo3(signature = (control="load", steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, progress=None))]
+    #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_dynamic(
         &self,
         py: Python<'_>,
-        control: &str,
+        control: Option<&str>,
         steps: Option<i64>,
         max_displacement: Option<f64>,
         control_block: Option<usize>,
@@ -275,13 +222,13 @@ impl PyModel {
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Py<PyResults>> {
         let defaults = ExplicitOptions::default();
-        let control = control_from(control, max_displacement)?;
+        let control = Control::from_keys(control, max_displacement, defaults.control).map_err(to_py)?;
         let opts = ExplicitOptions {
             control,
             steps: steps.map_or(Ok(defaults.steps), |v| count("analysis.steps", v, 1))?,
             tolerance: tolerance.unwrap_or(defaults.tolerance),
             unbalanced_ratio: unbalanced_ratio.unwrap_or(defaults.unbalanced_ratio),
-            damping: damping_over(damping, damping_coefficient, defaults.damping)?,
+            damping: Damping::from_keys(damping, damping_coefficient, defaults.damping).map_err(to_py)?,
             time_step,
             safety: safety.unwrap_or(defaults.safety),
             threads: threads.map_or(Ok(defaults.threads), |v| count("threads", v, 0))?,
@@ -328,7 +275,7 @@ impl PyModel {
             duration,
             time_step,
             safety: safety.unwrap_or(defaults.safety),
-            damping: damping_over(damping, damping_coefficient, defaults.damping)?,
+            damping: Damping::from_keys(damping, damping_coefficient, defaults.damping).map_err(to_py)?,
             initial_displacement: rows3_from(initial_displacements, "initial_displacements")?,
             initial_velocity: rows3_from(initial_velocities, "initial_velocities")?,
             base_acceleration,

@@ -78,14 +78,14 @@ impl PyTimeHistory {
     }
 }
 
-/// The Results of a limit analysis stopped before its end: status "failed", no multiplier, no
+/// The Results of a limit analysis stopped before its end: status "interrupted", no multiplier, no
 /// mechanism, no certificate (as the other solvers report an interrupted run).
 pub(crate) fn interrupted_limit(model: &Model, start: Instant) -> Results {
     let nb = model.n_blocks();
     let m = model.interfaces().len();
     Results {
         method: "limit",
-        status: Status::Failed,
+        status: Status::Interrupted,
         error: Some(Error::Interrupted.to_string()),
         collapse_multiplier: f64::NAN,
         last_equilibrium: f64::NAN,

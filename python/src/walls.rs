@@ -4,25 +4,17 @@ use crate::*;
 
 /// Blocks [x0, y0, x1, y1] (shape (n, 4), m) of a running-bond wall standing at y = 0 from x = 0.
 #[pyfunction]
-#[pyo3(signature = (block_length, block_height, courses, length, first_course="half", openings=None))]
+#[pyo3(signature = (block_length, block_height, courses, length, first_course=None, openings=None))]
 pub(crate) fn running_bond<'py>(
     py: Python<'py>,
     block_length: f64,
     block_height: f64,
     courses: i64,
     length: f64,
-    first_course: &str,
+    first_course: Option<&str>,
     openings: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let first_course = match first_course {
-        "half" => FirstCourse::Half,
-        "full" => FirstCourse::Full,
-        o => {
-            return Err(InputError::new_err(format!(
-                "geometry.running_bond.first_course must be \"half\" or \"full\", got {o:?}"
-            )))
-        }
-    };
+    let first_course = first_course.map_or(Ok(FirstCourse::default()), str::parse).map_err(to_py)?;
     if courses < 1 {
         return Err(InputError::new_err(format!(
             "geometry.running_bond.courses must be at least 1, got {courses}"

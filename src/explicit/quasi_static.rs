@@ -195,10 +195,10 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
     let u_fail0 = 1e-2 * size;
     match relax(&mut s, &mut lam, None, u_fail0, monitor) {
         Level::Settled => {}
-        Level::Stopped => return Ok(finish(model, s, Status::Failed, Some(Error::Interrupted), curve_l, curve_u, None, control_block, start)),
+        Level::Stopped => return Ok(finish(model, s, Status::Interrupted, Some(Error::Interrupted), curve_l, curve_u, None, control_block, start)),
         Level::RanAway => {
             let e = Error::Mechanism("no equilibrium under the dead loads alone (the wall does not settle)".into());
-            return Ok(finish(model, s, Status::Failed, Some(e), curve_l, curve_u, None, control_block, start));
+            return Ok(finish(model, s, Status::failure(&e), Some(e), curve_l, curve_u, None, control_block, start));
         }
     }
     let dead_steps = s.steps - steps_before;
@@ -240,7 +240,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
                         curve_u.push(s.u[cd]);
                         let p = Progress { step: s.steps, multiplier: l, displacement: s.u[cd], fraction: f64::NAN, poll: false };
                         if !monitor(&p) {
-                            return Ok(finish(model, s, Status::Failed, Some(Error::Interrupted), curve_l, curve_u, None, control_block, start));
+                            return Ok(finish(model, s, Status::Interrupted, Some(Error::Interrupted), curve_l, curve_u, None, control_block, start));
                         }
                         if lam_conv > 1e3 * scale {
                             let e = Error::Convergence(crate::results::unbounded_message(lam_conv));
@@ -249,7 +249,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
                     }
                     Level::Stopped => {
                         restore(&mut s, &saved);
-                        return Ok(finish(model, s, Status::Failed, Some(Error::Interrupted), curve_l, curve_u, None, control_block, start));
+                        return Ok(finish(model, s, Status::Interrupted, Some(Error::Interrupted), curve_l, curve_u, None, control_block, start));
                     }
                     Level::RanAway => {
                         mechanism = Some(s.u.iter().zip(&saved.0).map(|(a, b)| a - b).collect::<Vec<f64>>());
@@ -263,7 +263,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
                 }
             }
             let e = Error::Convergence(format!("no collapse bracket after {max_levels} load levels"));
-            Ok(finish(model, s, Status::Failed, Some(e), curve_l, curve_u, mechanism, control_block, start))
+            Ok(finish(model, s, Status::failure(&e), Some(e), curve_l, curve_u, mechanism, control_block, start))
         }
         Control::Displacement { max_displacement } => {
             let u_start = s.u[cd];
@@ -290,7 +290,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
                 match relax(&mut s, &mut lam, Some(target), f64::INFINITY, monitor) {
                     Level::Settled | Level::RanAway => {}
                     Level::Stopped => {
-                        return Ok(finish(model, s, Status::Failed, Some(Error::Interrupted), curve_l, curve_u, None, control_block, start))
+                        return Ok(finish(model, s, Status::Interrupted, Some(Error::Interrupted), curve_l, curve_u, None, control_block, start))
                     }
                 }
                 let mech: Vec<f64> = s.u.iter().zip(&prev.0).map(|(a, b)| a - b).collect();
@@ -299,7 +299,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
                 curve_u.push(s.u[cd]);
                 let p = Progress { step: s.steps, multiplier: lam, displacement: s.u[cd], fraction: k as f64 / stages as f64, poll: false };
                 if !monitor(&p) {
-                    return Ok(finish(model, s, Status::Failed, Some(Error::Interrupted), curve_l, curve_u, Some(mech), control_block, start));
+                    return Ok(finish(model, s, Status::Interrupted, Some(Error::Interrupted), curve_l, curve_u, Some(mech), control_block, start));
                 }
                 if k == stages {
                     let peak = crate::results::peak(&curve_l);

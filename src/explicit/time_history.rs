@@ -167,7 +167,7 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
         if monitor_due(n - 1, &mut last) {
             let p = Progress { step: n, multiplier: lam, displacement: f64::NAN, fraction: n as f64 / n_steps as f64, poll: false };
             if !monitor(&p) {
-                h.status = Status::Failed;
+                h.status = Status::Interrupted;
                 h.error = Some(Error::Interrupted.to_string());
                 break;
             }

@@ -38,7 +38,7 @@ impl<'a, 'm> Solver<'a, 'm> {
         max_disp: f64,
     ) -> Outcome {
         if let Err(e) = self.dead_state() {
-            return (Status::Failed, Some(e));
+            return (Status::failure(&e), Some(e));
         }
         let cd = self.control_dof;
         let u_start = self.u[cd];
@@ -74,7 +74,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                 self.u[cd] = u_conv[cd] + h;
                 let jumped = match self.newton_disp() {
                     Ok(_) => false,
-                    Err(Error::Interrupted) => return (Status::Failed, Some(Error::Interrupted)),
+                    Err(Error::Interrupted) => return (Status::Interrupted, Some(Error::Interrupted)),
                     Err(e) => {
                         self.u.copy_from_slice(&u_conv);
                         self.lambda = lam_conv;
@@ -91,13 +91,13 @@ impl<'a, 'm> Solver<'a, 'm> {
                         match self.can_lose_strength().then(|| self.jump(u_conv[cd] + next)) {
                             Some(Ok(())) => true,
                             Some(Err(Error::Interrupted)) => {
-                                return (Status::Failed, Some(Error::Interrupted))
+                                return (Status::Interrupted, Some(Error::Interrupted))
                             }
                             _ => {
                                 self.u.copy_from_slice(&u_conv);
                                 self.lambda = lam_conv;
                                 self.evaluate();
-                                return (Status::Failed, Some(e));
+                                return (Status::failure(&e), Some(e));
                             }
                         }
                     }
@@ -125,7 +125,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                 // going on until collapse, the path's length is not known
                 let frac = if self.opts.until_collapse { f64::NAN } else { (u_conv[cd] - u_start) / max_disp };
                 if let Err(e) = self.commit(frac) {
-                    return (Status::Failed, Some(e));
+                    return (Status::failure(&e), Some(e));
                 }
             }
             self.evaluate();

@@ -26,7 +26,7 @@ impl<'a, 'm> Solver<'a, 'm> {
     /// The mechanism is the last increment (after a peak: from the peak to the next state).
     pub(super) fn load_control(&mut self) -> Outcome {
         if let Err(e) = self.dead_state() {
-            return (Status::Failed, Some(e));
+            return (Status::failure(&e), Some(e));
         }
         let scale = self.lambda_scale();
         let max_lambda = 1e3 * scale;
@@ -57,10 +57,10 @@ impl<'a, 'm> Solver<'a, 'm> {
                 self.evaluate();
                 return (Status::Collapse, None);
             }
-            Err(e) => return (Status::Failed, Some(e)),
+            Err(e) => return (Status::failure(&e), Some(e)),
         };
         if let Err(e) = self.commit(f64::NAN) {
-            return (Status::Failed, Some(e));
+            return (Status::failure(&e), Some(e));
         }
         let mut ds = self.work();
         // the state before the last converged one (the secant predictor), the last converged
@@ -113,12 +113,12 @@ impl<'a, 'm> Solver<'a, 'm> {
                                 self.evaluate();
                                 return (Status::Collapse, None);
                             }
-                            Err(e) => return (Status::Failed, Some(e)),
+                            Err(e) => return (Status::failure(&e), Some(e)),
                         }
                     }
                     let increment = self.u.iter().zip(&conv.u).map(|(a, b)| a - b).collect();
                     if let Err(e) = self.commit(f64::NAN) {
-                        return (Status::Failed, Some(e));
+                        return (Status::failure(&e), Some(e));
                     }
                     let last = std::mem::replace(&mut conv, self.snap());
                     prev = Some(last);
@@ -142,7 +142,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                         match self.above(&conv, 10.0 * floor, 5.0 * floor) {
                             Ok(true) => {
                                 if let Err(e) = self.restart_path(&mut conv, &mut prev, &mut best, &mut k_best, &mut ds) {
-                                    return (Status::Failed, Some(e));
+                                    return (Status::failure(&e), Some(e));
                                 }
                                 continue;
                             }
@@ -151,7 +151,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                                 self.mechanism = Some(increment);
                                 return (Status::Collapse, None);
                             }
-                            Err(e) => return (Status::Failed, Some(e)),
+                            Err(e) => return (Status::failure(&e), Some(e)),
                         }
                     }
                     // longer steps while Newton finds them easy (a cap on the rise of lambda per
@@ -164,7 +164,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                     }
                     fails = fails.saturating_sub(1);
                 }
-                Err(Error::Interrupted) => return (Status::Failed, Some(Error::Interrupted)),
+                Err(Error::Interrupted) => return (Status::Interrupted, Some(Error::Interrupted)),
                 Err(_) => {
                     if self.u.iter().all(|v| v.is_finite()) {
                         self.diverged = Some(self.u.iter().zip(&conv.u).map(|(a, b)| a - b).collect());
@@ -186,7 +186,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                     match self.above(&conv, dl0, floor) {
                         Ok(true) => {
                             if let Err(e) = self.restart_path(&mut conv, &mut prev, &mut best, &mut k_best, &mut ds) {
-                                return (Status::Failed, Some(e));
+                                return (Status::failure(&e), Some(e));
                             }
                         }
                         Ok(false) => {
@@ -208,7 +208,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                             }
                             return (Status::Collapse, None);
                         }
-                        Err(e) => return (Status::Failed, Some(e)),
+                        Err(e) => return (Status::failure(&e), Some(e)),
                     }
                 }
             }

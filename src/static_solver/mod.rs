@@ -137,7 +137,7 @@ pub fn solve_with(
                 outcome = checked;
                 evidence = lp;
             }
-            Err(e) => outcome = (Status::Failed, Some(e)),
+            Err(e) => outcome = (Status::failure(&e), Some(e)),
         }
     }
     let mut res = s.finish(outcome, start);

@@ -329,7 +329,7 @@ def test_an_exception_of_the_progress_callback_is_not_turned_into_an_input_error
 
     with pytest.raises(TypeError, match="the user's own") as info:
         WALL().solve_static(progress=progress)
-    assert info.value.results.status == "failed"  # type: ignore[attr-defined]
+    assert info.value.results.status == "interrupted"  # type: ignore[attr-defined]
 
 
 def test_many_identical_blocks_are_refused_at_once() -> None:

@@ -294,7 +294,7 @@ def interrupted_solve(real_solve, log: List[str]):  # type: ignore[no-untyped-de
             return r
         names = [n for n in dir(r) if not n.startswith("_") and not callable(getattr(r, n))]
         fake = SimpleNamespace(**{n: getattr(r, n) for n in names})
-        fake.status, fake.error = "failed", "interrupted by the user"
+        fake.status, fake.error = "interrupted", "interrupted by the user"
         exc = KeyboardInterrupt()
         exc.results = fake  # type: ignore[attr-defined]
         raise exc

@@ -173,7 +173,7 @@ def test_an_exception_in_the_callback_is_raised_again() -> None:
 
 def test_ctrl_c_raises_keyboard_interrupt_with_the_partial_results() -> None:
     """SIGINT while the core runs (GIL released): the run stops at the next iteration and Ctrl-C is raised
-    as KeyboardInterrupt, whose ``results`` is a Results with status "failed", error "interrupted by the
+    as KeyboardInterrupt, whose ``results`` is a Results with status "interrupted", error "interrupted by the
     user", no multiplier and no certificate."""
     # 6,400 blocks: seconds of interior-point iterations, so the signal comes while they run
     model = md.Model(md.running_bond(0.4, 0.175, 80, 32.0), gravity=10.0,
@@ -192,7 +192,7 @@ def test_ctrl_c_raises_keyboard_interrupt_with_the_partial_results() -> None:
             timer.join()
     else:
         pytest.fail("Ctrl-C did not stop the limit analysis with its results")
-    assert res.status == "failed" and res.error == "interrupted by the user"
+    assert res.status == "interrupted" and res.error == "interrupted by the user"
     assert res.method == "limit" and math.isnan(res.collapse_multiplier) and res.certificate is None
     assert len(res.interface_states) == model.n_interfaces and len(res.mechanism) == len(model.rects)
 

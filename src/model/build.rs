@@ -1,0 +1,327 @@
+//! Building a [`Model`] from a [`ModelSpec`]: the checks of the input, the base and the top beam,
+//! the interfaces, masses and loads, and the checks of scales that only the whole model shows.
+
+use super::{LiveLoad, Model, ModelSpec, SETTLEMENT_LIMIT, STRENGTH_RANGE};
+use crate::error::{non_negative, positive, Error, Result};
+use crate::geometry::{Rect, MAX_BLOCKS};
+use crate::interface::{detect, BlockKind, Family, Interface};
+use crate::joint::Section;
+
+/// The blocks of a model before its interfaces: the wall's, then the base and the top beam.
+struct Frame {
+    rects: Vec<Rect>,
+    kinds: Vec<BlockKind>,
+    n_wall: usize,
+    base: Option<usize>,
+    top: Option<usize>,
+}
+
+impl Frame {
+    fn name(&self, i: usize) -> String {
+        block_name(i, self.n_wall, self.base, self.top, &self.rects)
+    }
+}
+
+impl Model {
+    /// Builds and checks a model; the error names the key or block at fault.
+    pub fn new(spec: ModelSpec) -> Result<Model> {
+        Model::new_with(spec, &mut || true)
+    }
+
+    /// [`Model::new`], calling `poll` every few thousand blocks of the search for interfaces (a
+    /// second at a million blocks): `false` stops it with [`Error::Interrupted`].
+    pub fn new_with(spec: ModelSpec, poll: &mut dyn FnMut() -> bool) -> Result<Model> {
+        check_spec(&spec)?;
+        let frame = frame(&spec)?;
+        let name = |i: usize| frame.name(i);
+        let interfaces = detect(&frame.rects, &frame.kinds, name, poll)?;
+        check_touched(&frame, &interfaces)?;
+        let s = spec.thickness;
+        let mass: Vec<f64> = frame.rects.iter().map(|r| spec.density * r.area() * s).collect();
+        let inertia: Vec<f64> = frame
+            .rects
+            .iter()
+            .zip(&mass)
+            .map(|(r, m)| m * (r.width().powi(2) + r.height().powi(2)) / 12.0)
+            .collect();
+        check_masses(&mass, &inertia, |i| frame.name(i))?;
+        let weight = weights(&frame, &mass, spec.gravity)?;
+        let sections = interfaces.iter().map(|it| Section::new(it.l, s)).collect();
+        let nb = frame.rects.len();
+        let mut model = Model {
+            rects: frame.rects,
+            kinds: frame.kinds,
+            n_wall: frame.n_wall,
+            base: frame.base,
+            top: frame.top,
+            thickness: s,
+            gravity: spec.gravity,
+            live: spec.live,
+            laws: spec.joints,
+            mass,
+            inertia,
+            weight,
+            interfaces,
+            sections,
+            fixed: vec![false; 3 * nb],
+            prescribed: vec![0.0; 3 * nb],
+            f_dead: vec![0.0; 3 * nb],
+            f_live: vec![0.0; 3 * nb],
+            held: vec![],
+        };
+        model.supports_and_loads(&spec);
+        model.check_scales()?;
+        Ok(model)
+    }
+
+    /// The base's fixed dofs, the top beam's supports, and the dead and live loads.
+    fn supports_and_loads(&mut self, spec: &ModelSpec) {
+        if let Some(b) = self.base {
+            self.fixed[3 * b..3 * b + 3].fill(true);
+        }
+        for i in 0..self.n_wall {
+            self.f_dead[3 * i + 1] = -self.weight[i];
+        }
+        if let (Some(t), Some(tb)) = (self.top, &spec.top) {
+            self.fixed[3 * t + 2] = tb.rotation_fixed;
+            if tb.vertical_held {
+                self.held.push(3 * t + 1);
+            }
+            self.f_dead[3 * t] = tb.force[0];
+            self.f_dead[3 * t + 1] = tb.force[1];
+        }
+        match spec.live {
+            LiveLoad::HorizontalWeight => (0..self.n_wall).for_each(|i| self.f_live[3 * i] = self.weight[i]),
+            LiveLoad::TopHorizontal => self.f_live[3 * self.top.expect("checked by frame()")] = 1.0,
+        }
+    }
+
+    /// The key of the joint law of interfaces of family `f` ("joints" or "joints.bed", ...).
+    fn law_key(&self, f: Family) -> String {
+        let set = match f {
+            Family::Bed => self.laws.bed.is_some(),
+            Family::Head => self.laws.head.is_some(),
+            Family::Base => self.laws.base.is_some(),
+            Family::Top => self.laws.top.is_some(),
+        };
+        if set {
+            format!("joints.{}", f.name())
+        } else {
+            "joints".into()
+        }
+    }
+
+    /// Refuses numbers each valid alone whose scales together leave the solvers nothing to
+    /// resolve: interface stiffnesses that overflow, and joints so soft that the dead loads
+    /// alone would move the wall out of the small-displacement model.
+    fn check_scales(&self) -> Result<()> {
+        for (k, (it, sec)) in self.interfaces.iter().zip(&self.sections).enumerate() {
+            if !crate::joint::stiffness(self.laws.of(it.family), sec).iter().all(|k| k.is_finite()) {
+                return Err(Error::input(format!(
+                    "interface {k} ({} / {}): its stiffness ({}.normal_stiffness or shear_stiffness times the area, thickness x length = {:e} m2) is not finite: check geometry.thickness and the joints' stiffness",
+                    self.block_name(it.a),
+                    self.block_name(it.b),
+                    self.law_key(it.family),
+                    sec.area
+                )));
+            }
+        }
+        let size = self.size();
+        // the dead loads are carried to the base through its interfaces: their settlement
+        let base_stiffness: f64 = self
+            .interfaces
+            .iter()
+            .zip(&self.sections)
+            .filter(|(it, _)| it.family == Family::Base)
+            .map(|(it, sec)| self.laws.of(it.family).normal_stiffness * sec.area)
+            .sum();
+        let vertical: f64 = self.f_dead.iter().skip(1).step_by(3).sum::<f64>().abs();
+        if base_stiffness > 0.0 {
+            let settlement = vertical / base_stiffness;
+            if !(settlement <= SETTLEMENT_LIMIT * size) {
+                return Err(Error::input(format!(
+                    "under its dead loads ({vertical:.3e} N) the wall would sink about {settlement:.3e} m into its base joints (joints' normal_stiffness x base area = {base_stiffness:.3e} N/m), more than {SETTLEMENT_LIMIT} of its size ({size:.3e} m): the small-displacement model does not hold; check loads.gravity, geometry.density and the joints' stiffness"
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Refuses, for the analyses that raise lambda until collapse, joints whose cohesion or
+    /// tensile strength is more than [`STRENGTH_RANGE`] times the stress of the wall's own
+    /// weight: no multiplier within their range breaks them, and the answer would be about the
+    /// solvers' limits, not the wall (time histories accept them: a joint meant never to yield).
+    pub(crate) fn check_strength_range(&self) -> Result<()> {
+        if self.live == LiveLoad::HorizontalWeight {
+            let (x0, x1) = self.rects.iter().fold((f64::MAX, f64::MIN), |(a, b), r| (a.min(r.x0), b.max(r.x1)));
+            let stress = self.weight.iter().sum::<f64>() / ((x1 - x0) * self.thickness);
+            for it in &self.interfaces {
+                let l = self.laws.of(it.family);
+                for (name, value) in [("cohesion", l.cohesion), ("tensile_strength", l.tensile_strength)] {
+                    if value > STRENGTH_RANGE * stress {
+                        return Err(Error::input(format!(
+                            "{}.{name} = {value:e} Pa is more than {STRENGTH_RANGE:e} times the stress of the wall's own weight ({stress:.3e} Pa at its base): no load within the solvers' range can break such a joint (for joints meant not to fail, 1e3 times that stress is plenty)",
+                            self.law_key(it.family)
+                        )));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks, before an analysis allocates, that the memory it needs can be had
+    /// ([`crate::error::check_memory`]); `what` names the analysis.
+    pub(crate) fn check_analysis_memory(&self, what: &str) -> Result<()> {
+        let n = self.n_blocks() as f64;
+        crate::error::check_memory(
+            &format!("{what} of {} blocks", self.n_blocks()),
+            n * crate::error::ANALYSIS_BYTES_PER_BLOCK,
+        )
+    }
+}
+
+/// The checks of the spec's numbers, blocks and laws, each alone, before anything is built.
+fn check_spec(spec: &ModelSpec) -> Result<()> {
+    positive("geometry.thickness", spec.thickness)?;
+    positive("geometry.density", spec.density)?;
+    non_negative("loads.gravity", spec.gravity)?;
+    if spec.blocks.is_empty() {
+        return Err(Error::input("geometry: the wall has no blocks"));
+    }
+    if spec.blocks.len() > MAX_BLOCKS {
+        return Err(crate::geometry::too_many_blocks("geometry", spec.blocks.len() as f64));
+    }
+    crate::error::check_memory(
+        &format!("a model of {} blocks", spec.blocks.len()),
+        spec.blocks.len() as f64 * crate::error::MODEL_BYTES_PER_BLOCK,
+    )?;
+    for (i, r) in spec.blocks.iter().enumerate() {
+        r.validate(&format!("block {i}"))?;
+    }
+    spec.joints.default.validate("joints")?;
+    for (name, law) in [
+        ("bed", spec.joints.bed),
+        ("head", spec.joints.head),
+        ("base", spec.joints.base),
+        ("top", spec.joints.top),
+    ] {
+        if let Some(l) = law {
+            l.validate(&format!("joints.{name}"))?;
+        }
+    }
+    Ok(())
+}
+
+/// The wall's blocks with the base under them and the top beam over them (each as wide as the
+/// wall and as high as its highest block), checked against the live load that needs them.
+fn frame(spec: &ModelSpec) -> Result<Frame> {
+    let n_wall = spec.blocks.len();
+    let (mut xmin, mut ymin, mut xmax, mut ymax, mut hmax) =
+        (f64::MAX, f64::MAX, f64::MIN, f64::MIN, 0.0f64);
+    for r in &spec.blocks {
+        xmin = xmin.min(r.x0);
+        ymin = ymin.min(r.y0);
+        xmax = xmax.max(r.x1);
+        ymax = ymax.max(r.y1);
+        hmax = hmax.max(r.height());
+    }
+    let mut rects = spec.blocks.clone();
+    let mut kinds = vec![BlockKind::Wall; n_wall];
+    let base = spec.base.then(|| {
+        rects.push(Rect::new(xmin, ymin - hmax, xmax, ymin));
+        kinds.push(BlockKind::Base);
+        rects.len() - 1
+    });
+    if let Some(t) = &spec.top {
+        for (k, v) in t.force.iter().enumerate() {
+            if !v.is_finite() {
+                return Err(Error::input_at("top.force", format!(
+                    "top.force[{k}] must be finite, got {v}"
+                )));
+            }
+        }
+    }
+    let top = spec.top.map(|_| {
+        rects.push(Rect::new(xmin, ymax, xmax, ymax + hmax));
+        kinds.push(BlockKind::Top);
+        rects.len() - 1
+    });
+    if spec.live == LiveLoad::TopHorizontal && top.is_none() {
+        return Err(Error::input_at(
+            "loads.live",
+            "loads.live = \"top_horizontal\" needs a top beam ([top])",
+        ));
+    }
+    if spec.live == LiveLoad::HorizontalWeight && spec.gravity == 0.0 {
+        return Err(Error::input_at("loads.live", "loads.live = \"horizontal_weight\" needs gravity > 0 (the live load is lambda times the weights)"));
+    }
+    Ok(Frame { rects, kinds, n_wall, base, top })
+}
+
+/// Refuses a wall block, or the top beam, that no interface reaches.
+fn check_touched(frame: &Frame, interfaces: &[Interface]) -> Result<()> {
+    let mut touched = vec![false; frame.rects.len()];
+    for it in interfaces {
+        touched[it.a] = true;
+        touched[it.b] = true;
+    }
+    if let Some(i) = (0..frame.n_wall).find(|&i| !touched[i]) {
+        return Err(Error::input(format!("{} touches no other block", frame.name(i))));
+    }
+    if let Some(t) = frame.top {
+        if !touched[t] {
+            return Err(Error::input("top beam touches no block"));
+        }
+    }
+    Ok(())
+}
+
+/// The weight of each block \[N\]: the base and the top beam carry none (the beam's load is its
+/// `force`).
+fn weights(frame: &Frame, mass: &[f64], gravity: f64) -> Result<Vec<f64>> {
+    let weight: Vec<f64> = (0..frame.rects.len())
+        .map(|i| if i < frame.n_wall { mass[i] * gravity } else { 0.0 })
+        .collect();
+    if let Some(i) = weight.iter().position(|w| !w.is_finite()) {
+        return Err(Error::input(format!(
+            "{}: its weight (mass {:e} kg times loads.gravity = {} m/s2) is not finite",
+            frame.name(i),
+            mass[i],
+            gravity
+        )));
+    }
+    Ok(weight)
+}
+
+/// Refuses a block whose mass or rotary inertia is zero (it underflowed) or not finite (it
+/// overflowed): the explicit solver divides by them and the weights are loads.
+fn check_masses(mass: &[f64], inertia: &[f64], name: impl Fn(usize) -> String) -> Result<()> {
+    for (i, (&m, &j)) in mass.iter().zip(inertia).enumerate() {
+        if !(m.is_finite() && m > 0.0 && j.is_finite() && j > 0.0) {
+            return Err(Error::input(format!(
+                "{}: its mass ({m:e} kg) or rotary inertia ({j:e} kg m2) is zero or not finite: check geometry.density, geometry.thickness and the block's size",
+                name(i)
+            )));
+        }
+    }
+    Ok(())
+}
+
+pub(super) fn block_name(
+    i: usize,
+    n_wall: usize,
+    base: Option<usize>,
+    top: Option<usize>,
+    rects: &[Rect],
+) -> String {
+    if Some(i) == base {
+        "the base".into()
+    } else if Some(i) == top {
+        "the top beam".into()
+    } else if i < n_wall {
+        format!("block {i} {}", rects[i].label())
+    } else {
+        format!("block {i}")
+    }
+}

@@ -1,0 +1,283 @@
+//! The model: blocks, interfaces, joint laws, supports and loads.
+//!
+//! Block numbering: wall blocks `0..n_wall` in the order given, then the base (if any), then
+//! the top beam (if any). Each block has 3 dof at its centroid: u1, u2 \[m\], phi \[rad\]; the global
+//! dof index of dof k of block i is `3 i + k`.
+//!
+//! ```
+//! use masonry_dem::geometry::Rect;
+//! use masonry_dem::model::{Model, ModelSpec};
+//! let spec = ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175)], ..ModelSpec::default() };
+//! let model = Model::new(spec).unwrap();
+//! assert_eq!(model.n_wall(), 1);
+//! assert_eq!(model.interfaces().len(), 1); // the block on the base
+//! ```
+
+mod build;
+mod keys;
+mod supports;
+
+use crate::geometry::Rect;
+use crate::interface::{BlockKind, Family, Interface};
+use crate::joint::{JointLaw, Kinds, Section};
+
+/// The joint law of each family; a family without its own law uses `default`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct JointLaws {
+    pub default: JointLaw,
+    pub bed: Option<JointLaw>,
+    pub head: Option<JointLaw>,
+    pub base: Option<JointLaw>,
+    pub top: Option<JointLaw>,
+}
+
+impl JointLaws {
+    /// One law for every interface.
+    pub fn uniform(law: JointLaw) -> Self {
+        JointLaws {
+            default: law,
+            ..Default::default()
+        }
+    }
+    /// The law of a family.
+    pub fn of(&self, f: Family) -> &JointLaw {
+        let o = match f {
+            Family::Bed => &self.bed,
+            Family::Head => &self.head,
+            Family::Base => &self.base,
+            Family::Top => &self.top,
+        };
+        o.as_ref().unwrap_or(&self.default)
+    }
+    /// The family's own law (`None`: it uses `default`).
+    pub fn family_mut(&mut self, f: Family) -> &mut Option<JointLaw> {
+        match f {
+            Family::Bed => &mut self.bed,
+            Family::Head => &mut self.head,
+            Family::Base => &mut self.base,
+            Family::Top => &mut self.top,
+        }
+    }
+}
+
+/// The live load pattern scaled by the load multiplier lambda.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LiveLoad {
+    /// A horizontal force lambda * W_i on every wall block, towards +x (lambda dimensionless).
+    HorizontalWeight,
+    /// A horizontal force of lambda newtons on the top beam, towards +x.
+    TopHorizontal,
+}
+
+/// The rigid top beam resting on the highest blocks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TopBeam {
+    /// Whether the beam's rotation is fixed (kept horizontal).
+    pub rotation_fixed: bool,
+    /// Dead force [Fx, Fy] on the beam \[N\].
+    pub force: [f64; 2],
+    /// Whether the beam's vertical position is held once the dead loads are on (the vertical
+    /// force on it is then a reaction that changes with the live load); false: the vertical
+    /// force stays `force[1]` and the beam is free to rise.
+    pub vertical_held: bool,
+}
+
+/// Everything needed to build a [`Model`]. SI units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelSpec {
+    /// Wall blocks.
+    pub blocks: Vec<Rect>,
+    /// Out-of-plane thickness s \[m\].
+    pub thickness: f64,
+    /// Density [kg/m3].
+    pub density: f64,
+    /// A fixed rigid foundation under the lowest blocks, spanning the wall.
+    pub base: bool,
+    pub top: Option<TopBeam>,
+    pub joints: JointLaws,
+    /// [m/s2]
+    pub gravity: f64,
+    pub live: LiveLoad,
+}
+
+impl Default for ModelSpec {
+    fn default() -> Self {
+        ModelSpec {
+            blocks: vec![],
+            thickness: 1.0,
+            density: 1000.0,
+            base: true,
+            top: None,
+            joints: JointLaws::default(),
+            gravity: 9.81,
+            live: LiveLoad::HorizontalWeight,
+        }
+    }
+}
+
+/// The largest settlement of the wall into its base joints under the dead loads, as a fraction
+/// of the wall's size, that a model may have (the solvers' small-displacement limit is 0.1).
+pub const SETTLEMENT_LIMIT: f64 = 0.01;
+
+/// The largest cohesion or tensile strength, as a multiple of the mean vertical stress of the
+/// wall's weight at its base, that a model with the horizontal-weight live load may have: no
+/// joint this strong can fail at a multiplier within the solvers' range (1e3 the load scale).
+pub const STRENGTH_RANGE: f64 = 1e6;
+
+/// A wall of rigid blocks joined by interfaces, with supports and loads.
+#[derive(Debug, Clone)]
+pub struct Model {
+    rects: Vec<Rect>,
+    kinds: Vec<BlockKind>,
+    n_wall: usize,
+    base: Option<usize>,
+    top: Option<usize>,
+    thickness: f64,
+    gravity: f64,
+    live: LiveLoad,
+    laws: JointLaws,
+    mass: Vec<f64>,
+    inertia: Vec<f64>,
+    weight: Vec<f64>,
+    interfaces: Vec<Interface>,
+    sections: Vec<Section>,
+    fixed: Vec<bool>,
+    prescribed: Vec<f64>,
+    f_dead: Vec<f64>,
+    f_live: Vec<f64>,
+    held: Vec<usize>,
+}
+
+impl Model {
+    /// A label for messages: "block 7 [x0, y0, x1, y1]", "the base" or "the top beam".
+    pub fn block_name(&self, i: usize) -> String {
+        build::block_name(i, self.n_wall, self.base, self.top, &self.rects)
+    }
+
+    pub fn n_wall(&self) -> usize {
+        self.n_wall
+    }
+    /// All blocks: wall blocks, then base, then top beam.
+    pub fn n_blocks(&self) -> usize {
+        self.rects.len()
+    }
+    pub fn rects(&self) -> &[Rect] {
+        &self.rects
+    }
+    /// The size of the model \[m\]: the larger side of the box around every block (base and top
+    /// beam included). It does not depend on where the wall stands.
+    pub fn size(&self) -> f64 {
+        let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+        for r in &self.rects {
+            x0 = x0.min(r.x0);
+            y0 = y0.min(r.y0);
+            x1 = x1.max(r.x1);
+            y1 = y1.max(r.y1);
+        }
+        (x1 - x0).max(y1 - y0)
+    }
+    pub fn kinds(&self) -> &[BlockKind] {
+        &self.kinds
+    }
+    pub fn base(&self) -> Option<usize> {
+        self.base
+    }
+    pub fn top(&self) -> Option<usize> {
+        self.top
+    }
+    pub fn thickness(&self) -> f64 {
+        self.thickness
+    }
+    pub fn gravity(&self) -> f64 {
+        self.gravity
+    }
+    pub fn live(&self) -> LiveLoad {
+        self.live
+    }
+    /// Mass of each block \[kg\].
+    pub fn mass(&self) -> &[f64] {
+        &self.mass
+    }
+    /// Rotary inertia of each block about its centroid [kg m2].
+    pub fn inertia(&self) -> &[f64] {
+        &self.inertia
+    }
+    /// Weight of each block \[N\] (0 for the base and the top beam).
+    pub fn weight(&self) -> &[f64] {
+        &self.weight
+    }
+    pub fn interfaces(&self) -> &[Interface] {
+        &self.interfaces
+    }
+    pub fn sections(&self) -> &[Section] {
+        &self.sections
+    }
+    /// The joint law of interface `k`.
+    pub fn law(&self, k: usize) -> &JointLaw {
+        self.laws.of(self.interfaces[k].family)
+    }
+    /// The kinds of the interfaces (the distinct pairs of law and section, at most
+    /// [`Kinds::MAX`] in the table), each with the return mapping's constants.
+    pub fn joint_kinds(&self) -> Kinds {
+        Kinds::new(self.interfaces.iter().zip(&self.sections).map(|(it, s)| (it.family as u8, self.laws.of(it.family), s)), Kinds::MAX)
+    }
+    /// Whether some interface's law has cohesion or tensile strength.
+    pub fn laws_are_strong(&self) -> bool {
+        (0..self.interfaces.len()).any(|k| self.law(k).is_strong())
+    }
+    pub fn laws(&self) -> &JointLaws {
+        &self.laws
+    }
+    /// Fixed dof flags (3 per block).
+    pub fn fixed(&self) -> &[bool] {
+        &self.fixed
+    }
+    /// Values of the fixed dof (3 per block; 0 where free).
+    pub fn prescribed(&self) -> &[f64] {
+        &self.prescribed
+    }
+    /// Dead loads (3 per block: Fx, Fy \[N\], moment [N m]).
+    pub fn dead_load(&self) -> &[f64] {
+        &self.f_dead
+    }
+    /// Live load pattern for lambda = 1 (3 per block).
+    pub fn live_load(&self) -> &[f64] {
+        &self.f_live
+    }
+
+    /// The same model with the live load reversed (a wall pushed towards -x as a problem of
+    /// its own, for limit analysis).
+    pub fn with_live_reversed(&self) -> Model {
+        let mut m = self.clone();
+        m.f_live.iter_mut().for_each(|f| *f = -*f);
+        m
+    }
+
+    /// The default control block: the top beam if there is one, else the highest wall block at
+    /// the right end (largest y1, then largest x1).
+    pub fn default_control_block(&self) -> usize {
+        if let Some(t) = self.top {
+            return t;
+        }
+        (0..self.n_wall)
+            .max_by(|&i, &j| {
+                let (a, b) = (&self.rects[i], &self.rects[j]);
+                (a.y1, a.x1)
+                    .partial_cmp(&(b.y1, b.x1))
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            })
+            .unwrap_or(0)
+    }
+
+    /// Internal forces `f = sum B^T s` (3 per block) from the interface forces.
+    pub fn internal_forces(&self, forces: &[[f64; 3]], out: &mut [f64]) {
+        out.fill(0.0);
+        for (it, s) in self.interfaces.iter().zip(forces) {
+            let d = it.dofs();
+            for k in 0..6 {
+                out[d[k]] += it.b_mat[0][k] * s[0] + it.b_mat[1][k] * s[1] + it.b_mat[2][k] * s[2];
+            }
+        }
+    }
+}
+
