@@ -1,0 +1,68 @@
+"""Case files (TOML, format 1) and result files (JSON, format 1).
+
+The keys are a public contract, described in ``docs/case-format.md``; this package follows it exactly:
+
+* :func:`load_case` reads a case file, :func:`parse_case` a TOML string, :func:`case_from_dict` an
+  already parsed table (:mod:`.reader`, with the tables checked key by key in :mod:`.table`). Every key
+  and type is checked by name before anything is computed; a bad case raises
+  :class:`masonry_dem.InputError` with a one-line message that starts with the file name and names the
+  key with its table path, e.g. ``wall.toml: unknown key 'frictoin' in [joints.bed]``.
+* :class:`Case` maps the case onto the core (:mod:`.mapping`): ``build_model()`` gives a
+  :class:`masonry_dem.Model`, ``run()`` the :class:`masonry_dem.Results` of the analysis, with the static
+  solver (``Model.solve_static``), the explicit one (``Model.solve_dynamic``) or limit analysis
+  (``Model.solve_limit``). Its parameters are :class:`ModelParameters` and :class:`AnalysisParameters`;
+  a key the file leaves out is left to the core's default.
+* :func:`result_dict` / :func:`write_result_json` produce the result file (:mod:`.result_file`).
+
+Units are SI throughout: m, N, Pa, kg, s.
+"""
+
+from .mapping import (
+    CORE_DEFAULTS,
+    EXPLICIT_OPTIONS,
+    INCREMENTAL_OPTIONS,
+    METHODS,
+    AnalysisParameters,
+    Case,
+    ModelParameters,
+)
+from .reader import (
+    ANALYSIS_KEYS,
+    DAMPINGS,
+    DEFAULT_REFERENCE_TOLERANCE,
+    DYNAMIC_KEYS,
+    FAMILIES,
+    GEOMETRY_KINDS,
+    LAW_KEYS,
+    MAX_CASE_BYTES,
+    REFERENCE_KEYS,
+    case_from_dict,
+    load_case,
+    parse_case,
+    run_case,
+)
+from .result_file import (
+    CERTIFICATE_KEYS,
+    ERROR_STATUSES,
+    FORMAT,
+    JOINT_STATE_KEYS,
+    certificate_dict,
+    result_dict,
+    write_result_json,
+)
+
+__all__ = [
+    "FORMAT",
+    "METHODS",
+    "CERTIFICATE_KEYS",
+    "Case",
+    "ModelParameters",
+    "AnalysisParameters",
+    "load_case",
+    "parse_case",
+    "case_from_dict",
+    "run_case",
+    "result_dict",
+    "certificate_dict",
+    "write_result_json",
+]

@@ -1,0 +1,290 @@
+"""A checked case mapped onto the core: :class:`Case` builds the :class:`masonry_dem.Model` and runs its
+analysis with the static solver (``Model.solve_static``), the explicit one (``Model.solve_dynamic``) or
+limit analysis (``Model.solve_limit``).
+
+A case holds what its file gives in two frozen objects: :class:`ModelParameters` (the wall, the arguments
+of ``Model``) and :class:`AnalysisParameters` (the options of the solvers). A parameter the file leaves out
+is None there and is left out of the call, so that the core's own default applies (the bindings fill it in
+from the Rust ``Default``s). :data:`CORE_DEFAULTS` restates the few defaults Python has to show or to check
+a key against; nothing passes them to the core.
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass, field, fields, replace
+from types import MappingProxyType
+from typing import Any, Callable, Dict, Iterator, List, Mapping, MutableMapping, Optional, Sequence
+
+import numpy as np
+
+from .. import _core
+from .._core import InputError, MasonryError
+from .table import _quote
+
+#: The methods of a case, each the name of one of the core's solvers.
+METHODS = ("static", "dynamic", "limit")
+
+#: The options of both incremental solvers (``solve_static`` and ``solve_dynamic``) a case may give.
+INCREMENTAL_OPTIONS = ("control", "steps", "max_displacement", "control_block", "tolerance")
+#: The options of the explicit solver only (``solve_dynamic``); the static solver ignores them.
+EXPLICIT_OPTIONS = ("damping", "damping_coefficient", "time_step", "unbalanced_ratio", "threads")
+#: The options each method takes from a case: limit analysis has no load path and takes none.
+SOLVER_OPTIONS = {"static": INCREMENTAL_OPTIONS, "dynamic": INCREMENTAL_OPTIONS + EXPLICIT_OPTIONS, "limit": ()}
+
+#: The core's defaults (``ModelSpec::default()``; ``StaticOptions`` / ``ExplicitOptions::default()``) of
+#: the parameters Python shows when a case leaves them out (:attr:`Case.model_kwargs`,
+#: :attr:`Case.analysis_kwargs`, :meth:`Case.solver_kwargs`) or checks a key against (the damping kind of
+#: ``damping_coefficient``; the live load when the core's ``Model`` does not tell its own). None for
+#: top_rotation, joints, max_displacement and control_block: left out.
+CORE_DEFAULTS: Mapping[str, Any] = MappingProxyType({
+    "thickness": 1.0,
+    "density": 1000.0,
+    "base": True,
+    "top_rotation": None,
+    "top_force": [0.0, 0.0],
+    "joints": None,
+    "gravity": 9.81,
+    "live": "horizontal_weight",
+    "top_vertical": "free",
+    "control": "load",
+    "steps": 200,
+    "max_displacement": None,
+    "control_block": None,
+    "damping": "local",
+})
+
+Progress = Callable[[int, float, float, float], None]
+
+
+def _given(parameters: Any, names: Sequence[str]) -> Dict[str, Any]:
+    """The parameters of ``names`` that are given (not None), by name."""
+    values = ((name, getattr(parameters, name)) for name in names)
+    return {name: value for name, value in values if value is not None}
+
+
+@dataclass(frozen=True, eq=False)
+class ModelParameters:
+    """The wall of a case, as the arguments of :class:`masonry_dem.Model`.
+
+    ``blocks`` is an (n, 4) array of rectangles [x0, y0, x1, y1] [m]; the others are those the case gives,
+    None when it leaves them out (the core's default; for top_rotation: no top beam; for joints: the
+    default law everywhere): thickness [m], density [kg/m3], base, top_rotation, top_force [N], joints,
+    gravity [m/s2], live, top_vertical.
+    """
+
+    blocks: np.ndarray
+    thickness: Optional[float] = None
+    density: Optional[float] = None
+    base: Optional[bool] = None
+    top_rotation: Optional[str] = None
+    top_force: Optional[List[float]] = None
+    joints: Optional[Dict[str, Dict[str, float]]] = None
+    gravity: Optional[float] = None
+    live: Optional[str] = None
+    top_vertical: Optional[str] = None
+
+    def arguments(self) -> Dict[str, Any]:
+        """The keyword arguments of ``Model``: blocks and the parameters given."""
+        return _given(self, [f.name for f in fields(self)])
+
+
+@dataclass(frozen=True)
+class AnalysisParameters:
+    """The solver options of a case's [analysis] table, None when it leaves them out (the solver's own
+    default; max_displacement None: the static solver goes on until collapse).
+
+    :data:`INCREMENTAL_OPTIONS` (control, steps, max_displacement [m], control_block, tolerance) are those
+    of both incremental solvers, :data:`EXPLICIT_OPTIONS` (damping, damping_coefficient, time_step [s],
+    unbalanced_ratio, threads) the explicit solver's only; limit analysis takes none of them.
+    """
+
+    control: Optional[str] = None
+    steps: Optional[int] = None
+    max_displacement: Optional[float] = None
+    control_block: Optional[int] = None
+    tolerance: Optional[float] = None
+    damping: Optional[str] = None
+    damping_coefficient: Optional[float] = None
+    time_step: Optional[float] = None
+    unbalanced_ratio: Optional[float] = None
+    threads: Optional[int] = None
+
+    def arguments(self, method: str) -> Dict[str, Any]:
+        """The keyword arguments of the solver of ``method``: the options given that it takes."""
+        return _given(self, SOLVER_OPTIONS[method])
+
+
+class _Arguments(MutableMapping):  # type: ignore[type-arg]
+    """Some parameters of a case as a dict of keyword arguments (``Case.model_kwargs``, ``analysis_kwargs``,
+    ``dynamic_kwargs``): each of ``names`` that the case gives, and each of ``shown`` with the core's
+    default (:data:`CORE_DEFAULTS`) when it does not. Setting a key sets that parameter on the case (a new
+    frozen object), deleting one leaves it out."""
+
+    def __init__(self, case: "Case", attribute: str, names: Sequence[str], shown: Sequence[str] = ()) -> None:
+        self._case, self._attribute, self._names, self._shown = case, attribute, tuple(names), tuple(shown)
+
+    def _values(self) -> Dict[str, Any]:
+        parameters = getattr(self._case, self._attribute)
+        out = {}
+        for name in self._names:
+            value = getattr(parameters, name)
+            if value is None and name in self._shown:
+                value = copy.deepcopy(CORE_DEFAULTS[name])
+            if value is not None or name in self._shown:
+                out[name] = value
+        return out
+
+    def __getitem__(self, key: str) -> Any:
+        return self._values()[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._values())
+
+    def __len__(self) -> int:
+        return len(self._values())
+
+    def __setitem__(self, key: str, value: Any) -> None:
+        if key not in self._names:
+            raise KeyError(key)
+        setattr(self._case, self._attribute, replace(getattr(self._case, self._attribute), **{key: value}))
+
+    def __delitem__(self, key: str) -> None:
+        self[key] = None
+
+    def __repr__(self) -> str:
+        return repr(self._values())
+
+
+def generate_blocks(kind: str, geometry: Mapping[str, Any], source: str) -> np.ndarray:
+    """The blocks of a checked [geometry] of ``kind`` ("running_bond", "pattern" or "blocks"), from the
+    arguments given (None: left out, the generator's default). The core's generators may still refuse them
+    (their message, which names the key, gets the file name in front)."""
+    arguments = {key: value for key, value in geometry.items() if value is not None}
+    try:
+        if kind == "running_bond":
+            return _core.running_bond(**arguments)
+        if kind == "pattern":
+            return _core.pattern(**arguments)
+        return np.asarray(geometry["blocks"], dtype=np.float64)
+    except MasonryError as exc:
+        raise type(exc)(f"{source}: {exc}") from exc  # the core names the key (geometry.<kind>.<key>)
+
+
+@dataclass
+class Case:
+    """One wall and one analysis, as read from a case file.
+
+    Attributes:
+        title: the case title.
+        model: the wall, the arguments of :class:`masonry_dem.Model` (:class:`ModelParameters`).
+        analysis: the options of the incremental solvers, :meth:`masonry_dem.Model.solve_static` and
+            :meth:`masonry_dem.Model.solve_dynamic` (:class:`AnalysisParameters`); limit analysis
+            (:meth:`masonry_dem.Model.solve_limit`) ignores them.
+        method: "static", "dynamic" or "limit".
+        source: where the case came from (file name), the first word of every error message.
+        reference: the optional [reference] table, or None: ``{"collapse_multiplier": float,
+            "tolerance": float, "source": str, "methods": tuple}`` (the multiplier is a force in N with
+            live = "top_horizontal"; tolerance is relative, default 0.01; source may be ""; methods are
+            those the reference applies to). ``masonry-dem validate`` checks the case against it.
+
+    The same parameters as dicts of keyword arguments: :attr:`model_kwargs`, :attr:`analysis_kwargs`,
+    :attr:`dynamic_kwargs` and :meth:`solver_kwargs`.
+    """
+
+    title: str
+    model: ModelParameters
+    analysis: AnalysisParameters = field(default_factory=AnalysisParameters)
+    method: str = "static"
+    source: str = "<case>"
+    reference: Optional[Dict[str, Any]] = None
+
+    @property
+    def model_kwargs(self) -> MutableMapping[str, Any]:
+        """The keyword arguments of :class:`masonry_dem.Model` as a dict: blocks, thickness, density, base,
+        top_rotation, top_force, joints, gravity, live, top_vertical (the core's default for those the case
+        leaves out). Setting a key sets that parameter of the case."""
+        names = [f.name for f in fields(ModelParameters)]
+        return _Arguments(self, "model", names, shown=names)
+
+    @property
+    def analysis_kwargs(self) -> MutableMapping[str, Any]:
+        """The options common to both incremental solvers as a dict: control, steps, max_displacement,
+        control_block (the core's default for those the case leaves out; max_displacement None: until
+        collapse), and tolerance when the case gives it. Setting a key sets that option of the case."""
+        return _Arguments(self, "analysis", INCREMENTAL_OPTIONS, shown=INCREMENTAL_OPTIONS[:4])
+
+    @property
+    def dynamic_kwargs(self) -> MutableMapping[str, Any]:
+        """The explicit solver's own options that the case gives, as a dict (damping, damping_coefficient,
+        time_step [s], unbalanced_ratio, threads); the static solver ignores them."""
+        return _Arguments(self, "analysis", EXPLICIT_OPTIONS)
+
+    def live_load(self, model: Any = None) -> str:
+        """The live load, "horizontal_weight" or "top_horizontal": ``Model.live`` of ``model`` (built by
+        :meth:`build_model`) when the core tells it, else the case's."""
+        live = getattr(model, "live", None)
+        return str(live if live is not None else self.model_kwargs["live"])
+
+    def build_model(self) -> "_core.Model":
+        """Build the model; errors of the core are re-raised with the file name in front."""
+        try:
+            return _core.Model(**self.model.arguments())
+        except MasonryError as exc:
+            raise type(exc)(f"{self.source}: {exc}") from exc
+
+    def check_method(self, method: Optional[str] = None) -> str:
+        """The method to use, ``method`` ("static" | "dynamic" | "limit") overriding the case's.
+
+        Raises:
+            masonry_dem.InputError: an unknown method.
+        """
+        method = self.method if method is None else method
+        if method not in METHODS:
+            expected = ", ".join(_quote(m) for m in METHODS)
+            raise InputError(f"{self.source}: method: expected one of {expected}, got {_quote(method)}")
+        return method
+
+    def solver_kwargs(self, method: Optional[str] = None) -> Dict[str, Any]:
+        """The keyword arguments of the solver of ``method`` (default: the case's), without ``progress``, as
+        :attr:`analysis_kwargs` shows them (and :attr:`dynamic_kwargs` for "dynamic"); a max_displacement
+        left out is left out.
+
+        Limit analysis takes none of the case's [analysis] keys (they describe a load path: control,
+        steps, max_displacement, and tolerance, the precision of the incremental solvers' multiplier);
+        ``Model.solve_limit`` runs with its own defaults."""
+        method = self.check_method(method)
+        if method == "limit":
+            return {}
+        kwargs = {k: v for k, v in self.analysis_kwargs.items() if not (k == "max_displacement" and v is None)}
+        if method == "dynamic":
+            kwargs.update(self.dynamic_kwargs)
+        return kwargs
+
+    def solve(
+        self, model: "_core.Model", method: Optional[str] = None, progress: Optional[Progress] = None
+    ) -> "_core.Results":
+        """Run the analysis of this case on ``model`` (built by :meth:`build_model`).
+
+        ``method`` overrides the case's [analysis] method: "static" calls ``Model.solve_static``,
+        "dynamic" ``Model.solve_dynamic``, "limit" ``Model.solve_limit``, each with the options the case
+        gives (the others take the solver's defaults). ``progress``, if given, is the solvers' progress
+        callback ``(step, multiplier, displacement, fraction)`` (limit analysis: the interior-point
+        iteration, the current multiplier, NaN, NaN). The solvers never raise for a solver failure: check
+        ``Results.status`` and ``Results.error``. Errors of the core about the input (e.g. a time_step
+        above the stability limit) are re-raised with the file name in front.
+        """
+        method = self.check_method(method)
+        kwargs = self.analysis.arguments(method)
+        if progress is not None:
+            kwargs["progress"] = progress
+        solver = {"static": model.solve_static, "dynamic": model.solve_dynamic, "limit": model.solve_limit}[method]
+        try:
+            return solver(**kwargs)
+        except MasonryError as exc:
+            raise type(exc)(f"{self.source}: {exc}") from exc
+
+    def run(self, method: Optional[str] = None, progress: Optional[Progress] = None) -> "_core.Results":
+        """Build the model and run the analysis; ``method`` overrides the case's method."""
+        method = self.check_method(method)
+        return self.solve(self.build_model(), method, progress)

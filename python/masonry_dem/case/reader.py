@@ -1,0 +1,352 @@
+"""Reading a case file: :func:`load_case` (a file), :func:`parse_case` (TOML text), :func:`case_from_dict`
+(an already parsed table). Every table is checked key by key (:class:`~masonry_dem.case.table._Table`)
+before the core is called; the key lists of each table are here.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import sys
+from pathlib import Path
+from typing import Any, Callable, Dict, Mapping, Optional, Tuple, Union
+
+from .. import _core
+from .._core import InputError
+from .mapping import CORE_DEFAULTS, EXPLICIT_OPTIONS, METHODS, AnalysisParameters, Case, ModelParameters, generate_blocks
+from .result_file import FORMAT
+from .table import _got, _non_negative, _open_unit, _positive, _quote, _short, _Table
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - exercised on Python < 3.11 only
+    import tomli as tomllib
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+TOP_KEYS = ("format", "title", "geometry", "base", "top", "joints", "loads", "analysis", "reference")
+# Keys of a joint law, in the order of docs/case-format.md, and the interface families that may override them.
+# the joint-law keys come from the core, which defines the law
+LAW_KEYS = tuple(_core.JOINT_LAW_KEYS)
+FAMILIES = ("bed", "head", "base", "top")
+GEOMETRY_KINDS = ("running_bond", "pattern", "blocks")
+RUNNING_BOND_KEYS = ("block_length", "block_height", "courses", "length", "first_course", "openings")
+# Keys of [analysis]: those of the incremental methods (static and dynamic), then those of the explicit solver
+# only. Limit analysis (method = "limit") has no load path: it uses none of them (they are checked, then ignored).
+ANALYSIS_KEYS = ("method", "control", "control_point", "max_displacement", "steps", "tolerance")
+DYNAMIC_KEYS = EXPLICIT_OPTIONS  # the explicit solver's options, by the same names
+DAMPINGS = ("local", "viscous", "none")
+# Keys of the optional [reference] table (a published or exact answer, checked by ``masonry-dem validate``).
+REFERENCE_KEYS = ("collapse_multiplier", "tolerance", "source", "methods")
+#: The relative tolerance of a [reference] that gives none (a default of the case file, not of the core).
+DEFAULT_REFERENCE_TOLERANCE = 0.01
+
+#: The largest case file read [bytes]: a wall of 10^5 blocks listed one per line takes about 5 MB.
+MAX_CASE_BYTES = 64 * 2**20
+
+
+def load_case(path: PathLike) -> Case:
+    """Read and check a case file (TOML, format 1).
+
+    The keys are those of ``docs/case-format.md``. [analysis] also takes these optional keys:
+
+    ========================  ===================================================================
+    ``tolerance``             0 < x < 1: relative precision of the collapse multiplier, for both
+                              incremental methods (default 1e-4 static, 1e-3 dynamic; limit
+                              analysis ignores it).
+    ``damping``               explicit solver: "local" (Cundall, the default), "viscous"
+                              (mass-proportional) or "none".
+    ``damping_coefficient``   explicit solver, >= 0: alpha in [0, 1) for "local" (default 0.8),
+                              c [1/s] for "viscous".
+    ``time_step``             explicit solver, > 0 [s]: default 0.8 x the stability limit
+                              (``Model.critical_time_step()``); a step above the limit is refused.
+    ``unbalanced_ratio``      explicit solver, 0 < x < 1: a load level is in equilibrium when
+                              |unbalanced forces| <= x |applied forces| (default 1e-5).
+    ``threads``               explicit solver, integer >= 0: threads of the interface loop
+                              (0, the default: all cores).
+    ========================  ===================================================================
+
+    The static solver ignores the explicit solver's keys, so one case runs with either method
+    (``masonry-dem run --method``, ``masonry-dem compare``). Limit analysis (``method = "limit"``) has
+    no load path and ignores every other [analysis] key (they are still checked).
+
+    An optional [reference] table gives a published or exact answer, checked by ``masonry-dem validate``:
+    ``collapse_multiplier`` (number, required in the table; a force in N with live = "top_horizontal"),
+    ``tolerance`` (relative, 0 < x < 1, default 0.01) and ``source`` (string).
+
+    Raises:
+        OSError: the file cannot be read.
+        masonry_dem.InputError: the file is not valid TOML or not a valid case; the message starts
+            with the file name (as given) and names the key.
+    """
+    source = os.fspath(path)
+    with open(path, "rb") as f:
+        data = f.read(MAX_CASE_BYTES + 1)  # never more: /dev/zero or a huge file is refused, not read
+    if len(data) > MAX_CASE_BYTES:
+        raise InputError(f"{source}: larger than the limit of {MAX_CASE_BYTES // 2**20} MiB for a case file")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{source}: not a UTF-8 text file ({exc.reason} at byte {exc.start})") from None
+    # a byte-order mark, as some editors write at the start of UTF-8 files, is not part of the TOML
+    text = text[1:] if text.startswith("\ufeff") else text
+    return parse_case(text, source=source, default_title=Path(path).stem)
+
+
+def run_case(
+    path: PathLike,
+    method: Optional[str] = None,
+    progress: Optional[Callable[[int, float, float, float], None]] = None,
+) -> "_core.Results":
+    """Load a case file and run it; ``method`` ("static" | "dynamic" | "limit") overrides the file's.
+
+    ``progress``: the solvers' optional callback ``(step, multiplier, displacement, fraction)``, e.g. a
+    :class:`masonry_dem.progress.ProgressBar`.
+    """
+    return load_case(path).run(method, progress)
+
+
+def _duplicate_key(text: str, message: str) -> Optional[str]:
+    """The message for TOML's refusal of a key given twice ("Cannot overwrite a value (at line L, column
+    C)", "Cannot declare ... twice"), naming the key and its line; None for other errors."""
+    if "overwrite" not in message and "twice" not in message:
+        return None
+    found = re.search(r"at line (\d+)", message)
+    if not found:
+        return None
+    line_no = int(found.group(1))
+    lines = text.splitlines()
+    line = lines[line_no - 1].strip() if 0 < line_no <= len(lines) else ""
+    name = line.strip("[]").strip() if line.startswith("[") else line.split("=", 1)[0].strip()
+    if not name:
+        return None
+    return f"duplicate key '{_short(name)}' (line {line_no}): a key or table may be given only once"
+
+
+def parse_case(text: str, source: str = "<string>", default_title: str = "untitled") -> Case:
+    """Check a case given as TOML text; ``source`` names it in error messages."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        duplicate = _duplicate_key(text, str(exc))
+        if duplicate:
+            raise InputError(f"{source}: invalid TOML: {duplicate}") from None
+        raise InputError(f"{source}: invalid TOML: {exc}") from None
+    except ValueError as exc:  # tomllib lets int() refuse integers of more than 4300 digits
+        raise InputError(f"{source}: invalid TOML: {exc}") from None
+    except RecursionError:  # arrays or inline tables nested a thousand deep
+        raise InputError(f"{source}: invalid TOML: arrays or tables nested too deep") from None
+    return case_from_dict(data, source=source, default_title=default_title)
+
+
+def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_title: str = "untitled") -> Case:
+    """Check a parsed case (nested dicts as from ``tomllib``) and map it onto the core's arguments.
+
+    Every key is checked before the core is called (the core then generates the geometry). A key left out
+    is left out of the core's arguments too (None in :class:`ModelParameters` and
+    :class:`AnalysisParameters`): the core's default applies.
+    """
+    top = _Table(data, "", source, TOP_KEYS)
+    title = _title(top, default_title)
+    kind, geometry, wall = _geometry(top)
+    wall.update(base=_base(top), **_top_beam(top))
+    wall.update(joints=_joints(top), **_loads(top, beam=wall["top_rotation"] is not None))
+    method, analysis = _analysis(top)
+    reference = _reference(top.table("reference", REFERENCE_KEYS))
+    # All keys are valid: map them onto the core (the generators may still refuse a geometry).
+    blocks = generate_blocks(kind, geometry, source)
+    return Case(
+        title=title,
+        model=ModelParameters(blocks=blocks, **wall),
+        analysis=analysis,
+        method=method,
+        source=source,
+        reference=reference,
+    )
+
+
+def _title(top: _Table, default_title: str) -> str:
+    """The title, after checking that the case is of the format this version reads."""
+    if "format" not in top:
+        raise top.error("missing key 'format' at the top level (expected format = 1)")
+    fmt = top.integer("format")
+    if fmt != FORMAT:
+        raise top.key_error(
+            "format", f"expected {FORMAT}, got {fmt} (this version of masonry-dem reads format {FORMAT})"
+        )
+    return str(top.string("title", default=default_title))
+
+
+def _geometry(top: _Table) -> Tuple[str, Dict[str, Any], Dict[str, Any]]:
+    """[geometry]: its kind, the arguments of the core's generator of that kind, and the wall's thickness
+    and density (None when left out)."""
+    geo = top.table("geometry", ("thickness", "density") + GEOMETRY_KINDS, required=True)
+    assert geo is not None
+    wall = {"thickness": geo.number("thickness", None, _positive), "density": geo.number("density", None, _positive)}
+    given = [k for k in GEOMETRY_KINDS if k in geo]
+    if not given:
+        raise geo.error("[geometry] needs exactly one of running_bond, pattern, blocks; none is given")
+    if len(given) > 1:
+        raise geo.error(
+            f"[geometry] needs exactly one of running_bond, pattern, blocks; {' and '.join(given)} are both given"
+            if len(given) == 2
+            else "[geometry] needs exactly one of running_bond, pattern, blocks; all three are given"
+        )
+    kind = given[0]
+    read = {"running_bond": _running_bond, "pattern": _pattern, "blocks": _block_list}[kind]
+    return kind, read(geo), wall
+
+
+def _running_bond(geo: _Table) -> Dict[str, Any]:
+    rb = geo.table("running_bond", RUNNING_BOND_KEYS)
+    assert rb is not None
+    return dict(
+        block_length=rb.number("block_length", check=_positive),
+        block_height=rb.number("block_height", check=_positive),
+        courses=rb.integer("courses", minimum=1),
+        length=rb.number("length", check=_positive),
+        first_course=rb.string("first_course", None, ("half", "full")),
+        openings=rb.rectangles("openings", required=False),
+    )
+
+
+def _pattern(geo: _Table) -> Dict[str, Any]:
+    pt = geo.table("pattern", ("block_length", "block_height", "rows"))
+    assert pt is not None
+    block_length = pt.number("block_length", check=_positive)
+    block_height = pt.number("block_height", check=_positive)
+    rows_in = pt.array("rows")
+    assert rows_in is not None
+    rows = []
+    for i, row in enumerate(rows_in):
+        label = f"{pt.where('rows')}[{i}]"
+        entries = pt.numbers(label, row)
+        for j, x in enumerate(entries):
+            if x == 0:
+                raise pt.error(f"{label}[{j}]: must not be 0 (a block or a gap has a length)")
+        rows.append(entries)
+    return dict(block_length=block_length, block_height=block_height, rows=rows)
+
+
+def _block_list(geo: _Table) -> Dict[str, Any]:
+    rects = geo.rectangles("blocks")
+    assert rects is not None
+    if not rects:
+        raise geo.key_error("blocks", "expected at least one block [x0, y0, x1, y1]")
+    return dict(blocks=rects)
+
+
+def _base(top: _Table) -> Optional[bool]:
+    """[base]: whether the wall stands on a fixed foundation (None: left out)."""
+    table = top.table("base", ("kind",))
+    kind = None if table is None else table.string("kind", None, ("fixed", "none"))
+    return None if kind is None else kind == "fixed"
+
+
+def _top_beam(top: _Table) -> Dict[str, Any]:
+    """[top]: the top beam's rotation (None: no beam; "fixed" when the table leaves it out), vertical
+    restraint and dead force (None: left out)."""
+    table = top.table("top", ("rotation", "force", "vertical"))
+    beam: Dict[str, Any] = dict(top_rotation=None, top_vertical=None, top_force=None)
+    if table is not None:
+        beam["top_rotation"] = table.string("rotation", "fixed", ("fixed", "free"))
+        beam["top_vertical"] = table.string("vertical", None, ("free", "held"))
+        force = table.array("force", required=False)
+        if force is not None:
+            beam["top_force"] = table.numbers(table.where("force"), force, 2, " [Fx, Fy]")
+    return beam
+
+
+def _joints(top: _Table) -> Optional[Dict[str, Dict[str, float]]]:
+    """[joints] and its family sub-tables: {"default": law, family: law}, the keys given (None: none)."""
+    table = top.table("joints", LAW_KEYS + FAMILIES)
+    joints: Dict[str, Dict[str, float]] = {}
+    if table is not None:
+        default_law = _law(table)
+        if default_law:
+            joints["default"] = default_law
+        for family in FAMILIES:
+            family_table = table.table(family, LAW_KEYS)
+            if family_table is not None:
+                joints[family] = _law(family_table)
+    return joints or None
+
+
+def _law(table: _Table) -> Dict[str, float]:
+    """The joint-law keys present in a [joints] or [joints.<family>] table."""
+    # stiffnesses must be positive, every other parameter non-negative (the core checks the rest)
+    positive = ("normal_stiffness", "shear_stiffness")
+    return {
+        key: table.number(key, check=_positive if key in positive else _non_negative)
+        for key in LAW_KEYS
+        if key in table
+    }
+
+
+def _loads(top: _Table, beam: bool) -> Dict[str, Any]:
+    """[loads]: gravity and the live load (None: left out); ``beam``: whether the case has a top beam."""
+    table = top.table("loads", ("gravity", "live"))
+    if table is None:
+        return dict(gravity=None, live=None)
+    gravity = table.number("gravity", None, _non_negative)
+    live = table.string("live", None, ("horizontal_weight", "top_horizontal"))
+    if live == "top_horizontal" and not beam:
+        raise table.key_error("live", '"top_horizontal" pushes the top beam: add a [top] table')
+    return dict(gravity=gravity, live=live)
+
+
+def _analysis(top: _Table) -> Tuple[str, AnalysisParameters]:
+    """[analysis]: the method ("static" when left out) and the solvers' options given."""
+    table = top.table("analysis", ANALYSIS_KEYS + DYNAMIC_KEYS)
+    if table is None:
+        return "static", AnalysisParameters()
+    method = table.string("method", "static", METHODS)
+    control = table.string("control", None, ("load", "displacement"))
+    table.string("control_point", None, ("top",))
+    options = dict(
+        control=control,
+        max_displacement=table.number("max_displacement", None, _positive),
+        steps=table.integer("steps", None, minimum=1),
+        tolerance=table.number("tolerance", None, _open_unit),
+    )
+    return method, AnalysisParameters(**options, **_dynamic_options(table))
+
+
+def _dynamic_options(table: _Table) -> Dict[str, Any]:
+    """The explicit solver's keys of [analysis], checked (None: left out)."""
+    damping = table.string("damping", None, DAMPINGS)
+    coefficient = table.number("damping_coefficient", None, _non_negative)
+    if coefficient is not None and (damping or CORE_DEFAULTS["damping"]) == "local" and coefficient >= 1:
+        raise table.key_error(
+            "damping_coefficient", f'must be < 1 with damping = "local" (alpha in [0, 1)), got {coefficient}'
+        )
+    return dict(
+        damping=damping,
+        damping_coefficient=coefficient,
+        time_step=table.number("time_step", None, _positive),
+        unbalanced_ratio=table.number("unbalanced_ratio", None, _open_unit),
+        threads=table.integer("threads", None, minimum=0),
+    )
+
+
+def _reference(table: Optional[_Table]) -> Optional[Dict[str, Any]]:
+    """The [reference] table, checked: collapse_multiplier (required), tolerance, source, and methods (the
+    methods the reference applies to; all by default)."""
+    if table is None:
+        return None
+    methods = table.array("methods", required=False)
+    if methods is None:
+        methods = list(METHODS)
+    for i, m in enumerate(methods):
+        if m not in METHODS:
+            options = ", ".join(_quote(c) for c in METHODS)
+            got = _quote(m) if isinstance(m, str) else _got(m)
+            raise table.key_error("methods", f"entry {i}: expected one of {options}, got {got}")
+    if not methods:
+        raise table.key_error("methods", "must name at least one method")
+    return {
+        "collapse_multiplier": table.number("collapse_multiplier"),
+        "tolerance": table.number("tolerance", DEFAULT_REFERENCE_TOLERANCE, _open_unit),
+        "source": table.string("source", ""),
+        "methods": tuple(methods),
+    }
