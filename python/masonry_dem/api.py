@@ -25,7 +25,6 @@ Conversions (the compiled ``Results`` cannot be subclassed, so these are plain f
 
 from __future__ import annotations
 
-import json
 import math
 import numbers
 import os
@@ -34,8 +33,8 @@ from typing import Any, Dict, List, Optional, Union
 import numpy as np
 
 from ._core import InputError
-from .case import JOINT_STATE_KEYS, certificate_dict, result_dict
-from .atomic import write_text
+from .case import JOINT_STATE_KEYS, certificate_dict, write_result_json
+from .case.result_file import json_float as _float
 
 __all__ = [
     "mortar_joint",
@@ -162,12 +161,6 @@ def dry_joint(friction: float, stiffness: float = 1e10, dilatancy: float = 0.0) 
 # --------------------------------------------------------------------------------------------------
 
 
-def _float(x: Any) -> Optional[float]:
-    """A float, or None when not finite (JSON has no NaN)."""
-    x = float(x)
-    return x if math.isfinite(x) else None
-
-
 def _floats(a: Any) -> List[Any]:
     """A float array as nested lists, non-finite entries as None."""
     arr = np.asarray(a, dtype=float)
@@ -250,13 +243,9 @@ def to_json(results: Any, path: PathLike, model: Any, title: Optional[str] = Non
 
     ``model`` is the Model the results came from (numbers of blocks and interfaces); ``title`` defaults
     to "untitled". The file is written atomically (:mod:`masonry_dem.atomic`): under a temporary name in
-    its folder, then renamed. Returns the dict written.
+    its folder, then renamed. Returns the dict written. The same as :func:`masonry_dem.write_result_json`.
     """
-    data = result_dict(results, model, "untitled" if title is None else str(title))
-    text = json.dumps(data, indent=2, allow_nan=False) + "\n"
-
-    write_text(path, text)
-    return data
+    return write_result_json(path, results, model, "untitled" if title is None else str(title))
 
 
 def _pandas(func: str, alternative: str) -> Any:
