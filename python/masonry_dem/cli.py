@@ -30,9 +30,9 @@ Exit status: 0 on success; 1 when an analysis fails or gives no collapse multipl
 "no_equilibrium" / "unbounded" of a limit analysis, "stalled": a static path that stopped below the
 limit-analysis multiplier, or "displacement_limit": a path that left the small-displacement model with
 lambda still rising; the reason is printed, the JSON and plot are still written) or another error occurs; 2 for bad input (an invalid case file, a missing
-file, bad arguments); 130 when interrupted (Ctrl-C stops a solver within a fraction of a second; ``run``
-still prints and writes the result file and the CSV of what was computed, but draws no plot and writes no
-VTK; ``compare`` and ``validate`` start no further run and write nothing). Errors are one line on stderr, ``masonry-dem: error: ...``.
+file, bad arguments); 130 when interrupted (Ctrl-C stops a solver within a fraction of a second, status
+"interrupted"; ``run`` still prints and writes the result file and the CSV of what was computed, but draws
+no plot and writes no VTK; ``compare`` and ``validate`` start no further run and write nothing). Errors are one line on stderr, ``masonry-dem: error: ...``.
 """
 
 from __future__ import annotations
@@ -47,9 +47,18 @@ from pathlib import Path
 from typing import Any, Iterator, List, NoReturn, Optional, Sequence, Tuple
 
 from ._core import InputError, MasonryError, __version__
-from .case import ERROR_STATUSES, Case, load_case, write_result_json
+from .case import (
+    DEFAULT_REFERENCE_TOLERANCE,
+    ERROR_STATUSES,
+    METHODS,
+    UNFINISHED_STATUSES,
+    Case,
+    load_case,
+    write_result_json,
+)
 from .progress import progress_bar
 from .report import summary
+from .validate import METHOD_CHOICES
 
 __all__ = ["main", "build_parser"]
 
@@ -68,7 +77,7 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of ``masonry-dem`` (subcommands ``run``, ``compare`` and ``demo``)."""
+    """The argument parser of ``masonry-dem`` (subcommands ``run``, ``compare``, ``demo`` and ``validate``)."""
     parser = _Parser(
         prog=PROG,
         description="Nonlinear in-plane analysis of masonry walls of rigid blocks with Mohr-Coulomb joints.",
@@ -90,35 +99,54 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    _add_run(sub)
+    _add_compare(sub)
+    _add_demo(sub)
+    _add_validate(sub)
+    return parser
 
-    run = sub.add_parser(
+
+def _subcommand(sub: Any, name: str, help: str, description: str, epilog: str) -> argparse.ArgumentParser:
+    """A subcommand's parser, its description and its epilog (dedented) printed as written."""
+    return sub.add_parser(  # type: ignore[no-any-return]
+        name,
+        help=help,
+        description=description,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=textwrap.dedent(epilog),
+    )
+
+
+def _add_run(sub: Any) -> None:
+    run = _subcommand(
+        sub,
         "run",
         help="run a case file",
         description="Run the analysis of a case file and print a summary "
         "(collapse multiplier, joint states, mechanism).",
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-        epilog=textwrap.dedent(
-            """\
+        epilog="""\
             examples:
               masonry-dem run examples/ferris-tinloi-wall1.toml
               masonry-dem run examples/ferris-tinloi-wall2.toml --json out/wall2.json --plot out/wall2.png
               masonry-dem run examples/ferris-tinloi-wall1.toml --vtk out/wall1 --csv out/wall1.csv
               masonry-dem run examples/ferris-tinloi-wall1.toml --method limit --json out/wall1-limit.json
 
-            --vtk out/wall1 writes out/wall1-blocks.vtu and out/wall1-interfaces.vtu (open them in ParaView)."""
-        ),
+            --vtk out/wall1 writes out/wall1-blocks.vtu and out/wall1-interfaces.vtu (open them in ParaView).""",
     )
     run.add_argument("case", metavar="CASE.toml", help="case file (TOML, format 1)")
     run.add_argument(
         "--method",
-        choices=("static", "dynamic", "limit"),
+        choices=METHODS,
         help="solution method, overriding [analysis] method of the case (default: the case's, else static): "
         "static (incremental, Newton), dynamic (explicit, molecular dynamics) or limit (limit analysis: "
         "a linear program; the case's other [analysis] keys are ignored)",
     )
     _add_outputs(run, plot_default=None)
 
-    compare = sub.add_parser(
+
+def _add_compare(sub: Any) -> None:
+    compare = _subcommand(
+        sub,
         "compare",
         help="run a case with the three methods and compare them",
         description=(
@@ -127,16 +155,13 @@ def build_parser() -> argparse.ArgumentParser:
             "failed joints (open or sliding at collapse; of the mechanism for limit analysis) of each and in\n"
             "common with the static ones (Jaccard index), iterations and time steps, time."
         ),
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-        epilog=textwrap.dedent(
-            """\
+        epilog="""\
             examples:
               masonry-dem compare examples/single-block-rocking.toml
               masonry-dem compare examples/ferris-tinloi-wall1.toml --json out/cmp.json --plot out/cmp.png
 
             --json writes {"format": 1, "title", "static": <result>, "dynamic": <result>, "limit": <result>,
-            "agreement": {...}}."""
-        ),
+            "agreement": {...}}.""",
     )
     compare.add_argument("case", metavar="CASE.toml", help="case file (TOML, format 1)")
     compare.add_argument("--json", metavar="OUT.json", help="write both results and their agreement (JSON)")
@@ -148,24 +173,27 @@ def build_parser() -> argparse.ArgumentParser:
     )
     _add_quiet(compare)
 
-    demo = sub.add_parser(
+
+def _add_demo(sub: Any) -> None:
+    demo = _subcommand(
+        sub,
         "demo",
         help="run the built-in demo case (Ferris & Tin-Loi wall 1) and plot it",
         description=(
             "Run the built-in demo case, Ferris & Tin-Loi wall 1 (33 dry-joint blocks in running bond,\n"
             "friction 0.65, associative flow; reference collapse multiplier 0.6429), and write a plot."
         ),
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-        epilog=textwrap.dedent(
-            """\
+        epilog="""\
             examples:
               masonry-dem demo
-              masonry-dem demo --plot wall1.png --json wall1.json"""
-        ),
+              masonry-dem demo --plot wall1.png --json wall1.json""",
     )
     _add_outputs(demo, plot_default=DEMO_PLOT)
 
-    validate = sub.add_parser(
+
+def _add_validate(sub: Any) -> None:
+    validate = _subcommand(
+        sub,
         "validate",
         help="run every case with a reference value and check it",
         description=(
@@ -174,9 +202,7 @@ def build_parser() -> argparse.ArgumentParser:
             "tolerance), static, explicit and limit collapse multipliers, error (the largest relative error),\n"
             "time of each method, verdict. Case files without a [reference] table are skipped and listed."
         ),
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-        epilog=textwrap.dedent(
-            """\
+        epilog=f"""\
             examples:
               masonry-dem validate                       examples/ of the repository, the three methods
               masonry-dem validate --method static       the static solver only (a second or so)
@@ -185,10 +211,9 @@ def build_parser() -> argparse.ArgumentParser:
 
             [reference] table of a case file:
               collapse_multiplier = 0.6429   # a force in N with live = "top_horizontal"
-              tolerance = 0.01               # relative, 0 < x < 1 (default 0.01)
+              tolerance = 0.01               # relative, 0 < x < 1 (default {DEFAULT_REFERENCE_TOLERANCE:g})
               source = "where the value comes from"
-            exit status: 0 all within tolerance, 1 one is outside its tolerance or failed, 2 bad input."""
-        ),
+            exit status: 0 all within tolerance, 1 one is outside its tolerance or failed, 2 bad input.""",
     )
     validate.add_argument(
         "directory",
@@ -198,13 +223,12 @@ def build_parser() -> argparse.ArgumentParser:
     )
     validate.add_argument(
         "--method",
-        choices=("static", "dynamic", "limit", "both", "all"),
+        choices=METHOD_CHOICES,
         default="all",
         help="the methods to run: static, dynamic (explicit), limit (limit analysis), both (static and "
         "dynamic) or all three (default)",
     )
     _add_quiet(validate)
-    return parser
 
 
 def _add_outputs(parser: argparse.ArgumentParser, plot_default: Optional[str]) -> None:
@@ -249,7 +273,7 @@ def _show_progress(quiet: bool) -> bool:
 
 def _solve(case: Case, model: Any, method: str, quiet: bool) -> Any:
     """Run one analysis, with a progress bar on stderr when wanted."""
-    live = str(case.model_kwargs.get("live", "horizontal_weight"))
+    live = case.live_load(model)
     unit = "iterations" if method == "limit" else "steps"
     with progress_bar(method, live=live, enabled=_show_progress(quiet), unit=unit) as bar:
         return case.solve(model, method, progress=bar or None)
@@ -353,6 +377,27 @@ def _output_targets(
     return targets, plot_file
 
 
+def _write_outputs(outputs: Iterator[Any]) -> Tuple[List[Any], Optional[str]]:
+    """Write the output files: ``outputs`` writes them one by one, yielding each file written. SIGTERM
+    raises KeyboardInterrupt meanwhile (:func:`_terminate_raises`). Returns the files written and, when
+    one could not be written, the error that stopped them (else None)."""
+    wrote: List[Any] = []
+    try:
+        with _terminate_raises():
+            wrote.extend(outputs)
+    except OSError as exc:
+        return wrote, f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}"
+    return wrote, None
+
+
+def _print_report(text: str, wrote: Sequence[Any], write_error: Optional[str]) -> Optional[int]:
+    """Print the report of an analysis and the files written; the exit status of a write error, if any."""
+    _print(text, flush=True)
+    for written in wrote:
+        _print(f"  wrote {written}")
+    return None if write_error is None else _error(write_error, EXIT_FAILURE)
+
+
 def _execute(
     case: Case,
     method: Optional[str],
@@ -381,39 +426,34 @@ def _execute(
         if results is None:
             raise
         interrupted = True
-    live = str(case.model_kwargs.get("live", "horizontal_weight"))
+    # a run stopped by the user: status "interrupted" (a core before it: "failed", and KeyboardInterrupt)
+    interrupted = interrupted or results.status == "interrupted"
+    live = case.live_load(model)
 
-    wrote: List[Any] = []
-    write_error = None
-    try:
-        with _terminate_raises():
-            if json_path:
-                _prepare(json_path)
-                write_result_json(json_path, results, model, case.title, inputs=inputs)
-                wrote.append(json_path)
-            if csv_path:
-                from .export import write_curve_csv
+    def outputs() -> Iterator[Any]:
+        if json_path:
+            _prepare(json_path)
+            write_result_json(json_path, results, model, case.title, inputs=inputs)
+            yield json_path
+        if csv_path:
+            from .export import write_curve_csv
 
-                wrote.append(write_curve_csv(results, csv_path, inputs=inputs))
-            if vtk_prefix and not interrupted:
-                from .export import write_vtk
+            yield write_curve_csv(results, csv_path, inputs=inputs)
+        if vtk_prefix and not interrupted:
+            from .export import write_vtk
 
-                wrote.extend(write_vtk(model, results, vtk_prefix, inputs=inputs))
-            if plot_path and not interrupted:
-                from .plot import report_figure
+            yield from write_vtk(model, results, vtk_prefix, inputs=inputs)
+        if plot_path and not interrupted:
+            from .plot import report_figure
 
-                _prepare(plot_file)
-                report_figure(model, results, title=case.title, path=plot_file, live=live)
-                wrote.append(plot_file)
-    except OSError as exc:
-        write_error = f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}"
+            _prepare(plot_file)
+            report_figure(model, results, title=case.title, path=plot_file, live=live)
+            yield plot_file
 
-    _print(summary(case.title, model, results, live), flush=True)
-    for written in wrote:
-        _print(f"  wrote {written}")
-    if write_error is not None:
-        return _error(write_error, EXIT_FAILURE)
-
+    wrote, write_error = _write_outputs(outputs())
+    failed_to_write = _print_report(summary(case.title, model, results, live), wrote, write_error)
+    if failed_to_write is not None:
+        return failed_to_write
     if interrupted:
         skipped = [name for name, given in (("plot", plot_path), ("VTK files", vtk_prefix)) if given]
         return _error("interrupted" + (f" (no {' or '.join(skipped)} drawn)" if skipped else ""), EXIT_INTERRUPTED)
@@ -437,34 +477,29 @@ def _compare(
     static = _solve(case, model, "static", quiet)
     dynamic = _solve(case, model, "dynamic", quiet)
     limit = _solve(case, model, "limit", quiet)
-    live = str(case.model_kwargs.get("live", "horizontal_weight"))
+    live = case.live_load(model)
 
-    wrote: List[Any] = []
-    write_error = None
-    try:
-        with _terminate_raises():
-            if json_path:
-                _prepare(json_path)
-                write_comparison_json(json_path, static, dynamic, model, case.title, limit=limit, inputs=inputs)
-                wrote.append(json_path)
-            if plot_path:
-                from .plot import plot_comparison
+    def outputs() -> Iterator[Any]:
+        if json_path:
+            _prepare(json_path)
+            write_comparison_json(json_path, static, dynamic, model, case.title, limit=limit, inputs=inputs)
+            yield json_path
+        if plot_path:
+            from .plot import plot_comparison
 
-                _prepare(plot_file)
-                plot_comparison(model, static, dynamic, title=case.title, path=plot_file, live=live, limit=limit)
-                wrote.append(plot_file)
-    except OSError as exc:
-        write_error = f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}"
+            _prepare(plot_file)
+            plot_comparison(model, static, dynamic, title=case.title, path=plot_file, live=live, limit=limit)
+            yield plot_file
 
-    _print(comparison_text(static, dynamic, model, case.title, live, limit=limit), flush=True)
-    for written in wrote:
-        _print(f"  wrote {written}")
-    if write_error is not None:
-        return _error(write_error, EXIT_FAILURE)
+    wrote, write_error = _write_outputs(outputs())
+    text = comparison_text(static, dynamic, model, case.title, live, limit=limit)
+    failed_to_write = _print_report(text, wrote, write_error)
+    if failed_to_write is not None:
+        return failed_to_write
 
     runs = (("static", static), ("dynamic", dynamic), ("limit", limit))
     failed = [
-        f"{name}: {'' if res.status == 'failed' else res.status + ': '}{res.error or 'unknown reason'}"
+        f"{name}: {'' if res.status in UNFINISHED_STATUSES else res.status + ': '}{res.error or 'unknown reason'}"
         for name, res in runs
         if res.status in ERROR_STATUSES
     ]

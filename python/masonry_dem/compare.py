@@ -31,14 +31,14 @@ Numbers that cannot be computed (a NaN multiplier, a zero time) are null.
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from typing import Any, Dict, Iterable, List, Optional, Union
 
 import numpy as np
 
-from .case import ERROR_STATUSES, FORMAT, result_dict
+from .case import ERROR_STATUSES, FORMAT, UNFINISHED_STATUSES, result_dict
+from .case.result_file import write_json
 from .report import OPEN, SLIDING, _plural, certificate_text, format_multiplier
 
 __all__ = [
@@ -134,11 +134,9 @@ def write_comparison_json(
     inputs: Iterable[Union[str, "os.PathLike[str]"]] = (),
 ) -> Dict[str, Any]:
     """Write the comparison file to ``path`` atomically (refused if not a regular file or one of
-    ``inputs``, see :mod:`masonry_dem.atomic`); return the dict written."""
-    from .atomic import write_text
-
+    ``inputs``, see :mod:`masonry_dem.atomic`), as the result file is written; return the dict written."""
     data = comparison_dict(static, dynamic, model, title, limit)
-    write_text(path, json.dumps(data, indent=2, allow_nan=False) + "\n", inputs=inputs)
+    write_json(path, data, inputs=inputs)
     return data
 
 
@@ -203,7 +201,7 @@ def comparison_text(
         cells = "".join(cell.ljust(w) for cell, w in zip(row[:columns], widths)) + row[columns]
         lines.append(("  " + cells).rstrip())
     for name, res in runs:
-        if res.status == "failed":
+        if res.status in UNFINISHED_STATUSES:
             lines.append(f"  {name} failed: {res.error or 'unknown reason'}")
         elif res.status in ERROR_STATUSES:
             lines.append(f"  {name}: {res.status}: {res.error or 'no reason given'}")

@@ -255,6 +255,7 @@ def format_multiplier(value: float, live: str = "horizontal_weight", symbol: boo
 #: Statuses that come with a reason in ``Results.error``, and what they mean in a word.
 STATUS_NOTES = {
     "failed": "the solver failed",
+    "interrupted": "stopped by the user",
     "no_equilibrium": "the wall cannot stand under its dead loads",
     "unbounded": "the live load finds no mechanism",
     "stalled": "the path stopped below the limit-analysis collapse multiplier",
@@ -264,7 +265,8 @@ STATUS_NOTES = {
 
 def format_status(results: Any) -> str:
     """The status for people: ``collapse``, or ``no_equilibrium (<reason>)`` for the statuses that have a
-    reason (failed, and no_equilibrium / unbounded of a limit analysis)."""
+    reason (:data:`STATUS_NOTES`: failed, interrupted, no_equilibrium / unbounded of a limit analysis,
+    stalled, displacement_limit)."""
     status = str(results.status)
     if status in STATUS_NOTES:
         reason = " ".join(str(results.error or STATUS_NOTES[status]).split())

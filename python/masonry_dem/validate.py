@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
-from .case import Case, load_case
+from .case import METHODS, UNFINISHED_STATUSES, Case, load_case
 from .report import format_multiplier
 
 __all__ = [
@@ -40,12 +40,12 @@ __all__ = [
 
 PathLike = Union[str, "os.PathLike[str]"]
 #: The values of ``--method``: which solvers validate runs ("both": static and dynamic; "all": the three).
-METHOD_CHOICES = ("static", "dynamic", "limit", "both", "all")
-#: The methods in the order of the table's columns, with their column names.
-METHODS = ("static", "dynamic", "limit")
+METHOD_CHOICES = METHODS + ("both", "all")
+#: The column name of each method (the table's columns are in the order of METHODS).
 COLUMN_NAMES = {"static": "static", "dynamic": "explicit", "limit": "limit"}
-#: Statuses that count as a failed run.
-FAILED_STATUSES = ("failed", "no_equilibrium", "unbounded", "stalled")
+#: Statuses that count as a failed run ("interrupted": stopped by the user).
+FAILED_STATUSES = ("failed", "interrupted", "no_equilibrium", "unbounded", "stalled")
+
 #: A solver call: (case, model, method) -> Results.
 Solve = Callable[[Case, Any, str], Any]
 
@@ -75,8 +75,8 @@ class ValidationRow:
         multipliers: {method: collapse multiplier} of the methods run (NaN when none).
         elapsed: {method: elapsed_s} [s].
         errors: {method: relative error} (NaN when the multiplier is not finite).
-        failures: {method: reason} for the runs whose status is "failed" (or, for limit analysis,
-            "no_equilibrium" or "unbounded").
+        failures: {method: reason} for the runs whose status is one of :data:`FAILED_STATUSES` ("failed",
+            "interrupted", "stalled", or for limit analysis "no_equilibrium" or "unbounded").
     """
 
     name: str
@@ -157,14 +157,14 @@ def validate_case(
     assert case.reference is not None, f"{case.source}: no [reference] table"
     solve = solve or _default_solve
     ref = case.reference
+    model = case.build_model()
     row = ValidationRow(
         name=Path(path).stem,
         title=case.title,
         reference=float(ref["collapse_multiplier"]),
         tolerance=float(ref["tolerance"]),
-        live=str(case.model_kwargs.get("live", "horizontal_weight")),
+        live=case.live_load(model),
     )
-    model = case.build_model()
     for method in methods:
         if method not in ref.get("methods", METHODS):
             continue  # the reference does not apply to this method (shown as "-")
@@ -175,7 +175,7 @@ def validate_case(
         row.errors[method] = _relative_error(lam, row.reference)
         if results.status in FAILED_STATUSES:
             reason = str(results.error or "unknown reason")
-            row.failures[method] = reason if results.status == "failed" else f"{results.status}: {reason}"
+            row.failures[method] = reason if results.status in UNFINISHED_STATUSES else f"{results.status}: {reason}"
     return row
 
 

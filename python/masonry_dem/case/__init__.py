@@ -46,6 +46,7 @@ from .result_file import (
     ERROR_STATUSES,
     FORMAT,
     JOINT_STATE_KEYS,
+    UNFINISHED_STATUSES,
     certificate_dict,
     result_dict,
     write_result_json,

@@ -33,6 +33,9 @@ CERTIFICATE_KEYS = (
 #: The statuses that come with a reason in ``Results.error`` (and an ``error`` key in the result file).
 #: "interrupted": stopped by the user (Ctrl-C); a core before that status reports it as "failed".
 ERROR_STATUSES = ("failed", "interrupted", "no_equilibrium", "unbounded", "stalled", "displacement_limit")
+#: The statuses of a run that did not end: the solver failed, or the user stopped it. Their reason
+#: (``Results.error``) says which, so the messages give it alone, without the status.
+UNFINISHED_STATUSES = ("failed", "interrupted")
 
 
 def json_float(x: Any) -> Optional[float]:
