@@ -108,17 +108,8 @@ pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &J
         d[2] * (e[2] - ep[2]),
     ];
     let scale = force_scale(&trial, sec);
-    let mut broken = committed.broken;
     let softening = law.is_softening();
-    if law.is_strong() && !broken && !softening {
-        // brittle: the first failure takes cohesion and tensile strength at once
-        let intact = Faces::new(law, sec, law.cohesion, law.tensile_strength);
-        let tol = 1e-12 * (scale + intact.b[0] + intact.b[2]);
-        broken = (0..4).any(|j| intact.f(j, &trial) > tol);
-    }
-    // softening: the strengths of the committed history hold within the step
-    let (c_now, ft_now) = law.strengths(&JointState { broken, ..*committed });
-    let faces = Faces::new(law, sec, c_now, ft_now);
+    let (broken, faces) = faces_now(law, sec, committed, &trial, scale);
     let tol = kt_tolerance(scale, &faces);
     let elastic_tangent = if want_tangent { [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]] } else { [[0.0; 3]; 3] };
     // Only the Coulomb flow (slip and its dilatancy) is history: an opening or a rocking gap
@@ -167,40 +158,7 @@ pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &J
     // the warm set, then the active sets smallest first (the order above), each in its own copy of
     // `attempt` (the faces of a set known at compile time: no index lists, unrolled
     // eliminations); one exit for all, so that `finish` is inlined once
-    let accepted = 'found: {
-        macro_rules! try_set {
-            ($mask:literal, $strict:expr) => {
-                if let Some(a) = attempt::<$mask>(&faces, prep, &trial, &f_trial, g_all, dm, tol, $strict) {
-                    break 'found Some((a, $mask));
-                }
-            };
-        }
-        macro_rules! warm_sets {
-            ($($mask:literal),*) => {
-                match warm {
-                    $($mask => try_set!($mask, strict),)*
-                    _ => {}
-                }
-            };
-        }
-        warm_sets!(1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14);
-        if apex_warm {
-            if let Some(a) = apex_return(warm_in, &faces, prep, &trial, &f_trial, g_all, dm, tol) {
-                break 'found Some((a, warm_in));
-            }
-        }
-        macro_rules! sets {
-            ($($mask:literal),*) => {$(
-                if strict || warm != $mask {
-                    try_set!($mask, false);
-                }
-            )*};
-        }
-        // (the warm set, if tried, has failed: it would again, unless it failed only the
-        // margins of a strict test)
-        sets!(1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14);
-        None
-    };
+    let accepted = active_set(&faces, prep, &trial, &f_trial, g_all, dm, tol, warm, strict, apex_warm, warm_in);
     if let Some((a, mask)) = accepted {
         let tangent = if want_tangent { set_tangent(mask, &faces, &d, dm, g_all, &a, tol) } else { [[0.0; 3]; 3] };
         return (finish(a.s, a.slip, a.dk, tangent), mask);
@@ -213,6 +171,76 @@ pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &J
         faces.b[2]
     };
     (finish([n_apex, 0.0, 0.0], [0.0; 3], [0.0; 2], [[0.0; 3]; 3]), APEX)
+}
+
+/// The faces of the domain within this step, and whether the joint is broken: a brittle joint
+/// with strength breaks at its first failure (the trial force outside the intact domain) and
+/// loses cohesion and tensile strength at once; a softening one keeps the strengths of its
+/// committed history within the step.
+#[inline(always)]
+fn faces_now(law: &JointLaw, sec: &Section, committed: &JointState, trial: &[f64; 3], scale: f64) -> (bool, Faces) {
+    let mut broken = committed.broken;
+    if law.is_strong() && !broken && !law.is_softening() {
+        let intact = Faces::new(law, sec, law.cohesion, law.tensile_strength);
+        let tol = 1e-12 * (scale + intact.b[0] + intact.b[2]);
+        broken = (0..4).any(|j| intact.f(j, trial) > tol);
+    }
+    let (c_now, ft_now) = law.strengths(&JointState { broken, ..*committed });
+    (broken, Faces::new(law, sec, c_now, ft_now))
+}
+
+/// The active set that satisfies the Kuhn-Tucker conditions, and its return: the warm set
+/// first (`warm`, already cleared where it may not be taken; `apex_warm`: the set `warm_in` at
+/// the apex of a joint without strength), then the sets smallest first, each in its own copy of
+/// `attempt` (the faces of a set known at compile time: no index lists, unrolled eliminations).
+/// `None`: no set (degenerate data).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)] // the constants of the mapping, passed as they are
+fn active_set(
+    faces: &Faces,
+    prep: Option<&Prepared>,
+    trial: &[f64; 3],
+    f_trial: &[f64; 4],
+    g_all: &[[f64; 4]; 4],
+    dm: &[[f64; 3]; 4],
+    tol: f64,
+    warm: u8,
+    strict: bool,
+    apex_warm: bool,
+    warm_in: u8,
+) -> Option<(Attempt, u8)> {
+    macro_rules! try_set {
+        ($mask:literal, $strict:expr) => {
+            if let Some(a) = attempt::<$mask>(faces, prep, trial, f_trial, g_all, dm, tol, $strict) {
+                return Some((a, $mask));
+            }
+        };
+    }
+    macro_rules! warm_sets {
+        ($($mask:literal),*) => {
+            match warm {
+                $($mask => try_set!($mask, strict),)*
+                _ => {}
+            }
+        };
+    }
+    warm_sets!(1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14);
+    if apex_warm {
+        if let Some(a) = apex_return(warm_in, faces, prep, trial, f_trial, g_all, dm, tol) {
+            return Some((a, warm_in));
+        }
+    }
+    macro_rules! sets {
+        ($($mask:literal),*) => {$(
+            if strict || warm != $mask {
+                try_set!($mask, false);
+            }
+        )*};
+    }
+    // (the warm set, if tried, has failed: it would again, unless it failed only the margins of
+    // a strict test)
+    sets!(1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14);
+    None
 }
 
 /// The return of one active set: the force, the Coulomb flow, the plastic (opening, slip)

@@ -28,189 +28,30 @@ impl<'a, 'm> Solver<'a, 'm> {
         if let Err(e) = self.dead_state() {
             return (Status::failure(&e), Some(e));
         }
-        let scale = self.lambda_scale();
-        let max_lambda = 1e3 * scale;
-        let tol = self.opts.tolerance;
-        let dl0 = 4.0 * scale / self.opts.steps as f64;
-        self.u_ref.copy_from_slice(&self.u);
-        let dead = self.snap();
-        self.dead = Some(self.snap());
-        // the first step at fixed lambda (halved until it converges): its work sets the scale
-        // of the steps
-        let mut conv = dead;
-        let k0 = match self.above(&conv, dl0, tol * 1e-3 * scale) {
-            Ok(true) => {
-                let w = self.work();
-                if !(w > 0.0) {
-                    return (
-                        Status::Failed,
-                        Some(Error::Convergence(format!(
-                            "the live load does no work on the wall's displacements under lambda = {:.4e}",
-                            self.lambda
-                        ))),
-                    );
-                }
-                self.lambda / w
-            }
-            Ok(false) => {
-                // the wall stands under its dead loads and no more
-                self.evaluate();
-                return (Status::Collapse, None);
-            }
-            Err(e) => return (Status::failure(&e), Some(e)),
+        let mut path = match self.first_step() {
+            Ok(path) => path,
+            Err(outcome) => return outcome,
         };
-        if let Err(e) = self.commit(f64::NAN) {
-            return (Status::failure(&e), Some(e));
-        }
-        let mut ds = self.work();
-        // the state before the last converged one (the secant predictor), the last converged
-        // one, the one of largest lambda and the slope of the step that reached it
-        let mut prev: Option<Saved> = Some(conv);
-        conv = self.snap();
-        let mut best = self.snap();
-        let (mut k_last, mut k_best) = (k0, k0);
-        let mut fails = 0usize;
         let max_attempts = 100 * self.opts.steps + 1000;
         for _ in 0..max_attempts {
-            let floor = tol * best.lambda.abs().max(1e-3 * scale);
+            let floor = path.tol * path.best.lambda.abs().max(1e-3 * path.scale);
             // predictor: the last increment, scaled to this step (exact on a plateau)
-            if let Some(p) = &prev {
-                let r = ds / (conv.work - p.work);
+            if let Some(p) = &path.prev {
+                let r = path.ds / (path.conv.work - p.work);
                 for (d, e) in self.eq.iter().enumerate() {
                     if e.is_some() {
-                        self.u[d] = conv.u[d] + r * (conv.u[d] - p.u[d]);
+                        self.u[d] = path.conv.u[d] + r * (path.conv.u[d] - p.u[d]);
                     }
                 }
-                self.lambda = conv.lambda + r * (conv.lambda - p.lambda);
+                self.lambda = path.conv.lambda + r * (path.conv.lambda - p.lambda);
             }
-            match self.newton_work(conv.work + ds) {
-                Ok(iters) => {
-                    let (lam, w) = (self.lambda, self.work());
-                    let broke = self.trial.iter().zip(&self.committed).any(|(t, c)| t.broken && !c.broken);
-                    if broke && k_last.max(0.0) * ds > floor {
-                        self.restore(&conv);
-                        ds *= 0.25;
-                        continue;
-                    }
-                    if lam < best.lambda - 1e-12 * scale {
-                        // past a peak: refine the step that crossed it, or stop there
-                        let past = self.u.iter().zip(&best.u).map(|(a, b)| a - b).collect();
-                        let dw = w - best.work;
-                        self.restore(&best);
-                        self.curve_l.truncate(best.curve);
-                        self.curve_u.truncate(best.curve);
-                        self.steps = best.curve;
-                        conv = self.snap();
-                        prev = None;
-                        if k_best.max(0.0) * dw > floor {
-                            ds = 0.25 * dw;
-                            continue;
-                        }
-                        match self.above(&conv, dl0, floor) {
-                            Ok(true) => {}
-                            Ok(false) => {
-                                self.mechanism = Some(past);
-                                self.evaluate();
-                                return (Status::Collapse, None);
-                            }
-                            Err(e) => return (Status::failure(&e), Some(e)),
-                        }
-                    }
-                    let increment = self.u.iter().zip(&conv.u).map(|(a, b)| a - b).collect();
-                    if let Err(e) = self.commit(f64::NAN) {
-                        return (Status::failure(&e), Some(e));
-                    }
-                    let last = std::mem::replace(&mut conv, self.snap());
-                    prev = Some(last);
-                    k_last = (conv.lambda - prev.as_ref().unwrap().lambda)
-                        / (conv.work - prev.as_ref().unwrap().work);
-                    if conv.lambda >= best.lambda {
-                        best = self.snap();
-                        k_best = k_last;
-                    }
-                    if conv.lambda > max_lambda {
-                        let e = Error::Convergence(crate::results::unbounded_message(conv.lambda));
-                        return (Status::Unbounded, Some(e));
-                    }
-                    if k_last.max(0.0) * conv.work <= tol * conv.lambda.abs().max(1e-3 * scale) {
-                        // a plateau of the path need not be the collapse: the state of a wall at
-                        // a fixed lambda depends on its path, and an associative 5-block wall
-                        // flowed at 0.324285 on it while it stands at 0.329523 (displacement
-                        // control, or load control from a position 1e-9 m away). Two attempts
-                        // just above (10 and 5 times the tolerance) cost wall 1 13 iterations
-                        // (90 -> 103); where one converges, the path goes on from there.
-                        match self.above(&conv, 10.0 * floor, 5.0 * floor) {
-                            Ok(true) => {
-                                if let Err(e) = self.restart_path(&mut conv, &mut prev, &mut best, &mut k_best, &mut ds) {
-                                    return (Status::failure(&e), Some(e));
-                                }
-                                continue;
-                            }
-                            Ok(false) => {
-                                self.evaluate();
-                                self.mechanism = Some(increment);
-                                return (Status::Collapse, None);
-                            }
-                            Err(e) => return (Status::failure(&e), Some(e)),
-                        }
-                    }
-                    // longer steps while Newton finds them easy (a cap on the rise of lambda per
-                    // step, as the first step's, cost a wall of 33 blocks twice as many steps in
-                    // its elastic range, where the path is straight)
-                    if iters <= 4 && fails == 0 {
-                        ds *= 2.0;
-                    } else if iters > 10 {
-                        ds *= 0.5;
-                    }
-                    fails = fails.saturating_sub(1);
-                }
-                Err(Error::Interrupted) => return (Status::Interrupted, Some(Error::Interrupted)),
-                Err(_) => {
-                    if self.u.iter().all(|v| v.is_finite()) {
-                        self.diverged = Some(self.u.iter().zip(&conv.u).map(|(a, b)| a - b).collect());
-                    }
-                    self.restore(&conv);
-                    ds *= 0.5;
-                    fails = 4;
-                    if k0 * ds > 0.1 * floor {
-                        continue;
-                    }
-                    // no equilibrium on the path a step within the tolerance on (or none within
-                    // the small-displacement limit). The state of a wall at a fixed lambda
-                    // depends on its path, and there may be one above, off this path:
-                    // - non-associative joints can stall on the path (8 blocks, psi = 0:
-                    //   0.2593, against 0.318 found by the explicit solver and by longer steps);
-                    // - wall 2 with soft joints (kN = kT = 1e8) creeps up to its plateau of
-                    //   0.5800 on the path, dilating, beyond the displacement limit at 0.5730;
-                    //   at a fixed lambda it is at 0.5800 within it.
-                    match self.above(&conv, dl0, floor) {
-                        Ok(true) => {
-                            if let Err(e) = self.restart_path(&mut conv, &mut prev, &mut best, &mut k_best, &mut ds) {
-                                return (Status::failure(&e), Some(e));
-                            }
-                        }
-                        Ok(false) => {
-                            self.mechanism = self.diverged.take().or_else(|| {
-                                prev.as_ref().map(|p| conv.u.iter().zip(&p.u).map(|(a, b)| a - b).collect())
-                            });
-                            self.evaluate();
-                            // a wall of soft joints can creep to the small-displacement limit
-                            // with lambda still rising: the path ends there, not at a collapse
-                            let rising = k_last.max(0.0) * conv.work > RISING * tol * conv.lambda.abs().max(1e-3 * scale);
-                            if rising && self.max_translation(&conv.u) > NEAR_LIMIT * self.u_limit {
-                                return (
-                                    Status::DisplacementLimit,
-                                    Some(Error::Convergence(format!(
-                                        "the path reached the small-displacement limit ({:.3e} m of block translation) at lambda = {:.6} with lambda still rising: not a collapse",
-                                        self.u_limit, conv.lambda
-                                    ))),
-                                );
-                            }
-                            return (Status::Collapse, None);
-                        }
-                        Err(e) => return (Status::failure(&e), Some(e)),
-                    }
-                }
+            let next = match self.newton_work(path.conv.work + path.ds) {
+                Ok(iters) => self.converged_step(&mut path, iters, floor),
+                Err(Error::Interrupted) => Next::Stop((Status::Interrupted, Some(Error::Interrupted))),
+                Err(_) => self.failed_step(&mut path, floor),
+            };
+            if let Next::Stop(outcome) = next {
+                return outcome;
             }
         }
         (
@@ -221,24 +62,200 @@ impl<'a, 'm> Solver<'a, 'm> {
         )
     }
 
+    /// The first step of load control, at a fixed lambda from the dead state (halved until it
+    /// converges): its work sets the scale of the steps. The outcome where the wall stands
+    /// under its dead loads and no more, or the step fails.
+    fn first_step(&mut self) -> Result<Path, Outcome> {
+        let scale = crate::analysis::lambda_scale(self.model);
+        let tol = self.opts.tolerance;
+        let dl0 = 4.0 * scale / self.opts.steps as f64;
+        self.u_ref.copy_from_slice(&self.u);
+        let dead = self.snap();
+        self.dead = Some(self.snap());
+        let k0 = match self.above(&dead, dl0, tol * 1e-3 * scale) {
+            Ok(true) => {
+                let w = self.work();
+                if !(w > 0.0) {
+                    return Err((
+                        Status::Failed,
+                        Some(Error::Convergence(format!(
+                            "the live load does no work on the wall's displacements under lambda = {:.4e}",
+                            self.lambda
+                        ))),
+                    ));
+                }
+                self.lambda / w
+            }
+            Ok(false) => {
+                // the wall stands under its dead loads and no more
+                self.evaluate();
+                return Err((Status::Collapse, None));
+            }
+            Err(e) => return Err((Status::failure(&e), Some(e))),
+        };
+        if let Err(e) = self.commit(f64::NAN) {
+            return Err((Status::failure(&e), Some(e)));
+        }
+        Ok(Path {
+            ds: self.work(),
+            prev: Some(dead),
+            conv: self.snap(),
+            best: self.snap(),
+            k0,
+            k_last: k0,
+            k_best: k0,
+            fails: 0,
+            scale,
+            tol,
+            dl0,
+        })
+    }
+
+    /// A step of the path converged (in `iters` iterations) to the state in `u`, `lambda`:
+    /// refined if a joint broke in it or it crossed a peak, else committed; then the tests of
+    /// collapse and of an unbounded path, and the next step's length.
+    fn converged_step(&mut self, path: &mut Path, iters: usize, floor: f64) -> Next {
+        let scale = path.scale;
+        let (lam, w) = (self.lambda, self.work());
+        let broke = self.trial.iter().zip(&self.committed).any(|(t, c)| t.broken && !c.broken);
+        if broke && path.k_last.max(0.0) * path.ds > floor {
+            self.restore(&path.conv);
+            path.ds *= 0.25;
+            return Next::Go;
+        }
+        if lam < path.best.lambda - 1e-12 * scale {
+            if let Some(next) = self.past_peak(path, w, floor) {
+                return next;
+            }
+        }
+        let increment = self.u.iter().zip(&path.conv.u).map(|(a, b)| a - b).collect();
+        if let Err(e) = self.commit(f64::NAN) {
+            return Next::Stop((Status::failure(&e), Some(e)));
+        }
+        let last = std::mem::replace(&mut path.conv, self.snap());
+        path.prev = Some(last);
+        let prev = path.prev.as_ref().unwrap();
+        path.k_last = (path.conv.lambda - prev.lambda) / (path.conv.work - prev.work);
+        if path.conv.lambda >= path.best.lambda {
+            path.best = self.snap();
+            path.k_best = path.k_last;
+        }
+        if path.conv.lambda > crate::analysis::UNBOUNDED * scale {
+            let e = Error::Convergence(crate::results::unbounded_message(path.conv.lambda));
+            return Next::Stop((Status::Unbounded, Some(e)));
+        }
+        if path.k_last.max(0.0) * path.conv.work <= path.tol * path.conv.lambda.abs().max(1e-3 * scale) {
+            // a plateau of the path need not be the collapse: the state of a wall at a fixed
+            // lambda depends on its path, and an associative 5-block wall flows on its path at
+            // a lambda where it stands when reached from a position 1e-9 m away. Two attempts
+            // just above (10 and 5 times the tolerance); where one converges, the path goes on
+            // from there.
+            return match self.above(&path.conv, 10.0 * floor, 5.0 * floor) {
+                Ok(true) => self.restart_path(path),
+                Ok(false) => {
+                    self.evaluate();
+                    self.mechanism = Some(increment);
+                    Next::Stop((Status::Collapse, None))
+                }
+                Err(e) => Next::Stop((Status::failure(&e), Some(e))),
+            };
+        }
+        // longer steps while Newton finds them easy (a cap on the rise of lambda per step, as
+        // the first step's, would take twice as many steps in the elastic range, where the
+        // path is straight)
+        if iters <= 4 && path.fails == 0 {
+            path.ds *= 2.0;
+        } else if iters > 10 {
+            path.ds *= 0.5;
+        }
+        path.fails = path.fails.saturating_sub(1);
+        Next::Go
+    }
+
+    /// The step ended below the largest lambda so far (at work `w`): the path is back at that
+    /// state, and the step that crossed the peak is refined; where it is short enough, the
+    /// peak is the collapse unless Newton finds an equilibrium at a fixed lambda above it.
+    /// `None`: the equilibrium above was found and the step goes on as converged.
+    fn past_peak(&mut self, path: &mut Path, w: f64, floor: f64) -> Option<Next> {
+        let past = self.u.iter().zip(&path.best.u).map(|(a, b)| a - b).collect();
+        let dw = w - path.best.work;
+        self.restore(&path.best);
+        self.curve_l.truncate(path.best.curve);
+        self.curve_u.truncate(path.best.curve);
+        self.steps = path.best.curve;
+        path.conv = self.snap();
+        path.prev = None;
+        if path.k_best.max(0.0) * dw > floor {
+            path.ds = 0.25 * dw;
+            return Some(Next::Go);
+        }
+        match self.above(&path.conv, path.dl0, floor) {
+            Ok(true) => None,
+            Ok(false) => {
+                self.mechanism = Some(past);
+                self.evaluate();
+                Some(Next::Stop((Status::Collapse, None)))
+            }
+            Err(e) => Some(Next::Stop((Status::failure(&e), Some(e)))),
+        }
+    }
+
+    /// No equilibrium on the path a step on: the step is halved; once it is within the
+    /// tolerance, there may still be an equilibrium above, off this path (the state of a wall
+    /// at a fixed lambda depends on its path: non-associative joints can stall on it, and soft
+    /// joints creep up to their plateau beyond the displacement limit on the path while they
+    /// stand within it at a fixed lambda). Where there is none, the collapse, or the
+    /// displacement limit if lambda was still rising.
+    fn failed_step(&mut self, path: &mut Path, floor: f64) -> Next {
+        let scale = path.scale;
+        if self.u.iter().all(|v| v.is_finite()) {
+            self.diverged = Some(self.u.iter().zip(&path.conv.u).map(|(a, b)| a - b).collect());
+        }
+        self.restore(&path.conv);
+        path.ds *= 0.5;
+        path.fails = 4;
+        if path.k0 * path.ds > 0.1 * floor {
+            return Next::Go;
+        }
+        match self.above(&path.conv, path.dl0, floor) {
+            Ok(true) => self.restart_path(path),
+            Ok(false) => {
+                self.mechanism = self.diverged.take().or_else(|| {
+                    path.prev.as_ref().map(|p| path.conv.u.iter().zip(&p.u).map(|(a, b)| a - b).collect())
+                });
+                self.evaluate();
+                // a wall of soft joints can creep to the small-displacement limit with lambda
+                // still rising: the path ends there, not at a collapse
+                let conv = &path.conv;
+                let rising = path.k_last.max(0.0) * conv.work > RISING * path.tol * conv.lambda.abs().max(1e-3 * scale);
+                if rising && self.max_translation(&conv.u) > NEAR_LIMIT * self.u_limit {
+                    return Next::Stop((
+                        Status::DisplacementLimit,
+                        Some(Error::Convergence(format!(
+                            "the path reached the small-displacement limit ({:.3e} m of block translation) at lambda = {:.6} with lambda still rising: not a collapse",
+                            self.u_limit, conv.lambda
+                        ))),
+                    ));
+                }
+                Next::Stop((Status::Collapse, None))
+            }
+            Err(e) => Next::Stop((Status::failure(&e), Some(e))),
+        }
+    }
+
     /// Makes the equilibrium that [`Solver::above`] found off the path, above `conv`, the
     /// path's new start: committed, the next step as long as the jump to it, no secant
     /// predictor (the jump is not a step of the path), and the largest lambda so far.
-    pub(super) fn restart_path(
-        &mut self,
-        conv: &mut Saved,
-        prev: &mut Option<Saved>,
-        best: &mut Saved,
-        k_best: &mut f64,
-        ds: &mut f64,
-    ) -> Result<(), Error> {
-        *ds = self.work() - conv.work;
-        *prev = None;
-        self.commit(f64::NAN)?;
-        *conv = self.snap();
-        *best = self.snap();
-        *k_best = 0.0;
-        Ok(())
+    fn restart_path(&mut self, path: &mut Path) -> Next {
+        path.ds = self.work() - path.conv.work;
+        path.prev = None;
+        if let Err(e) = self.commit(f64::NAN) {
+            return Next::Stop((Status::failure(&e), Some(e)));
+        }
+        path.conv = self.snap();
+        path.best = self.snap();
+        path.k_best = 0.0;
+        Next::Go
     }
 
     /// The state to come back to.
@@ -271,29 +288,7 @@ impl<'a, 'm> Solver<'a, 'm> {
         } else {
             self.model
         };
-        let lp = {
-            let mut polled = Instant::now();
-            let last = Progress {
-                step: self.steps,
-                multiplier: self.lambda,
-                displacement: self.u[self.control_dof],
-                fraction: f64::NAN,
-                poll: true,
-            };
-            let (interrupted, monitor) = (&mut self.interrupted, &mut self.monitor);
-            crate::limit::limit_analysis_with(model, &crate::limit::LimitOptions::default(), &mut |_| {
-                if *interrupted {
-                    return false;
-                }
-                if polled.elapsed().as_secs_f64() < POLL_INTERVAL {
-                    return true;
-                }
-                polled = Instant::now();
-                let go = monitor(&last);
-                *interrupted |= !go;
-                go
-            })?
-        };
+        let lp = self.limit_evidence(model)?;
         if lp.status != Status::Collapse {
             return Ok((outcome, None));
         }
@@ -317,8 +312,55 @@ impl<'a, 'm> Solver<'a, 'm> {
             );
             return Ok(((Status::Stalled, Some(Error::Convergence(msg))), Some(lp)));
         }
-        // go on towards the exact value at fixed multipliers, from the last converged state
+        // go on towards the exact value at fixed multipliers
         let target = exact * (1.0 - 0.5 * COLLAPSE_EVIDENCE * self.opts.tolerance);
+        let reached = self.reach(found, target, band, exact)?;
+        self.evaluate();
+        if reached >= band {
+            return Ok(((Status::Collapse, None), Some(lp)));
+        }
+        if outcome.0 == Status::DisplacementLimit {
+            return Ok((outcome, Some(lp)));
+        }
+        let msg = format!(
+            "Newton stopped converging at lambda = {reached:.6}, {:.2}% below the collapse multiplier of limit analysis, {exact:.6} (exact for these associative dry joints): not a collapse",
+            100.0 * (exact - reached) / exact
+        );
+        Ok(((Status::Stalled, Some(Error::Convergence(msg))), Some(lp)))
+    }
+
+    /// Limit analysis of `model` (the solver's, or its mirror), polling the solver's monitor
+    /// with the last converged step's figures.
+    fn limit_evidence(&mut self, model: &Model) -> Result<Results, Error> {
+        let mut polled = Instant::now();
+        let last = Progress {
+            step: self.steps,
+            multiplier: self.lambda,
+            displacement: self.u[self.control_dof],
+            fraction: f64::NAN,
+            poll: true,
+        };
+        let (interrupted, monitor) = (&mut self.interrupted, &mut self.monitor);
+        crate::limit::limit_analysis_with(model, &crate::limit::LimitOptions::default(), &mut |_| {
+            if *interrupted {
+                return false;
+            }
+            if polled.elapsed().as_secs_f64() < POLL_INTERVAL {
+                return true;
+            }
+            polled = Instant::now();
+            let go = monitor(&last);
+            *interrupted |= !go;
+            go
+        })
+    }
+
+    /// Newton at fixed multipliers towards `target` (just under `exact`): from the last
+    /// converged state at `found`, each rise halved until it converges; then from the dead
+    /// state, at the target and halfway down to `band`. The largest lambda reached in
+    /// equilibrium (committed, the mechanism the last jump); below `band`, the state is back at
+    /// the last converged one.
+    fn reach(&mut self, found: f64, target: f64, band: f64, exact: f64) -> Result<f64, Error> {
         let floor = self.opts.tolerance * exact;
         let mut conv = self.snap();
         conv.lambda = found;
@@ -336,7 +378,6 @@ impl<'a, 'm> Solver<'a, 'm> {
             conv = self.snap();
             reached = conv.lambda;
         }
-        // and from the dead state, at the target and halfway down to the band
         if reached < band {
             if let Some(dead) = self.dead.take() {
                 for lam in [target, 0.5 * (target + band)] {
@@ -358,18 +399,7 @@ impl<'a, 'm> Solver<'a, 'm> {
                 }
             }
         }
-        self.evaluate();
-        if reached >= band {
-            return Ok(((Status::Collapse, None), Some(lp)));
-        }
-        if outcome.0 == Status::DisplacementLimit {
-            return Ok((outcome, Some(lp)));
-        }
-        let msg = format!(
-            "Newton stopped converging at lambda = {reached:.6}, {:.2}% below the collapse multiplier of limit analysis, {exact:.6} (exact for these associative dry joints): not a collapse",
-            100.0 * (exact - reached) / exact
-        );
-        Ok(((Status::Stalled, Some(Error::Convergence(msg))), Some(lp)))
+        Ok(reached)
     }
 
     pub(super) fn restore(&mut self, s: &Saved) {
@@ -395,4 +425,26 @@ impl<'a, 'm> Solver<'a, 'm> {
         self.restore(from);
         Ok(false)
     }
+}
+
+/// Load control's path: its last converged states, the largest lambda so far, the slopes
+/// (lambda over the live load's work) and the length of the next step.
+struct Path {
+    /// the last converged state, the one before it (the secant predictor), the one of largest
+    /// lambda
+    conv: Saved,
+    prev: Option<Saved>,
+    best: Saved,
+    /// the slopes of the first step, of the last one and of the step that reached `best`
+    k0: f64,
+    k_last: f64,
+    k_best: f64,
+    /// the next step's work, and the steps still to take at no more than its length after a
+    /// failure
+    ds: f64,
+    fails: usize,
+    /// the natural scale of lambda, the tolerance, the first step's rise of lambda
+    scale: f64,
+    tol: f64,
+    dl0: f64,
 }

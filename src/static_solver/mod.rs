@@ -33,10 +33,10 @@
 //! strategies in `load_control` (with the check against limit analysis) and
 //! `displacement_control`.
 
-use crate::error::{check_steps, Error};
+use crate::error::Error;
 use crate::joint::{elastic_tangent, return_map_with, JointState, Kinds, MapOptions};
 use crate::linalg::SparseLu;
-use crate::model::{LiveLoad, Model};
+use crate::model::Model;
 use crate::results::{Results, Status};
 use std::time::Instant;
 
@@ -168,6 +168,12 @@ pub const COLLAPSE_EVIDENCE: f64 = 10.0;
 
 /// Outcome of a run: status, and the reason when it failed.
 type Outcome = (Status, Option<Error>);
+
+/// What a step of a path leads to: the next step, or the end with its outcome.
+enum Next {
+    Go,
+    Stop(Outcome),
+}
 
 /// Where each interface's 6 x 6 block of the tangent goes in the sparse matrix's values.
 type Slots = Vec<[u32; 36]>;

@@ -108,66 +108,13 @@ impl<'a, 'm> Solver<'a, 'm> {
         opts: &StaticOptions,
         monitor: Box<dyn FnMut(&Progress) -> bool + 'm>,
     ) -> Result<Self, Error> {
-        check_steps(opts.steps)?;
-        if !(opts.tolerance > 0.0 && opts.tolerance < 1.0) {
-            return Err(Error::input(format!(
-                "analysis.tolerance must lie in (0, 1), got {}",
-                opts.tolerance
-            )));
-        }
-        if !(opts.residual_tolerance > 0.0 && opts.residual_tolerance < 1.0) {
-            return Err(Error::input(format!(
-                "residual tolerance must lie in (0, 1), got {}",
-                opts.residual_tolerance
-            )));
-        }
-        if opts.max_iterations == 0 {
-            return Err(Error::input("max_iterations must be at least 1"));
-        }
-        if opts.max_iterations > MAX_ITERATIONS {
-            return Err(Error::input(format!(
-                "max_iterations = {} is more than the limit of {MAX_ITERATIONS}",
-                opts.max_iterations
-            )));
-        }
-        if let Control::Displacement { max_displacement } = opts.control {
-            if !(max_displacement.is_finite() && max_displacement != 0.0) {
-                return Err(Error::input(format!(
-                    "analysis.max_displacement must be a finite non-zero length, got {max_displacement}"
-                )));
-            }
-        }
+        opts.validate()?;
         model.check_supports()?;
         let nb = model.n_blocks();
-        let control_block = opts
-            .control_block
-            .unwrap_or_else(|| model.default_control_block());
-        if control_block >= nb {
-            return Err(Error::input(format!(
-                "control block {control_block} does not exist (the model has {nb} blocks)"
-            )));
-        }
+        let control_block = crate::analysis::control_block(model, opts.control_block)?;
         let control_dof = 3 * control_block;
+        check_drivable(model, opts.control, control_block)?;
         let fixed = model.fixed();
-        if matches!(opts.control, Control::Displacement { .. }) && fixed[control_dof] {
-            return Err(Error::input(format!(
-                "the horizontal displacement of the control block ({}) is fixed: it cannot be driven",
-                model.block_name(control_block)
-            )));
-        }
-        // a block with no load of its own (a weightless top beam under no force) rests on the
-        // wall with no contact force: nothing ties it to the wall, and driving it gives an
-        // arbitrary answer (a shift of 1e-5 m moved the first step of a property test by 3%)
-        let (fd, fl) = (model.dead_load(), model.live_load());
-        if matches!(opts.control, Control::Displacement { .. })
-            && fl[control_dof] == 0.0
-            && fd[control_dof..control_dof + 3].iter().all(|&f| f == 0.0)
-        {
-            return Err(Error::input(format!(
-                "the control block ({}) carries no load, so nothing ties it to the wall: give the top beam a force (top.force) or put the live load on it (loads.live = \"top_horizontal\")",
-                model.block_name(control_block)
-            )));
-        }
         let mut eq = vec![None; 3 * nb];
         let mut n_eq = 0;
         for (d, e) in eq.iter_mut().enumerate() {
@@ -431,4 +378,53 @@ impl<'a, 'm> Solver<'a, 'm> {
         self.fact_tangents.clone_from(&self.tangents);
         false
     }
+}
+
+impl StaticOptions {
+    /// Refuses options out of range; the error names the key.
+    pub fn validate(&self) -> Result<(), Error> {
+        crate::analysis::check_path_options(self.steps, self.tolerance, self.control)?;
+        if !(self.residual_tolerance > 0.0 && self.residual_tolerance < 1.0) {
+            return Err(Error::input(format!(
+                "residual tolerance must lie in (0, 1), got {}",
+                self.residual_tolerance
+            )));
+        }
+        if self.max_iterations == 0 {
+            return Err(Error::input("max_iterations must be at least 1"));
+        }
+        if self.max_iterations > MAX_ITERATIONS {
+            return Err(Error::input(format!(
+                "max_iterations = {} is more than the limit of {MAX_ITERATIONS}",
+                self.max_iterations
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// Under displacement control, refuses a control block whose horizontal dof is fixed, or that
+/// carries no load at all.
+fn check_drivable(model: &Model, control: Control, control_block: usize) -> Result<(), Error> {
+    if !matches!(control, Control::Displacement { .. }) {
+        return Ok(());
+    }
+    let control_dof = 3 * control_block;
+    if model.fixed()[control_dof] {
+        return Err(Error::input(format!(
+            "the horizontal displacement of the control block ({}) is fixed: it cannot be driven",
+            model.block_name(control_block)
+        )));
+    }
+    // a block with no load of its own (a weightless top beam under no force) rests on the wall
+    // with no contact force: nothing ties it to the wall, and driving it gives an arbitrary
+    // answer
+    let (fd, fl) = (model.dead_load(), model.live_load());
+    if fl[control_dof] == 0.0 && fd[control_dof..control_dof + 3].iter().all(|&f| f == 0.0) {
+        return Err(Error::input(format!(
+            "the control block ({}) carries no load, so nothing ties it to the wall: give the top beam a force (top.force) or put the live load on it (loads.live = \"top_horizontal\")",
+            model.block_name(control_block)
+        )));
+    }
+    Ok(())
 }
