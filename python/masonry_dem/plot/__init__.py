@@ -1,0 +1,65 @@
+"""Plots of an analysis: the wall, its deformed shape, crack pattern and collapse mechanism, and the load curve.
+
+Panels, each drawn on a matplotlib ``Axes`` given by the caller:
+
+* :func:`plot_wall` (ax, model): the block outlines; the base hatched, the top beam grey.
+* :func:`plot_deformed` (ax, model, results, scale=None): the blocks at the last converged step
+  (``Results.displacements``), magnified by ``scale`` (default: the largest displacement drawn as 5% of
+  the wall height; the factor is in the panel title), over the dashed undeformed outlines.
+* :func:`plot_cracks` (ax, model, results): the interfaces coloured by state at the last converged step
+  (open, sliding, rocking, sliding + rocking, elastic; :data:`STATE_STYLES`) with a legend; wide where
+  the mechanism cracks them.
+* :func:`plot_mechanism` (ax, model, results): the blocks moved along ``Results.mechanism`` (the last
+  increment, exaggerated), the moving ones orange, the cracked interfaces black.
+* :func:`plot_curve` (ax, *results, labels=None): load multiplier lambda (or the top-beam force in kN)
+  against the horizontal displacement of the control point [mm]; several results overlaid. A limit
+  analysis (method "limit") has no curve: its multiplier is drawn as a horizontal line.
+
+Figures (written as PNG with the Agg canvas when a ``path`` is given, else made through pyplot):
+
+* :func:`report_figure`: one page with the crack pattern, the mechanism, the deformed shape and the curve
+  (``masonry-dem run --plot``).
+* :func:`plot_results`: the wall (mechanism and joint states in one panel) and the curve.
+* :func:`plot_comparison`: the static and the explicit (dynamic) analyses of one case side by side, and
+  optionally its limit analysis: the walls with their crack patterns, and the curves overlaid, the limit
+  multiplier as a horizontal line (``masonry-dem compare --plot``).
+
+A limit analysis's result has a mechanism (the collapse velocities) and a crack pattern (the joint states of
+that mechanism) but no load path: no curve, no deformed shape (its panels say so instead of drawing one).
+
+A figure's file is :func:`figure_path` of the ``path`` given (".png" added when it has no suffix, as matplotlib
+does), written atomically (:mod:`masonry_dem.atomic`) by :func:`save_figure`.
+
+The panels are in :mod:`.panels`, the figures in :mod:`.figures`. Geometry in m; displacements plotted in mm.
+Matplotlib is imported when this package is.
+"""
+
+from ..report import interface_categories
+from .figures import figure_path, plot_comparison, plot_results, report_figure, save_figure
+from .panels import (
+    DEFORMED_FRACTION as DEFORMED_FRACTION,
+    EXTRA_STYLES as EXTRA_STYLES,
+    MECHANISM_FRACTION as MECHANISM_FRACTION,
+    METHOD_STYLES as METHOD_STYLES,
+    STATE_STYLES,
+    plot_cracks,
+    plot_curve,
+    plot_deformed,
+    plot_mechanism,
+    plot_wall,
+)
+
+__all__ = [
+    "plot_wall",
+    "plot_deformed",
+    "plot_cracks",
+    "plot_mechanism",
+    "plot_curve",
+    "report_figure",
+    "plot_results",
+    "plot_comparison",
+    "figure_path",
+    "save_figure",
+    "interface_categories",
+    "STATE_STYLES",
+]

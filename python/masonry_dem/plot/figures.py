@@ -1,0 +1,258 @@
+"""The figures, made of the panels of :mod:`.panels`: :func:`report_figure` (the one-page report),
+:func:`plot_results` and :func:`plot_comparison`; written as PNG with the Agg canvas when a ``path`` is
+given (:func:`save_figure`, atomically, to :func:`figure_path`), else made through pyplot.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Dict, List, Optional, Tuple, Union
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from .._core import InputError
+from ..atomic import atomic_file
+from ..report import _plural
+from .panels import (
+    _draw_curve,
+    _draw_curve_overlay,
+    _draw_wall,
+    _lam_text,
+    _state_handles,
+    _wall_limits,
+    plot_cracks,
+    plot_curve,
+    plot_deformed,
+    plot_mechanism,
+)
+
+
+def plot_results(
+    model: Any,
+    results: Any,
+    title: Optional[str] = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    live: str = "horizontal_weight",
+    dpi: int = 150,
+) -> Figure:
+    """Draw the wall with its mechanism and joint states, and the load curve; write a PNG if ``path`` is given.
+
+    Args:
+        model: the :class:`masonry_dem.Model` analysed.
+        results: its :class:`masonry_dem.Results`.
+        title: the case title (the figure title adds the status and the collapse multiplier).
+        path: output file (PNG); written with the Agg canvas, without touching pyplot's state.
+            Without a path the figure is created through pyplot (for ``plt.show()`` or a notebook).
+        live: the live load of the model, "horizontal_weight" (lambda dimensionless) or
+            "top_horizontal" (lambda is a force in N, plotted in kN).
+        dpi: resolution of the PNG.
+    Returns:
+        The figure.
+    """
+    fig = _new_figure((13.0, 6.0), path is not None)
+    ax_wall, ax_curve = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.45, 1.0]})
+    _draw_wall(ax_wall, model, results)
+    _draw_curve(ax_curve, results, live)
+    return _finish(fig, _with_title(title, _result_heading(results, live)), path, dpi)
+
+
+def _with_title(title: Optional[str], text: str) -> str:
+    """A figure's heading: the case title, if any, then ``text``."""
+    return f"{title} — {text}" if title else text
+
+
+def _result_heading(results: Any, live: str) -> str:
+    """The method, the status and the collapse multiplier of a result, for a figure's heading."""
+    return f"{results.method}, {results.status}, {_lam_text(results, live)}"
+
+
+def _finish(fig: Figure, heading: str, path: Optional[Union[str, "os.PathLike[str]"]], dpi: int,
+            fontsize: float = 13) -> Figure:
+    """Give ``fig`` its heading, and write it to ``path`` if given."""
+    fig.suptitle(heading, fontsize=fontsize)
+    if path is not None:
+        save_figure(fig, path, dpi=dpi)
+    return fig
+
+
+def figure_path(path: Union[str, "os.PathLike[str]"]) -> "os.PathLike[str]":
+    """The file a figure given ``path`` is written to: ``path`` itself when it has a suffix (its format,
+    e.g. ".png", ".pdf", ".svg"), else ``path`` + "." + rcParams["savefig.format"] (".png" by default), as
+    matplotlib's ``savefig`` does. A suffix that is not a format matplotlib can write is an InputError."""
+    from pathlib import Path
+
+    import matplotlib
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    p = Path(path)
+    if not p.suffix:
+        return p.with_name(p.name + "." + str(matplotlib.rcParams["savefig.format"]).lower())
+    fmt = p.suffix[1:].lower()
+    supported = FigureCanvasBase.get_supported_filetypes()
+    if fmt not in supported:
+        raise InputError(
+            f"cannot write the figure {path}: unknown format {p.suffix!r} (use one of "
+            + ", ".join("." + k for k in sorted(supported))
+            + ")"
+        )
+    return p
+
+
+def save_figure(fig: Figure, path: Union[str, "os.PathLike[str]"], dpi: int = 150) -> "os.PathLike[str]":
+    """Write ``fig`` to :func:`figure_path` (``path``) atomically (a temporary file in its folder, then
+    renamed; a target that is not a regular file is refused); return the file written."""
+    target = figure_path(path)
+    fmt = os.path.splitext(os.fspath(target))[1][1:].lower()
+    with atomic_file(target, "wb") as f:
+        fig.savefig(f, format=fmt, dpi=dpi)
+    return target
+
+
+def _new_figure(size: Tuple[float, float], to_file: bool) -> Figure:
+    """A figure with constrained layout: on the Agg canvas for a file (pyplot's state untouched), else
+    through pyplot (for ``plt.show()`` or a notebook)."""
+    if to_file:
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+        fig = Figure(figsize=size, layout="constrained")
+        FigureCanvasAgg(fig)
+        return fig
+    import matplotlib.pyplot as plt
+
+    return plt.figure(figsize=size, layout="constrained")
+
+
+def _aspect(model: Any) -> float:
+    """Width over height of the wall panel (:func:`_wall_limits`)."""
+    (xl, xh), (yl, yh) = _wall_limits(model)
+    return float((xh - xl) / (yh - yl))
+
+
+def report_figure(
+    model: Any,
+    results: Any,
+    title: Optional[str] = None,
+    other: Any = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    live: str = "horizontal_weight",
+    dpi: int = 150,
+) -> Figure:
+    """A one-page report: the crack pattern, the collapse mechanism, the deformed shape and the load curve.
+
+    Args:
+        model: the :class:`masonry_dem.Model` analysed.
+        results: its :class:`masonry_dem.Results` (the wall panels show this one).
+        title: the case title (the figure title adds the method, status and collapse multiplier).
+        other: optionally the result of the other method on the same model: its curve is overlaid.
+        path: output file (PNG), written with the Agg canvas; without it the figure goes through pyplot.
+        live: the live load, "horizontal_weight" or "top_horizontal" (lambda in N, plotted in kN).
+        dpi: resolution of the PNG.
+    Returns:
+        The figure.
+    """
+    aspect = _aspect(model)
+    if aspect > 1.1:
+        # a wide wall: two rows, the crack pattern and the mechanism above, the deformed shape and the curve
+        cell_w = 6.2
+        cell_h = float(np.clip(cell_w / min(aspect, 4.0) + 1.1, 3.6, 8.0))
+        fig = _new_figure((2 * cell_w + 0.6, 2 * cell_h + 0.8), path is not None)
+        grid = fig.add_gridspec(2, 2)
+        cells, columns = [grid[0, 0], grid[0, 1], grid[1, 0], grid[1, 1]], 5
+    else:
+        # a tall wall: the three wall panels and the curve in one row
+        a = max(aspect, 0.6)
+        fig = _new_figure((16.0, 7.0), path is not None)
+        grid = fig.add_gridspec(1, 4, width_ratios=[a, a, a, 1.6])
+        cells, columns = [grid[0, 0], grid[0, 1], grid[0, 2], grid[0, 3]], 2
+    plot_cracks(fig.add_subplot(cells[0]), model, results, legend_columns=columns)
+    plot_mechanism(fig.add_subplot(cells[1]), model, results)
+    plot_deformed(fig.add_subplot(cells[2]), model, results)
+    ax_curve = fig.add_subplot(cells[3])
+    if other is not None:
+        plot_curve(ax_curve, results, other, live=live)
+    else:
+        plot_curve(ax_curve, results, live=live)
+    return _finish(fig, _with_title(title, _result_heading(results, live)), path, dpi)
+
+
+def plot_comparison(
+    model: Any,
+    static: Any,
+    dynamic: Any,
+    title: Optional[str] = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    live: str = "horizontal_weight",
+    dpi: int = 150,
+    limit: Any = None,
+) -> Figure:
+    """The static and the explicit (dynamic) analysis of one model side by side, and its limit analysis when
+    ``limit`` is given; a PNG if ``path`` is given.
+
+    The walls with their mechanisms and joint states (as in :func:`plot_results`; one above the other for a
+    wide wall, side by side for a tall one) under one legend, and the curves overlaid, each collapse
+    multiplier marked and given in the legend; the limit analysis, which has no curve, as a horizontal
+    dashed line at its multiplier. The figure title gives the differences of the multipliers from the
+    static one and how far the failed-joint patterns agree (see :func:`masonry_dem.compare.agreement`).
+    Arguments as in :func:`plot_results`.
+    """
+    from ..compare import agreement
+
+    agree = agreement(static, dynamic, limit)
+    runs = [("static", static), ("dynamic", dynamic)] + ([("limit", limit)] if limit is not None else [])
+    fig, wall_cells, curve_cell, legend_cell, legend_columns = _comparison_grid(model, len(runs), path is not None)
+    for cell, (method, res) in zip(wall_cells, runs):
+        failed = _plural(agree[f"failed_{method}"], "failed joint")
+        if method == "limit":
+            failed += " in the collapse mechanism"
+        ax = fig.add_subplot(cell)
+        _draw_wall(ax, model, res, legend=False, heading=f"{method}: {res.status}, {_lam_text(res, live)}\n{failed}")
+
+    ax_curve = fig.add_subplot(curve_cell)
+    _draw_curve_overlay(ax_curve, runs, live)
+
+    ax_legend = fig.add_subplot(legend_cell)
+    ax_legend.axis("off")
+    ax_legend.legend(handles=_state_handles(), loc="center", ncol=legend_columns, fontsize=8, frameon=False)
+    return _finish(fig, _with_title(title, _comparison_heading(agree, limit is not None)), path, dpi, fontsize=12)
+
+
+def _comparison_grid(model: Any, n_walls: int, to_file: bool) -> Tuple[Figure, List[Any], Any, Any, int]:
+    """The figure of :func:`plot_comparison` and its cells: one a wall, the curves' and the legend's, and the
+    legend's number of columns. A wide wall: the walls one above the other on the left, the curves on the
+    right; a tall one: the walls and the curves side by side."""
+    aspect = _aspect(model)
+    if aspect > 1.1:
+        a = min(aspect, 4.0)
+        height = float(np.clip(n_walls * 7.0 / a + 2.6, 6.0, 11.0 if n_walls == 2 else 15.0))
+        fig = _new_figure((13.0, height), to_file)
+        grid = fig.add_gridspec(n_walls + 1, 2, width_ratios=[1.25, 1.0], height_ratios=[1.0] * n_walls + [0.09])
+        wall_cells = [grid[k, 0] for k in range(n_walls)]
+        return fig, wall_cells, grid[0:n_walls, 1], grid[n_walls, :], 8
+    a = max(aspect, 0.4)
+    fig = _new_figure((14.0 if n_walls == 2 else 18.0, 6.5), to_file)
+    grid = fig.add_gridspec(2, n_walls + 1, width_ratios=[a] * n_walls + [1.7], height_ratios=[1.0, 0.09])
+    wall_cells = [grid[0, k] for k in range(n_walls)]
+    return fig, wall_cells, grid[0, n_walls], grid[1, :n_walls], 4
+
+
+def _comparison_heading(agree: Dict[str, Any], limit: bool) -> str:
+    """How far the methods agree (:func:`masonry_dem.compare.agreement`): the differences of the multipliers
+    from the static one and the failed joints in common; the limit analysis's on a second line."""
+    from ..compare import format_difference
+
+    def differ(diff: Optional[float]) -> str:
+        return f"multipliers differ by {format_difference(diff)}" if diff is not None else "no multiplier to compare"
+
+    text = (
+        f"static vs dynamic: {differ(agree['multiplier_relative_difference'])}; failed joints "
+        f"{agree['failed_static']} and {agree['failed_dynamic']}, {agree['failed_common']} in common "
+        f"(Jaccard {agree['jaccard']:.2f})"
+    )
+    if limit:
+        text += (
+            f"\nlimit analysis vs static: {differ(agree['multiplier_relative_difference_limit'])}; failed joints "
+            f"{agree['failed_limit']}, {agree['failed_common_limit']} in common with static "
+            f"(Jaccard {agree['jaccard_limit']:.2f})"
+        )
+    return text
