@@ -27,7 +27,7 @@ import sys
 import time
 from typing import IO, Any, Optional, Tuple, Union
 
-from .report import format_multiplier
+from .report import format_multiplier, multiplier_symbol
 
 __all__ = ["ProgressBar", "NullProgress", "progress_bar", "progress_text"]
 
@@ -51,7 +51,7 @@ def progress_text(
     added when ``fraction`` is known (displacement control). With ``live = "top_horizontal"`` the
     multiplier is a force in N, shown as ``H = 56.9 kN``. ``unit``: the word after the count
     ("iterations" for a limit analysis)."""
-    name = "H" if live == "top_horizontal" else "λ"
+    name = multiplier_symbol(live)
     lam = f"{name} = {format_multiplier(multiplier, live) if math.isfinite(multiplier) else '-'}"
     parts = [lam]
     if math.isfinite(fraction) and math.isfinite(displacement):

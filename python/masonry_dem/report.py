@@ -24,6 +24,7 @@ __all__ = [
     "interface_categories",
     "interface_jumps",
     "format_multiplier",
+    "multiplier_symbol",
     "format_status",
     "certificate_text",
     "summary",
@@ -236,6 +237,12 @@ def describe_mechanism(model: Any, results: Any) -> str:
     return text
 
 
+def multiplier_symbol(live: str = "horizontal_weight") -> str:
+    """The symbol of the load multiplier: λ, or H (the horizontal force on the top beam) with
+    ``live = "top_horizontal"``."""
+    return "H" if live == "top_horizontal" else "λ"
+
+
 def format_multiplier(value: float, live: str = "horizontal_weight", symbol: bool = False) -> str:
     """A load multiplier for people, the package's one formatter of it (summaries, tables, plots, progress):
     lambda with 4 decimals, or with ``live = "top_horizontal"`` the horizontal force on the beam in kN (4
@@ -248,7 +255,7 @@ def format_multiplier(value: float, live: str = "horizontal_weight", symbol: boo
         text = f"{value / 1e3:.4g} kN" if top else f"{value:.4f}"
     if not symbol:
         return text or "none"
-    name = "Hu" if top else "λu"
+    name = multiplier_symbol(live) + "u"
     return f"{name} = {text}" if text else f"{name}: none"
 
 
