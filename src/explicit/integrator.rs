@@ -487,12 +487,13 @@ impl<'a> Integrator<'a> {
 /// assert_eq!(s.n_interfaces(), 1);
 /// assert!(s.displacements()[1] < 0.0); // the block settles onto the base
 /// ```
-#[doc(hidden)]
+#[cfg(feature = "bench-internals")]
 pub struct Stepper<'a> {
     pub(super) s: Integrator<'a>,
     pub(super) f: Vec<f64>,
 }
 
+#[cfg(feature = "bench-internals")]
 impl<'a> Stepper<'a> {
     /// The integrator of `model` (linearized kinematics unless `large_rotations`) on `threads`
     /// threads (0: all cores).

@@ -232,6 +232,7 @@ mod time_history;
 
 use integrator::*;
 use pass::*;
+#[cfg(feature = "bench-internals")]
 pub use integrator::Stepper;
 pub(crate) use quasi_static::{relax_at_displacement, relax_dead_state};
 pub use quasi_static::{solve, solve_with};

@@ -249,8 +249,8 @@ impl<'a, 'm> Solver<'a, 'm> {
 }
 
 /// The stages of a static analysis, one at a time, for benchmarks (`benches/static_scaling.rs`).
-/// Not a stable API.
-#[doc(hidden)]
+/// Not a stable API: behind the `bench-internals` feature.
+#[cfg(feature = "bench-internals")]
 pub mod stages {
     use super::*;
 
