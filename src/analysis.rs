@@ -1,5 +1,17 @@
 //! What the incremental analyses share: how the load is driven and what a run reports to its
 //! monitor, the scale of lambda and when a displacement-controlled path has collapsed.
+//!
+//! ```
+//! use masonry_dem::analysis::{displacement_collapse, lambda_scale, Control};
+//! use masonry_dem::geometry::Rect;
+//! use masonry_dem::model::{Model, ModelSpec};
+//! // one block of 0.4 x 0.2 m on the base
+//! let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2)], ..ModelSpec::default() }).unwrap();
+//! assert_eq!(lambda_scale(&model), 1.0); // lambda is a seismic coefficient
+//! let control = Control::from_keys(Some("displacement"), Some(0.01), Control::Load).unwrap();
+//! assert_eq!(control, Control::Displacement { max_displacement: 0.01 });
+//! assert!(displacement_collapse(0.5, 0.6, 1.0, 0.9)); // fallen from its peak
+//! ```
 
 use crate::error::{check_steps, Error, Result};
 use crate::model::{LiveLoad, Model};
@@ -51,15 +63,21 @@ pub enum Control {
     /// Raise lambda until collapse.
     Load,
     /// Drive the horizontal displacement of the control block by `max_displacement` \[m\].
-    Displacement { max_displacement: f64 },
+    Displacement {
+        /// The displacement to reach, from the dead state \[m\] (negative: towards -x).
+        max_displacement: f64,
+    },
 }
 
 /// Reported to a run's monitor after each converged step (static), load level or stage (explicit)
 /// and every few thousand time steps (time histories); the monitor returns `false` to stop the run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Progress {
+    /// Converged steps (static), load levels or stages (explicit), time steps (time histories) so far.
     pub step: usize,
+    /// The load multiplier lambda of the last converged state.
     pub multiplier: f64,
+    /// The control block's horizontal displacement there \[m\] (NaN where there is none).
     pub displacement: f64,
     /// Fraction of the requested path done, in \[0, 1\] (displacement control, time histories),
     /// or NaN where the path's length is not known.

@@ -1,4 +1,13 @@
 //! The one error type of the crate. Every message names the key, block or interface at fault.
+//!
+//! ```
+//! use masonry_dem::error::Error;
+//! use masonry_dem::model::{Model, ModelSpec};
+//! let e = Model::new(ModelSpec { thickness: -1.0, ..ModelSpec::default() }).unwrap_err();
+//! assert!(matches!(e, Error::Input { .. }));
+//! assert_eq!(e.key(), Some("geometry.thickness"));
+//! assert_eq!(e.to_string(), "geometry.thickness must be a finite number > 0, got -1");
+//! ```
 
 /// Errors of model building and analysis.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -16,25 +16,34 @@ use crate::error::{positive, Error, Result};
 /// An axis-aligned rectangle `[x0, x1] x [y0, y1]` in metres.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Rect {
+    /// Left edge \[m\].
     pub x0: f64,
+    /// Bottom edge \[m\].
     pub y0: f64,
+    /// Right edge \[m\].
     pub x1: f64,
+    /// Top edge \[m\].
     pub y1: f64,
 }
 
 impl Rect {
+    /// The rectangle from corner (x0, y0) to corner (x1, y1) \[m\].
     pub fn new(x0: f64, y0: f64, x1: f64, y1: f64) -> Self {
         Rect { x0, y0, x1, y1 }
     }
+    /// x1 - x0 \[m\].
     pub fn width(&self) -> f64 {
         self.x1 - self.x0
     }
+    /// y1 - y0 \[m\].
     pub fn height(&self) -> f64 {
         self.y1 - self.y0
     }
+    /// Width times height \[m2\].
     pub fn area(&self) -> f64 {
         self.width() * self.height()
     }
+    /// The centre \[m\].
     pub fn centroid(&self) -> [f64; 2] {
         [0.5 * (self.x0 + self.x1), 0.5 * (self.y0 + self.y1)]
     }
@@ -95,10 +104,15 @@ pub enum FirstCourse {
 /// Parameters of a running-bond wall (case format `[geometry.running_bond]`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunningBond {
+    /// Length of a whole block \[m\].
     pub block_length: f64,
+    /// Height of a course \[m\].
     pub block_height: f64,
+    /// Number of courses.
     pub courses: usize,
+    /// Length of the wall \[m\]; each course's end blocks are cut to it.
     pub length: f64,
+    /// Which block starts the lowest course.
     pub first_course: FirstCourse,
     /// Rectangles `[x0, y0, x1, y1]`; blocks whose centroid is inside are removed.
     pub openings: Vec<Rect>,

@@ -3,6 +3,18 @@
 //!
 //! Detection hashes the blocks into a uniform grid and tests only pairs that share a cell,
 //! so it costs O(n) for walls of similar blocks, never O(n^2).
+//!
+//! ```
+//! use masonry_dem::geometry::Rect;
+//! use masonry_dem::interface::{detect, BlockKind, Family};
+//! // two blocks side by side on a third
+//! let rects = [Rect::new(0.0, 0.0, 0.4, 0.2), Rect::new(0.4, 0.0, 0.8, 0.2), Rect::new(0.0, -0.2, 0.8, 0.0)];
+//! let kinds = [BlockKind::Wall, BlockKind::Wall, BlockKind::Base];
+//! let found = detect(&rects, &kinds, |i| format!("block {i}"), &mut || true).unwrap();
+//! let families: Vec<Family> = found.iter().map(|it| it.family).collect();
+//! assert_eq!(families, [Family::Head, Family::Base, Family::Base]);
+//! assert_eq!(found[0].l, 0.2); // the shared edge [m]
+//! ```
 
 use crate::error::{Error, Result};
 use crate::geometry::{Rect, REL_TOL};
@@ -22,6 +34,7 @@ pub enum Family {
 }
 
 impl Family {
+    /// The case file's word for the family ("bed", "head", "base", "top").
     pub fn name(self) -> &'static str {
         match self {
             Family::Bed => "bed",
@@ -35,7 +48,9 @@ impl Family {
 /// One interface: blocks `a` and `b`, the normal `n` points from `a` to `b`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Interface {
+    /// The first block (below, or to the left).
     pub a: usize,
+    /// The second block (above, or to the right).
     pub b: usize,
     /// Centroid of the shared segment \[m\].
     pub c: [f64; 2],
@@ -43,6 +58,7 @@ pub struct Interface {
     pub n: [f64; 2],
     /// Length of the shared segment \[m\].
     pub l: f64,
+    /// Which joints of the wall it belongs to (and so its joint law).
     pub family: Family,
     /// `B` (3 x 6, row-major): jumps (dN, dT, dphi) from the dof (u1, u2, phi) of a then b.
     pub b_mat: [[f64; 6]; 3],
@@ -159,11 +175,15 @@ impl Interface {
 /// Current-configuration kinematics of an interface (see [`Interface::large_kinematics`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LargeKinematics {
+    /// The relative displacements (normal, tangential \[m\], rotation \[rad\]) of b against a.
     pub jumps: [f64; 3],
+    /// The unit normal, from a to b, rotated with the blocks.
     pub n: [f64; 2],
+    /// The unit tangent, rotated with the blocks.
     pub t: [f64; 2],
-    /// Arms from the centroids of a and b to the interface point, rotated.
+    /// Arms from the centroids of a and b to the interface point, rotated \[m\].
     pub ra: [f64; 2],
+    /// (See `ra`.)
     pub rb: [f64; 2],
     /// cos and sin of the relative rotation.
     pub rel: [f64; 2],
@@ -187,8 +207,11 @@ impl LargeKinematics {
 /// What kind a block is, for naming families.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BlockKind {
+    /// A block of the wall.
     Wall,
+    /// The fixed foundation.
     Base,
+    /// The rigid top beam.
     Top,
 }
 

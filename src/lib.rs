@@ -32,6 +32,7 @@
 // `!(x <= limit)` is how the checks refuse NaN together with the values out of range: the
 // negated comparison is meant
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
+#![deny(missing_docs)]
 
 pub mod analysis;
 pub mod error;

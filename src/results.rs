@@ -1,4 +1,18 @@
 //! What an analysis returns.
+//!
+//! ```
+//! use masonry_dem::limit::{limit_analysis, LimitOptions};
+//! use masonry_dem::results::Status;
+//! use masonry_dem::geometry::Rect;
+//! use masonry_dem::model::{Model, ModelSpec};
+//! // one block of 0.4 x 0.2 m on the base
+//! let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2)], ..ModelSpec::default() }).unwrap();
+//! let r = limit_analysis(&model, &LimitOptions::default()).unwrap();
+//! assert_eq!(r.status, Status::Collapse);
+//! assert_eq!(r.status.as_str(), "collapse");
+//! // the block slides at lambda = friction (0.65) before it rocks (at width / height = 2)
+//! assert!((r.collapse_multiplier - 0.65).abs() < 1e-6);
+//! ```
 
 use crate::joint::{OPEN, ROCKING, SLIDING};
 
@@ -59,9 +73,13 @@ impl Status {
 /// rocks counts in both; an open one counts only as open.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct JointStateCounts {
+    /// Interfaces within their strength domain.
     pub elastic: usize,
+    /// Interfaces on a Coulomb face.
     pub sliding: usize,
+    /// Interfaces on a rocking face (a hinge at one edge).
     pub rocking: usize,
+    /// Interfaces open across their whole length.
     pub open: usize,
 }
 
@@ -70,7 +88,9 @@ pub struct JointStateCounts {
 pub struct Results {
     /// "static" or "dynamic".
     pub method: &'static str,
+    /// How the run ended.
     pub status: Status,
+    /// Why, where the status is not a success (the message of the error that ended the run).
     pub error: Option<String>,
     /// lambda at collapse (load control) or the peak of the curve (displacement control);
     /// NaN unless the status is `Collapse`: a number is a collapse only with its evidence.
@@ -83,6 +103,7 @@ pub struct Results {
     pub curve_multiplier: Vec<f64>,
     /// Horizontal displacement of the control block's centroid \[m\] at each converged step.
     pub curve_displacement: Vec<f64>,
+    /// The block whose horizontal displacement makes the curve.
     pub control_block: usize,
     /// (u1 \[m\], u2 \[m\], phi \[rad\]) of every block at the last converged step.
     pub displacements: Vec<[f64; 3]>,
@@ -99,6 +120,7 @@ pub struct Results {
     pub iterations: usize,
     /// Converged steps.
     pub steps: usize,
+    /// Wall-clock time of the run \[s\].
     pub elapsed_s: f64,
     /// The limit analysis's evidence: its own, or, for a static load-control analysis of a wall
     /// of associative dry joints, that of the limit analysis run as its check (None otherwise).

@@ -516,10 +516,12 @@ impl<'a> Stepper<'a> {
         }
     }
 
+    /// Number of interfaces.
     pub fn n_interfaces(&self) -> usize {
         self.s.model.interfaces().len()
     }
 
+    /// The time step \[s\].
     pub fn time_step(&self) -> f64 {
         self.s.dt
     }

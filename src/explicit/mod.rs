@@ -23,6 +23,20 @@
 //! Here: the options, the time history and the stability limit. The interface pass is in
 //! `pass`, the integrator in `integrator`, the quasi-static drivers (and the relaxations the
 //! static solver borrows) in `quasi_static`, time histories in `time_history`.
+//!
+//! ```
+//! use masonry_dem::explicit::{simulate, Damping, DynamicOptions};
+//! use masonry_dem::geometry::Rect;
+//! use masonry_dem::model::{Model, ModelSpec};
+//! // one block of 0.4 x 0.2 m on the base
+//! let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2)], ..ModelSpec::default() }).unwrap();
+//! // a tenth of a second at rest on its base, damped: the block settles and stays
+//! let opts = DynamicOptions { duration: 0.1, damping: Damping::Local(0.8), ..DynamicOptions::default() };
+//! let h = simulate(&model, &opts).unwrap();
+//! // the recorded states, n_blocks rows each: the block (0) in the last one
+//! let settled = h.displacements[h.displacements.len() - h.n_blocks];
+//! assert!(settled[0].abs() < 1e-9 && settled[1] < 0.0 && settled[1] > -1e-6);
+//! ```
 
 use crate::error::{check_steps, Error};
 use crate::interface::{Family, Interface};
@@ -37,6 +51,7 @@ use std::time::Instant;
 /// Damping of the explicit solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Damping {
+    /// No damping.
     None,
     /// Local non-viscous damping (Cundall): a force `-alpha |f| sign(v)` on each dof, `alpha` in [0, 1).
     Local(f64),
@@ -61,6 +76,7 @@ pub const MAX_RECORDED_VALUES: usize = 250_000_000;
 /// Options of the quasi-static explicit analysis.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ExplicitOptions {
+    /// How the load is driven.
     pub control: Control,
     /// Load levels or displacement stages (a hint, as for the static solver).
     pub steps: usize,
@@ -68,6 +84,7 @@ pub struct ExplicitOptions {
     pub tolerance: f64,
     /// A level is settled when |unbalanced forces| <= ratio * |applied forces|.
     pub unbalanced_ratio: f64,
+    /// The damping of the motion.
     pub damping: Damping,
     /// Time step \[s\]; None: automatic.
     pub time_step: Option<f64>,
@@ -77,6 +94,7 @@ pub struct ExplicitOptions {
     pub max_steps_per_level: usize,
     /// Threads of the interface loop; 0: all cores.
     pub threads: usize,
+    /// The block whose horizontal displacement is followed (and driven under displacement control); `None`: [`Model::default_control_block`](crate::model::Model::default_control_block).
     pub control_block: Option<usize>,
 }
 
@@ -102,8 +120,11 @@ impl Default for ExplicitOptions {
 pub struct DynamicOptions {
     /// Duration \[s\].
     pub duration: f64,
+    /// The time step \[s\]; `None`: `safety` times the stability limit.
     pub time_step: Option<f64>,
+    /// The fraction of the stability limit taken as the time step when none is given.
     pub safety: f64,
+    /// The damping of the motion.
     pub damping: Damping,
     /// Initial (u1, u2, phi) of every block; None: zero.
     pub initial_displacement: Option<Vec<[f64; 3]>>,
@@ -118,6 +139,7 @@ pub struct DynamicOptions {
     pub record_every: usize,
     /// Finite rotations of the blocks (rocking); false: the linearized kinematics.
     pub large_rotations: bool,
+    /// Threads of the interface pass (0: all cores).
     pub threads: usize,
 }
 
@@ -142,9 +164,13 @@ impl Default for DynamicOptions {
 /// A recorded time history.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TimeHistory {
+    /// How the run ended.
     pub status: Status,
+    /// Why, where the status is not a success (the message of the error that ended the run).
     pub error: Option<String>,
+    /// The time step used \[s\].
     pub time_step: f64,
+    /// The times of the recorded states \[s\].
     pub times: Vec<f64>,
     /// Blocks in each record.
     pub n_blocks: usize,
@@ -161,7 +187,9 @@ pub struct TimeHistory {
     pub external_work: Vec<f64>,
     /// Energy dissipated by damping and joint plasticity \[J\].
     pub dissipated: Vec<f64>,
+    /// Steps taken (time steps for a time history).
     pub steps: usize,
+    /// Wall-clock time of the run \[s\].
     pub elapsed_s: f64,
 }
 

@@ -80,6 +80,7 @@ impl Default for LimitOptions {
 pub struct LimitProgress {
     /// The program of the non-associative sequence (0: the associative one).
     pub program: usize,
+    /// Interior-point iterations so far.
     pub iteration: usize,
     /// The current estimate of lambda.
     pub multiplier: f64,

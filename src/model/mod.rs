@@ -24,10 +24,15 @@ use crate::joint::{JointLaw, Kinds, Section};
 /// The joint law of each family; a family without its own law uses `default`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct JointLaws {
+    /// The law of every family without its own.
     pub default: JointLaw,
+    /// Horizontal joints between wall blocks.
     pub bed: Option<JointLaw>,
+    /// Vertical joints between wall blocks.
     pub head: Option<JointLaw>,
+    /// Joints between the wall and its base.
     pub base: Option<JointLaw>,
+    /// Joints between the wall and the top beam.
     pub top: Option<JointLaw>,
 }
 
@@ -93,10 +98,13 @@ pub struct ModelSpec {
     pub density: f64,
     /// A fixed rigid foundation under the lowest blocks, spanning the wall.
     pub base: bool,
+    /// A rigid top beam resting on the highest blocks, or none.
     pub top: Option<TopBeam>,
+    /// The joint law of each family.
     pub joints: JointLaws,
     /// [m/s2]
     pub gravity: f64,
+    /// The live load, scaled by lambda.
     pub live: LiveLoad,
 }
 
@@ -154,6 +162,7 @@ impl Model {
         build::block_name(i, self.n_wall, self.base, self.top, &self.rects)
     }
 
+    /// Number of wall blocks (the base and the top beam not counted).
     pub fn n_wall(&self) -> usize {
         self.n_wall
     }
@@ -161,6 +170,7 @@ impl Model {
     pub fn n_blocks(&self) -> usize {
         self.rects.len()
     }
+    /// Every block's rectangle: wall blocks, then the base, then the top beam.
     pub fn rects(&self) -> &[Rect] {
         &self.rects
     }
@@ -176,21 +186,27 @@ impl Model {
         }
         (x1 - x0).max(y1 - y0)
     }
+    /// What each block is (wall, base, top beam).
     pub fn kinds(&self) -> &[BlockKind] {
         &self.kinds
     }
+    /// The index of the base, if any.
     pub fn base(&self) -> Option<usize> {
         self.base
     }
+    /// The index of the top beam, if any.
     pub fn top(&self) -> Option<usize> {
         self.top
     }
+    /// Out-of-plane thickness \[m\].
     pub fn thickness(&self) -> f64 {
         self.thickness
     }
+    /// Acceleration of gravity \[m/s2\].
     pub fn gravity(&self) -> f64 {
         self.gravity
     }
+    /// The live load.
     pub fn live(&self) -> LiveLoad {
         self.live
     }
@@ -206,9 +222,11 @@ impl Model {
     pub fn weight(&self) -> &[f64] {
         &self.weight
     }
+    /// The interfaces, sorted by their blocks (a, b).
     pub fn interfaces(&self) -> &[Interface] {
         &self.interfaces
     }
+    /// Each interface's cross-section (length times thickness).
     pub fn sections(&self) -> &[Section] {
         &self.sections
     }
@@ -225,6 +243,7 @@ impl Model {
     pub fn laws_are_strong(&self) -> bool {
         (0..self.interfaces.len()).any(|k| self.law(k).is_strong())
     }
+    /// The joint laws of the families.
     pub fn laws(&self) -> &JointLaws {
         &self.laws
     }

@@ -32,6 +32,18 @@
 //! in `system`, Newton's iterations and the dead state in `newton`, the two path-following
 //! strategies in `load_control` (with the check against limit analysis) and
 //! `displacement_control`.
+//!
+//! ```
+//! use masonry_dem::static_solver::{solve, Control, StaticOptions};
+//! use masonry_dem::geometry::Rect;
+//! use masonry_dem::model::{Model, ModelSpec};
+//! // one block of 0.4 x 0.2 m on the base
+//! let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2)], ..ModelSpec::default() }).unwrap();
+//! // displacement control: the block pushed 1 mm, then lambda stays at the friction coefficient
+//! let opts = StaticOptions { control: Control::Displacement { max_displacement: 1e-3 }, ..StaticOptions::default() };
+//! let r = solve(&model, &opts).unwrap();
+//! assert!((r.last_equilibrium - 0.65).abs() < 1e-3);
+//! ```
 
 use crate::error::Error;
 use crate::joint::{elastic_tangent, return_map_with, JointState, Kinds, MapOptions};
@@ -46,6 +58,7 @@ pub use crate::analysis::{Control, Progress};
 /// Options of the static solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StaticOptions {
+    /// How the load is driven.
     pub control: Control,
     /// Number of increments (a hint: the solver cuts steps where needed).
     pub steps: usize,
@@ -259,6 +272,7 @@ pub mod stages {
     pub struct Stages<'a>(Solver<'a, 'static>);
 
     impl<'a> Stages<'a> {
+        /// The solver of `model` at rest, its load system built.
         pub fn new(model: &'a Model) -> Result<Self, Error> {
             let mut s = Solver::new(model, &StaticOptions::default(), Box::new(|_: &Progress| true))?;
             s.ensure_load_sys()?;
