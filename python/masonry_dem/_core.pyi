@@ -17,6 +17,7 @@ IntArray = npt.NDArray[np.int64]
 
 __version__: str
 JOINT_LAW_KEYS: list[str]  # the keys of a joint-law dict (and of [joints] tables)
+DEFAULTS: dict[str, object]  # the core's defaults of Model's and the solvers' arguments that Python shows
 
 from .errors import ConvergenceError as ConvergenceError
 from .errors import InputError as InputError

@@ -96,11 +96,35 @@ use model::*;
 use results::*;
 use run::*;
 
+/// The core's defaults of the arguments Python shows when they are left out (the Rust
+/// `Default`s: `ModelSpec`, `TopBeam`'s constants, `StaticOptions`, `ExplicitOptions`): Python
+/// reads them here instead of stating them again.
+fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let (spec, stat, expl) = (ModelSpec::default(), StaticOptions::default(), ExplicitOptions::default());
+    let d = PyDict::new(py);
+    d.set_item("thickness", spec.thickness)?;
+    d.set_item("density", spec.density)?;
+    d.set_item("base", spec.base)?;
+    d.set_item("top_rotation", py.None())?;
+    d.set_item("top_force", TopBeam::DEFAULT_FORCE.to_vec())?;
+    d.set_item("joints", py.None())?;
+    d.set_item("gravity", spec.gravity)?;
+    d.set_item("live", spec.live.as_str())?;
+    d.set_item("top_vertical", TopBeam::DEFAULT_VERTICAL)?;
+    d.set_item("control", stat.control.name())?;
+    d.set_item("steps", stat.steps)?;
+    d.set_item("max_displacement", py.None())?;
+    d.set_item("control_block", py.None())?;
+    d.set_item("damping", expl.damping.kind())?;
+    Ok(d)
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("JOINT_LAW_KEYS", JointLaw::KEYS.to_vec())?;
+    m.add("DEFAULTS", defaults(py)?)?;
     let errors = py.import("masonry_dem.errors")?;
     for name in ["MasonryError", "InputError", "ConvergenceError", "MechanismError"] {
         m.add(name, errors.getattr(name)?)?;

@@ -27,8 +27,7 @@ impl PyModel {
         top_vertical: Option<&str>,
     ) -> PyResult<Self> {
         let d = ModelSpec::default();
-        let top = TopBeam::from_keys(top_rotation, &top_force.unwrap_or(vec![0.0, 0.0]), top_vertical.unwrap_or("free"))
-            .map_err(to_py)?;
+        let top = TopBeam::from_keys(top_rotation, top_force.as_deref(), top_vertical).map_err(to_py)?;
         let spec = ModelSpec {
             blocks: rects_from(blocks, "blocks")?,
             thickness: thickness.unwrap_or(d.thickness),

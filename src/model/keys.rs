@@ -105,17 +105,24 @@ impl JointLaw {
 }
 
 impl TopBeam {
+    /// The dead force on the beam where `top.force` is left out \[N\].
+    pub const DEFAULT_FORCE: [f64; 2] = [0.0, 0.0];
+    /// `top.vertical` where it is left out: the beam is free to rise.
+    pub const DEFAULT_VERTICAL: &'static str = "free";
+
     /// The top beam of the `[top]` table: `rotation` "fixed" or "free", the dead `force`
-    /// [Fx, Fy] \[N\], `vertical` "free" or "held". `None` for `rotation` means no beam, which
-    /// only `vertical = "free"` allows.
-    pub fn from_keys(rotation: Option<&str>, force: &[f64], vertical: &str) -> Result<Option<TopBeam>> {
+    /// [Fx, Fy] \[N\], `vertical` "free" or "held" (left out: [`Self::DEFAULT_FORCE`],
+    /// [`Self::DEFAULT_VERTICAL`]). `None` for `rotation` means no beam, which only
+    /// `vertical = "free"` allows.
+    pub fn from_keys(rotation: Option<&str>, force: Option<&[f64]>, vertical: Option<&str>) -> Result<Option<TopBeam>> {
+        let force = force.unwrap_or(&Self::DEFAULT_FORCE);
         if force.len() != 2 {
             return Err(Error::input_at(
                 "top.force",
                 format!("top.force: expected 2 numbers [Fx, Fy] in N, got {}", force.len()),
             ));
         }
-        let vertical_held = match vertical {
+        let vertical_held = match vertical.unwrap_or(Self::DEFAULT_VERTICAL) {
             "free" => false,
             "held" => true,
             o => return Err(not_one_of("top.vertical", &["free", "held"], o)),
@@ -148,6 +155,14 @@ impl FromStr for FirstCourse {
 }
 
 impl Control {
+    /// The case file's word for the control ("load" or "displacement").
+    pub fn name(self) -> &'static str {
+        match self {
+            Control::Load => "load",
+            Control::Displacement { .. } => "displacement",
+        }
+    }
+
     /// `analysis.control`: "load", or "displacement" up to `max_displacement` \[m\] (left out:
     /// [`DEFAULT_MAX_DISPLACEMENT`]); `None`: `default`.
     pub fn from_keys(control: Option<&str>, max_displacement: Option<f64>, default: Control) -> Result<Control> {
@@ -163,6 +178,15 @@ impl Control {
 }
 
 impl Damping {
+    /// The case file's word for the damping's kind ("local", "viscous" or "none").
+    pub fn kind(self) -> &'static str {
+        match self {
+            Damping::None => "none",
+            Damping::Local(_) => "local",
+            Damping::Viscous(_) => "viscous",
+        }
+    }
+
     /// The damping of `[analysis] damping` ("local", "viscous" or "none") and
     /// `damping_coefficient`, each left out (`None`) taking the one of `default`.
     pub fn from_keys(kind: Option<&str>, coefficient: Option<f64>, default: Damping) -> Result<Damping> {
@@ -208,7 +232,7 @@ mod tests {
         assert_eq!(e.to_string(), "loads.live must be \"horizontal_weight\" or \"top_horizontal\", got \"sideways\"");
         let e = Damping::from_keys(Some("x"), None, Damping::None).unwrap_err();
         assert_eq!(e.to_string(), "damping must be \"local\", \"viscous\" or \"none\", got \"x\"");
-        let e = TopBeam::from_keys(None, &[0.0, 0.0], "held").unwrap_err();
+        let e = TopBeam::from_keys(None, None, Some("held")).unwrap_err();
         assert_eq!(e.key(), Some("top.vertical"));
     }
 }

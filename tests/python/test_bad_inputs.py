@@ -365,3 +365,40 @@ except MemoryError as exc:
     proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr
     assert "MemoryError: a model of 1892685 blocks needs about 2.3 GB" in proc.stdout, (proc.stdout, proc.stderr)
+
+
+def test_errors_are_standard_exceptions_that_name_their_key() -> None:
+    """InputError is a ValueError (code that knows nothing of masonry_dem catches it) of module masonry_dem,
+    and carries the case-file key it concerns, from the core and from the case-file reader alike."""
+    assert issubclass(md.InputError, ValueError) and issubclass(md.InputError, md.MasonryError)
+    assert issubclass(md.ConvergenceError, md.MasonryError) and issubclass(md.MechanismError, md.MasonryError)
+    assert md.InputError.__module__ == "masonry_dem" and md.MasonryError.__module__ == "masonry_dem"
+    blocks = md.running_bond(0.4, 0.2, 2, 1.2)
+    for kwargs, key in [({"thickness": -1.0}, "geometry.thickness"), ({"live": "sideways"}, "loads.live"),
+                        ({"top_vertical": "held"}, "top.vertical")]:
+        with pytest.raises(ValueError) as info:
+            md.Model(blocks, **kwargs)
+        assert isinstance(info.value, md.InputError) and info.value.key == key, (kwargs, info.value)
+    text = 'format = 1\ntitle = "t"\n[geometry]\nthickness = -1.0\n[geometry.running_bond]\n' \
+           'block_length = 0.4\nblock_height = 0.2\ncourses = 2\nlength = 1.2\n'
+    with pytest.raises(md.InputError) as info:
+        md.parse_case(text)
+    assert info.value.key == "geometry.thickness"
+    with pytest.raises(md.InputError) as info:
+        md.Model(blocks, joints={"default": {"friction": 0.6}, "side": {}})
+    assert info.value.key == "joints" and "unknown family" in str(info.value)
+
+
+def test_the_defaults_python_shows_are_the_cores() -> None:
+    """Case files show the defaults of the keys they leave out from the core's own (``_core.DEFAULTS``): a
+    model built with them is the model built with nothing said."""
+    from masonry_dem import _core
+    d = _core.DEFAULTS
+    blocks = md.running_bond(0.4, 0.2, 2, 1.2)
+    said = md.Model(blocks, thickness=d["thickness"], density=d["density"], base=d["base"], gravity=d["gravity"],
+                    live=d["live"], top_rotation="fixed", top_force=d["top_force"], top_vertical=d["top_vertical"])
+    unsaid = md.Model(blocks, top_rotation="fixed")
+    assert said.live == unsaid.live == d["live"]
+    np.testing.assert_array_equal(said.rects, unsaid.rects)
+    a, b = said.solve_static(steps=d["steps"], control=d["control"]), unsaid.solve_static()
+    assert a.collapse_multiplier == b.collapse_multiplier and a.steps == b.steps

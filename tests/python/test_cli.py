@@ -313,7 +313,7 @@ def test_interrupted(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixt
     captured = capsys.readouterr()
     assert captured.err.strip() == "masonry-dem: error: interrupted (no plot drawn)"
     assert "interrupted by the user" in captured.out
-    assert json.loads(out.read_text())["status"] == "failed"
+    assert json.loads(out.read_text())["status"] == "interrupted"
     assert not png.exists()
     log.clear()
     assert cli.main(["compare", case]) == 130

@@ -5,8 +5,8 @@ limit analysis (``Model.solve_limit``).
 A case holds what its file gives in two frozen objects: :class:`ModelParameters` (the wall, the arguments
 of ``Model``) and :class:`AnalysisParameters` (the options of the solvers). A parameter the file leaves out
 is None there and is left out of the call, so that the core's own default applies (the bindings fill it in
-from the Rust ``Default``s). :data:`CORE_DEFAULTS` restates the few defaults Python has to show or to check
-a key against; nothing passes them to the core.
+from the Rust ``Default``s). :data:`CORE_DEFAULTS` holds the few defaults Python has to show or to check
+a key against, read from the core (``_core.DEFAULTS``); nothing passes them back to it.
 """
 
 from __future__ import annotations
@@ -37,24 +37,18 @@ SOLVER_OPTIONS = {"static": INCREMENTAL_OPTIONS, "dynamic": INCREMENTAL_OPTIONS 
 #: :attr:`Case.analysis_kwargs`, :meth:`Case.solver_kwargs`) or checks a key against (the damping kind of
 #: ``damping_coefficient``; the live load when the core's ``Model`` does not tell its own). None for
 #: top_rotation, joints, max_displacement and control_block: left out.
-CORE_DEFAULTS: Mapping[str, Any] = MappingProxyType({
-    "thickness": 1.0,
-    "density": 1000.0,
-    "base": True,
-    "top_rotation": None,
-    "top_force": [0.0, 0.0],
-    "joints": None,
-    "gravity": 9.81,
-    "live": "horizontal_weight",
-    "top_vertical": "free",
-    "control": "load",
-    "steps": 200,
-    "max_displacement": None,
-    "control_block": None,
-    "damping": "local",
-})
+CORE_DEFAULTS: Mapping[str, Any] = MappingProxyType(dict(_core.DEFAULTS))
 
 Progress = Callable[[int, float, float, float], None]
+
+
+def _in_file(exc: MasonryError, source: str) -> MasonryError:
+    """The core's error ``exc`` again, of its class, with the case file's name in front (and the key it
+    concerns kept: ``InputError.key``)."""
+    again = type(exc)(f"{source}: {exc}")
+    if isinstance(exc, InputError):
+        again.key = exc.key
+    return again
 
 
 def _given(parameters: Any, names: Sequence[str]) -> Dict[str, Any]:
@@ -168,7 +162,7 @@ def generate_blocks(kind: str, geometry: Mapping[str, Any], source: str) -> np.n
             return _core.pattern(**arguments)
         return np.asarray(geometry["blocks"], dtype=np.float64)
     except MasonryError as exc:
-        raise type(exc)(f"{source}: {exc}") from exc  # the core names the key (geometry.<kind>.<key>)
+        raise _in_file(exc, source) from exc  # the core names the key (geometry.<kind>.<key>)
 
 
 @dataclass
@@ -231,7 +225,7 @@ class Case:
         try:
             return _core.Model(**self.model.arguments())
         except MasonryError as exc:
-            raise type(exc)(f"{self.source}: {exc}") from exc
+            raise _in_file(exc, self.source) from exc
 
     def check_method(self, method: Optional[str] = None) -> str:
         """The method to use, ``method`` ("static" | "dynamic" | "limit") overriding the case's.
@@ -282,7 +276,7 @@ class Case:
         try:
             return solver(**kwargs)
         except MasonryError as exc:
-            raise type(exc)(f"{self.source}: {exc}") from exc
+            raise _in_file(exc, self.source) from exc
 
     def run(self, method: Optional[str] = None, progress: Optional[Progress] = None) -> "_core.Results":
         """Build the model and run the analysis; ``method`` overrides the case's method."""

@@ -98,24 +98,26 @@ class _Table:
                 where = f"in [{path}]" if path else "at the top level"
                 close = difflib.get_close_matches(key, allowed, n=1)
                 hint = f" (did you mean '{close[0]}'?)" if close else f" (allowed: {', '.join(allowed)})"
-                raise self.error(f"unknown key '{_short(key)}' {where}{hint}")
+                raise self.error(f"unknown key '{_short(key)}' {where}{hint}", self.where(str(key)))
 
     # -- messages ----------------------------------------------------------------------------------
 
-    def error(self, message: str) -> InputError:
-        """An InputError whose message starts with the file name."""
-        return InputError(f"{self.source}: {message}")
+    def error(self, message: str, key: Optional[str] = None) -> InputError:
+        """An InputError whose message starts with the file name; ``key``: the dotted key at fault."""
+        return InputError(f"{self.source}: {message}", key)
 
     def where(self, key: str) -> str:
         """The dotted key, 'path.key' (or just 'key' at the top level), the prefix of a message about one value."""
         return f"{self.path}.{key}" if self.path else key
 
     def key_error(self, key: str, message: str) -> InputError:
-        return self.error(f"{self.where(key)}: {message}")
+        """An InputError about the value of ``key`` in this table."""
+        return self.error(f"{self.where(key)}: {message}", self.where(key))
 
     def missing(self, key: str) -> InputError:
+        """An InputError for the required ``key`` missing from this table."""
         where = f"in [{self.path}]" if self.path else "at the top level"
-        return self.error(f"missing key '{key}' {where}")
+        return self.error(f"missing key '{key}' {where}", self.where(key))
 
     # -- typed getters -----------------------------------------------------------------------------
 
@@ -138,17 +140,17 @@ class _Table:
 
     def _number_value(self, label: str, value: Any, check: Optional[Check] = None) -> float:
         if not _is_number(value):
-            raise self.error(f"{label}: expected a number, {_got(value)}")
+            raise self.error(f"{label}: expected a number, {_got(value)}", label)
         try:
             x = float(value)
         except OverflowError:  # an integer beyond the range of a float
-            raise self.error(f"{label}: expected a finite number, {_got(value)}") from None
+            raise self.error(f"{label}: expected a finite number, {_got(value)}", label) from None
         if not math.isfinite(x):
-            raise self.error(f"{label}: expected a finite number, got {value}")
+            raise self.error(f"{label}: expected a finite number, got {value}", label)
         if check is not None:
             problem = check(x)
             if problem:
-                raise self.error(f"{label}: {problem}, got {_int_text(value) if isinstance(value, int) else value}")
+                raise self.error(f"{label}: {problem}, got {_int_text(value) if isinstance(value, int) else value}", label)
         return x
 
     def integer(
@@ -200,9 +202,9 @@ class _Table:
         """An array of finite numbers (of ``length`` entries if given); ``label`` names it in messages."""
         if not isinstance(value, list):
             expected = f"an array of {length} numbers{what}" if length else "an array of numbers"
-            raise self.error(f"{label}: expected {expected}, got {_type_name(value)}")
+            raise self.error(f"{label}: expected {expected}, got {_type_name(value)}", label)
         if length is not None and len(value) != length:
-            raise self.error(f"{label}: expected {length} numbers{what}, got {len(value)}")
+            raise self.error(f"{label}: expected {length} numbers{what}, got {len(value)}", label)
         return [self._number_value(f"{label}[{i}]", v) for i, v in enumerate(value)]
 
     def rectangles(self, key: str, required: bool = True) -> Optional[List[List[float]]]:
@@ -215,6 +217,6 @@ class _Table:
             label = f"{self.where(key)}[{i}]"
             x0, y0, x1, y1 = self.numbers(label, item, 4, " [x0, y0, x1, y1]")
             if not (x1 > x0 and y1 > y0):
-                raise self.error(f"{label}: expected x1 > x0 and y1 > y0, got {item}")
+                raise self.error(f"{label}: expected x1 > x0 and y1 > y0, got {item}", label)
             rects.append([x0, y0, x1, y1])
         return rects
