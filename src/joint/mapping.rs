@@ -158,7 +158,8 @@ pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &J
     // the warm set, then the active sets smallest first (the order above), each in its own copy of
     // `attempt` (the faces of a set known at compile time: no index lists, unrolled
     // eliminations); one exit for all, so that `finish` is inlined once
-    let accepted = active_set(&faces, prep, &trial, &f_trial, g_all, dm, tol, warm, strict, apex_warm, warm_in);
+    let problem = Trial { faces: &faces, prep, trial: &trial, f_trial: &f_trial, g_all, dm, tol };
+    let accepted = active_set(&problem, warm, strict, apex_warm, warm_in);
     if let Some((a, mask)) = accepted {
         let tangent = if want_tangent { set_tangent(mask, &faces, &d, dm, g_all, &a, tol) } else { [[0.0; 3]; 3] };
         return (finish(a.s, a.slip, a.dk, tangent), mask);
@@ -195,23 +196,10 @@ fn faces_now(law: &JointLaw, sec: &Section, committed: &JointState, trial: &[f64
 /// `attempt` (the faces of a set known at compile time: no index lists, unrolled eliminations).
 /// `None`: no set (degenerate data).
 #[inline(always)]
-#[allow(clippy::too_many_arguments)] // the constants of the mapping, passed as they are
-fn active_set(
-    faces: &Faces,
-    prep: Option<&Prepared>,
-    trial: &[f64; 3],
-    f_trial: &[f64; 4],
-    g_all: &[[f64; 4]; 4],
-    dm: &[[f64; 3]; 4],
-    tol: f64,
-    warm: u8,
-    strict: bool,
-    apex_warm: bool,
-    warm_in: u8,
-) -> Option<(Attempt, u8)> {
+fn active_set(problem: &Trial, warm: u8, strict: bool, apex_warm: bool, warm_in: u8) -> Option<(Attempt, u8)> {
     macro_rules! try_set {
         ($mask:literal, $strict:expr) => {
-            if let Some(a) = attempt::<$mask>(faces, prep, trial, f_trial, g_all, dm, tol, $strict) {
+            if let Some(a) = attempt::<$mask>(problem, $strict) {
                 return Some((a, $mask));
             }
         };
@@ -226,7 +214,7 @@ fn active_set(
     }
     warm_sets!(1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14);
     if apex_warm {
-        if let Some(a) = apex_return(warm_in, faces, prep, trial, f_trial, g_all, dm, tol) {
+        if let Some(a) = apex_return(warm_in, problem) {
             return Some((a, warm_in));
         }
     }
@@ -243,6 +231,21 @@ fn active_set(
     None
 }
 
+/// What every active set's return starts from: the faces of the domain, the prepared
+/// constants (if any), the trial force and the faces' values on it, the products
+/// `a_i . D m_j` of every pair of faces, the flow columns `D m_j`, and the Kuhn-Tucker test's
+/// tolerance.
+#[derive(Clone, Copy)]
+pub(super) struct Trial<'a> {
+    pub(super) faces: &'a Faces,
+    pub(super) prep: Option<&'a Prepared>,
+    pub(super) trial: &'a [f64; 3],
+    pub(super) f_trial: &'a [f64; 4],
+    pub(super) g_all: &'a [[f64; 4]; 4],
+    pub(super) dm: &'a [[f64; 3]; 4],
+    pub(super) tol: f64,
+}
+
 /// The return of one active set: the force, the Coulomb flow, the plastic (opening, slip)
 /// increments, and for the tangent the set's faces.
 pub(super) struct Attempt {
@@ -256,17 +259,8 @@ pub(super) struct Attempt {
 /// The return onto the faces of `MASK` (bit j: face j), if it satisfies the Kuhn-Tucker
 /// conditions: multipliers >= 0 and every other face satisfied.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)] // the constants of the mapping, passed as they are
-pub(super) fn attempt<const MASK: u8>(
-    faces: &Faces,
-    prep: Option<&Prepared>,
-    trial: &[f64; 3],
-    f_trial: &[f64; 4],
-    g_all: &[[f64; 4]; 4],
-    dm: &[[f64; 3]; 4],
-    tol: f64,
-    strict: bool,
-) -> Option<Attempt> {
+pub(super) fn attempt<const MASK: u8>(problem: &Trial, strict: bool) -> Option<Attempt> {
+    let Trial { faces, prep, trial, f_trial, g_all, dm, tol } = *problem;
     let mask = MASK;
     if mask.count_ones() == 1 {
         // a single face whose multiplier f_j(trial) / (a_j . D m_j) is negative is rejected
@@ -367,22 +361,9 @@ pub(super) fn apex_set(a: &Attempt, g_all: &[[f64; 4]; 4], tol: f64) -> bool {
 /// Kuhn-Tucker test and is the ordered enumeration's choice there ([`apex_set`]).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) fn apex_return(
-    set: u8,
-    faces: &Faces,
-    prep: Option<&Prepared>,
-    trial: &[f64; 3],
-    f_trial: &[f64; 4],
-    g_all: &[[f64; 4]; 4],
-    dm: &[[f64; 3]; 4],
-    tol: f64,
-) -> Option<Attempt> {
-    let a = if set == 7 {
-        attempt::<7>(faces, prep, trial, f_trial, g_all, dm, tol, false)
-    } else {
-        attempt::<11>(faces, prep, trial, f_trial, g_all, dm, tol, false)
-    };
-    a.filter(|a| apex_set(a, g_all, tol))
+pub(super) fn apex_return(set: u8, problem: &Trial) -> Option<Attempt> {
+    let a = if set == 7 { attempt::<7>(problem, false) } else { attempt::<11>(problem, false) };
+    a.filter(|a| apex_set(a, problem.g_all, problem.tol))
 }
 
 /// The margins of a strict warm set ([`MapOptions::strict`]), in units of the Kuhn-Tucker

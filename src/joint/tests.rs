@@ -174,7 +174,8 @@ fn a_warm_set_at_the_apex_is_taken_only_where_the_ordered_enumeration_takes_it()
                 let tr: [f64; 3] = std::array::from_fn(|c| d[c] * (e[c] - committed.plastic[c]));
                 let tol = kt_tolerance(force_scale(&tr, &sec), &faces);
                 let ft: [f64; 4] = std::array::from_fn(|j| faces.f(j, &tr));
-                taken += apex_return(set, &faces, Some(&prep), &tr, &ft, &prep.g_all, &prep.dm, tol).is_some() as usize;
+                let problem = Trial { faces: &faces, prep: Some(&prep), trial: &tr, f_trial: &ft, g_all: &prep.g_all, dm: &prep.dm, tol };
+                taken += apex_return(set, &problem).is_some() as usize;
             }
         }
     }
