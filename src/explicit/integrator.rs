@@ -209,18 +209,7 @@ impl<'a> Integrator<'a> {
     /// [`Integrator::interface_forces`], on the current rayon pool if `par`.
     pub(super) fn interface_forces_in(&mut self, par: bool) {
         if self.large {
-            let u = &self.u;
-            let rot = |i0: usize, cs: &mut [[f64; 2]]| {
-                for (i, cs) in cs.iter_mut().enumerate() {
-                    let (s, c) = u[3 * (i0 + i) + 2].sin_cos();
-                    *cs = [c, s];
-                }
-            };
-            if par {
-                self.cs.par_chunks_mut(GRAIN_BLOCKS).enumerate().for_each(|(c, cs)| rot(c * GRAIN_BLOCKS, cs));
-            } else {
-                rot(0, &mut self.cs);
-            }
+            self.rotations_in(par);
         }
         let pass = Pass {
             model: self.model,
@@ -252,8 +241,30 @@ impl<'a> Integrator<'a> {
             // the parts one after the other: the same sums
             work(all);
         }
-        // the blocks whose interfaces span parts: each sums its interfaces' forces in
-        // increasing k, as a serial scatter in interface order would
+        self.gather_in(par);
+    }
+
+    /// The (cos, sin) of each block's rotation at the current `u` (finite rotations), on the
+    /// current rayon pool if `par`.
+    fn rotations_in(&mut self, par: bool) {
+        let u = &self.u;
+        let rot = |i0: usize, cs: &mut [[f64; 2]]| {
+            for (i, cs) in cs.iter_mut().enumerate() {
+                let (s, c) = u[3 * (i0 + i) + 2].sin_cos();
+                *cs = [c, s];
+            }
+        };
+        if par {
+            self.cs.par_chunks_mut(GRAIN_BLOCKS).enumerate().for_each(|(c, cs)| rot(c * GRAIN_BLOCKS, cs));
+        } else {
+            rot(0, &mut self.cs);
+        }
+    }
+
+    /// After the interface pass, the force sums of the blocks whose interfaces span parts,
+    /// into `f_int`: each sums the terms the pass left it in increasing k, as a serial scatter
+    /// in interface order would; on the current rayon pool if `par`.
+    fn gather_in(&mut self, par: bool) {
         let (st, terms) = (&self.straddlers, &self.terms);
         if st.blocks.is_empty() {
             return;
