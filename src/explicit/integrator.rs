@@ -68,39 +68,12 @@ pub(super) struct Integrator<'a> {
 }
 
 impl<'a> Integrator<'a> {
+    /// The integrator of `model` at rest at its prescribed displacements, with time step `dt`
+    /// (None: `safety` times the stability limit), `damping`, and the interface pass on
+    /// `threads` threads (0: all cores); bad values are refused with the option they come from.
     pub(super) fn new(model: &'a Model, dt: Option<f64>, safety: f64, damping: Damping, threads: usize) -> Result<Self, Error> {
-        let crit = critical_time_step(model);
-        let dt = match dt {
-            Some(dt) => {
-                if !(dt.is_finite() && dt > 0.0) {
-                    return Err(Error::input(format!("analysis.time_step must be a finite number > 0, got {dt}")));
-                }
-                if dt > crit {
-                    return Err(Error::input(format!(
-                        "analysis.time_step = {dt:.3e} s exceeds the stability limit of this model, {crit:.3e} s"
-                    )));
-                }
-                dt
-            }
-            None => {
-                if !(safety > 0.0 && safety <= 1.0) {
-                    return Err(Error::input(format!("safety must lie in (0, 1], got {safety}")));
-                }
-                if !crit.is_finite() {
-                    return Err(Error::input("no stiffness holds the model: no stable time step"));
-                }
-                safety * crit
-            }
-        };
-        match damping {
-            Damping::Local(a) if !(0.0..1.0).contains(&a) => {
-                return Err(Error::input(format!("analysis.damping_coefficient (local damping) must lie in [0, 1), got {a}")))
-            }
-            Damping::Viscous(c) if !(c.is_finite() && c >= 0.0) => {
-                return Err(Error::input(format!("analysis.damping_coefficient (viscous damping) must be finite and >= 0, got {c}")))
-            }
-            _ => {}
-        }
+        let dt = time_step(model, dt, safety)?;
+        check_damping(damping)?;
         if threads > MAX_THREADS {
             return Err(Error::input(format!("analysis.threads = {threads} is more than the limit of {MAX_THREADS}")));
         }
@@ -110,40 +83,13 @@ impl<'a> Integrator<'a> {
             return Err(Error::input(format!("{nb} blocks and {m} interfaces: the explicit solver takes fewer than 2^31 blocks and 2^31 interfaces")));
         }
         let fixed = model.fixed();
-        let mut mass = vec![0.0; 3 * nb];
-        let mut inv_mass = vec![0.0; 3 * nb];
-        for i in 0..nb {
-            let mm = [model.mass()[i], model.mass()[i], model.inertia()[i]];
-            for k in 0..3 {
-                mass[3 * i + k] = mm[k];
-                if !fixed[3 * i + k] {
-                    inv_mass[3 * i + k] = 1.0 / mm[k];
-                }
-            }
-        }
+        let (mass, inv_mass) = masses(model);
         // the laws by family index (see `family_index`)
         let laws = [Family::Bed, Family::Head, Family::Base, Family::Top].map(|f| *model.laws().of(f));
         let kinds = model.joint_kinds();
-        let mut shapes: Vec<Shape> = vec![];
-        let mut shape_of = std::collections::HashMap::new();
-        let mut geo = Vec::with_capacity(m);
-        for (k, it) in model.interfaces().iter().enumerate() {
-            let shape = Shape::new(it, kinds.kind(k));
-            // at most one shape per interface: fewer than 2^31
-            let index = *shape_of.entry(shape.key()).or_insert_with(|| {
-                shapes.push(shape);
-                (shapes.len() - 1) as u32
-            });
-            geo.push(Geo { a: it.a as u32, b: it.b as u32, shape: index });
-        }
+        let (shapes, geo) = shape_table(model, &kinds);
         let hw = if laws.iter().any(|l| l.is_softening()) { 5 } else { 3 };
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .map_err(|e| Error::input(format!("cannot start {threads} threads: {e}")))?;
-        let par = pool.current_num_threads() > 1 && m >= PAR_MIN_INTERFACES;
-        let n_parts = if par { (2 * pool.current_num_threads()).max(m.div_ceil(PART_INTERFACES)) } else { 1 };
-        let pool = std::sync::Arc::new(pool);
+        let (pool, par, n_parts) = start_pool(threads, m)?;
         let mut it = Integrator {
             model,
             geo,
@@ -263,18 +209,7 @@ impl<'a> Integrator<'a> {
     /// [`Integrator::interface_forces`], on the current rayon pool if `par`.
     pub(super) fn interface_forces_in(&mut self, par: bool) {
         if self.large {
-            let u = &self.u;
-            let rot = |i0: usize, cs: &mut [[f64; 2]]| {
-                for (i, cs) in cs.iter_mut().enumerate() {
-                    let (s, c) = u[3 * (i0 + i) + 2].sin_cos();
-                    *cs = [c, s];
-                }
-            };
-            if par {
-                self.cs.par_chunks_mut(GRAIN_BLOCKS).enumerate().for_each(|(c, cs)| rot(c * GRAIN_BLOCKS, cs));
-            } else {
-                rot(0, &mut self.cs);
-            }
+            self.rotations_in(par);
         }
         let pass = Pass {
             model: self.model,
@@ -306,8 +241,30 @@ impl<'a> Integrator<'a> {
             // the parts one after the other: the same sums
             work(all);
         }
-        // the blocks whose interfaces span parts: each sums its interfaces' forces in
-        // increasing k, as a serial scatter in interface order would
+        self.gather_in(par);
+    }
+
+    /// The (cos, sin) of each block's rotation at the current `u` (finite rotations), on the
+    /// current rayon pool if `par`.
+    fn rotations_in(&mut self, par: bool) {
+        let u = &self.u;
+        let rot = |i0: usize, cs: &mut [[f64; 2]]| {
+            for (i, cs) in cs.iter_mut().enumerate() {
+                let (s, c) = u[3 * (i0 + i) + 2].sin_cos();
+                *cs = [c, s];
+            }
+        };
+        if par {
+            self.cs.par_chunks_mut(GRAIN_BLOCKS).enumerate().for_each(|(c, cs)| rot(c * GRAIN_BLOCKS, cs));
+        } else {
+            rot(0, &mut self.cs);
+        }
+    }
+
+    /// After the interface pass, the force sums of the blocks whose interfaces span parts,
+    /// into `f_int`: each sums the terms the pass left it in increasing k, as a serial scatter
+    /// in interface order would; on the current rayon pool if `par`.
+    fn gather_in(&mut self, par: bool) {
         let (st, terms) = (&self.straddlers, &self.terms);
         if st.blocks.is_empty() {
             return;
@@ -470,6 +427,99 @@ impl<'a> Integrator<'a> {
         }
         e
     }
+}
+
+/// The time step: `dt` if given (finite, positive and within the stability limit of `model`),
+/// else `safety` (in (0, 1]) times that limit, which some stiffness must bound.
+fn time_step(model: &Model, dt: Option<f64>, safety: f64) -> Result<f64, Error> {
+    let crit = critical_time_step(model);
+    match dt {
+        Some(dt) => {
+            if !(dt.is_finite() && dt > 0.0) {
+                return Err(Error::input(format!("analysis.time_step must be a finite number > 0, got {dt}")));
+            }
+            if dt > crit {
+                return Err(Error::input(format!(
+                    "analysis.time_step = {dt:.3e} s exceeds the stability limit of this model, {crit:.3e} s"
+                )));
+            }
+            Ok(dt)
+        }
+        None => {
+            if !(safety > 0.0 && safety <= 1.0) {
+                return Err(Error::input(format!("safety must lie in (0, 1], got {safety}")));
+            }
+            if !crit.is_finite() {
+                return Err(Error::input("no stiffness holds the model: no stable time step"));
+            }
+            Ok(safety * crit)
+        }
+    }
+}
+
+/// Refuses a damping coefficient out of its range: local damping in [0, 1), viscous damping
+/// finite and non-negative.
+fn check_damping(damping: Damping) -> Result<(), Error> {
+    match damping {
+        Damping::Local(a) if !(0.0..1.0).contains(&a) => {
+            Err(Error::input(format!("analysis.damping_coefficient (local damping) must lie in [0, 1), got {a}")))
+        }
+        Damping::Viscous(c) if !(c.is_finite() && c >= 0.0) => {
+            Err(Error::input(format!("analysis.damping_coefficient (viscous damping) must be finite and >= 0, got {c}")))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The mass of each dof (m, m, J per block) and its inverse, zero on the fixed dofs (which the
+/// forces then do not move).
+fn masses(model: &Model) -> (Vec<f64>, Vec<f64>) {
+    let nb = model.n_blocks();
+    let fixed = model.fixed();
+    let mut mass = vec![0.0; 3 * nb];
+    let mut inv_mass = vec![0.0; 3 * nb];
+    for i in 0..nb {
+        let mm = [model.mass()[i], model.mass()[i], model.inertia()[i]];
+        for k in 0..3 {
+            mass[3 * i + k] = mm[k];
+            if !fixed[3 * i + k] {
+                inv_mass[3 * i + k] = 1.0 / mm[k];
+            }
+        }
+    }
+    (mass, inv_mass)
+}
+
+/// The distinct shapes of the interfaces of `model` (of the kinds `kinds`), in the order they
+/// first appear, and each interface's packed geometry pointing into them.
+fn shape_table(model: &Model, kinds: &Kinds) -> (Vec<Shape>, Vec<Geo>) {
+    let m = model.interfaces().len();
+    let mut shapes: Vec<Shape> = vec![];
+    let mut shape_of = std::collections::HashMap::new();
+    let mut geo = Vec::with_capacity(m);
+    for (k, it) in model.interfaces().iter().enumerate() {
+        let shape = Shape::new(it, kinds.kind(k));
+        // at most one shape per interface: fewer than 2^31
+        let index = *shape_of.entry(shape.key()).or_insert_with(|| {
+            shapes.push(shape);
+            (shapes.len() - 1) as u32
+        });
+        geo.push(Geo { a: it.a as u32, b: it.b as u32, shape: index });
+    }
+    (shapes, geo)
+}
+
+/// The thread pool of `threads` threads (0: all cores) for `m` interfaces, whether the passes
+/// go to it (more than one thread and enough interfaces to pay for the hand-offs), and the
+/// parts of the interface pass (one unless they do; else at least two per thread).
+fn start_pool(threads: usize, m: usize) -> Result<(std::sync::Arc<rayon::ThreadPool>, bool, usize), Error> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| Error::input(format!("cannot start {threads} threads: {e}")))?;
+    let par = pool.current_num_threads() > 1 && m >= PAR_MIN_INTERFACES;
+    let n_parts = if par { (2 * pool.current_num_threads()).max(m.div_ceil(PART_INTERFACES)) } else { 1 };
+    Ok((std::sync::Arc::new(pool), par, n_parts))
 }
 
 /// A bare time stepper over the integrator of [`simulate`], for benchmarks and profiling (not

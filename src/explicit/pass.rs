@@ -306,6 +306,16 @@ pub(super) struct Straddlers {
 /// and the others. Any order of the interfaces gives the same sums; the model's, by block a,
 /// makes most blocks' interfaces fall in one part.
 pub(super) fn partition(nb: usize, geo: &mut [Geo], n_parts: usize) -> (Vec<(usize, usize, usize)>, Straddlers) {
+    let mut parts = part_bounds(nb, geo, n_parts);
+    let summed = mark_summed(nb, geo, &parts);
+    let straddlers = straddlers(nb, geo, &summed, &mut parts);
+    (parts, straddlers)
+}
+
+/// Where the `n_parts` parts start (clamped to one per interface at most), with an end after
+/// the last: each part's first interface and first block (the blocks from its first
+/// interface's a on); the terms' starts are left zero for [`straddlers`].
+fn part_bounds(nb: usize, geo: &[Geo], n_parts: usize) -> Vec<(usize, usize, usize)> {
     let m = geo.len();
     let n_parts = n_parts.clamp(1, m.max(1));
     let mut parts = vec![(0, 0, 0)];
@@ -316,6 +326,12 @@ pub(super) fn partition(nb: usize, geo: &mut [Geo], n_parts: usize) -> (Vec<(usi
         parts.push((k, geo[k].a().clamp(b0, nb), 0));
     }
     parts.push((m, nb, 0));
+    parts
+}
+
+/// Which blocks have all their interfaces in the part that owns them (or none at all): the
+/// pass sums their forces itself, and they are marked [`SUMMED`] on both sides in `geo`.
+fn mark_summed(nb: usize, geo: &mut [Geo], parts: &[(usize, usize, usize)]) -> Vec<bool> {
     // each block's first and last interface
     let mut span = vec![(u32::MAX, 0u32); nb];
     for (k, g) in geo.iter().enumerate() {
@@ -337,7 +353,13 @@ pub(super) fn partition(nb: usize, geo: &mut [Geo], n_parts: usize) -> (Vec<(usi
             }
         }
     }
-    // the other blocks' interfaces, by counting sort: in increasing k within each block
+    summed
+}
+
+/// The blocks not `summed` and the slots of their interfaces' terms, numbered in the order the
+/// pass fills them (by counting sort: in increasing k within each block), and where each
+/// part's terms start (into `parts`).
+fn straddlers(nb: usize, geo: &[Geo], summed: &[bool], parts: &mut [(usize, usize, usize)]) -> Straddlers {
     let blocks: Vec<u32> = (0..nb).filter(|&i| !summed[i]).map(|i| i as u32).collect();
     let mut index = vec![u32::MAX; nb];
     for (j, &i) in blocks.iter().enumerate() {
@@ -374,7 +396,7 @@ pub(super) fn partition(nb: usize, geo: &mut [Geo], n_parts: usize) -> (Vec<(usi
     for part in &mut parts[p..] {
         part.2 = n as usize;
     }
-    (parts, Straddlers { blocks, start, slots })
+    Straddlers { blocks, start, slots }
 }
 
 /// Index of a family in the integrator's table of four laws.

@@ -2,6 +2,7 @@
 //! normal equations, assembled on the stiffness matrix's pattern and factorized by `linalg`.
 
 use super::*;
+use std::ops::ControlFlow;
 
 pub(super) fn norm_inf(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))
@@ -44,6 +45,110 @@ pub(super) struct Residuals {
     pub(super) rc: Vec<f64>,
     pub(super) ru: Vec<f64>,
     pub(super) rl: f64,
+}
+
+impl Iterate {
+    /// The longest steps in (0, 1] along `d` that keep the primal variables (x, t) and the
+    /// dual ones (s, v) non-negative.
+    fn max_steps(&self, d: &Direction) -> (f64, f64) {
+        (max_step(&self.x, &d.dx).min(max_step(&self.t, &d.dt)), max_step(&self.s, &d.ds).min(max_step(&self.v, &d.dv)))
+    }
+
+    /// Moves along `d`: the primal variables (x, t, lambda) and the dual ones (s, v, y) each by
+    /// 0.995 of the longest step that keeps them non-negative, at most 1.
+    fn step(&mut self, d: &Direction) {
+        let eta = 0.995;
+        let (ap, ad) = self.max_steps(d);
+        let (ap, ad) = ((eta * ap).min(1.0), (eta * ad).min(1.0));
+        let step = |v: &mut [f64], dv: &[f64], a: f64| v.iter_mut().zip(dv).for_each(|(v, d)| *v += a * d);
+        step(&mut self.x, &d.dx, ap);
+        step(&mut self.t, &d.dt, ap);
+        self.lam += ap * d.dlam;
+        step(&mut self.s, &d.ds, ad);
+        step(&mut self.v, &d.dv, ad);
+        step(&mut self.y, &d.dy, ad);
+    }
+}
+
+/// An iterate's distance from the optimum: the mean complementarity product, lambda (scaled),
+/// the scaled primal and dual residuals, the dual objective, the relative duality gap, and the
+/// worst of the residuals and the gap.
+struct Measures {
+    mu: f64,
+    lam: f64,
+    primal: f64,
+    dual: f64,
+    dobj: f64,
+    gap: f64,
+    worst: f64,
+}
+
+/// The interior point under way: the right-hand side and its norm, the iterate and its
+/// residuals, the work arrays of the normal equations (Theta, `u = M^-1 f_live`, `A^T y`), the
+/// smallest worst residual so far and the iterations since it last halved, and the number of
+/// complementarity products.
+struct Ipm {
+    b: Vec<f64>,
+    b_norm: f64,
+    p: Iterate,
+    res: Residuals,
+    theta: Vec<f64>,
+    u: Vec<f64>,
+    aty: Vec<f64>,
+    best: f64,
+    since_best: usize,
+    ncomp: f64,
+}
+
+impl Ipm {
+    /// Whether the iterations end at this iterate, measured by `q`, and how: lambda beyond its
+    /// range, the tolerance met, a dual ray proving infeasibility, or a stall (near the
+    /// tolerance the solution stands; far from it, or at the last iteration, it is `failed`).
+    fn verdict(&mut self, opts: &LimitOptions, q: &Measures, failed: Outcome, iter: usize) -> Option<Outcome> {
+        let range = LAMBDA_RANGE;
+        if q.lam > range * range || (q.lam > range && q.primal <= opts.tolerance) {
+            return Some(Outcome::Unbounded);
+        }
+        if q.worst <= opts.tolerance {
+            return Some(Outcome::Optimal);
+        }
+        // a dual point of objective above the range bounds lambda below -range: no
+        // multiplier in the range balances the dead loads
+        if q.dual <= 1e-8 && q.dobj > range {
+            return Some(Outcome::Infeasible);
+        }
+        if q.worst < 0.5 * self.best {
+            self.best = q.worst;
+            self.since_best = 0;
+        } else {
+            self.since_best += 1;
+        }
+        // stalled: rounding bounds the residuals above the tolerance. Within
+        // REDUCED_ACCURACY times it the solution stands (its certificate says how close it
+        // is); a long stall or the last iteration far from it is a failure
+        let near = q.worst <= REDUCED_ACCURACY * opts.tolerance;
+        if near && self.since_best >= 5 {
+            return Some(Outcome::Optimal);
+        }
+        if iter == opts.max_iterations || self.since_best >= 30 || !q.worst.is_finite() {
+            return Some(if near { Outcome::Optimal } else { failed });
+        }
+        None
+    }
+
+    /// The solution at the iterate, measured by `q`, after `iter` iterations.
+    fn solution(&self, outcome: Outcome, q: &Measures, iter: usize) -> Solution {
+        Solution {
+            outcome,
+            x: self.p.x.clone(),
+            lambda: q.lam,
+            y: self.p.y.clone(),
+            primal: q.primal,
+            dual: q.dual,
+            gap: q.gap,
+            iterations: iter,
+        }
+    }
 }
 
 impl Program {
@@ -93,10 +198,22 @@ impl Program {
         program: usize,
         monitor: &mut dyn FnMut(&LimitProgress) -> bool,
     ) -> Result<Solution> {
+        let mut ipm = self.start();
+        for iter in 0..=opts.max_iterations {
+            if let ControlFlow::Break(end) = self.iteration(&mut ipm, opts, program, iter, monitor) {
+                return end;
+            }
+        }
+        unreachable!("the loop returns at its last iteration")
+    }
+
+    /// The interior point at its start: the right-hand side `b = f_dead - sum P V` (the cost is
+    /// -lambda, lambda free with its own column -f_live); the rays of least norm that balance
+    /// the dead loads at lambda = 0 (one solve with Theta = 1), shifted inside the positive
+    /// orthant, theta = 1/2 and each product x s, t v = 1; and the work arrays.
+    fn start(&mut self) -> Ipm {
         let (m, n) = (self.m, self.n);
         let nx = NV * m;
-        let range = LAMBDA_RANGE;
-        // b = f_dead - sum P V; the cost is -lambda (lambda free, its own column -f_live)
         let mut b = self.f_dead.clone();
         for k in 0..m {
             let (_, pv) = self.columns(k);
@@ -107,9 +224,6 @@ impl Program {
             }
         }
         let b_norm = norm_inf(&b);
-        // the start: the rays of least norm that balance the dead loads at lambda = 0 (one
-        // solve with Theta = 1), shifted inside the positive orthant; theta = 1/2; each
-        // product x s, t v = 1
         let mut x = vec![1.0; nx];
         self.assemble(&x);
         let mut w = b.clone();
@@ -123,7 +237,7 @@ impl Program {
         for k in 0..m {
             x[NV * k + 4] = 0.5;
         }
-        let mut p = Iterate {
+        let p = Iterate {
             s: x.iter().map(|x| 1.0 / x).collect(),
             v: vec![2.0; m],
             t: vec![0.5; m],
@@ -131,175 +245,184 @@ impl Program {
             lam: 0.0,
             y: vec![0.0; n],
         };
-        let mut res = Residuals { rb: vec![0.0; n], rc: vec![0.0; nx], ru: vec![0.0; m], rl: 0.0 };
-        let mut theta = vec![0.0; nx];
-        let mut u = vec![0.0; n];
-        let mut aty = vec![0.0; nx];
-        let (mut best, mut since_best) = (f64::INFINITY, 0);
-        let ncomp = (nx + m) as f64;
-        for iter in 0..=opts.max_iterations {
-            self.apply(&p.x, p.lam, &mut res.rb);
-            for (r, b) in res.rb.iter_mut().zip(&b) {
-                *r = b - *r;
-            }
-            self.apply_t(&p.y, &mut aty);
-            for ((rc, a), s) in res.rc.iter_mut().zip(&aty).zip(&p.s) {
-                *rc = -a - s;
-            }
-            for i in 0..m {
-                let j = self.bounded(i);
-                res.rc[j] += p.v[i];
-                res.ru[i] = 1.0 - p.x[j] - p.t[i];
-            }
-            // lambda's dual row: -1 + f_live . y = 0
-            res.rl = -1.0 + dot(&self.f_live, &p.y);
-            let mu = (dot(&p.x, &p.s) + dot(&p.t, &p.v)) / ncomp;
-            let lam = p.lam;
-            let primal = (norm_inf(&res.rb) / (1.0 + b_norm)).max(norm_inf(&res.ru));
-            let dual = norm_inf(&res.rc).max(res.rl.abs());
-            // objectives: primal -lambda, dual b y - v (theta's bounds are 1)
-            let dobj = dot(&b, &p.y) - p.v.iter().sum::<f64>();
-            let gap = (-lam - dobj).abs() / (1.0 + lam.abs());
-            let worst = primal.max(dual).max(gap);
-            if !monitor(&LimitProgress { program, iteration: iter, multiplier: lam * self.force / self.live, residual: worst }) {
-                return Err(Error::Interrupted);
-            }
-            // the dual iterates running away along a ray while equilibrium stays violated: the
-            // sign of a program without a feasible point, if the iterations end here
-            // lambda running away beyond its range: the live load finds no mechanism
-            let failed = if norm_inf(&p.y) > 1e12 && primal > 1e-3 {
-                Outcome::Infeasible
-            } else if lam > range {
-                Outcome::Unbounded
-            } else {
-                Outcome::NotConverged
-            };
-            let done = |outcome| Solution {
-                outcome,
-                x: p.x.clone(),
-                lambda: lam,
-                y: p.y.clone(),
-                primal,
-                dual,
-                gap,
-                iterations: iter,
-            };
-            if lam > range * range || (lam > range && primal <= opts.tolerance) {
-                return Ok(done(Outcome::Unbounded));
-            }
-            if worst <= opts.tolerance {
-                return Ok(done(Outcome::Optimal));
-            }
-            // a dual point of objective above the range bounds lambda below -range: no
-            // multiplier in the range balances the dead loads
-            if dual <= 1e-8 && dobj > range {
-                return Ok(done(Outcome::Infeasible));
-            }
-            if worst < 0.5 * best {
-                best = worst;
-                since_best = 0;
-            } else {
-                since_best += 1;
-            }
-            // stalled: rounding bounds the residuals above the tolerance. Within
-            // REDUCED_ACCURACY times it the solution stands (its certificate says how close it
-            // is); a long stall or the last iteration far from it is a failure
-            let near = worst <= REDUCED_ACCURACY * opts.tolerance;
-            if near && since_best >= 5 {
-                return Ok(done(Outcome::Optimal));
-            }
-            if iter == opts.max_iterations || since_best >= 30 || !worst.is_finite() {
-                return Ok(done(if near { Outcome::Optimal } else { failed }));
-            }
-            // Theta = 1 / (s / x + v / t), and the normal matrix A Theta A^T (lambda's column
-            // apart: the system is bordered)
-            for ((th, s), x) in theta.iter_mut().zip(&p.s).zip(&p.x) {
-                *th = s / x;
-            }
-            for i in 0..m {
-                theta[self.bounded(i)] += p.v[i] / p.t[i];
-            }
-            theta.iter_mut().for_each(|t| *t = 1.0 / *t);
-            self.assemble(&theta);
-            // LDL^T on the Cholesky's analysis: the matrix is positive semi-definite, but near
-            // the optimum Theta spans 1e-12 to 1e12 and rounding leaves pivots of either sign
-            // that a Cholesky refuses (the solves' refinement corrects for them); where a pivot
-            // is zero, or a solve not finite, LU with pivoting
-            let mut solved = false;
-            for lu in [false, true] {
-                let ok = if lu { self.normal.factorize().is_ok() } else { self.normal.factorize_ldlt().is_ok() };
-                u.copy_from_slice(&self.f_live);
-                if ok && self.solve_normal(&theta, &mut u).is_some() {
-                    solved = true;
-                    break;
-                }
-            }
-            if !solved {
-                return Ok(done(failed));
-            }
-            let fu = dot(&self.f_live, &u);
-            // predictor
-            let rxs: Vec<f64> = p.x.iter().zip(&p.s).map(|(x, s)| -x * s).collect();
-            let rtv: Vec<f64> = p.t.iter().zip(&p.v).map(|(t, v)| -t * v).collect();
-            let Some(aff) = self.direction(&p, &res, &rxs, &rtv, &theta, &u, fu) else {
-                return Ok(done(failed));
-            };
-            let ap = max_step(&p.x, &aff.dx).min(max_step(&p.t, &aff.dt));
-            let ad = max_step(&p.s, &aff.ds).min(max_step(&p.v, &aff.dv));
-            let comp = |a: &[f64], da: &[f64], b: &[f64], db: &[f64]| {
-                a.iter().zip(da).zip(b.iter().zip(db)).map(|((a, da), (b, db))| (a + ap * da) * (b + ad * db)).sum::<f64>()
-            };
-            let mu_aff = (comp(&p.x, &aff.dx, &p.s, &aff.ds) + comp(&p.t, &aff.dt, &p.v, &aff.dv)) / ncomp;
-            let sigma = (mu_aff / mu).powi(3).min(1.0);
-            // corrector
-            let rxs: Vec<f64> = (0..nx).map(|i| sigma * mu - p.x[i] * p.s[i] - aff.dx[i] * aff.ds[i]).collect();
-            let rtv: Vec<f64> = (0..m).map(|i| sigma * mu - p.t[i] * p.v[i] - aff.dt[i] * aff.dv[i]).collect();
-            let Some(mut d) = self.direction(&p, &res, &rxs, &rtv, &theta, &u, fu) else {
-                return Ok(done(failed));
-            };
-            // Gondzio's centrality correctors: aim a longer step at products within [0.1, 10]
-            // of the target, where the predictor-corrector's step left them outside; kept while
-            // they lengthen the step (one solve each, against a factorization per iteration)
-            let steps = |d: &Direction| {
-                (max_step(&p.x, &d.dx).min(max_step(&p.t, &d.dt)), max_step(&p.s, &d.ds).min(max_step(&p.v, &d.dv)))
-            };
-            let (mut rxs, mut rtv) = (rxs, rtv);
-            let target = sigma * mu;
-            for _ in 0..CORRECTORS {
-                let (ap, ad) = steps(&d);
-                if ap.min(ad) >= 0.9 {
-                    break;
-                }
-                let (ap_t, ad_t) = ((1.5 * ap + 0.1).min(1.0), (1.5 * ad + 0.1).min(1.0));
-                let fix = |v: f64| {
-                    let c = v.clamp(0.1 * target, 10.0 * target) - v;
-                    c.max(-10.0 * target)
-                };
-                let rxs2: Vec<f64> = (0..nx).map(|i| rxs[i] + fix((p.x[i] + ap_t * d.dx[i]) * (p.s[i] + ad_t * d.ds[i]))).collect();
-                let rtv2: Vec<f64> = (0..m).map(|i| rtv[i] + fix((p.t[i] + ap_t * d.dt[i]) * (p.v[i] + ad_t * d.dv[i]))).collect();
-                let Some(d2) = self.direction(&p, &res, &rxs2, &rtv2, &theta, &u, fu) else {
-                    break;
-                };
-                let (ap2, ad2) = steps(&d2);
-                if ap2 + ad2 < 1.01 * (ap + ad) {
-                    break;
-                }
-                d = d2;
-                rxs = rxs2;
-                rtv = rtv2;
-            }
-            let eta = 0.995;
-            let ap = (eta * max_step(&p.x, &d.dx).min(max_step(&p.t, &d.dt))).min(1.0);
-            let ad = (eta * max_step(&p.s, &d.ds).min(max_step(&p.v, &d.dv))).min(1.0);
-            let step = |v: &mut [f64], dv: &[f64], a: f64| v.iter_mut().zip(dv).for_each(|(v, d)| *v += a * d);
-            step(&mut p.x, &d.dx, ap);
-            step(&mut p.t, &d.dt, ap);
-            p.lam += ap * d.dlam;
-            step(&mut p.s, &d.ds, ad);
-            step(&mut p.v, &d.dv, ad);
-            step(&mut p.y, &d.dy, ad);
+        Ipm {
+            b,
+            b_norm,
+            p,
+            res: Residuals { rb: vec![0.0; n], rc: vec![0.0; nx], ru: vec![0.0; m], rl: 0.0 },
+            theta: vec![0.0; nx],
+            u: vec![0.0; n],
+            aty: vec![0.0; nx],
+            best: f64::INFINITY,
+            since_best: 0,
+            ncomp: (nx + m) as f64,
         }
-        unreachable!("the loop returns at its last iteration")
+    }
+
+    /// Iteration `iter` of program `program`: the iterate's residuals, the monitor, and either
+    /// the end (the solution with its outcome, or `Error::Interrupted` when the monitor says
+    /// stop) or a step of the predictor-corrector.
+    fn iteration(
+        &mut self,
+        ipm: &mut Ipm,
+        opts: &LimitOptions,
+        program: usize,
+        iter: usize,
+        monitor: &mut dyn FnMut(&LimitProgress) -> bool,
+    ) -> ControlFlow<Result<Solution>> {
+        let q = self.measure(ipm);
+        let lam = q.lam;
+        if !monitor(&LimitProgress { program, iteration: iter, multiplier: lam * self.force / self.live, residual: q.worst }) {
+            return ControlFlow::Break(Err(Error::Interrupted));
+        }
+        // the dual iterates running away along a ray while equilibrium stays violated: the
+        // sign of a program without a feasible point, if the iterations end here
+        // lambda running away beyond its range: the live load finds no mechanism
+        let failed = if norm_inf(&ipm.p.y) > 1e12 && q.primal > 1e-3 {
+            Outcome::Infeasible
+        } else if lam > LAMBDA_RANGE {
+            Outcome::Unbounded
+        } else {
+            Outcome::NotConverged
+        };
+        if let Some(outcome) = ipm.verdict(opts, &q, failed, iter) {
+            return ControlFlow::Break(Ok(ipm.solution(outcome, &q, iter)));
+        }
+        if self.newton_step(ipm, q.mu).is_none() {
+            return ControlFlow::Break(Ok(ipm.solution(failed, &q, iter)));
+        }
+        ControlFlow::Continue(())
+    }
+
+    /// The residuals of the iterate (into `ipm.res`) and how far it is from the optimum.
+    fn measure(&self, ipm: &mut Ipm) -> Measures {
+        let (p, res) = (&ipm.p, &mut ipm.res);
+        self.apply(&p.x, p.lam, &mut res.rb);
+        for (r, b) in res.rb.iter_mut().zip(&ipm.b) {
+            *r = b - *r;
+        }
+        self.apply_t(&p.y, &mut ipm.aty);
+        for ((rc, a), s) in res.rc.iter_mut().zip(&ipm.aty).zip(&p.s) {
+            *rc = -a - s;
+        }
+        for i in 0..self.m {
+            let j = self.bounded(i);
+            res.rc[j] += p.v[i];
+            res.ru[i] = 1.0 - p.x[j] - p.t[i];
+        }
+        // lambda's dual row: -1 + f_live . y = 0
+        res.rl = -1.0 + dot(&self.f_live, &p.y);
+        let mu = (dot(&p.x, &p.s) + dot(&p.t, &p.v)) / ipm.ncomp;
+        let lam = p.lam;
+        let primal = (norm_inf(&res.rb) / (1.0 + ipm.b_norm)).max(norm_inf(&res.ru));
+        let dual = norm_inf(&res.rc).max(res.rl.abs());
+        // objectives: primal -lambda, dual b y - v (theta's bounds are 1)
+        let dobj = dot(&ipm.b, &p.y) - p.v.iter().sum::<f64>();
+        let gap = (-lam - dobj).abs() / (1.0 + lam.abs());
+        let worst = primal.max(dual).max(gap);
+        Measures { mu, lam, primal, dual, dobj, gap, worst }
+    }
+
+    /// One step of the predictor-corrector from the iterate: the normal matrix at its Theta,
+    /// factorized, the predictor and the corrector, Gondzio's correctors, and the step along
+    /// the direction; None where the normal equations cannot be factorized or solved.
+    fn newton_step(&mut self, ipm: &mut Ipm, mu: f64) -> Option<()> {
+        self.normal_matrix(ipm);
+        if !self.factorize_normal(ipm) {
+            return None;
+        }
+        let fu = dot(&self.f_live, &ipm.u);
+        let (d, rxs, rtv, target) = self.predictor_corrector(ipm, mu, fu)?;
+        let d = self.centrality_correctors(ipm, d, rxs, rtv, target, fu);
+        ipm.p.step(&d);
+        Some(())
+    }
+
+    /// Theta = 1 / (s / x + v / t) into `ipm.theta`, and the normal matrix A Theta A^T
+    /// (lambda's column apart: the system is bordered).
+    fn normal_matrix(&mut self, ipm: &mut Ipm) {
+        let (p, theta) = (&ipm.p, &mut ipm.theta);
+        for ((th, s), x) in theta.iter_mut().zip(&p.s).zip(&p.x) {
+            *th = s / x;
+        }
+        for i in 0..self.m {
+            theta[self.bounded(i)] += p.v[i] / p.t[i];
+        }
+        theta.iter_mut().for_each(|t| *t = 1.0 / *t);
+        self.assemble(theta);
+    }
+
+    /// Factorizes the normal matrix and solves `u = M^-1 f_live` (into `ipm.u`): whether it
+    /// could. LDL^T on the Cholesky's analysis: the matrix is positive semi-definite, but near
+    /// the optimum Theta spans 1e-12 to 1e12 and rounding leaves pivots of either sign that a
+    /// Cholesky refuses (the solves' refinement corrects for them); where a pivot is zero, or a
+    /// solve not finite, LU with pivoting.
+    fn factorize_normal(&mut self, ipm: &mut Ipm) -> bool {
+        for lu in [false, true] {
+            let ok = if lu { self.normal.factorize().is_ok() } else { self.normal.factorize_ldlt().is_ok() };
+            ipm.u.copy_from_slice(&self.f_live);
+            if ok && self.solve_normal(&ipm.theta, &mut ipm.u).is_some() {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Mehrotra's predictor (the affine direction) and corrector (centred at `sigma mu`, with
+    /// sigma from the predictor's complementarity): the corrector's direction, its
+    /// complementarity targets and `sigma mu`; None if a solve fails.
+    fn predictor_corrector(&mut self, ipm: &Ipm, mu: f64, fu: f64) -> Option<(Direction, Vec<f64>, Vec<f64>, f64)> {
+        let (p, res, theta, u) = (&ipm.p, &ipm.res, &ipm.theta, &ipm.u);
+        let (m, nx) = (self.m, theta.len());
+        // predictor
+        let rxs: Vec<f64> = p.x.iter().zip(&p.s).map(|(x, s)| -x * s).collect();
+        let rtv: Vec<f64> = p.t.iter().zip(&p.v).map(|(t, v)| -t * v).collect();
+        let aff = self.direction(p, res, &rxs, &rtv, theta, u, fu)?;
+        let (ap, ad) = p.max_steps(&aff);
+        let comp = |a: &[f64], da: &[f64], b: &[f64], db: &[f64]| {
+            a.iter().zip(da).zip(b.iter().zip(db)).map(|((a, da), (b, db))| (a + ap * da) * (b + ad * db)).sum::<f64>()
+        };
+        let mu_aff = (comp(&p.x, &aff.dx, &p.s, &aff.ds) + comp(&p.t, &aff.dt, &p.v, &aff.dv)) / ipm.ncomp;
+        let sigma = (mu_aff / mu).powi(3).min(1.0);
+        // corrector
+        let rxs: Vec<f64> = (0..nx).map(|i| sigma * mu - p.x[i] * p.s[i] - aff.dx[i] * aff.ds[i]).collect();
+        let rtv: Vec<f64> = (0..m).map(|i| sigma * mu - p.t[i] * p.v[i] - aff.dt[i] * aff.dv[i]).collect();
+        let d = self.direction(p, res, &rxs, &rtv, theta, u, fu)?;
+        Some((d, rxs, rtv, sigma * mu))
+    }
+
+    /// Gondzio's centrality correctors on direction `d` (of complementarity targets `rxs`,
+    /// `rtv`): aim a longer step at products within [0.1, 10] of `target`, where the
+    /// predictor-corrector's step left them outside; kept while they lengthen the step (one
+    /// solve each, against a factorization per iteration), at most [`CORRECTORS`].
+    fn centrality_correctors(&mut self, ipm: &Ipm, d: Direction, rxs: Vec<f64>, rtv: Vec<f64>, target: f64, fu: f64) -> Direction {
+        let (p, res, theta, u) = (&ipm.p, &ipm.res, &ipm.theta, &ipm.u);
+        let (m, nx) = (self.m, theta.len());
+        let (mut d, mut rxs, mut rtv) = (d, rxs, rtv);
+        for _ in 0..CORRECTORS {
+            let (ap, ad) = p.max_steps(&d);
+            if ap.min(ad) >= 0.9 {
+                break;
+            }
+            let (ap_t, ad_t) = ((1.5 * ap + 0.1).min(1.0), (1.5 * ad + 0.1).min(1.0));
+            let fix = |v: f64| {
+                let c = v.clamp(0.1 * target, 10.0 * target) - v;
+                c.max(-10.0 * target)
+            };
+            let rxs2: Vec<f64> = (0..nx).map(|i| rxs[i] + fix((p.x[i] + ap_t * d.dx[i]) * (p.s[i] + ad_t * d.ds[i]))).collect();
+            let rtv2: Vec<f64> = (0..m).map(|i| rtv[i] + fix((p.t[i] + ap_t * d.dt[i]) * (p.v[i] + ad_t * d.dv[i]))).collect();
+            let Some(d2) = self.direction(p, res, &rxs2, &rtv2, theta, u, fu) else {
+                break;
+            };
+            let (ap2, ad2) = p.max_steps(&d2);
+            if ap2 + ad2 < 1.01 * (ap + ad) {
+                break;
+            }
+            d = d2;
+            rxs = rxs2;
+            rtv = rtv2;
+        }
+        d
     }
 
     /// Assembles `sum_k A_k Theta_k A_k^T` (lambda's column left out).

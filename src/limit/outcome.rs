@@ -9,9 +9,37 @@ impl Program {
     pub(super) fn results(&self, model: &Model, sol: &Solution, cert: Certificate, start: Instant) -> Results {
         let nb = model.n_blocks();
         let lam = self.lambda_of(sol);
+        let (status, error) = self.status(sol, lam);
+        let collapse = status == Status::Collapse;
+        let v = if collapse { self.mechanism(model, sol) } else { vec![0.0; 3 * nb] };
+        let (forces, flags) = self.interface_forces(model, sol, &v, collapse);
+        Results {
+            method: "limit",
+            status,
+            error,
+            collapse_multiplier: if collapse { lam } else { f64::NAN },
+            last_equilibrium: if collapse { lam } else { f64::NAN },
+            curve_multiplier: vec![],
+            curve_displacement: vec![],
+            control_block: model.default_control_block(),
+            displacements: vec![[0.0; 3]; nb],
+            mechanism: (0..nb).map(|i| [v[3 * i], v[3 * i + 1], v[3 * i + 2]]).collect(),
+            interface_forces: forces,
+            interface_states: flags,
+            broken: vec![false; self.m],
+            iterations: cert.iterations,
+            steps: 0,
+            elapsed_s: start.elapsed().as_secs_f64(),
+            certificate: Some(cert),
+        }
+    }
+
+    /// The status of a solution of multiplier `lam` (in its own units), and the error that
+    /// says why when it is not a collapse.
+    fn status(&self, sol: &Solution, lam: f64) -> (Status, Option<String>) {
         // lambda below zero beyond the program's precision: the dead state is not admissible
         let negative = lam < -1e-7 * (self.force / self.live);
-        let (status, error) = match sol.outcome {
+        match sol.outcome {
             Outcome::Optimal if negative => (
                 Status::NoEquilibrium,
                 Some(format!(
@@ -40,24 +68,31 @@ impl Program {
                     sol.iterations, sol.primal, sol.dual, sol.gap
                 )),
             ),
-        };
-        let collapse = status == Status::Collapse;
-        // block velocities from the duals of the equilibrium rows (scaled rows: one length for
-        // the rotations), oriented so that the live load does positive work, largest block
-        // translation 1
-        let mut v = vec![0.0; 3 * nb];
-        if collapse {
-            for (dof, e) in self.eq.iter().enumerate() {
-                if let Some(e) = e {
-                    let s = if dof % 3 == 2 { 1.0 / self.length } else { 1.0 };
-                    v[dof] = sol.y[*e] * s;
-                }
-            }
-            let big = (0..nb).map(|i| v[3 * i].hypot(v[3 * i + 1])).fold(0.0, f64::max);
-            let work = dot(&v, model.live_load());
-            let scale = if big > 0.0 { work.signum() / big } else { 0.0 };
-            v.iter_mut().for_each(|x| *x *= scale);
         }
+    }
+
+    /// The collapse mechanism: block velocities from the duals of the equilibrium rows (scaled
+    /// rows: one length for the rotations), oriented so that the live load does positive work,
+    /// largest block translation 1.
+    fn mechanism(&self, model: &Model, sol: &Solution) -> Vec<f64> {
+        let nb = model.n_blocks();
+        let mut v = vec![0.0; 3 * nb];
+        for (dof, e) in self.eq.iter().enumerate() {
+            if let Some(e) = e {
+                let s = if dof % 3 == 2 { 1.0 / self.length } else { 1.0 };
+                v[dof] = sol.y[*e] * s;
+            }
+        }
+        let big = (0..nb).map(|i| v[3 * i].hypot(v[3 * i + 1])).fold(0.0, f64::max);
+        let work = dot(&v, model.live_load());
+        let scale = if big > 0.0 { work.signum() / big } else { 0.0 };
+        v.iter_mut().for_each(|x| *x *= scale);
+        v
+    }
+
+    /// Each interface's forces (N, T, M) in the solution, in their own units, and with a
+    /// `collapse`, the joint states the mechanism `v` gives it (else none).
+    fn interface_forces(&self, model: &Model, sol: &Solution, v: &[f64], collapse: bool) -> (Vec<[f64; 3]>, Vec<u8>) {
         let sigma = self.resultants(&sol.x);
         let its = model.interfaces();
         let mut forces = Vec::with_capacity(self.m);
@@ -65,27 +100,9 @@ impl Program {
         for (k, it) in its.iter().enumerate() {
             let s = sigma[k];
             forces.push([s[0] * self.force, s[1] * self.force, s[2] * self.force * 0.5 * it.l]);
-            flags.push(if collapse { mechanism_flags(it, &v, self.slope[k]) } else { 0 });
+            flags.push(if collapse { mechanism_flags(it, v, self.slope[k]) } else { 0 });
         }
-        Results {
-            method: "limit",
-            status,
-            error,
-            collapse_multiplier: if collapse { lam } else { f64::NAN },
-            last_equilibrium: if collapse { lam } else { f64::NAN },
-            curve_multiplier: vec![],
-            curve_displacement: vec![],
-            control_block: model.default_control_block(),
-            displacements: vec![[0.0; 3]; nb],
-            mechanism: (0..nb).map(|i| [v[3 * i], v[3 * i + 1], v[3 * i + 2]]).collect(),
-            interface_forces: forces,
-            interface_states: flags,
-            broken: vec![false; self.m],
-            iterations: cert.iterations,
-            steps: 0,
-            elapsed_s: start.elapsed().as_secs_f64(),
-            certificate: Some(cert),
-        }
+        (forces, flags)
     }
 }
 

@@ -58,56 +58,138 @@ pub(super) fn generators(a: f64, hc: f64, ht: f64) -> [[f64; 3]; 6] {
     [v, dv, [-1.0, a, 1.0], [-1.0, -a, 1.0], [-1.0, a, -1.0], [-1.0, -a, -1.0]]
 }
 
+/// The equation of each dof of `model` (None for a support: a fixed dof or one held after the
+/// dead loads), numbered in dof order, and the number of equations.
+fn equations(model: &Model) -> (Vec<Option<usize>>, usize) {
+    let mut support = model.fixed().to_vec();
+    for &d in model.held_after_dead() {
+        support[d] = true;
+    }
+    let mut eq = vec![None; 3 * model.n_blocks()];
+    let mut n = 0;
+    for (d, e) in eq.iter_mut().enumerate() {
+        if !support[d] {
+            *e = Some(n);
+            n += 1;
+        }
+    }
+    (eq, n)
+}
+
+/// The program's scales: forces (the largest dead force, else the largest live one, else 1),
+/// lengths (the mean interface length, else 1) and the live load (its largest force or
+/// moment, else 1).
+fn scales(model: &Model) -> (f64, f64, f64) {
+    let nb = model.n_blocks();
+    let its = model.interfaces();
+    let m = its.len();
+    let (fd, fl) = (model.dead_load(), model.live_load());
+    let trans = |v: &[f64]| (0..nb).flat_map(|i| [v[3 * i].abs(), v[3 * i + 1].abs()]).fold(0.0, f64::max);
+    let live_max = trans(fl).max((0..nb).map(|i| fl[3 * i + 2].abs()).fold(0.0, f64::max));
+    let mut force = trans(fd);
+    if force <= 0.0 {
+        force = if live_max > 0.0 { live_max } else { 1.0 };
+    }
+    let length = its.iter().map(|it| it.l).sum::<f64>() / m.max(1) as f64;
+    let length = if length > 0.0 { length } else { 1.0 };
+    let live = if live_max > 0.0 { live_max } else { 1.0 };
+    (force, length, live)
+}
+
+/// The scale of dof `d`'s equation: rotation rows are divided by the length scale.
+fn row_scale(d: usize, length: f64) -> f64 {
+    if d % 3 == 2 {
+        1.0 / length
+    } else {
+        1.0
+    }
+}
+
+/// Per interface of `model`: the equations of its 6 dofs ([`NO_EQ`] for a support) and its
+/// 6 x 3 block of the equilibrium matrix, scaled (columns N, T, 2M/l).
+fn equilibrium_columns(model: &Model, eq: &[Option<usize>], length: f64) -> (Vec<[u32; 6]>, Vec<[[f64; 3]; 6]>) {
+    let its = model.interfaces();
+    let m = its.len();
+    let (mut dofs, mut cols) = (Vec::with_capacity(m), Vec::with_capacity(m));
+    for it in its {
+        let gd = it.dofs();
+        let mut d6 = [NO_EQ; 6];
+        let mut c6 = [[0.0; 3]; 6];
+        for r in 0..6 {
+            d6[r] = eq[gd[r]].map_or(NO_EQ, |e| e as u32);
+            let s = row_scale(gd[r], length);
+            c6[r] = [it.b_mat[0][r] * s, it.b_mat[1][r] * s, it.b_mat[2][r] * s * 0.5 * it.l];
+        }
+        dofs.push(d6);
+        cols.push(c6);
+    }
+    (dofs, cols)
+}
+
+/// Per interface, over the force scale: the Coulomb faces' right-hand side (c A), the tension
+/// cut-off's (ft A), and the strength domain's own (c A, mu, tan(psi)).
+struct Strengths {
+    hc: Vec<f64>,
+    ht: Vec<f64>,
+    coulomb: Vec<(f64, f64, f64)>,
+}
+
+/// The [`Strengths`] of the interfaces of `model` at their peak, over the force scale `force`.
+fn strengths(model: &Model, force: f64) -> Strengths {
+    let m = model.interfaces().len();
+    let (mut hc, mut ht, mut coulomb) = (Vec::with_capacity(m), Vec::with_capacity(m), Vec::with_capacity(m));
+    for (k, section) in model.sections().iter().enumerate().take(m) {
+        let law = model.law(k);
+        let (c, ft) = law.strengths(&JointState::default());
+        let a = section.area;
+        hc.push(c * a / force);
+        ht.push(ft * a / force);
+        coulomb.push((c * a / force, law.friction, law.dilatancy));
+    }
+    Strengths { hc, ht, coulomb }
+}
+
+/// The normal matrix's pattern on `n` equations (each interface's 6 x 6 block among the
+/// equations of its dofs, analysed once) and the value slot of each entry of each block
+/// (`u32::MAX` for a support's row or column).
+fn normal_pattern(n: usize, dofs: &[[u32; 6]]) -> Result<(SparseLu, Vec<[u32; 36]>)> {
+    let mut entries = Vec::with_capacity(36 * dofs.len());
+    for d6 in dofs {
+        for &r in d6.iter().filter(|&&r| r != NO_EQ) {
+            for &c in d6.iter().filter(|&&c| c != NO_EQ) {
+                entries.push((r as usize, c as usize));
+            }
+        }
+    }
+    let normal = SparseLu::new(n, entries)?;
+    let slots = dofs
+        .iter()
+        .map(|d6| {
+            let mut s = [u32::MAX; 36];
+            for (i, &r) in d6.iter().enumerate() {
+                for (j, &c) in d6.iter().enumerate() {
+                    if r != NO_EQ && c != NO_EQ {
+                        s[6 * i + j] = normal.slot(r as usize, c as usize).expect("in the pattern") as u32;
+                    }
+                }
+            }
+            s
+        })
+        .collect();
+    Ok((normal, slots))
+}
+
 impl Program {
+    /// The program of `model`: its equations (one per free dof), scaled, each interface's
+    /// columns and strengths, and the normal matrix's pattern with each interface's slots in it.
     pub(super) fn new(model: &Model) -> Result<Self> {
         let nb = model.n_blocks();
-        let mut support = model.fixed().to_vec();
-        for &d in model.held_after_dead() {
-            support[d] = true;
-        }
-        let mut eq = vec![None; 3 * nb];
-        let mut n = 0;
-        for (d, e) in eq.iter_mut().enumerate() {
-            if !support[d] {
-                *e = Some(n);
-                n += 1;
-            }
-        }
-        let its = model.interfaces();
-        let m = its.len();
-        // scales: the largest dead force, the mean interface length, the largest live force
+        let (eq, n) = equations(model);
+        let m = model.interfaces().len();
+        let (force, length, live) = scales(model);
+        let (dofs, cols) = equilibrium_columns(model, &eq, length);
+        let Strengths { mut hc, mut ht, mut coulomb } = strengths(model, force);
         let (fd, fl) = (model.dead_load(), model.live_load());
-        let trans = |v: &[f64]| (0..nb).flat_map(|i| [v[3 * i].abs(), v[3 * i + 1].abs()]).fold(0.0, f64::max);
-        let live_max = trans(fl).max((0..nb).map(|i| fl[3 * i + 2].abs()).fold(0.0, f64::max));
-        let mut force = trans(fd);
-        if force <= 0.0 {
-            force = if live_max > 0.0 { live_max } else { 1.0 };
-        }
-        let length = its.iter().map(|it| it.l).sum::<f64>() / m.max(1) as f64;
-        let length = if length > 0.0 { length } else { 1.0 };
-        let live = if live_max > 0.0 { live_max } else { 1.0 };
-        let row_scale = |d: usize| if d % 3 == 2 { 1.0 / length } else { 1.0 };
-        let (mut dofs, mut cols) = (Vec::with_capacity(m), Vec::with_capacity(m));
-        let (mut hc, mut ht, mut coulomb) = (Vec::with_capacity(m), Vec::with_capacity(m), Vec::with_capacity(m));
-        let sections = model.sections();
-        for (k, it) in its.iter().enumerate() {
-            let gd = it.dofs();
-            let mut d6 = [NO_EQ; 6];
-            let mut c6 = [[0.0; 3]; 6];
-            for r in 0..6 {
-                d6[r] = eq[gd[r]].map_or(NO_EQ, |e| e as u32);
-                let s = row_scale(gd[r]);
-                c6[r] = [it.b_mat[0][r] * s, it.b_mat[1][r] * s, it.b_mat[2][r] * s * 0.5 * it.l];
-            }
-            dofs.push(d6);
-            cols.push(c6);
-            let law = model.law(k);
-            let (c, ft) = law.strengths(&JointState::default());
-            let a = sections[k].area;
-            hc.push(c * a / force);
-            ht.push(ft * a / force);
-            coulomb.push((c * a / force, law.friction, law.dilatancy));
-        }
         // strengths beyond STRENGTH_CAP times the total load cannot be reached within lambda's
         // range: they are capped there (a glued joint), which keeps the program well scaled
         let total = (0..3 * nb).filter(|&d| eq[d].is_some()).map(|d| (fd[d] / force).abs() + (fl[d] / live).abs()).sum::<f64>();
@@ -115,31 +197,9 @@ impl Program {
         hc.iter_mut().chain(ht.iter_mut()).for_each(|h| *h = h.min(cap));
         coulomb.iter_mut().for_each(|c| c.0 = c.0.min(cap));
         let free = |d: &usize| eq[*d].is_some();
-        let f_dead = (0..3 * nb).filter(free).map(|d| fd[d] * row_scale(d) / force).collect();
-        let f_live = (0..3 * nb).filter(free).map(|d| fl[d] * row_scale(d) / live).collect();
-        let mut entries = Vec::with_capacity(36 * m);
-        for d6 in &dofs {
-            for &r in d6.iter().filter(|&&r| r != NO_EQ) {
-                for &c in d6.iter().filter(|&&c| c != NO_EQ) {
-                    entries.push((r as usize, c as usize));
-                }
-            }
-        }
-        let normal = SparseLu::new(n, entries)?;
-        let slots = dofs
-            .iter()
-            .map(|d6| {
-                let mut s = [u32::MAX; 36];
-                for (i, &r) in d6.iter().enumerate() {
-                    for (j, &c) in d6.iter().enumerate() {
-                        if r != NO_EQ && c != NO_EQ {
-                            s[6 * i + j] = normal.slot(r as usize, c as usize).expect("in the pattern") as u32;
-                        }
-                    }
-                }
-                s
-            })
-            .collect();
+        let f_dead = (0..3 * nb).filter(free).map(|d| fd[d] * row_scale(d, length) / force).collect();
+        let f_live = (0..3 * nb).filter(free).map(|d| fl[d] * row_scale(d, length) / live).collect();
+        let (normal, slots) = normal_pattern(n, &dofs)?;
         let slope = coulomb.iter().map(|c| c.1).collect();
         let mut lp = Program { m, n, eq, dofs, cols, acols: vec![], slots, hc, ht, slope, coulomb, f_dead, f_live, force, length, live, normal };
         lp.acols = (0..m).map(|k| lp.columns(k).0).collect();
