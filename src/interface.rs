@@ -124,7 +124,7 @@ impl Interface {
     /// `csb`: (cos, sin) of their rotations.
     #[inline]
     #[allow(clippy::too_many_arguments)]
-    pub fn large_kinematics(
+    pub(crate) fn large_kinematics(
         &self,
         ga: [f64; 2],
         gb: [f64; 2],
@@ -174,7 +174,7 @@ impl Interface {
 
 /// Current-configuration kinematics of an interface (see [`Interface::large_kinematics`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LargeKinematics {
+pub(crate) struct LargeKinematics {
     /// The relative displacements (normal, tangential \[m\], rotation \[rad\]) of b against a.
     pub jumps: [f64; 3],
     /// The unit normal, from a to b, rotated with the blocks.
@@ -216,7 +216,7 @@ pub enum BlockKind {
 }
 
 /// Blocks (or grid cells) between two polls of [`detect`]: about 10 ms of work.
-pub const POLL_EVERY: usize = 16_384;
+pub(crate) const POLL_EVERY: usize = 16_384;
 
 /// Finds every pair of blocks that share a stretch of boundary of positive length, and refuses
 /// overlapping blocks (naming both). `names` gives the label of a block for messages; `poll` is

@@ -52,7 +52,7 @@ pub(super) struct Integrator<'a> {
     pub(super) forces: Vec<[f64; 3]>,
     pub(super) flags: Vec<u8>,
     /// the active set each interface's return mapping accepted at its last plastic update
-    /// (bit j: face j; 0: none yet), tried first at the next ([`return_map_forces_warm`])
+    /// (bit j: face j; 0: none yet), tried first at the next ([`return_map`](crate::joint::return_map) with `MapOptions::warm`)
     pub(super) warm: Vec<u8>,
     pub(super) dt: f64,
     pub(super) damping: Damping,

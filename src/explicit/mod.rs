@@ -38,10 +38,10 @@
 //! assert!(settled[0].abs() < 1e-9 && settled[1] < 0.0 && settled[1] > -1e-6);
 //! ```
 
-use crate::error::{check_steps, Error};
+use crate::error::Error;
 use crate::interface::{Family, Interface};
-use crate::joint::{return_map_forces_prepared, return_map_forces_warm, JointLaw, JointState, Kinds, Response, Section, APEX};
-use crate::model::{LiveLoad, Model};
+use crate::joint::{return_map_inlined, JointLaw, MapOptions, JointState, Kinds, Response, Section, APEX};
+use crate::model::Model;
 use crate::results::{Results, Status};
 use rayon::prelude::*;
 

@@ -109,7 +109,7 @@ impl Shape {
 /// keeps one inlined copy, for the table's kinds).
 #[inline(never)]
 pub(super) fn map_unprepared(law: &JointLaw, sec: &Section, e: [f64; 3], st: &JointState, warm: u8) -> (Response, u8) {
-    return_map_forces_warm(law, sec, e, st, warm)
+    return_map_inlined(law, sec, e, st, &MapOptions { warm, tangent: false, ..MapOptions::default() })
 }
 
 /// A committed joint history from its packed form (`h`: the plastic jumps, then the opening and
@@ -211,7 +211,7 @@ impl Pass<'_> {
             *fl = r.flags;
         };
         match self.kinds.get(gk.kind) {
-            Some((sec, prep)) => store(return_map_forces_prepared(law, sec, prep, e, st, *ws), h, br, f, fl, ws),
+            Some((sec, prep)) => store(return_map_inlined(law, sec, e, st, &MapOptions { prepared: Some(prep), warm: *ws, strict: false, tangent: false }), h, br, f, fl, ws),
             None => store(map_unprepared(law, &self.model.sections()[k], e, st, *ws), h, br, f, fl, ws),
         }
     }

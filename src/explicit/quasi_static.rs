@@ -128,10 +128,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
 /// reported, before anything is allocated for the run: the control block (the model's default
 /// unless given).
 fn check_options(model: &Model, opts: &ExplicitOptions) -> Result<usize, Error> {
-    check_steps(opts.steps)?;
-    if !(opts.tolerance > 0.0 && opts.tolerance < 1.0) {
-        return Err(Error::input(format!("analysis.tolerance must lie in (0, 1), got {}", opts.tolerance)));
-    }
+    crate::analysis::check_path_options(opts.steps, opts.tolerance, opts.control)?;
     if !(opts.unbalanced_ratio > 0.0 && opts.unbalanced_ratio < 1.0) {
         return Err(Error::input(format!("analysis.unbalanced_ratio must lie in (0, 1), got {}", opts.unbalanced_ratio)));
     }
@@ -139,16 +136,9 @@ fn check_options(model: &Model, opts: &ExplicitOptions) -> Result<usize, Error> 
         return Err(Error::input("max_steps_per_level must be at least 1"));
     }
     model.check_supports()?;
-    let nb = model.n_blocks();
-    let control_block = opts.control_block.unwrap_or_else(|| model.default_control_block());
-    if control_block >= nb {
-        return Err(Error::input(format!("control block {control_block} does not exist (the model has {nb} blocks)")));
-    }
+    let control_block = crate::analysis::control_block(model, opts.control_block)?;
     let cd = 3 * control_block;
-    if let Control::Displacement { max_displacement } = opts.control {
-        if !(max_displacement.is_finite() && max_displacement != 0.0) {
-            return Err(Error::input(format!("analysis.max_displacement must be a finite non-zero length, got {max_displacement}")));
-        }
+    if let Control::Displacement { .. } = opts.control {
         if model.fixed()[cd] || model.live_load()[cd] == 0.0 {
             return Err(Error::input(format!(
                 "the control block ({}) must be free to move horizontally and carry live load",
@@ -338,10 +328,7 @@ impl<'a> QuasiStatic<'a> {
     /// runs away (a block moving more than `u_fail`) is undone and the step halved, until the
     /// bracket on the collapse multiplier is within the tolerance.
     fn load_control(&mut self, u_fail: f64, monitor: &mut dyn FnMut(&Progress) -> bool) -> End {
-        let scale = match self.model.live() {
-            LiveLoad::HorizontalWeight => 1.0,
-            LiveLoad::TopHorizontal => (self.model.weight().iter().sum::<f64>() + self.fd.iter().map(|x| x.abs()).sum::<f64>()).max(1.0),
-        };
+        let scale = crate::analysis::lambda_scale(self.model);
         let dl = 4.0 * scale / self.opts.steps as f64;
         let mut steps = LoadSteps { scale, dl, lam_conv: 0.0, saved: Snapshot::of(&self.s), mechanism: None };
         let max_levels = 100 * self.opts.steps + 1000;
@@ -371,7 +358,7 @@ impl<'a> QuasiStatic<'a> {
                 if !monitor(&p) {
                     return ControlFlow::Break(End::interrupted(None));
                 }
-                if st.lam_conv > 1e3 * st.scale {
+                if st.lam_conv > crate::analysis::UNBOUNDED * st.scale {
                     let e = Error::Convergence(crate::results::unbounded_message(st.lam_conv));
                     return ControlFlow::Break(End { status: Status::Unbounded, error: Some(e), mechanism: None });
                 }
@@ -463,16 +450,15 @@ impl<'a> QuasiStatic<'a> {
     }
 
     /// How displacement control ends, at lambda `lam` after its last stage: a collapse if lambda
-    /// has fallen from its peak or the curve has flattened (its last slope below 1% of its
-    /// first), else completed.
+    /// has fallen from its peak or the curve has flattened
+    /// ([`crate::analysis::displacement_collapse`], as the static solver's), else completed.
     fn displacement_status(&self, lam: f64) -> Status {
         let (curve_l, curve_u) = (&self.curve_l, &self.curve_u);
         let peak = crate::results::peak(curve_l);
         let n = curve_l.len();
         let k0 = (curve_l[1] - curve_l[0]) / (curve_u[1] - curve_u[0]);
         let kl = (curve_l[n - 1] - curve_l[n - 2]) / (curve_u[n - 1] - curve_u[n - 2]);
-        let collapsed = lam.abs() < peak.abs() * (1.0 - 1e-3) || (kl / k0).abs() < 1e-2;
-        if collapsed {
+        if crate::analysis::displacement_collapse(lam, peak, k0, kl) {
             Status::Collapse
         } else {
             Status::Completed

@@ -121,7 +121,7 @@ pub(super) fn kt_tolerance(scale: f64, faces: &Faces) -> f64 {
 }
 
 /// The elastic tangent D = diag(kN A, kT A, kN I) of `law` on `sec`: the tangent of an update
-/// that [`return_map_with`] reports elastic (set 0), the same numbers.
+/// that [`return_map`] reports elastic (set 0), the same numbers.
 pub fn elastic_tangent(law: &JointLaw, sec: &Section) -> [[f64; 3]; 3] {
     let d = stiffness(law, sec);
     [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]]

@@ -42,7 +42,7 @@ impl Prepared {
 /// [`Prepared`] constants, and the kind of each joint. A wall of equal blocks has a handful of
 /// kinds however many joints it has.
 #[derive(Debug, Clone, Default)]
-pub struct Kinds {
+pub(crate) struct Kinds {
     pub(super) table: Vec<(Section, Prepared)>,
     pub(super) of: Vec<u16>,
 }
@@ -92,12 +92,9 @@ impl Kinds {
     }
 
     /// The number of kinds in the table.
+    #[cfg(test)]
     pub fn len(&self) -> usize {
         self.table.len()
     }
 
-    /// Whether the table is empty.
-    pub fn is_empty(&self) -> bool {
-        self.table.is_empty()
-    }
 }

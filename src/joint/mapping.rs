@@ -3,14 +3,7 @@
 
 use super::*;
 
-/// The return mapping: forces, updated history, state flags and consistent tangent for the total
-/// jumps `e`, starting from the committed history `committed`.
-pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState) -> Response {
-    return_map_with(law, sec, e, committed, MapOptions::default()).0
-}
-
-/// How [`return_map_with`] maps. The default is [`return_map`]'s: no prepared constants, no
-/// warm set, the tangent.
+/// How [`return_map`] maps. The default: no prepared constants, no warm set, the tangent.
 #[derive(Debug, Clone, Copy)]
 pub struct MapOptions<'a> {
     /// the constants of the law on the section (`Prepared::new(law, sec)`), or None to compute
@@ -23,7 +16,7 @@ pub struct MapOptions<'a> {
     /// beyond a millionth of the force's scale (a million times the tolerance of the test). The
     /// set is then the one the ordered enumeration finds (the return is unique, and a set off
     /// it by such margins is not near another), so that the force, history, flags and tangent
-    /// are those of [`return_map`] bit for bit. Without it the warm set is taken on the ordered
+    /// are those of the default options bit for bit. Without it the warm set is taken on the ordered
     /// enumeration's own test, which can choose another set at a tie (a face reached with a
     /// zero multiplier): the same force and history to rounding, but another tangent.
     pub strict: bool,
@@ -37,48 +30,16 @@ impl Default for MapOptions<'_> {
     }
 }
 
-/// The set that [`return_map_with`] reports where no active set satisfies the Kuhn-Tucker
+/// The set that [`return_map`] reports where no active set satisfies the Kuhn-Tucker
 /// conditions (degenerate data) and the force is put at the apex of the domain.
 pub const APEX: u8 = 0x10;
 
-/// The same return mapping as [`return_map`] without its consistent tangent
-/// (`Response::tangent` is left zero): for the explicit solver, which needs the forces only.
-/// Forces, history and flags are those of [`return_map`], bit for bit.
-#[inline]
-pub fn return_map_forces(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState) -> Response {
-    return_map_with(law, sec, e, committed, MapOptions { tangent: false, ..MapOptions::default() }).0
-}
-
-/// [`return_map_forces`] trying the active set `warm` first (bit j: face j; 0: none), e.g.
-/// the one this joint ended on at the previous time step; also gives the active set accepted
-/// (0 if the update is elastic, [`APEX`] if no set was). The warm set is accepted on the same
-/// Kuhn-Tucker test as in the ordered enumeration, which follows if it fails. The force and
-/// history are those of [`return_map_forces`] up to rounding: the Kuhn-Tucker point is unique
-/// (see [`return_map_with`]).
-#[inline]
-pub fn return_map_forces_warm(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, warm: u8) -> (Response, u8) {
-    return_map_with(law, sec, e, committed, MapOptions { warm, tangent: false, ..MapOptions::default() })
-}
-
-/// [`return_map_forces_warm`] with the constants of `law` on `sec` computed beforehand
-/// (`prep` must be `Prepared::new(law, sec)`): the same forces, history, flags and set, bit for
-/// bit.
-#[inline]
-pub fn return_map_forces_prepared(
-    law: &JointLaw,
-    sec: &Section,
-    prep: &Prepared,
-    e: [f64; 3],
-    committed: &JointState,
-    warm: u8,
-) -> (Response, u8) {
-    return_map_with(law, sec, e, committed, MapOptions { prepared: Some(prep), warm, strict: false, tangent: false })
-}
-
-/// The return mapping with [`MapOptions`]: with its tangent if asked, trying the active set
-/// `warm` first if not 0, with the prepared constants if given (computed here otherwise); also
-/// the active set accepted (bit j: face j; 0: the update is elastic and the tangent D;
-/// [`APEX`]: no set, the apex).
+/// The return mapping, the one entry to the joint law for every solver: the forces, updated
+/// history, state flags and consistent tangent (if `opts.tangent`) for the total jumps `e`,
+/// starting from the committed history `committed`; also the active set accepted (bit j: face
+/// j; 0: the update is elastic and the tangent D; [`APEX`]: no set, the apex). `opts` may give
+/// the law's constants on the section prepared beforehand and an active set to try first: the
+/// same forces, history and flags (see [`MapOptions`]).
 ///
 /// Why any set passing the Kuhn-Tucker test gives the same force and history, whichever is
 /// tried first: the Coulomb flow `m_j = (tan psi, +-1, 0)` is `H a_j` scaled by `tan psi / mu`
@@ -93,9 +54,16 @@ pub fn return_map_forces_prepared(
 /// there, as without a warm start, and a warm 3-face set is taken only where it is that choice
 /// by margins: set 7 or 11 at the apex of a joint without strength (`apex_set`). (With tan psi
 /// = 0 the sets with both Coulomb faces are singular and never accepted.)
+pub fn return_map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, opts: &MapOptions) -> (Response, u8) {
+    return_map_inlined(law, sec, e, committed, opts)
+}
+
+/// [`return_map`] inlined into the solvers' loops (the interface pass, the tangent's assembly):
+/// one copy of the mapping, with its fourteen active sets, in each of them. Callers outside the
+/// crate get the one copy in [`return_map`].
 #[inline(always)]
-pub fn return_map_with(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, opts: MapOptions) -> (Response, u8) {
-    let MapOptions { prepared: prep, warm, strict, tangent: want_tangent } = opts;
+pub(crate) fn return_map_inlined(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, opts: &MapOptions) -> (Response, u8) {
+    let MapOptions { prepared: prep, warm, strict, tangent: want_tangent } = *opts;
     let warm_in = warm;
     let d = match prep {
         Some(p) => p.d,

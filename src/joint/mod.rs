@@ -24,11 +24,11 @@
 //! `D - D M (A D M)^-1 A D` is exact.
 //!
 //! ```
-//! use masonry_dem::joint::{return_map, JointLaw, JointState, Section};
+//! use masonry_dem::joint::{return_map, JointLaw, JointState, MapOptions, Section};
 //! let law = JointLaw { friction: 0.6, ..JointLaw::default() };
 //! let sec = Section::new(0.4, 1.0);
 //! // compressed by a jump of -1e-6 m and slipped by 1e-5 m: the joint slides, |T| = mu |N|
-//! let r = return_map(&law, &sec, [-1e-6, 1e-5, 0.0], &JointState::default());
+//! let (r, _set) = return_map(&law, &sec, [-1e-6, 1e-5, 0.0], &JointState::default(), &MapOptions::default());
 //! assert!((r.force[1].abs() - 0.6 * r.force[0].abs()).abs() < 1e-6 * r.force[0].abs());
 //! ```
 //!
@@ -231,6 +231,7 @@ mod mapping;
 mod tests;
 
 pub use domain::*;
-pub use kinds::*;
+pub use kinds::Prepared;
+pub(crate) use kinds::Kinds;
 use lu::*;
 pub use mapping::*;

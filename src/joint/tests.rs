@@ -2,11 +2,11 @@
 
 use super::*;
 
-/// [`return_map_with`], one copy for all the tests: inlined at each of their call sites (it
+/// [`return_map`], one copy for all the tests: inlined at each of their call sites (it
 /// is `inline(always)`), it made this module's test build take over nine minutes.
 #[inline(never)]
 fn map(law: &JointLaw, sec: &Section, e: [f64; 3], committed: &JointState, opts: MapOptions) -> (Response, u8) {
-    return_map_with(law, sec, e, committed, opts)
+    return_map(law, sec, e, committed, &opts)
 }
 
 /// A tiny xorshift generator: the same numbers on every run.
@@ -62,7 +62,7 @@ fn a_warm_start_and_prepared_constants_give_the_force_and_history_of_the_ordered
             for warm in 1..15u8 {
                 let (w, wset) = map(law, &sec, e, &committed, MapOptions { warm, ..forces });
                 // the prepared constants change nothing, bit for bit
-                let (wp, wpset) = return_map_forces_prepared(law, &sec, &prep, e, &committed, warm);
+                let (wp, wpset) = return_map(law, &sec, e, &committed, &MapOptions { prepared: Some(&prep), warm, strict: false, tangent: false });
                 assert_eq!((wp.force.map(f64::to_bits), wp.state.plastic.map(f64::to_bits)), (w.force.map(f64::to_bits), w.state.plastic.map(f64::to_bits)));
                 assert_eq!((wp.state.opening.to_bits(), wp.state.slip.to_bits(), wp.state.broken, wp.flags, wpset), (w.state.opening.to_bits(), w.state.slip.to_bits(), w.state.broken, w.flags, wset));
                 let df = (0..3).map(|c| (w.force[c] - cold.force[c]).abs()).fold(0.0, f64::max) / scale;
@@ -95,7 +95,7 @@ fn a_strict_warm_set_with_prepared_constants_gives_the_ordered_enumerations_bits
         for _ in 0..20000 {
             let (e, committed) = random_case(&mut r);
             let (cold, set) = map(law, &sec, e, &committed, MapOptions::default());
-            assert_eq!(bits(&cold, set), bits(&return_map(law, &sec, e, &committed), set));
+            assert_eq!(bits(&cold, set), bits(&return_map(law, &sec, e, &committed, &MapOptions::default()).0, set));
             if set == 0 {
                 assert_eq!(elastic_tangent(law, &sec), cold.tangent);
             }

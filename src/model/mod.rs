@@ -236,7 +236,7 @@ impl Model {
     }
     /// The kinds of the interfaces (the distinct pairs of law and section, at most
     /// [`Kinds::MAX`] in the table), each with the return mapping's constants.
-    pub fn joint_kinds(&self) -> Kinds {
+    pub(crate) fn joint_kinds(&self) -> Kinds {
         Kinds::new(self.interfaces.iter().zip(&self.sections).map(|(it, s)| (it.family as u8, self.laws.of(it.family), s)), Kinds::MAX)
     }
     /// Whether some interface's law has cohesion or tensile strength.

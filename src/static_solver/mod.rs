@@ -46,7 +46,7 @@
 //! ```
 
 use crate::error::Error;
-use crate::joint::{elastic_tangent, return_map_with, JointState, Kinds, MapOptions};
+use crate::joint::{elastic_tangent, return_map_inlined, JointState, Kinds, MapOptions};
 use crate::linalg::SparseLu;
 use crate::model::Model;
 use crate::results::{Results, Status};

@@ -250,7 +250,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             // the last set first, taken only with margins: the numbers of the ordered
             // enumeration, bit for bit (see `MapOptions::strict`)
             let opts = MapOptions { prepared: self.kinds.prepared(k), warm: self.sets[k], strict: true, tangent: false };
-            let (r, set) = return_map_with(model.law(k), &model.sections()[k], e, &self.committed[k], opts);
+            let (r, set) = return_map_inlined(model.law(k), &model.sections()[k], e, &self.committed[k], &opts);
             self.forces[k] = r.force;
             self.trial[k] = r.state;
             self.flags[k] = r.flags;
@@ -275,7 +275,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             }
             let e = it.jumps(&self.u);
             let opts = MapOptions { prepared: self.kinds.prepared(k), warm: self.sets[k], strict: false, tangent: true };
-            self.tangents[k] = return_map_with(model.law(k), &model.sections()[k], e, &self.committed[k], opts).0.tangent;
+            self.tangents[k] = return_map_inlined(model.law(k), &model.sections()[k], e, &self.committed[k], &opts).0.tangent;
         }
         self.tangents_current = true;
     }
