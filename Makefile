@@ -9,7 +9,7 @@ export VIRTUAL_ENV := $(abspath $(VENV))
 $(VENV)/.deps: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install -q --upgrade pip
-	$(PY) -m pip install -q "maturin>=1.5,<2" "numpy>=1.21" "matplotlib>=3.5" "tqdm>=4.60" "meshio>=5" "pytest>=7" "atheris>=2.3" "hypothesis>=6" "scipy>=1.9" "clarabel>=0.9"
+	$(PY) -m pip install -q "maturin>=1.5,<2" "numpy>=1.21" "matplotlib>=3.5" "tqdm>=4.60" "meshio>=5" "pytest>=7" "atheris>=2.3" "hypothesis>=6" "scipy>=1.9" "clarabel>=0.9" "dask[distributed]>=2024.1" "pandas>=2.0" "pyarrow>=14"
 	touch $@
 
 # Release build of the extension, installed into .venv (python sources are linked, not copied).

@@ -19,6 +19,10 @@ Plots (:mod:`masonry_dem.plot`, matplotlib, imported on first use): panels ``plo
 ``plot_deformed``, ``plot_cracks``, ``plot_mechanism``, ``plot_curve``, the one-page ``report_figure``,
 and ``plot_results`` / ``plot_comparison``. Exports: :func:`write_vtk` (two .vtu files for ParaView,
 meshio) and :func:`write_curve_csv`. Progress bars: :mod:`masonry_dem.progress` (tqdm, optional).
+
+Studies (:mod:`masonry_dem.study`, Dask, pandas and pyarrow, imported on first use): :func:`load_study` reads a
+study file (docs/study-format.md), :func:`run_study` runs its analyses on a Dask cluster (local by default),
+one row each in a Parquet file, :func:`read_results` reads them back.
 """
 
 from ._core import (
@@ -73,4 +77,19 @@ __all__ = [
     "interfaces_dataframe",
     "curve_columns",
     "interface_columns",
+    # studies, imported on first use (Dask, pandas and pyarrow take a while to import)
+    "load_study",
+    "run_study",
+    "read_results",
 ]
+
+_STUDY_NAMES = ("load_study", "run_study", "read_results")
+
+
+def __getattr__(name: str):  # type: ignore[no-untyped-def]
+    """The study functions, imported from :mod:`masonry_dem.study` when first asked for."""
+    if name in _STUDY_NAMES:
+        from . import study
+
+        return getattr(study, name)
+    raise AttributeError(f"module 'masonry_dem' has no attribute {name!r}")

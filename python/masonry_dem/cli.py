@@ -5,6 +5,13 @@
     masonry-dem compare CASE.toml [--json OUT.json] [--plot OUT.png] [--quiet]
     masonry-dem demo [--plot OUT.png] [--json OUT.json] [--vtk PREFIX] [--csv OUT.csv] [--quiet]
     masonry-dem validate [DIR] [--method static|dynamic|limit|both|all] [--quiet]
+    masonry-dem study STUDY.toml [--scheduler ADDRESS] [--workers N] [--out OUT.parquet] [--resume]
+                      [--csv OUT.csv] [--plot OUT.png] [--quiet]
+
+``study`` runs the many analyses of a study file (docs/study-format.md) on Dask, writing one row per
+analysis to a Parquet file as they finish (see :mod:`masonry_dem.study`); ``--resume`` finishes a study
+that was stopped, computing only the rows missing. It exits 0 once every row is written (the rows of
+failed analyses included, with their error), 130 when interrupted (the rows done are kept).
 
 ``validate`` runs every case file of DIR (default: the repository's examples/) that carries a [reference]
 table and prints a table of its collapse multipliers against the reference (see :mod:`masonry_dem.validate`);
@@ -92,6 +99,7 @@ def build_parser() -> argparse.ArgumentParser:
               masonry-dem run CASE.toml --vtk out/w --csv out/curve.csv   ParaView files and the curve
               masonry-dem compare CASE.toml --plot out/compare.png   static, dynamic and limit side by side
               masonry-dem validate --method static              check examples/ against their reference values
+              masonry-dem study examples/studies/wall1-fragility.toml --plot out/fragility.png   1,000 analyses on Dask
 
             Case files are TOML (format 1, SI units); see examples/*.toml.
             exit status: 0 ok, 1 analysis failed or other error, 2 bad input (case file, arguments)."""
@@ -103,6 +111,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_compare(sub)
     _add_demo(sub)
     _add_validate(sub)
+    _add_study(sub)
     return parser
 
 
@@ -229,6 +238,81 @@ def _add_validate(sub: Any) -> None:
         "dynamic) or all three (default)",
     )
     _add_quiet(validate)
+
+
+def _add_study(sub: Any) -> None:
+    study = _subcommand(
+        sub,
+        "study",
+        help="run a study (many analyses of one wall) on Dask",
+        description=(
+            "Run every analysis of a study file (a base case, a grid or random samples of its parameters,\n"
+            "textures, the load direction; docs/study-format.md) on Dask, one row per analysis in a Parquet file\n"
+            "written as they finish, and print a summary of the collapse multipliers."
+        ),
+        epilog="""\
+            examples:
+              masonry-dem study examples/studies/wall1-fragility.toml --plot out/fragility.png
+              masonry-dem study study.toml --workers 8 --out out/s.parquet --resume   finish a stopped study
+              masonry-dem study study.toml --scheduler tcp://10.0.0.5:8786            on a cluster
+
+            a cluster: `dask scheduler` on one machine, `dask worker tcp://HOST:8786 --nthreads 1` on each
+            of the others (masonry-dem installed there too), then --scheduler tcp://HOST:8786.""",
+    )
+    study.add_argument("study", metavar="STUDY.toml", help="study file (TOML, format 1)")
+    study.add_argument("--scheduler", metavar="ADDRESS", help="a Dask scheduler (tcp://host:8786); default: a "
+                       "local cluster of --workers processes")
+    study.add_argument("--workers", metavar="N", type=int, help="processes of the local cluster (default: one per "
+                       "core); not with --scheduler")
+    study.add_argument("--out", metavar="OUT.parquet", help="the results (Parquet; default: out/STUDY.parquet)")
+    study.add_argument("--resume", action="store_true", help="keep the rows already in OUT and compute the others")
+    study.add_argument("--csv", metavar="OUT.csv", help="also write the results as CSV")
+    study.add_argument("--plot", metavar="OUT.png", help="write the summary figure: the multiplier's histogram and "
+                       "distribution, against each varied parameter, the weakest analyses' mechanisms (PNG)")
+    _add_quiet(study)
+
+
+def _study(args: Any) -> int:
+    """``masonry-dem study``: run the study, write its rows (and plot), print its summary."""
+    from .study import load_study, run_study
+    from .study.progress import study_bar
+    from .study.summary import summary_figure, summary_text
+
+    if args.workers is not None and (args.workers < 1 or args.scheduler):
+        raise InputError("--workers: expected a number of processes >= 1, without --scheduler")
+    try:
+        study = load_study(args.study)
+    except OSError as exc:
+        return _error(f"cannot read {args.study}: {exc.strerror or exc}", EXIT_INPUT)
+    out = args.out or os.path.join("out", Path(args.study).stem + ".parquet")
+    targets, plot_file = _output_targets(None, args.plot, None, args.csv)
+    _check_outputs([out] + targets, study.inputs + (args.study,))
+    for target in [out] + targets:
+        _prepare(target)
+    interrupted = False
+    with study_bar(study.title, study.size, enabled=_show_progress(args.quiet)) as bar:
+        try:
+            frame = run_study(study, out, csv=args.csv, resume=args.resume, scheduler=args.scheduler,
+                              workers=args.workers, progress=bar)
+        except KeyboardInterrupt as exc:
+            frame, interrupted = getattr(exc, "results", None), True
+            if frame is None:
+                raise
+
+    def outputs() -> Iterator[Any]:
+        yield from [p for p in (out, args.csv) if p]
+        if plot_file is not None and not interrupted:
+            summary_figure(frame, study, plot_file)
+            yield plot_file
+
+    wrote, write_error = _write_outputs(outputs())
+    failed_to_write = _print_report(summary_text(frame, study), wrote, write_error)
+    if failed_to_write is not None:
+        return failed_to_write
+    if interrupted:
+        return _error(f"interrupted: {len(frame):,} of {study.size:,} analyses written to {out}; "
+                      "run again with --resume to finish", EXIT_INTERRUPTED)
+    return EXIT_OK
 
 
 def _add_outputs(parser: argparse.ArgumentParser, plot_default: Optional[str]) -> None:
@@ -557,6 +641,8 @@ def _main(argv: Optional[Sequence[str]]) -> int:
             return _execute(case, args.method, args.json, args.plot, args.quiet, args.vtk, args.csv, inputs=inputs)
         if args.command == "validate":
             return _validate(args.directory, args.method, args.quiet)
+        if args.command == "study":
+            return _study(args)
         from .default_case import default_case
 
         return _execute(default_case(), None, args.json, args.plot, args.quiet, args.vtk, args.csv)
