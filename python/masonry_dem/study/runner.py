@@ -20,6 +20,7 @@ import contextlib
 import logging
 import math
 import os
+import signal
 from collections import deque
 from typing import Any, Callable, Deque, Dict, Iterator, List, Optional, Sequence
 
@@ -44,18 +45,34 @@ Progress = Callable[[int, int, int], None]
 
 def local_cluster(workers: Optional[int] = None) -> Any:
     """A ``LocalCluster`` of ``workers`` processes (default: one per core), one thread each, without the
-    dashboard."""
+    dashboard. Its processes ignore Ctrl-C (SIGINT, which a terminal sends to every process of the command):
+    this process stops the study and closes them, without a traceback from each."""
     from distributed import LocalCluster
 
     n = workers or os.cpu_count() or 1
-    return LocalCluster(
-        n_workers=n,
-        threads_per_worker=1,
-        processes=True,
-        dashboard_address=None,
-        scheduler_kwargs={"dashboard": False},
-        silence_logs=logging.ERROR,
-    )
+    with _sigint_ignored():  # inherited by the processes started now, and by those they start later
+        return LocalCluster(
+            n_workers=n,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            scheduler_kwargs={"dashboard": False},
+            silence_logs=logging.ERROR,
+        )
+
+
+@contextlib.contextmanager
+def _sigint_ignored() -> Iterator[None]:
+    """SIGINT ignored meanwhile (in the main thread; elsewhere nothing changes)."""
+    try:
+        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    except ValueError:  # not the main thread
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 @contextlib.contextmanager
