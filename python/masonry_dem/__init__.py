@@ -87,9 +87,10 @@ _STUDY_NAMES = ("load_study", "run_study", "read_results")
 
 
 def __getattr__(name: str):  # type: ignore[no-untyped-def]
-    """The study functions, imported from :mod:`masonry_dem.study` when first asked for."""
-    if name in _STUDY_NAMES:
-        from . import study
+    """The study functions and :mod:`masonry_dem.study` itself, imported when first asked for."""
+    if name in _STUDY_NAMES or name == "study":
+        import importlib
 
-        return getattr(study, name)
+        study = importlib.import_module(".study", __name__)
+        return study if name == "study" else getattr(study, name)
     raise AttributeError(f"module 'masonry_dem' has no attribute {name!r}")

@@ -241,24 +241,20 @@ def _add_validate(sub: Any) -> None:
 
 
 def _add_study(sub: Any) -> None:
-    study = _subcommand(
-        sub,
-        "study",
-        help="run a study (many analyses of one wall) on Dask",
-        description=(
-            "Run every analysis of a study file (a base case, a grid or random samples of its parameters,\n"
-            "textures, the load direction; docs/study-format.md) on Dask, one row per analysis in a Parquet file\n"
-            "written as they finish, and print a summary of the collapse multipliers."
-        ),
-        epilog="""\
+    what = (
+        "Run every analysis of a study file (a base case, a grid or random samples of its parameters,\n"
+        "textures, the load direction; docs/study-format.md) on Dask, one row per analysis in a Parquet file\n"
+        "written as they finish, and print a summary of the collapse multipliers."
+    )
+    examples = """\
             examples:
               masonry-dem study examples/studies/wall1-fragility.toml --plot out/fragility.png
               masonry-dem study study.toml --workers 8 --out out/s.parquet --resume   finish a stopped study
               masonry-dem study study.toml --scheduler tcp://10.0.0.5:8786            on a cluster
 
             a cluster: `dask scheduler` on one machine, `dask worker tcp://HOST:8786 --nthreads 1` on each
-            of the others (masonry-dem installed there too), then --scheduler tcp://HOST:8786.""",
-    )
+            of the others (masonry-dem installed there too), then --scheduler tcp://HOST:8786."""
+    study = _subcommand(sub, "study", "run a study (many analyses of one wall) on Dask", what, examples)
     study.add_argument("study", metavar="STUDY.toml", help="study file (TOML, format 1)")
     study.add_argument("--scheduler", metavar="ADDRESS", help="a Dask scheduler (tcp://host:8786); default: a "
                        "local cluster of --workers processes")

@@ -80,17 +80,24 @@ def load_case(path: PathLike) -> Case:
             with the file name (as given) and names the key.
     """
     source = os.fspath(path)
+    return parse_case(read_text(path), source=source, default_title=Path(path).stem)
+
+
+def read_text(path: PathLike, what: str = "case file") -> str:
+    """The text of a TOML file (a case file, a study file): at most :data:`MAX_CASE_BYTES`, UTF-8, without
+    a byte-order mark. Raises OSError when it cannot be read, InputError (starting with the file name) when
+    it is too large or not UTF-8."""
+    source = os.fspath(path)
     with open(path, "rb") as f:
         data = f.read(MAX_CASE_BYTES + 1)  # never more: /dev/zero or a huge file is refused, not read
     if len(data) > MAX_CASE_BYTES:
-        raise InputError(f"{source}: larger than the limit of {MAX_CASE_BYTES // 2**20} MiB for a case file")
+        raise InputError(f"{source}: larger than the limit of {MAX_CASE_BYTES // 2**20} MiB for a {what}")
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise InputError(f"{source}: not a UTF-8 text file ({exc.reason} at byte {exc.start})") from None
     # a byte-order mark, as some editors write at the start of UTF-8 files, is not part of the TOML
-    text = text[1:] if text.startswith("\ufeff") else text
-    return parse_case(text, source=source, default_title=Path(path).stem)
+    return text[1:] if text.startswith("\ufeff") else text
 
 
 def run_case(

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 from typing import IO, Any, Optional
 
+from ..progress import NullProgress
+
 
 class StudyBar:
     """A tqdm bar fed by ``bar(done, failed, total)``. The first call gives the rows already done (a
@@ -54,20 +56,11 @@ class StudyBar:
         self.close()
 
 
-class NoBar:
-    """A study progress callback that draws nothing."""
+class NoBar(NullProgress):
+    """A study progress callback that draws nothing (falsy, a context manager)."""
 
-    def __call__(self, done: int, failed: int, total: int) -> None:
+    def __call__(self, done: int, failed: int, total: int) -> None:  # type: ignore[override]
         return None
-
-    def close(self) -> None:
-        return None
-
-    def __enter__(self) -> "NoBar":
-        return self
-
-    def __exit__(self, *exc: Any) -> None:
-        self.close()
 
 
 def study_bar(label: str, total: int, enabled: bool = True) -> Any:

@@ -19,8 +19,8 @@ from statistics import NormalDist
 from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple, Union
 
 from .._core import InputError
-from ..case import METHODS, case_from_dict, load_case
-from ..case.reader import LAW_KEYS, FAMILIES, MAX_CASE_BYTES
+from ..case import METHODS, case_from_dict, parse_case
+from ..case.reader import FAMILIES, LAW_KEYS, read_text
 from ..case.table import REQUIRED, _got, _non_negative, _positive, _quote, _Table
 from .model import (
     DIRECTIONS,
@@ -67,14 +67,7 @@ def load_study(path: PathLike) -> Study:
         masonry_dem.InputError: not a valid study; the message starts with the file name and names the key.
     """
     source = os.fspath(path)
-    with open(path, "rb") as f:
-        data = f.read(MAX_CASE_BYTES + 1)
-    if len(data) > MAX_CASE_BYTES:
-        raise InputError(f"{source}: larger than the limit of {MAX_CASE_BYTES // 2**20} MiB for a study file")
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise InputError(f"{source}: not a UTF-8 text file ({exc.reason} at byte {exc.start})") from None
+    text = read_text(path, "study file")
     return parse_study(text, source=source, base_dir=Path(path).parent, default_title=Path(path).stem)
 
 
@@ -137,8 +130,9 @@ def _base_case(top: _Table, base_dir: Path) -> Tuple[Any, Tuple[str, ...]]:
     if isinstance(value, str):
         path = base_dir / value
         try:
-            load_case(path)  # every check of a case file, with its messages
-            data = tomllib.loads(path.read_text(encoding="utf-8-sig"))
+            text = read_text(path)
+            parse_case(text, source=str(path), default_title=path.stem)  # every check of a case file
+            data = tomllib.loads(text)
         except OSError as exc:
             raise top.key_error("case", f"cannot read {path}: {exc.strerror or exc}") from None
         return data, (str(path),)
