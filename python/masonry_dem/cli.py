@@ -286,7 +286,8 @@ def _study(args: Any) -> int:
     for target in [out] + targets:
         _prepare(target)
     interrupted = False
-    with study_bar(study.title, study.size, enabled=_show_progress(args.quiet)) as bar:
+    label = study.title if len(study.title) <= 32 else study.title[:31] + "…"
+    with study_bar(label, study.size, enabled=_show_progress(args.quiet)) as bar:
         try:
             frame = run_study(study, out, csv=args.csv, resume=args.resume, scheduler=args.scheduler,
                               workers=args.workers, progress=bar)

@@ -423,13 +423,9 @@ def test_scheduler_and_workers_of_their_own(tmp_path: Path) -> None:
             assert len(c.scheduler_info()["workers"]) == 2
         assert frame["collapse_multiplier"].to_numpy() == pytest.approx([0.3, 0.4, 0.5, 0.6], rel=1e-6)
     finally:
-        for p in reversed(processes):
-            p.terminate()
-        for p in processes:
-            try:
-                p.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                p.kill()
+        for p in processes:  # the workers' nannies and the scheduler, started here
+            p.kill()
+            p.wait(timeout=20)
 
 
 def test_example_study_reads() -> None:

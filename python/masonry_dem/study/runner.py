@@ -17,12 +17,12 @@ finish it.
 from __future__ import annotations
 
 import contextlib
+import itertools
 import logging
 import math
 import os
 import signal
-from collections import deque
-from typing import Any, Callable, Deque, Dict, Iterator, List, Optional, Sequence
+from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional, Sequence
 
 import pandas as pd
 
@@ -98,10 +98,12 @@ def connect(scheduler: Any = None, workers: Optional[int] = None) -> Iterator[An
 
 
 class _Chunks:
-    """The analyses left, handed out in chunks sized from their measured time (or of a fixed size)."""
+    """The analyses left (an iterator: a study of millions is never listed), handed out in chunks sized
+    from their measured time, or of a fixed size."""
 
-    def __init__(self, items: Sequence[Item], fixed: int = 0) -> None:
-        self.items: Deque[Item] = deque(items)
+    def __init__(self, items: Iterable[Item], fixed: int = 0) -> None:
+        self.items: Iterator[Item] = iter(items)
+        self.left = True
         self.fixed = fixed
         self.seconds = 0.0
         self.measured = 0
@@ -121,8 +123,9 @@ class _Chunks:
         return max(1, min(MAX_CHUNK, int(TASK_SECONDS / mean)))
 
     def take(self) -> List[Item]:
-        n = self.size()
-        return [self.items.popleft() for _ in range(min(n, len(self.items)))]
+        chunk = list(itertools.islice(self.items, self.size()))
+        self.left = bool(chunk)
+        return chunk
 
 
 def _workers(client: Any) -> int:
@@ -159,8 +162,10 @@ def _compute(client: Any, study: Study, chunks: _Chunks, store: ResultStore, on_
         queue.add(future)
 
     def refill() -> None:
-        while chunks.items and len(running) < IN_FLIGHT * _workers(client):
-            submit(chunks.take())
+        while chunks.left and len(running) < IN_FLIGHT * _workers(client):
+            items = chunks.take()
+            if items:
+                submit(items)
 
     refill()
     try:
@@ -207,7 +212,6 @@ def run_study(
     InputError for a results file that cannot be written or holds another study's rows.
     """
     store = ResultStore(study, out, csv=csv, resume=resume)
-    todo = [item for item in study.items() if item.row not in store.finished]
     total = study.size
     counts = {"done": len(store.finished), "failed": 0}
 
@@ -217,15 +221,18 @@ def run_study(
         if progress is not None:
             progress(counts["done"], counts["failed"], total)
 
-    if progress is not None:
-        progress(counts["done"], counts["failed"], total)
-    if todo:
-        chunks = _Chunks(todo, fixed=chunk if chunk is not None else study.chunk)
-        try:
+    try:
+        if progress is not None:
+            progress(counts["done"], counts["failed"], total)
+        if counts["done"] < total:
+            todo = (item for item in study.items() if item.row not in store.finished)
+            chunks = _Chunks(todo, fixed=chunk if chunk is not None else study.chunk)
             with connect(scheduler, workers) as client:
                 _compute(client, study, chunks, store, on_rows)
-        except KeyboardInterrupt as exc:
-            exc.results = store.finish()  # type: ignore[attr-defined]
-            raise
+    except BaseException as exc:  # Ctrl-C, or any error: keep every row that came back
+        written = store.finish()
+        if isinstance(exc, KeyboardInterrupt):
+            exc.results = written  # type: ignore[attr-defined]
+        raise
     return store.finish()
 
