@@ -175,6 +175,31 @@ def test_texture_tiles_the_wall() -> None:
     assert np.allclose(np.array(plain), md.running_bond(**rb))  # no perturbation: the case's own wall
 
 
+def test_precompression_raises_sliding_by_its_share_of_the_weight() -> None:
+    """A block under a top beam slides with it on the base: lambda W = mu (W + P), lambda = mu (1 + P / W)."""
+    data = table(BLOCK)
+    data["top"] = {"rotation": "fixed", "force": [0.0, 0.0]}
+    study = study_from_dict({"format": 1, "case": data, "study": {"methods": ["limit", "static"]}, "vary": {"precompression": {"values": [0.0, 500.0, 2000.0]}}})
+    weight = 1000.0 * 9.81 * 0.4 * 0.175  # [N]
+    for item in study.items():
+        case = study.case(item)
+        assert case.model.top_force == [0.0, -item.values["precompression"]]
+        expected = 0.65 * (1.0 + item.values["precompression"] / weight)
+        assert case.run(item.method).collapse_multiplier == pytest.approx(expected, rel=1e-7)
+
+
+def test_openings_move_and_resize_about_their_centre() -> None:
+    data = table(WALL1)
+    data["geometry"]["running_bond"]["openings"] = [[0.3, 0.3, 0.75, 0.75]]
+    study = study_from_dict(
+        {"format": 1, "case": data, "vary": {"opening_x": {"values": [1.2]}, "opening_height": {"values": [0.2]}}}
+    )
+    case = study.case(study.item(0))
+    moved = [0.975, 0.425, 1.425, 0.625]  # centre x 1.2, width 0.45 kept; centre y 0.525 kept, height 0.2
+    rb = dict(data["geometry"]["running_bond"], openings=[moved])
+    assert np.allclose(case.model.blocks, md.running_bond(**rb))
+
+
 # --------------------------------------------------------------------------------------------------
 # The -x direction: the wall mirrored
 # --------------------------------------------------------------------------------------------------
