@@ -19,7 +19,7 @@ Conversions (the compiled ``Results`` cannot be subclassed, so these are plain f
 * :func:`to_json`: the result file of docs/case-format.md (:func:`masonry_dem.result_dict`), written under a
   temporary name and renamed.
 * :func:`to_dataframe` / :func:`interfaces_dataframe`: pandas DataFrames of the curve and of the
-  interfaces, when pandas is installed (it is not a dependency of masonry-dem; without it they raise
+  interfaces, when pandas is installed (a dependency of masonry-dem since the studies; without it they raise
   ImportError). :func:`curve_columns` / :func:`interface_columns` give the same columns as NumPy arrays.
 """
 
@@ -253,8 +253,8 @@ def _pandas(func: str, alternative: str) -> Any:
         import pandas
     except ImportError as exc:
         raise ImportError(
-            f"masonry_dem.{func} needs pandas, which is not installed (it is not a dependency of "
-            f"masonry-dem): pip install pandas; or use masonry_dem.{alternative} "
+            f"masonry_dem.{func} needs pandas, which is not installed (a dependency of masonry-dem "
+            f"that is missing here): pip install pandas; or use masonry_dem.{alternative} "
             f"for the same columns as NumPy arrays"
         ) from exc
     return pandas
