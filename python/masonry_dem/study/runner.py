@@ -3,7 +3,9 @@
 The analyses go to the workers in chunks, as tasks that carry the study's case data (plain data; each
 worker builds its models itself). The first tasks hold one analysis each; later ones are sized from the
 analyses' measured time to about :data:`TASK_SECONDS` of work, so that the scheduling overhead stays a small
-fraction of it whatever an analysis costs, with :data:`IN_FLIGHT` tasks per worker queued. Each row is
+fraction of it whatever an analysis costs, and smaller towards the end (at most the analyses left divided by
+:data:`TAIL_SPLIT` times the workers), so that the workers finish together; :data:`IN_FLIGHT` tasks per worker
+are queued. Each row is
 written as soon as its chunk comes back (:class:`~masonry_dem.study.store.ResultStore`).
 
 Failures: an analysis that raises becomes a row with status "error" in the worker; a task whose worker
@@ -32,10 +34,12 @@ from .store import PathLike, ResultStore
 from .worker import FAILED_STATUSES, failed_row, run_chunk
 
 #: The work a task is sized to hold, from the analyses' measured time [s].
-TASK_SECONDS = 0.5
+TASK_SECONDS = 1.0
 #: The most analyses in one task (chunk), and the tasks queued per worker.
 MAX_CHUNK = 1000
 IN_FLIGHT = 2
+#: Towards the end a chunk holds at most the analyses left / (TAIL_SPLIT x workers).
+TAIL_SPLIT = 2
 #: How long to wait for a scheduler given by address [s].
 CONNECT_TIMEOUT = 30
 
@@ -45,12 +49,18 @@ Progress = Callable[[int, int, int], None]
 
 def local_cluster(workers: Optional[int] = None) -> Any:
     """A ``LocalCluster`` of ``workers`` processes (default: one per core), one thread each, without the
-    dashboard. Its processes ignore Ctrl-C (SIGINT, which a terminal sends to every process of the command):
+    dashboard, and without Dask's MALLOC_TRIM_THRESHOLD_. Its processes ignore Ctrl-C (SIGINT, which a terminal sends to every process of the command):
     this process stops the study and closes them, without a traceback from each."""
+    import dask
     from distributed import LocalCluster
 
     n = workers or os.cpu_count() or 1
-    with _sigint_ignored():  # inherited by the processes started now, and by those they start later
+    # Dask sets MALLOC_TRIM_THRESHOLD_ in the processes it starts, to give memory back to the system at once:
+    # the solvers, which allocate much, run 6 to 10% slower so (benches/study_scaling.py); left out here
+    environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}))
+    environ.pop("MALLOC_TRIM_THRESHOLD_", None)
+    # SIGINT ignored: inherited by the processes started now, and by those they start later
+    with _sigint_ignored(), dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
         return LocalCluster(
             n_workers=n,
             threads_per_worker=1,
@@ -98,15 +108,20 @@ def connect(scheduler: Any = None, workers: Optional[int] = None) -> Iterator[An
 
 
 class _Chunks:
-    """The analyses left (an iterator: a study of millions is never listed), handed out in chunks sized
-    from their measured time, or of a fixed size."""
+    """The ``count`` analyses left (an iterator: a study of millions is never listed), handed out in chunks
+    sized from their measured time (or of a fixed size), and smaller towards the end, so that no worker is
+    left with a long chunk while the others wait."""
 
-    def __init__(self, items: Iterable[Item], fixed: int = 0) -> None:
+    def __init__(self, items: Iterable[Item], count: int, fixed: int = 0) -> None:
         self.items: Iterator[Item] = iter(items)
-        self.left = True
+        self.count = count
         self.fixed = fixed
         self.seconds = 0.0
         self.measured = 0
+
+    @property
+    def left(self) -> bool:
+        return self.count > 0
 
     def learn(self, rows: Sequence[Dict[str, Any]]) -> None:
         for row in rows:
@@ -114,17 +129,18 @@ class _Chunks:
                 self.seconds += row["task_s"]
                 self.measured += 1
 
-    def size(self) -> int:
+    def size(self, workers: int) -> int:
         if self.fixed:
             return self.fixed
         if not self.measured:
             return 1
         mean = max(self.seconds / self.measured, 1e-6)
-        return max(1, min(MAX_CHUNK, int(TASK_SECONDS / mean)))
+        timed = min(MAX_CHUNK, int(TASK_SECONDS / mean))
+        return max(1, min(timed, math.ceil(self.count / (TAIL_SPLIT * workers))))
 
-    def take(self) -> List[Item]:
-        chunk = list(itertools.islice(self.items, self.size()))
-        self.left = bool(chunk)
+    def take(self, workers: int) -> List[Item]:
+        chunk = list(itertools.islice(self.items, self.size(workers)))
+        self.count = self.count - len(chunk) if chunk else 0
         return chunk
 
 
@@ -162,8 +178,9 @@ def _compute(client: Any, study: Study, chunks: _Chunks, store: ResultStore, on_
         queue.add(future)
 
     def refill() -> None:
-        while chunks.left and len(running) < IN_FLIGHT * _workers(client):
-            items = chunks.take()
+        workers = _workers(client)
+        while chunks.left and len(running) < IN_FLIGHT * workers:
+            items = chunks.take(workers)
             if items:
                 submit(items)
 
@@ -226,7 +243,7 @@ def run_study(
             progress(counts["done"], counts["failed"], total)
         if counts["done"] < total:
             todo = (item for item in study.items() if item.row not in store.finished)
-            chunks = _Chunks(todo, fixed=chunk if chunk is not None else study.chunk)
+            chunks = _Chunks(todo, total - counts["done"], fixed=chunk if chunk is not None else study.chunk)
             with connect(scheduler, workers) as client:
                 _compute(client, study, chunks, store, on_rows)
     except BaseException as exc:  # Ctrl-C, or any error: keep every row that came back
