@@ -1,27 +1,33 @@
 """Benchmarks of studies (masonry_dem.study) on Ferris & Tin-Loi wall 1 (33 blocks):
 
-1. the per-analysis overhead of the study machinery, against the analysis itself:
-   - in the worker: the row's time (``task_s``: the case table with the row's values, checking it, building the
-     model, solving, the row) less the solver's own (``elapsed_s``), median over the rows;
-   - end to end: a study of N analyses on one local worker (the cluster already up: Dask's scheduling, the
-     tasks' data, the rows' Parquet parts and the final file included) against the same N analyses run in a
-     plain loop in one process (``case.build_model(); case.solve(model)``);
-2. N = 1,000 analyses of wall 1 on 2 local workers against 1 (the cluster already up; the friction drawn
-   from N(0.65, 0.05), associative);
+1. the per-analysis overhead of the study machinery, against the analysis itself (the model built from a
+   ready case, and solved):
+   - in the worker: the case made from the study's data (the row's values set in the case table, the case
+     checked) and the rest of a row (``run_item`` less the case and the analysis), medians over 300 rows;
+   - end to end: a study of N analyses on a local cluster of one worker (up: Dask's scheduling, the tasks'
+     data, the cases, the rows, their Parquet parts and the final file included) against the same N analyses
+     in a plain loop in one process (``case.solve(case.build_model())`` on cases made beforehand);
+2. N = 1,000 analyses of wall 1 (the friction drawn from N(0.65, 0.05), associative; the static solver) on a
+   local cluster of 2 workers against 1;
 3. the example, examples/studies/wall1-fragility.toml (1,000 samples), end to end with the command line
    (cluster start, the rows, the Parquet file and the summary figure included).
 
-    .venv/bin/python benches/study_scaling.py [--analyses 1000] [--repeat 2]
+    .venv/bin/python benches/study_scaling.py [--analyses 1000] [--repeat 5]
 
-Each timing is the best of ``--repeat`` runs. On the project's machine (2 cores, shared; 2026-11-24):
+The plain loop, the study on one worker and on two take turns ``--repeat`` times (each cluster started for its
+turn, timed on its second run); each timing is the median. On the project's machine (2 vCPUs, shared with
+other work; 2026-11-24; the same analyses in two plain processes run 1.93 to 1.95 x faster than in one):
 
-    method  analysis [ms]  in-worker overhead [ms]  (% of the analysis)
-    static  3.9            0.14                     (3.6 %)
-    limit   0.70           0.12                     (17 %)
-    end to end, 1 worker, 1,000 analyses: static 4.37 s against 4.19 s in a plain loop: +0.18 ms an analysis (4.3 %)
-    1,000 analyses of wall 1: static 1 worker 4.38 s, 2 workers 2.31 s: 1.90 x
-    the example (1,000 samples, static, 2 workers), command line end to end: 6.0 s
+    in the worker, per analysis (medians): the analysis (model and solver), the case from the study's data, the rest of the row
+      static  analysis 4.62 ms; case 0.059 ms, rest +0.011 ms: 0.069 ms (1.5 % of the analysis)
+      limit   analysis 0.937 ms; case 0.052 ms, rest +0.013 ms: 0.065 ms (6.9 % of the analysis)
+    end to end, 1 worker, 1,000 analyses written to Parquet: static 5.76 s against 5.74 s for the analyses alone
+      in a plain loop: +0.017 ms an analysis (+0.29 %)
+    1,000 analyses of wall 1: static 1 worker 5.76 s, 2 workers 3.07 s: 1.88 x
+    the example (1,000 samples), command line end to end: 5.54 s
 
+Runs of the whole script vary by a few percent on this machine (end to end +0.3 to +3.8 %; 1.79 to 1.88 x
+before the workers' profiler was turned off, 1.88 x after).
 (Re-run it and replace these lines when the core or the study machinery changes.)
 """
 
@@ -58,15 +64,6 @@ def wall1_study(method: str, n: int) -> Any:
     )
 
 
-def best(repeat: int, run: Callable[[], Any]) -> float:
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        run()
-        times.append(time.perf_counter() - start)
-    return min(times)
-
-
 def median_ms(times: List[float]) -> float:
     return float(np.median(times)) * 1e3
 
@@ -95,16 +92,35 @@ def plain_loop(cases: List[Any], methods: List[str]) -> None:
         case.solve(case.build_model(), method)
 
 
-def on_workers(study: Any, workers: int, repeat: int, out: Path) -> float:
-    """The study on a local cluster of ``workers`` processes, already up, its rows written to ``out``."""
-
-    def run() -> None:
-        out.unlink(missing_ok=True)
-        run_study(study, out, scheduler=client)
-
+def on_cluster(study: Any, workers: int, out: Path) -> float:
+    """The time [s] of the study on a local cluster of ``workers`` processes already up (a first run warms the
+    workers), its rows written to ``out``; the cluster is closed afterwards."""
     with connect(None, workers) as client:
-        run()  # warm the workers (imports)
-        return best(repeat, run)
+        for _ in range(2):
+            out.unlink(missing_ok=True)
+            start = time.perf_counter()
+            run_study(study, out, scheduler=client)
+            elapsed = time.perf_counter() - start
+    return elapsed
+
+
+def interleaved(repeat: int, runs: Dict[str, Callable[[], float]]) -> Dict[str, float]:
+    """The median of each run's time [s], the runs taking turns ``repeat`` times (so that the drift of a
+    shared machine weighs on each alike)."""
+    times: Dict[str, List[float]] = {name: [] for name in runs}
+    for _ in range(repeat):
+        for name, run in runs.items():
+            times[name].append(run())
+    return {name: float(np.median(t)) for name, t in times.items()}
+
+
+def timed(run: Callable[[], Any]) -> Callable[[], float]:
+    def measured() -> float:
+        start = time.perf_counter()
+        run()
+        return time.perf_counter() - start
+
+    return measured
 
 
 def example_end_to_end(tmp: Path) -> float:
@@ -120,7 +136,7 @@ def example_end_to_end(tmp: Path) -> float:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--analyses", type=int, default=1000)
-    parser.add_argument("--repeat", type=int, default=2)
+    parser.add_argument("--repeat", type=int, default=5)
     args = parser.parse_args()
     n = args.analyses
     tmp = ROOT / "out" / "bench-study"
@@ -137,14 +153,18 @@ def main() -> None:
     study = wall1_study("static", n)
     items = list(study.items())
     cases, methods = [study.case(item) for item in items], [item.method for item in items]
-    serial = best(args.repeat, lambda: plain_loop(cases, methods))
-    one = on_workers(study, 1, args.repeat, tmp / "one.parquet")
+    runs = {
+        "plain loop": timed(lambda: plain_loop(cases, methods)),
+        "1 worker": lambda: on_cluster(study, 1, tmp / "one.parquet"),
+        "2 workers": lambda: on_cluster(study, 2, tmp / "two.parquet"),
+    }
+    t = interleaved(args.repeat, runs)
+    serial, one, two = t["plain loop"], t["1 worker"], t["2 workers"]
     print(
         f"end to end, 1 worker, {n:,} analyses written to Parquet: static {one:.3g} s against {serial:.3g} s for the "
         f"analyses alone in a plain loop: {1e3 * (one - serial) / n:+.2g} ms an analysis ({100 * (one - serial) / serial:+.2g} %)",
         flush=True,
     )
-    two = on_workers(study, 2, args.repeat, tmp / "two.parquet")
     print(f"{n:,} analyses of wall 1: static 1 worker {one:.3g} s, 2 workers {two:.3g} s: {one / two:.3g} x", flush=True)
     print(f"the example (1,000 samples), command line end to end: {example_end_to_end(tmp):.3g} s")
 

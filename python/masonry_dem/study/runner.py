@@ -49,7 +49,7 @@ Progress = Callable[[int, int, int], None]
 
 def local_cluster(workers: Optional[int] = None) -> Any:
     """A ``LocalCluster`` of ``workers`` processes (default: one per core), one thread each, without the
-    dashboard, and without Dask's MALLOC_TRIM_THRESHOLD_. Its processes ignore Ctrl-C (SIGINT, which a terminal sends to every process of the command):
+    dashboard, without Dask's MALLOC_TRIM_THRESHOLD_ nor its profiler. Its processes ignore Ctrl-C (SIGINT, which a terminal sends to every process of the command):
     this process stops the study and closes them, without a traceback from each."""
     import dask
     from distributed import LocalCluster
@@ -59,13 +59,19 @@ def local_cluster(workers: Optional[int] = None) -> Any:
     # the solvers, which allocate much, run 6 to 10% slower so (benches/study_scaling.py); left out here
     environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}))
     environ.pop("MALLOC_TRIM_THRESHOLD_", None)
+    settings = {
+        "distributed.nanny.pre-spawn-environ": environ,
+        # the workers' sampling profiler (every 10 ms) and the event loops' 20 ms watch cost the analyses 2%
+        "distributed.worker.profile.enabled": False,
+        "distributed.admin.tick.interval": "500ms",
+    }
     # SIGINT ignored: inherited by the processes started now, and by those they start later
-    with _sigint_ignored(), dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
+    with _sigint_ignored(), dask.config.set(settings):
         return LocalCluster(
             n_workers=n,
             threads_per_worker=1,
             processes=True,
-            dashboard_address=None,
+            dashboard_address=":0",  # no dashboard, and its server on a free port: never Dask's 8787
             scheduler_kwargs={"dashboard": False},
             silence_logs=logging.ERROR,
         )
