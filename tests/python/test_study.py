@@ -15,10 +15,14 @@ import socket
 import subprocess
 import sys
 import time
-import tomllib
 from statistics import NormalDist
 from pathlib import Path
 from typing import Any, Dict, Iterator, List
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - exercised on Python < 3.11 only
+    import tomli as tomllib
 
 import numpy as np
 import pandas as pd
@@ -396,6 +400,31 @@ def test_a_killed_worker_loses_no_row(client: Any) -> None:
     client.wait_for_workers(2, timeout=60)
 
 
+def crashing_block(mu: float) -> Any:
+    """A builder whose worker process dies (as on a segmentation fault) for mu > 0.5."""
+    if mu > 0.5:
+        os._exit(1)
+    return sliding_block(mu)
+
+
+def test_an_analysis_that_kills_its_worker_is_lost_alone() -> None:
+    """Dask gives up on a task whose worker died (here at once: allowed-failures 0); the chunk is split, the
+    other analysis runs again alone, and the culprit gets its row, status "lost"."""
+    import dask
+    from distributed import Client
+
+    from masonry_dem.study.runner import local_cluster
+
+    study = study_from_dict({"format": 1, "case": crashing_block, "study": {"methods": ["limit"], "chunk": 2}, "vary": {"mu": {"values": [0.3, 0.9]}}})
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
+        cluster = local_cluster(1)
+    with cluster, Client(cluster) as c:
+        frame = run_study(study, scheduler=c)
+    assert list(frame["status"]) == ["collapse", "lost"]
+    assert frame["collapse_multiplier"][0] == pytest.approx(0.3, rel=1e-6)
+    assert "worker died" in frame["error"][1]
+
+
 # --------------------------------------------------------------------------------------------------
 # Processes of their own: Ctrl-C, and a scheduler with two workers
 # --------------------------------------------------------------------------------------------------
@@ -451,6 +480,22 @@ def test_scheduler_and_workers_of_their_own(tmp_path: Path) -> None:
         for p in processes:  # the workers' nannies and the scheduler, started here
             p.kill()
             p.wait(timeout=20)
+
+
+def test_inline_case() -> None:
+    """The base case as a [case] table (its format left out): a block of 0.4 x 0.175 m slides at mu."""
+    text = """format = 1
+[case.geometry]
+blocks = [[0.0, 0.0, 0.4, 0.175]]
+[case.joints]
+friction = 0.65
+[vary.friction]
+values = [0.4]
+"""
+    study = parse_study(text, source="s.toml")
+    assert study.case(study.item(0)).run("limit").collapse_multiplier == pytest.approx(0.4, rel=1e-6)
+    with pytest.raises(md.InputError, match=r"s.toml: \[case\]: .*joints.friction"):
+        parse_study(text.replace("friction = 0.65", "friction = -1.0"), source="s.toml")
 
 
 def test_example_study_reads() -> None:
