@@ -127,7 +127,16 @@ def example_end_to_end(tmp: Path) -> float:
     out, plot = tmp / "example.parquet", tmp / "example.png"
     for p in (out, plot):
         p.unlink(missing_ok=True)
-    command = [str(Path(sys.executable).parent / "masonry-dem"), "study", str(EXAMPLE), "--out", str(out), "--plot", str(plot), "-q"]
+    command = [
+        str(Path(sys.executable).parent / "masonry-dem"),
+        "study",
+        str(EXAMPLE),
+        "--out",
+        str(out),
+        "--plot",
+        str(plot),
+        "-q",
+    ]
     start = time.perf_counter()
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
     return time.perf_counter() - start
@@ -141,7 +150,9 @@ def main() -> None:
     n = args.analyses
     tmp = ROOT / "out" / "bench-study"
     tmp.mkdir(parents=True, exist_ok=True)
-    print("in the worker, per analysis (medians): the analysis (model and solver), the case from the study's data, the rest of the row")
+    print(
+        "in the worker, per analysis (medians): the analysis (model and solver), the case from the study's data, the rest of the row"
+    )
     for method in ("static", "limit"):
         o = in_worker_overhead(method, 300)
         extra = o["case_ms"] + o["rest_ms"]
@@ -165,7 +176,9 @@ def main() -> None:
         f"analyses alone in a plain loop: {1e3 * (one - serial) / n:+.2g} ms an analysis ({100 * (one - serial) / serial:+.2g} %)",
         flush=True,
     )
-    print(f"{n:,} analyses of wall 1: static 1 worker {one:.3g} s, 2 workers {two:.3g} s: {one / two:.3g} x", flush=True)
+    print(
+        f"{n:,} analyses of wall 1: static 1 worker {one:.3g} s, 2 workers {two:.3g} s: {one / two:.3g} x", flush=True
+    )
     print(f"the example (1,000 samples), command line end to end: {example_end_to_end(tmp):.3g} s")
 
 

@@ -17,7 +17,7 @@ import sys
 import time
 from statistics import NormalDist
 from pathlib import Path
-from typing import Any, Dict, Iterator, List
+from typing import Any, Dict, Iterator, List, Optional
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -44,6 +44,11 @@ def table(path: Path) -> Dict[str, Any]:
     return tomllib.loads(path.read_text(encoding="utf-8"))
 
 
+def make(case: Any, vary: Optional[Dict[str, Any]] = None, **options: Any) -> Any:
+    """A study of ``case`` (a path, a case table or a builder), its [vary] tables and its [study] keys."""
+    return study_from_dict({"format": 1, "case": case, "study": options, "vary": vary or {}})
+
+
 def same(a: float, b: float) -> bool:
     """Equal to the last bit, NaN equal to NaN."""
     return (math.isnan(a) and math.isnan(b)) or a == b
@@ -66,17 +71,17 @@ def client() -> Iterator[Any]:
 # --------------------------------------------------------------------------------------------------
 
 BAD_STUDIES = [
-    ('[vary.friction]\ndistribution = "gauss"\nmean = 0.6\nstd = 0.1', "vary.friction.distribution", 'expected one of "uniform"'),
+    ('[vary.friction]\ndistribution = "gauss"\nmean = 0.6\nstd = 0.1', "vary.friction.distribution", 'of "uniform"'),
     ("[vary.frcition]\nvalues = [0.5]", "vary.frcition", "did you mean 'friction'"),
     ("[vary.friction]\nvalues = [0.5, -1.0]", "vary.friction.values", "vary.friction.values[1] = -1.0"),
     ('[vary.friction]\ndistribution = "normal"\nmean = 0.6', "vary.friction.std", "missing key 'std'"),
     ('[vary.friction]\ndistribution = "uniform"\nmin = 0.7\nmax = 0.5', "vary.friction.max", "must be > min"),
-    ('[vary.friction]\ndistribution = "normal"\nmean = 0.6\nstd = 0.01\nmin = 5.0', "vary.friction.min", "no probability"),
+    ('[vary.friction]\ndistribution = "normal"\nmean = 0.6\nstd = 0.01\nmin = 5.0', "vary.friction.min", "no probab"),
     ("[vary.friction]\nvalues = [0.5]\nstart = 0.1", "vary.friction", "exactly one of"),
     ("[vary.cohesion]\nvalues = [0.5]\nassociative = true", "vary.cohesion.associative", "only a friction"),
     ("[vary.opening_x]\nvalues = [0.5]", "vary.opening_x.opening", "no opening 0"),
-    ("[vary.courses]\ndistribution = \"uniform\"\nmin = 1\nmax = 3", "vary.courses.distribution", "integer"),
-    ("[vary.direction]\nvalues = [\"+y\"]", "vary.direction.values", '"+x" and "-x"'),
+    ('[vary.courses]\ndistribution = "uniform"\nmin = 1\nmax = 3', "vary.courses.distribution", "integer"),
+    ('[vary.direction]\nvalues = ["+y"]', "vary.direction.values", '"+x" and "-x"'),
     ("[vary.precompression]\nvalues = [1e3]", "vary.precompression", "[top] table"),
     ('[study]\nmethods = ["static", "explicit"]', "study.methods", 'entry 1: expected one of "static"'),
     ("[study]\nsamples = 0", "study.samples", "must be >= 1"),
@@ -97,19 +102,21 @@ def test_bad_base_case_and_texture() -> None:
     with pytest.raises(md.InputError, match="s.toml: case: cannot read"):
         parse_study('format = 1\ncase = "no-such-case.toml"\n', source="s.toml")
     with pytest.raises(md.InputError, match="joints.friction"):
-        study_from_dict({"format": 1, "case": {"geometry": {"blocks": [[0, 0, 1, 1]]}, "joints": {"friction": -1}}})
+        make({"geometry": {"blocks": [[0, 0, 1, 1]]}, "joints": {"friction": -1}})
     with pytest.raises(md.InputError, match="running_bond"):
-        study_from_dict({"format": 1, "case": str(BLOCK), "vary": {"texture": {"length_std": 0.1}}})
+        make(str(BLOCK), {"texture": {"length_std": 0.1}})
 
 
 def test_size_and_row_order() -> None:
-    study = study_from_dict(
+    study = make(
+        str(BLOCK),
         {
-            "format": 1,
-            "case": str(BLOCK),
-            "study": {"methods": ["limit", "static"], "samples": 3, "seed": 5},
-            "vary": {"friction": {"start": 0.2, "stop": 0.6, "count": 5}, "cohesion": {"distribution": "uniform", "min": 0.0, "max": 1.0}},
-        }
+            "friction": {"start": 0.2, "stop": 0.6, "count": 5},
+            "cohesion": {"distribution": "uniform", "min": 0.0, "max": 1.0},
+        },
+        methods=["limit", "static"],
+        samples=3,
+        seed=5,
     )
     items = list(study.items())
     assert study.size == len(items) == 2 * 5 * 3
@@ -126,14 +133,18 @@ def test_size_and_row_order() -> None:
 
 
 def test_random_values_depend_on_seed_sample_and_name_only() -> None:
-    base = {"format": 1, "case": str(BLOCK), "study": {"samples": 50, "seed": 7}}
-    one = study_from_dict({**base, "vary": {"friction": {"distribution": "normal", "mean": 0.6, "std": 0.05}}})
-    two = study_from_dict(
-        {**base, "vary": {"cohesion": {"distribution": "uniform", "min": 0.0, "max": 1.0}, "friction": {"distribution": "normal", "mean": 0.6, "std": 0.05}}}
-    )
-    assert [i.values["friction"] for i in one.items()] == [i.values["friction"] for i in two.items()]
-    other = study_from_dict({**base, "study": {"samples": 50, "seed": 8}, "vary": one.base and {"friction": {"distribution": "normal", "mean": 0.6, "std": 0.05}}})
-    assert [i.values["friction"] for i in one.items()] != [i.values["friction"] for i in other.items()]
+    friction = {"distribution": "normal", "mean": 0.6, "std": 0.05}
+    cohesion = {"distribution": "uniform", "min": 0.0, "max": 1.0}
+    one = make(str(BLOCK), {"friction": friction}, samples=50, seed=7)
+    two = make(str(BLOCK), {"cohesion": cohesion, "friction": friction}, samples=50, seed=7)
+    other = make(str(BLOCK), {"friction": friction}, samples=50, seed=8)
+
+    def drawn(study: Any) -> List[float]:
+        return [item.values["friction"] for item in study.items()]
+
+    assert drawn(one) == drawn(two)  # another variation changes nothing
+    assert drawn(one) != drawn(other)
+    assert len(set(drawn(one))) == 50
 
 
 @pytest.mark.parametrize(
@@ -183,7 +194,7 @@ def test_precompression_raises_sliding_by_its_share_of_the_weight() -> None:
     """A block under a top beam slides with it on the base: lambda W = mu (W + P), lambda = mu (1 + P / W)."""
     data = table(BLOCK)
     data["top"] = {"rotation": "fixed", "force": [0.0, 0.0]}
-    study = study_from_dict({"format": 1, "case": data, "study": {"methods": ["limit", "static"]}, "vary": {"precompression": {"values": [0.0, 500.0, 2000.0]}}})
+    study = make(data, {"precompression": {"values": [0.0, 500.0, 2000.0]}}, methods=["limit", "static"])
     weight = 1000.0 * 9.81 * 0.4 * 0.175  # [N]
     for item in study.items():
         case = study.case(item)
@@ -195,9 +206,7 @@ def test_precompression_raises_sliding_by_its_share_of_the_weight() -> None:
 def test_openings_move_and_resize_about_their_centre() -> None:
     data = table(WALL1)
     data["geometry"]["running_bond"]["openings"] = [[0.3, 0.3, 0.75, 0.75]]
-    study = study_from_dict(
-        {"format": 1, "case": data, "vary": {"opening_x": {"values": [1.2]}, "opening_height": {"values": [0.2]}}}
-    )
+    study = make(data, {"opening_x": {"values": [1.2]}, "opening_height": {"values": [0.2]}})
     case = study.case(study.item(0))
     moved = [0.975, 0.425, 1.425, 0.625]  # centre x 1.2, width 0.45 kept; centre y 0.525 kept, height 0.2
     rb = dict(data["geometry"]["running_bond"], openings=[moved])
@@ -216,7 +225,7 @@ def limit_of(study: Any, direction: str) -> float:
 
 def test_minus_x_of_a_symmetric_wall_is_its_plus_x() -> None:
     """Wall 1 is its own mirror image (courses H F F F F H and F F F F F): the same collapse both ways."""
-    study = study_from_dict({"format": 1, "case": str(WALL1), "vary": {"direction": {"values": ["+x", "-x"]}}})
+    study = make(str(WALL1), {"direction": {"values": ["+x", "-x"]}})
     plus, minus = limit_of(study, "+x"), limit_of(study, "-x")
     assert plus == pytest.approx(0.6429, abs=1e-4)
     assert minus == pytest.approx(plus, rel=1e-9)
@@ -227,7 +236,7 @@ def test_minus_x_is_the_push_towards_minus_x() -> None:
     of the wall itself pushed towards -x, found by driving its control point to -10 mm."""
     data = table(WALL1)
     data["geometry"]["running_bond"]["openings"] = [[0.3, 0.3, 0.75, 0.75]]
-    study = study_from_dict({"format": 1, "case": data, "vary": {"direction": {"values": ["+x", "-x"]}}})
+    study = make(data, {"direction": {"values": ["+x", "-x"]}})
     plus, minus = limit_of(study, "+x"), limit_of(study, "-x")
     assert abs(plus - minus) > 0.05  # not symmetric
     model = case_from_dict(data).build_model()
@@ -256,13 +265,10 @@ def serial_row(method: str, friction: float, direction: str) -> Any:
 
 def test_grid_gives_the_serial_results(client: Any) -> None:
     frictions = [0.45, 0.55, 0.6, 0.65, 0.7]
-    study = study_from_dict(
-        {
-            "format": 1,
-            "case": str(WALL1),
-            "study": {"methods": ["static", "limit"]},
-            "vary": {"friction": {"values": frictions, "associative": True}, "direction": {"values": ["+x", "-x"]}},
-        }
+    study = make(
+        str(WALL1),
+        {"friction": {"values": frictions, "associative": True}, "direction": {"values": ["+x", "-x"]}},
+        methods=["static", "limit"],
     )
     frame = run_study(study, scheduler=client, chunk=3)
     assert len(frame) == 20 and list(frame["row"]) == list(range(20))
@@ -277,7 +283,7 @@ def test_grid_gives_the_serial_results(client: Any) -> None:
 def test_friction_grid_of_a_sliding_block_is_exact(client: Any) -> None:
     """A block on its base slides at lambda = friction (examples/single-block-sliding.toml)."""
     frictions = [0.2, 0.35, 0.5, 0.65, 0.8]
-    study = study_from_dict({"format": 1, "case": str(BLOCK), "study": {"methods": ["limit", "static"]}, "vary": {"friction": {"values": frictions}}})
+    study = make(str(BLOCK), {"friction": {"values": frictions}}, methods=["limit", "static"])
     frame = run_study(study, scheduler=client)
     assert (frame["status"] == "collapse").all()
     for method, rel in (("limit", 1e-6), ("static", 1e-4)):
@@ -286,13 +292,12 @@ def test_friction_grid_of_a_sliding_block_is_exact(client: Any) -> None:
 
 
 def test_a_bad_sample_gives_a_row_with_its_error(client: Any) -> None:
-    study = study_from_dict(
-        {
-            "format": 1,
-            "case": str(BLOCK),
-            "study": {"methods": ["limit"], "samples": 12, "seed": 2},
-            "vary": {"friction": {"distribution": "uniform", "min": -0.4, "max": 0.6}},
-        }
+    study = make(
+        str(BLOCK),
+        {"friction": {"distribution": "uniform", "min": -0.4, "max": 0.6}},
+        methods=["limit"],
+        samples=12,
+        seed=2,
     )
     frame = run_study(study, scheduler=client)
     assert list(frame["row"]) == list(range(12))
@@ -306,13 +311,16 @@ def test_a_bad_sample_gives_a_row_with_its_error(client: Any) -> None:
 
 
 def limit_study(n: int = 24) -> Any:
-    return study_from_dict(
+    return make(
+        str(WALL1),
         {
-            "format": 1,
-            "case": str(WALL1),
-            "study": {"methods": ["limit"], "samples": n // 2, "seed": 9, "chunk": 2},
-            "vary": {"friction": {"distribution": "normal", "mean": 0.65, "std": 0.05, "associative": True}, "direction": {"values": ["+x", "-x"]}},
-        }
+            "friction": {"distribution": "normal", "mean": 0.65, "std": 0.05, "associative": True},
+            "direction": {"values": ["+x", "-x"]},
+        },
+        methods=["limit"],
+        samples=n // 2,
+        seed=9,
+        chunk=2,
     )
 
 
@@ -349,7 +357,7 @@ def test_resume_refuses_another_study(client: Any, tmp_path: Path) -> None:
 
 
 def test_builder_as_the_base(client: Any) -> None:
-    study = study_from_dict({"format": 1, "case": sliding_block, "study": {"methods": ["limit"]}, "vary": {"mu": {"values": [0.3, 0.4]}}})
+    study = make(sliding_block, {"mu": {"values": [0.3, 0.4]}}, methods=["limit"])
     frame = run_study(study, scheduler=client)
     assert frame["collapse_multiplier"].to_numpy() == pytest.approx([0.3, 0.4], rel=1e-6)
 
@@ -360,10 +368,24 @@ def sliding_block(mu: float) -> Any:
 
 def test_command_line(client: Any, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     study_file = tmp_path / "s.toml"
-    study_file.write_text(f'format = 1\ncase = "{BLOCK}"\n[study]\nmethods = ["limit"]\n[vary.friction]\nvalues = [0.3, 0.5]\n')
+    study_file.write_text(
+        f'format = 1\ncase = "{BLOCK}"\n[study]\nmethods = ["limit"]\n[vary.friction]\nvalues = [0.3, 0.5]\n'
+    )
     out, csv, plot = tmp_path / "s.parquet", tmp_path / "s.csv", tmp_path / "s.png"
     address = client.scheduler.address
-    args = ["study", str(study_file), "--scheduler", address, "--out", str(out), "--csv", str(csv), "--plot", str(plot), "-q"]
+    args = [
+        "study",
+        str(study_file),
+        "--scheduler",
+        address,
+        "--out",
+        str(out),
+        "--csv",
+        str(csv),
+        "--plot",
+        str(plot),
+        "-q",
+    ]
     assert cli.main(args) == 0
     printed = capsys.readouterr().out
     assert "2 collapse" in printed and f"wrote {plot}" in printed
@@ -377,13 +399,12 @@ def test_command_line(client: Any, tmp_path: Path, capsys: pytest.CaptureFixture
 
 def test_a_killed_worker_loses_no_row(client: Any) -> None:
     """One worker is killed (SIGKILL) in the middle of the study: its tasks run again elsewhere."""
-    study = study_from_dict(
-        {
-            "format": 1,
-            "case": str(WALL1),
-            "study": {"methods": ["static"], "samples": 30, "chunk": 3},
-            "vary": {"friction": {"distribution": "uniform", "min": 0.55, "max": 0.75, "associative": True}},
-        }
+    study = make(
+        str(WALL1),
+        {"friction": {"distribution": "uniform", "min": 0.55, "max": 0.75, "associative": True}},
+        methods=["static"],
+        samples=30,
+        chunk=3,
     )
     killed: List[int] = []
 
@@ -415,7 +436,7 @@ def test_an_analysis_that_kills_its_worker_is_lost_alone() -> None:
 
     from masonry_dem.study.runner import local_cluster
 
-    study = study_from_dict({"format": 1, "case": crashing_block, "study": {"methods": ["limit"], "chunk": 2}, "vary": {"mu": {"values": [0.3, 0.9]}}})
+    study = make(crashing_block, {"mu": {"values": [0.3, 0.9]}}, methods=["limit"], chunk=2)
     with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
         cluster = local_cluster(1)
     with cluster, Client(cluster) as c:
@@ -462,7 +483,9 @@ def test_scheduler_and_workers_of_their_own(tmp_path: Path) -> None:
     port = free_port()
     address = f"tcp://127.0.0.1:{port}"
     flags = dict(stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=tmp_path)
-    processes = [subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"], **flags)]
+    processes = [
+        subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"], **flags)
+    ]
     try:
         processes += [
             subprocess.Popen([dask, "worker", address, "--nthreads", "1", "--no-dashboard", "--nworkers", "1"], **flags)
@@ -472,7 +495,7 @@ def test_scheduler_and_workers_of_their_own(tmp_path: Path) -> None:
 
         with Client(address, timeout=60) as c:
             c.wait_for_workers(2, timeout=60)
-            study = study_from_dict({"format": 1, "case": str(BLOCK), "study": {"methods": ["limit"]}, "vary": {"friction": {"values": [0.3, 0.4, 0.5, 0.6]}}})
+            study = make(str(BLOCK), {"friction": {"values": [0.3, 0.4, 0.5, 0.6]}}, methods=["limit"])
             frame = run_study(study, scheduler=address)
             assert len(c.scheduler_info()["workers"]) == 2
         assert frame["collapse_multiplier"].to_numpy() == pytest.approx([0.3, 0.4, 0.5, 0.6], rel=1e-6)

@@ -56,16 +56,16 @@ class Variation:
     associative: bool = False
     opening: int = 0
 
-    def draw(self, rng: np.random.Generator) -> float:
-        """One value, by the inverse distribution function of one uniform number of ``rng``."""
-        u = float(rng.random())
-        if self.distribution == "uniform":
-            assert self.low is not None and self.high is not None
-            return self.low + u * (self.high - self.low)
+    def _normal(self) -> NormalDist:
+        """The normal distribution of the variable (normal) or of its logarithm (lognormal)."""
         assert self.mean is not None and self.std is not None
-        log = self.distribution == "lognormal"
-        mu, sigma = lognormal_parameters(self.mean, self.std) if log else (self.mean, self.std)
-        normal = NormalDist(mu, sigma)
+        if self.distribution == "lognormal":
+            return NormalDist(*lognormal_parameters(self.mean, self.std))
+        return NormalDist(self.mean, self.std)
+
+    def window(self) -> Tuple[float, float]:
+        """The probabilities (P(X < low), P(X < high)) of a normal or lognormal variable: the truncation."""
+        normal, log = self._normal(), self.distribution == "lognormal"
 
         def cdf(x: Optional[float], default: float) -> float:
             if x is None:
@@ -74,10 +74,18 @@ class Variation:
                 return normal.cdf(math.log(x)) if x > 0 else 0.0
             return normal.cdf(x)
 
-        a, b = cdf(self.low, 0.0), cdf(self.high, 1.0)
+        return cdf(self.low, 0.0), cdf(self.high, 1.0)
+
+    def draw(self, rng: np.random.Generator) -> float:
+        """One value, by the inverse distribution function of one uniform number of ``rng``."""
+        u = float(rng.random())
+        if self.distribution == "uniform":
+            assert self.low is not None and self.high is not None
+            return self.low + u * (self.high - self.low)
+        a, b = self.window()
         p = min(max(a + u * (b - a), 1e-300), 1.0 - 1e-16)
-        x = normal.inv_cdf(p)
-        x = math.exp(x) if log else x
+        x = self._normal().inv_cdf(p)
+        x = math.exp(x) if self.distribution == "lognormal" else x
         lo = -math.inf if self.low is None else self.low
         hi = math.inf if self.high is None else self.high
         return min(max(x, lo), hi)  # rounding never leaves the window
@@ -203,7 +211,9 @@ class Study:
 # --------------------------------------------------------------------------------------------------
 
 
-def apply_values(base: Mapping[str, Any], values: Mapping[str, Any], variations: Mapping[str, Variation]) -> Dict[str, Any]:
+def apply_values(
+    base: Mapping[str, Any], values: Mapping[str, Any], variations: Mapping[str, Variation]
+) -> Dict[str, Any]:
     """A copy of the case table ``base`` with the parameters ``values`` set (the direction is applied to the
     checked case, :func:`mirrored`). Names: a joint-law key (the [joints] default law), FAMILY.KEY, thickness,
     density, block_length, block_height, courses, length, gravity, precompression (the downward dead force on
@@ -321,4 +331,3 @@ def _course_edges(
 def _inside(block: Sequence[float], opening: Sequence[float]) -> bool:
     cx, cy = (block[0] + block[2]) / 2, (block[1] + block[3]) / 2
     return opening[0] < cx < opening[2] and opening[1] < cy < opening[3]
-

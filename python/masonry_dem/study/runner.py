@@ -49,8 +49,9 @@ Progress = Callable[[int, int, int], None]
 
 def local_cluster(workers: Optional[int] = None) -> Any:
     """A ``LocalCluster`` of ``workers`` processes (default: one per core), one thread each, without the
-    dashboard, without Dask's MALLOC_TRIM_THRESHOLD_ nor its profiler. Its processes ignore Ctrl-C (SIGINT, which a terminal sends to every process of the command):
-    this process stops the study and closes them, without a traceback from each."""
+    dashboard, without Dask's MALLOC_TRIM_THRESHOLD_ nor its profiler. Its processes ignore Ctrl-C (SIGINT,
+    which a terminal sends to every process of the command): this process stops the study and closes them,
+    without a traceback from each."""
     import dask
     from distributed import LocalCluster
 
@@ -171,7 +172,9 @@ def _rows(future: Any, study: Study, items: Sequence[Item]) -> Optional[List[Dic
         return [failed_row(study, item, "error", f"{type(exc).__name__}: {exc}") for item in items]
 
 
-def _compute(client: Any, study: Study, chunks: _Chunks, store: ResultStore, on_rows: Callable[[List[Dict[str, Any]]], None]) -> None:
+def _compute(
+    client: Any, study: Study, chunks: _Chunks, store: ResultStore, on_rows: Callable[[List[Dict[str, Any]]], None]
+) -> None:
     """Run the chunks on ``client``, keeping :data:`IN_FLIGHT` tasks per worker, until none is left."""
     from distributed import as_completed
 
@@ -258,4 +261,3 @@ def run_study(
             exc.results = written  # type: ignore[attr-defined]
         raise
     return store.finish()
-

@@ -11,12 +11,10 @@ value is tried on it (a value the case file would refuse is refused here, with i
 
 from __future__ import annotations
 
-import math
 import os
 import sys
 from pathlib import Path
-from statistics import NormalDist
-from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Tuple, Union
 
 from .._core import InputError
 from ..case import METHODS, case_from_dict, parse_case
@@ -29,7 +27,6 @@ from .model import (
     Texture,
     Variation,
     apply_values,
-    lognormal_parameters,
 )
 
 if sys.version_info >= (3, 11):
@@ -44,7 +41,19 @@ STUDY_FORMAT = 1
 TOP_KEYS = ("format", "title", "case", "study", "vary")
 STUDY_KEYS = ("methods", "samples", "seed", "chunk")
 #: The keys of a variation table ([vary.NAME]).
-VARIATION_KEYS = ("values", "start", "stop", "count", "distribution", "min", "max", "mean", "std", "associative", "opening")
+VARIATION_KEYS = (
+    "values",
+    "start",
+    "stop",
+    "count",
+    "distribution",
+    "min",
+    "max",
+    "mean",
+    "std",
+    "associative",
+    "opening",
+)
 TEXTURE_KEYS = ("length_std", "height_std", "bond", "min_fraction")
 BONDS = ("running", "random")
 #: The parameters a [vary] table may name besides the joint-law keys (and the families' tables of them):
@@ -95,8 +104,10 @@ def study_from_dict(
     top = _Table(data, "", source, TOP_KEYS)
     if "format" not in top:
         raise top.error(f"missing key 'format' at the top level (expected format = {STUDY_FORMAT})", "format")
-    if top.integer("format") != STUDY_FORMAT:
-        raise top.key_error("format", f"expected {STUDY_FORMAT} (this version of masonry-dem reads format {STUDY_FORMAT})")
+    found = top.integer("format")
+    if found != STUDY_FORMAT:
+        reads = f"this version of masonry-dem reads format {STUDY_FORMAT}"
+        raise top.key_error("format", f"expected {STUDY_FORMAT}, got {found} ({reads})")
     title = str(top.string("title", default_title))
     base, inputs = _base_case(top, Path(base_dir))
     options = top.table("study", STUDY_KEYS)
@@ -190,10 +201,9 @@ def _vary(top: _Table, base: Any) -> Tuple[List[Variation], Optional[Texture]]:
 
 
 def _parameter_names() -> List[str]:
-    return list(LAW_KEYS) + list(FAMILIES) + list(WALL_PARAMETERS + RUNNING_BOND_PARAMETERS + OTHER_PARAMETERS) + [
-        "direction",
-        "texture",
-    ]
+    """The names a [vary] table of a case may hold."""
+    named = WALL_PARAMETERS + RUNNING_BOND_PARAMETERS + OTHER_PARAMETERS + ("direction", "texture")
+    return list(LAW_KEYS + FAMILIES + named)
 
 
 def _variation(parent: _Table, key: str, base: Any, name: str) -> Variation:
@@ -203,7 +213,10 @@ def _variation(parent: _Table, key: str, base: Any, name: str) -> Variation:
     kinds = [k for k in ("values", "start", "distribution") if k in table]
     if len(kinds) != 1:
         got = "none" if not kinds else " and ".join(kinds)
-        raise table.error(f"[{table.path}] needs exactly one of values, start (with stop and count), distribution; got {got}", table.path)
+        raise table.error(
+            f"[{table.path}] needs exactly one of values, start (with stop and count), distribution; got {got}",
+            table.path,
+        )
     _check_options(table, name)
     options = dict(
         associative=_boolean(table, "associative"),
@@ -256,7 +269,9 @@ def _grid_values(table: _Table, integer: bool) -> Tuple[Any, ...]:
         if integer:
             for i, v in enumerate(items):
                 if isinstance(v, bool) or not isinstance(v, int):
-                    raise table.error(f"{table.where('values')}[{i}]: expected an integer, {_got(v)}", table.where("values"))
+                    raise table.error(
+                        f"{table.where('values')}[{i}]: expected an integer, {_got(v)}", table.where("values")
+                    )
             return tuple(items)
         return tuple(table.numbers(table.where("values"), items))
     if integer:
@@ -284,18 +299,10 @@ def _distribution(table: _Table) -> Dict[str, Any]:
     std = table.number("std", check=_positive)
     if kind == "lognormal" and low is not None and low < 0:
         raise table.key_error("min", f"a lognormal variable is positive: must be >= 0, got {low:g}")
-    mu, sigma = (mean, std) if kind == "normal" else lognormal_parameters(mean, std)
-    _check_window(table, kind, NormalDist(mu, sigma), low, high)
+    a, b = Variation("", distribution=kind, low=low, high=high, mean=mean, std=std).window()
+    if b - a < 1e-9:  # no value could be drawn
+        raise table.key_error("min" if low is not None else "max", "the window [min, max] holds no probability")
     return dict(distribution=kind, low=low, high=high, mean=mean, std=std)
-
-
-def _check_window(table: _Table, kind: str, normal: NormalDist, low: Optional[float], high: Optional[float]) -> None:
-    """A truncation window must hold some probability (else no value can be drawn)."""
-    to_normal = (lambda x: math.log(x) if x > 0 else -math.inf) if kind == "lognormal" else (lambda x: x)
-    lo = 0.0 if low is None else normal.cdf(to_normal(low)) if math.isfinite(to_normal(low)) else 0.0
-    hi = 1.0 if high is None else normal.cdf(to_normal(high))
-    if hi - lo < 1e-9:
-        raise table.key_error("min" if low is not None else "max", "the window [min, max] holds no probability of the distribution")
 
 
 def _texture(vary: _Table, base: Mapping[str, Any]) -> Texture:
@@ -303,7 +310,9 @@ def _texture(vary: _Table, base: Mapping[str, Any]) -> Texture:
     table = vary.table("texture", TEXTURE_KEYS)
     assert table is not None
     if "running_bond" not in base.get("geometry", {}):
-        raise table.error("vary.texture: the base case's [geometry] must be a running_bond (a texture perturbs it)", "vary.texture")
+        raise table.error(
+            "vary.texture: the base case's [geometry] must be a running_bond (a texture perturbs it)", "vary.texture"
+        )
     fraction = table.number("min_fraction", 0.25, lambda x: None if 0 < x < 1 else "must lie in (0, 1)")
     return Texture(
         length_std=table.number("length_std", 0.0, _non_negative),
@@ -323,7 +332,9 @@ def _check_on_case(table: _Table, variation: Variation, base: Mapping[str, Any])
     if name in OPENING_PARAMETERS and variation.opening >= len(rb.get("openings", [])):  # type: ignore[union-attr]
         raise table.key_error("opening", f"the base case has no opening {variation.opening} (they are numbered from 0)")
     if name == "precompression" and "top" not in base:
-        raise table.error(f"{table.path}: precompression is a force on the top beam: the base case needs a [top] table", table.path)
+        raise table.error(
+            f"{table.path}: precompression is a force on the top beam: the base case needs a [top] table", table.path
+        )
     for i, value in enumerate(variation.values or ()):
         if name == "direction":
             continue

@@ -103,7 +103,9 @@ class ResultStore:
     without it, an existing ``path`` is refused. ``csv``: also write the table as CSV at the end.
     """
 
-    def __init__(self, study: Study, path: Optional[PathLike] = None, csv: Optional[PathLike] = None, resume: bool = False):
+    def __init__(
+        self, study: Study, path: Optional[PathLike] = None, csv: Optional[PathLike] = None, resume: bool = False
+    ):
         self.study, self.path, self.csv = study, None if path is None else Path(path), csv
         self.schema = schema(study)
         self.tables: List[pa.Table] = []

@@ -44,7 +44,11 @@ def weakest(frame: pd.DataFrame, n: int = WEAKEST) -> pd.DataFrame:
 
 
 def _values_text(row: Any, study: Study) -> str:
-    parts = [f"{name} {row[name]:.4g}" if isinstance(row[name], float) else f"{name} {row[name]}" for name in study.parameters if name != "direction"]
+    parts = [
+        f"{name} {row[name]:.4g}" if isinstance(row[name], float) else f"{name} {row[name]}"
+        for name in study.parameters
+        if name != "direction"
+    ]
     if "direction" in study.parameters:
         parts.append(str(row["direction"]))
     if study.texture is not None or study.random:
@@ -66,24 +70,31 @@ def summary_text(frame: pd.DataFrame, study: Study) -> str:
     if failed:
         first = frame[frame["status"].isin(FAILED_STATUSES)].iloc[0]
         lines.append(f"  failed:              {failed:,}; the first, row {first['row']}: {first['error']}")
-    symbol = multiplier_symbol(live) + "u"
     for method in study.methods:
         values = collapses(frame[frame["method"] == method])["collapse_multiplier"].to_numpy()
-        if len(values) == 0:
-            lines.append(f"  {method + ':':<21}no collapse")
-            continue
-        q = np.quantile(values, QUANTILES)
-        shown = lambda x: format_multiplier(float(x), live)  # noqa: E731
-        lines.append(
-            f"  {method + ':':<21}{symbol} min {shown(values.min())}, 5% {shown(q[0])}, median {shown(q[1])}, "
-            f"mean {shown(values.mean())}, 95% {shown(q[2])}, max {shown(values.max())} ({len(values):,} collapses)"
-        )
+        lines.append(f"  {method + ':':<21}{_statistics(values, live)}")
     for _, row in weakest(frame).iterrows():
-        lines.append(
-            f"  weakest:             row {row['row']} ({row['method']}): {format_multiplier(row['collapse_multiplier'], live)}"
-            + (f", {_values_text(row, study)}" if _values_text(row, study) else "")
-        )
+        values = _values_text(row, study)
+        shown = format_multiplier(row["collapse_multiplier"], live)
+        text = f"row {row['row']} ({row['method']}): {shown}" + (f", {values}" if values else "")
+        lines.append(f"  weakest:             {text}")
     return "\n".join(lines)
+
+
+def _statistics(values: np.ndarray, live: str) -> str:
+    """The collapse multipliers' minimum, quantiles, mean and maximum, in one line."""
+    if len(values) == 0:
+        return "no collapse"
+
+    def shown(x: float) -> str:
+        return format_multiplier(float(x), live)
+
+    q = np.quantile(values, QUANTILES)
+    symbol = multiplier_symbol(live) + "u"
+    return (
+        f"{symbol} min {shown(values.min())}, 5% {shown(q[0])}, median {shown(q[1])}, mean {shown(values.mean())}, "
+        f"95% {shown(q[2])}, max {shown(values.max())} ({len(values):,} collapses)"
+    )
 
 
 def _plot_distribution(ax_hist: Any, ax_cdf: Any, frame: pd.DataFrame, study: Study, live: str) -> None:
@@ -92,14 +103,23 @@ def _plot_distribution(ax_hist: Any, ax_cdf: Any, frame: pd.DataFrame, study: St
     rows = collapses(frame)
     if len(rows) == 0:
         return
-    edges = np.histogram_bin_edges(rows["collapse_multiplier"] * factor, bins=min(50, max(5, int(math.sqrt(len(rows))))))
+    edges = np.histogram_bin_edges(
+        rows["collapse_multiplier"] * factor, bins=min(50, max(5, int(math.sqrt(len(rows)))))
+    )
     for method in study.methods:
         values = np.sort(rows[rows["method"] == method]["collapse_multiplier"].to_numpy()) * factor
         if len(values) == 0:
             continue
         colour = _METHOD_COLOURS.get(method, "black")
-        ax_hist.hist(values, bins=edges, color=colour, alpha=0.45, histtype="stepfilled", edgecolor=colour,
-                     label=f"{method} ({len(values):,})")
+        ax_hist.hist(
+            values,
+            bins=edges,
+            color=colour,
+            alpha=0.45,
+            histtype="stepfilled",
+            edgecolor=colour,
+            label=f"{method} ({len(values):,})",
+        )
         ax_cdf.step(values, np.arange(1, len(values) + 1) / len(values), where="post", color=colour, label=method)
     ax_hist.set_xlabel(label)
     ax_hist.set_ylabel("analyses")
@@ -130,7 +150,14 @@ def _plot_parameter(ax: Any, frame: pd.DataFrame, study: Study, name: str, live:
             x = x.astype(str).map({c: i for i, c in enumerate(categories)}).astype(float)
             x = x + np.random.default_rng(0).uniform(-0.15, 0.15, len(x))
             ax.set_xticks(range(len(categories)), categories)
-        ax.scatter(x, part["collapse_multiplier"] * factor, s=8, alpha=0.5, color=_METHOD_COLOURS.get(method, "black"), label=method)
+        ax.scatter(
+            x,
+            part["collapse_multiplier"] * factor,
+            s=8,
+            alpha=0.5,
+            color=_METHOD_COLOURS.get(method, "black"),
+            label=method,
+        )
     ax.set_xlabel(name)
     ax.set_ylabel(label)
     ax.grid(alpha=0.3)
@@ -153,9 +180,9 @@ def _plot_weakest(axes: Sequence[Any], frame: pd.DataFrame, study: Study, live: 
             _as_pushed_left(ax, np.asarray(case.model.blocks))
         text = ax.get_title().split("\n")[-1]
         values = _values_text(row, study)
+        shown = format_multiplier(float(row["collapse_multiplier"]), live, symbol=True)
         ax.set_title(
-            f"row {row['row']} ({row['method']}): {format_multiplier(float(row['collapse_multiplier']), live, symbol=True)}"
-            + (f"\n{values}" if values else "") + f"\n{text}",
+            f"row {row['row']} ({row['method']}): {shown}" + (f"\n{values}" if values else "") + f"\n{text}",
             fontsize=9,
         )
 
@@ -201,9 +228,15 @@ def summary_figure(
         k = len(parameters)
         ax = fig.add_subplot(grid[1 + k // columns, k % columns :])
         ax.set_axis_off()
-        lines = [line.strip() for line in summary_text(frame, study).splitlines()[1:] if not line.strip().startswith("weakest")]
+        lines = [
+            line.strip()
+            for line in summary_text(frame, study).splitlines()[1:]
+            if not line.strip().startswith("weakest")
+        ]
         wrapped = [textwrap.fill(line, 62, subsequent_indent="    ") for line in lines]
-        ax.text(0.0, 1.0, "\n".join(wrapped), va="top", ha="left", fontsize=9, family="monospace", transform=ax.transAxes)
+        ax.text(
+            0.0, 1.0, "\n".join(wrapped), va="top", ha="left", fontsize=9, family="monospace", transform=ax.transAxes
+        )
     if mechanisms:
         axes: List[Any] = [fig.add_subplot(grid[len(heights) - 1, k]) for k in range(mechanisms)]
         _plot_weakest(axes, frame, study, live)

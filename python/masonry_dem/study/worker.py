@@ -67,7 +67,8 @@ def solve(study: Study, item: Item) -> Any:
     """Build and solve one analysis: (results, model)."""
     if callable(study.base):
         model = study.base(**item.values)
-        return getattr(model, f"solve_{item.method}")(), model
+        options = {"threads": 1} if item.method == "dynamic" else {}  # one thread per worker
+        return getattr(model, f"solve_{item.method}")(**options), model
     case = study.case(item)
     model = case.build_model()
     return case.solve(model, item.method), model
