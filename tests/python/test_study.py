@@ -324,6 +324,21 @@ def limit_study(n: int = 24) -> Any:
     )
 
 
+def test_dynamic_method_in_workers(client: Any) -> None:
+    """The explicit solver, one thread in each worker, on the sliding block: lambda = friction to its tolerance."""
+    frame = run_study(make(str(BLOCK), {"friction": {"values": [0.4, 0.6]}}, methods=["dynamic"]), scheduler=client)
+    assert (frame["status"] == "collapse").all()
+    assert frame["collapse_multiplier"].to_numpy() == pytest.approx([0.4, 0.6], rel=2e-3)
+
+
+def test_textures_are_the_same_for_every_method_of_a_sample() -> None:
+    texture = {"length_std": 0.2, "height_std": 0.1, "bond": "random"}
+    study = make(str(WALL1), {"texture": texture}, samples=2, methods=["static", "limit"])
+    blocks = [np.asarray(study.case(item).model.blocks) for item in study.items()]
+    assert np.array_equal(blocks[0], blocks[1]) and np.array_equal(blocks[2], blocks[3])
+    assert blocks[0].shape != blocks[2].shape or not np.array_equal(blocks[0], blocks[2])
+
+
 def test_resumed_study_recomputes_nothing(client: Any, tmp_path: Path) -> None:
     study, out = limit_study(), tmp_path / "r.parquet"
     whole = run_study(study, scheduler=client)
