@@ -385,26 +385,15 @@ def test_command_line(client: Any, tmp_path: Path, capsys: pytest.CaptureFixture
     study_file = tmp_path / "s.toml"
     study_file.write_text(
         f'format = 1\ncase = "{BLOCK}"\n[study]\nmethods = ["limit"]\n[vary.friction]\nvalues = [0.3, 0.5]\n'
+        '[vary.direction]\nvalues = ["+x", "-x"]\n'
     )
     out, csv, plot = tmp_path / "s.parquet", tmp_path / "s.csv", tmp_path / "s.png"
-    address = client.scheduler.address
-    args = [
-        "study",
-        str(study_file),
-        "--scheduler",
-        address,
-        "--out",
-        str(out),
-        "--csv",
-        str(csv),
-        "--plot",
-        str(plot),
-        "-q",
-    ]
+    outputs = ["--out", str(out), "--csv", str(csv), "--plot", str(plot)]
+    args = ["study", str(study_file), "--scheduler", client.scheduler.address, *outputs, "-q"]
     assert cli.main(args) == 0
     printed = capsys.readouterr().out
-    assert "2 collapse" in printed and f"wrote {plot}" in printed
-    assert list(pd.read_csv(csv)["collapse_multiplier"]) == pytest.approx([0.3, 0.5])
+    assert "4 collapse" in printed and f"wrote {plot}" in printed
+    assert list(pd.read_csv(csv)["collapse_multiplier"]) == pytest.approx([0.3, 0.3, 0.5, 0.5])
     assert plot.stat().st_size > 10_000
     assert cli.main(args) == 2  # the results exist: --resume, or remove them
     assert "--resume" in capsys.readouterr().err

@@ -20,7 +20,7 @@ import pandas as pd
 
 from ..report import format_multiplier, multiplier_symbol
 from .model import Study
-from .worker import FAILED_STATUSES
+from .worker import FAILED_STATUSES, solve
 
 #: The mechanisms drawn (the weakest analyses) and the quantiles printed.
 WEAKEST = 3
@@ -169,15 +169,10 @@ def _plot_weakest(axes: Sequence[Any], frame: pd.DataFrame, study: Study, live: 
 
     for ax, (_, row) in zip(axes, weakest(frame, len(axes)).iterrows()):
         item = study.item(int(row["row"]))
-        if callable(study.base):
-            ax.set_axis_off()
-            continue
-        case = study.case(item)
-        model = case.build_model()
-        results = case.solve(model, item.method)
+        results, model = solve(study, item)  # as the worker did: the same numbers
         plot_mechanism(ax, model, results)
         if item.values.get("direction") == "-x":
-            _as_pushed_left(ax, np.asarray(case.model.blocks))
+            _as_pushed_left(ax, np.asarray(model.rects)[: model.n_blocks])
         text = ax.get_title().split("\n")[-1]
         values = _values_text(row, study)
         shown = format_multiplier(float(row["collapse_multiplier"]), live, symbol=True)
