@@ -15,20 +15,7 @@
     .venv/bin/python benches/study_scaling.py [--analyses 1000] [--repeat 5]
 
 The plain loop, the study on one worker and on two take turns ``--repeat`` times (each cluster started for its
-turn, timed on its second run); each timing is the median. On the project's machine (2 vCPUs, shared with
-other work; 2026-11-24; the same analyses in two plain processes run 1.93 to 1.95 x faster than in one):
-
-    in the worker, per analysis (medians): the analysis (model and solver), the case from the study's data, the rest of the row
-      static  analysis 4.62 ms; case 0.059 ms, rest +0.011 ms: 0.069 ms (1.5 % of the analysis)
-      limit   analysis 0.937 ms; case 0.052 ms, rest +0.013 ms: 0.065 ms (6.9 % of the analysis)
-    end to end, 1 worker, 1,000 analyses written to Parquet: static 5.76 s against 5.74 s for the analyses alone
-      in a plain loop: +0.017 ms an analysis (+0.29 %)
-    1,000 analyses of wall 1: static 1 worker 5.76 s, 2 workers 3.07 s: 1.88 x
-    the example (1,000 samples), command line end to end: 5.54 s
-
-Runs of the whole script vary by a few percent on this machine (end to end +0.3 to +3.8 %; 1.79 to 1.88 x
-before the workers' profiler was turned off, 1.88 x after).
-(Re-run it and replace these lines when the core or the study machinery changes.)
+turn, timed on its second run); each timing is the median. The figures are in BENCHMARKS.md (Studies).
 """
 
 from __future__ import annotations
