@@ -22,9 +22,10 @@ develop: $(VENV)/.deps
 demo: develop
 	$(VENV)/bin/masonry-dem demo --plot out/demo.png
 
-# clippy on every crate and target, warnings as errors, then the Rust tests
+# clippy on every crate and target and the crate's docs, warnings as errors, then the Rust tests
 rust-test:
 	cargo clippy --release --workspace --all-targets -q -- -D warnings
+	RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -q -p masonry-dem
 	cargo test --release
 
 py-test: develop

@@ -220,7 +220,7 @@ pub(crate) const POLL_EVERY: usize = 16_384;
 
 /// Finds every pair of blocks that share a stretch of boundary of positive length, and refuses
 /// overlapping blocks (naming both). `names` gives the label of a block for messages; `poll` is
-/// called every [`POLL_EVERY`] blocks or cells, and `false` stops the search
+/// called every few thousand blocks or cells, and `false` stops the search
 /// ([`Error::Interrupted`]).
 pub fn detect(
     rects: &[Rect],

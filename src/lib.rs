@@ -12,7 +12,8 @@
 //! - [`analysis`]: what the incremental analyses share (how the load is driven, progress);
 //! - [`results`]: what an analysis returns; [`error`]: the error type.
 //!
-//! Units are SI throughout: m, N, Pa, kg, s.
+//! Units are SI throughout: m, N, Pa, kg, s. Build with `--release` (`cargo build --release`,
+//! `cargo test --release`): the solvers' inner loops are many times slower in a debug build.
 //!
 //! ```
 //! use masonry_dem::geometry::{running_bond, RunningBond, FirstCourse};

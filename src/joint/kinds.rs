@@ -7,7 +7,7 @@ use super::*;
 /// the history: the elastic stiffnesses D, the columns D m_j, the products a_i . D m_j, and the
 /// factors of every active set's system (None where it is singular). A solver that maps many
 /// joints of few kinds builds one per kind ([`Prepared::new`]) and passes it to
-/// [`return_map_forces_prepared`]: the same numbers, computed once.
+/// [`return_map`](super::return_map) as `MapOptions::prepared`: the same numbers, computed once.
 #[derive(Debug, Clone)]
 pub struct Prepared {
     pub(super) d: [f64; 3],
