@@ -18,6 +18,14 @@ converged step (lambda, or the force in N for ``live = "top_horizontal"``; the h
 the control point in m). A limit analysis has no curve: its file is the header alone, and its blocks file has
 zero ``displacement`` and ``rotation`` and the collapse velocities as ``mechanism``.
 
+A time history (:class:`masonry_dem.TimeHistory`, ``Model.simulate``) is a result too: :func:`write_vtk` writes a
+time series for ParaView, ``PREFIX-blocks-NNNN.vtu`` per recorded time (:func:`history_block_mesh`: the fields of
+the blocks file with ``velocity`` (v1, v2, 0) [m/s] and ``angular_velocity`` [rad/s] instead of ``mechanism``)
+and ``PREFIX.pvd``, the collection listing them with their times [s] (open that one); no interfaces file, a time
+history has no interface forces. :func:`write_curve_csv` (with ``model=``) writes its response, header
+:data:`HISTORY_CSV_HEADER`, a row per recorded time. Its displacements are relative to the ground (the blocks
+move in the frame of the base), from the undeformed wall (:mod:`masonry_dem.history`).
+
 Every file is written atomically (:mod:`masonry_dem.atomic`): under a temporary name in its folder, synced,
 then renamed, so that a reader never sees half a file; a target that is not a regular file (a folder, a
 device, a FIFO) is refused with InputError.
@@ -27,18 +35,34 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Any, Iterable, Tuple, Union
+from typing import Any, Dict, Iterable, List, Tuple, Union
+from xml.sax.saxutils import escape
 
 import numpy as np
 
 from .atomic import atomic_file, atomic_path, check_target
+from .history import ENERGIES, control_response, is_time_history, largest_translation, record
 
-__all__ = ["write_vtk", "write_curve_csv", "block_mesh", "interface_mesh", "CSV_HEADER", "FAMILY_CODES"]
+__all__ = [
+    "write_vtk",
+    "write_curve_csv",
+    "block_mesh",
+    "history_block_mesh",
+    "interface_mesh",
+    "CSV_HEADER",
+    "HISTORY_CSV_HEADER",
+    "FAMILY_CODES",
+]
 
 PathLike = Union[str, "os.PathLike[str]"]
 
 #: The header line of the curve CSV.
 CSV_HEADER = "multiplier,displacement_m"
+
+#: The header line of a time history's CSV (units in the names: s, m, rad, J).
+HISTORY_CSV_HEADER = (
+    "time_s,displacement_m,rotation_rad,max_translation_m,kinetic_energy_J,elastic_energy_J,external_work_J,dissipated_J"
+)
 
 #: Codes of the interface families in the ``family`` field.
 FAMILY_CODES = {"bed": 0, "head": 1, "base": 2, "top": 3}
@@ -52,6 +76,32 @@ def _field(values: Any, shape: Tuple[int, ...]) -> np.ndarray:
 
 def block_mesh(model: Any, results: Any) -> Any:
     """The blocks as a :class:`meshio.Mesh` (see the module docstring for the fields)."""
+    n = len(np.asarray(model.rects).reshape(-1, 4))
+    disp = _field(results.displacements, (n, 3))
+    mech = _field(results.mechanism, (n, 3))
+    return _blocks(model, disp, {"mechanism": _vec(mech)}, exact=False)
+
+
+def history_block_mesh(model: Any, history: Any, k: int) -> Any:
+    """The blocks at the ``k``-th record of a time history as a :class:`meshio.Mesh`: the fields of
+    :func:`block_mesh` with ``velocity`` (v1, v2, 0) [m/s] and ``angular_velocity`` [rad/s] in place of
+    ``mechanism``; the corners' ``displacement`` with the rotation applied exactly (rocking turns far)."""
+    n = len(np.asarray(model.rects).reshape(-1, 4))
+    rec = record(history, k)
+    vel = _field(rec.velocities, (n, 3))
+    fields = {"velocity": _vec(vel), "angular_velocity": vel[:, 2].copy()}
+    return _blocks(model, _field(rec.displacements, (n, 3)), fields, exact=True)
+
+
+def _vec(a: np.ndarray) -> np.ndarray:
+    """(n, 3) rows (a1, a2, 0) of the translations of (n, 3) rows (a1, a2, phi)."""
+    return np.c_[a[:, 0], a[:, 1], np.zeros(len(a))]
+
+
+def _blocks(model: Any, disp: np.ndarray, fields: Dict[str, np.ndarray], exact: bool) -> Any:
+    """The blocks moved by ``disp`` ((n_all, 3): u1, u2 [m], phi [rad]) as a mesh with the cell data
+    ``displacement``, ``rotation``, then ``fields``, then ``kind`` and ``block``. The corners' displacement
+    turns them about the centroid by phi exactly if ``exact``, else linearized (u + phi k x r)."""
     import meshio
 
     rects = np.asarray(model.rects, dtype=np.float64).reshape(-1, 4)
@@ -61,36 +111,28 @@ def block_mesh(model: Any, results: Any) -> Any:
     points = np.concatenate([corners.reshape(-1, 2), np.zeros((4 * n, 1))], axis=1)
     quads = np.arange(4 * n, dtype=np.int64).reshape(n, 4)
 
-    disp = _field(results.displacements, (n, 3))
-    mech = _field(results.mechanism, (n, 3))
     kind = np.zeros(n, dtype=np.int32)
     if model.base_index is not None:
         kind[int(model.base_index)] = 1
     if model.top_index is not None:
         kind[int(model.top_index)] = 2
 
-    # corner displacements of the rigid blocks (linearized rotation about the centroid)
+    # corner displacements of the rigid blocks (rotation about the centroid)
     centroid = 0.5 * np.c_[x0 + x1, y0 + y1]
     r = corners - centroid[:, None, :]
     phi = disp[:, 2][:, None]
-    corner_u = np.stack([disp[:, 0][:, None] - phi * r[..., 1], disp[:, 1][:, None] + phi * r[..., 0]], axis=-1)
+    if exact:
+        c, s = np.cos(phi) - 1.0, np.sin(phi)
+        turn = np.stack([c * r[..., 0] - s * r[..., 1], s * r[..., 0] + c * r[..., 1]], axis=-1)
+    else:
+        turn = np.stack([-phi * r[..., 1], phi * r[..., 0]], axis=-1)
+    corner_u = disp[:, None, :2] + turn
     point_disp = np.concatenate([corner_u.reshape(-1, 2), np.zeros((4 * n, 1))], axis=1)
 
-    def vec(a: np.ndarray) -> np.ndarray:
-        return np.c_[a[:, 0], a[:, 1], np.zeros(n)]
-
-    return meshio.Mesh(
-        points,
-        [("quad", quads)],
-        point_data={"displacement": point_disp},
-        cell_data={
-            "displacement": [vec(disp)],
-            "rotation": [disp[:, 2].copy()],
-            "mechanism": [vec(mech)],
-            "kind": [kind],
-            "block": [np.arange(n, dtype=np.int32)],
-        },
-    )
+    cell_data = {"displacement": [_vec(disp)], "rotation": [disp[:, 2].copy()]}
+    cell_data.update({name: [values] for name, values in fields.items()})
+    cell_data.update({"kind": [kind], "block": [np.arange(n, dtype=np.int32)]})
+    return meshio.Mesh(points, [("quad", quads)], point_data={"displacement": point_disp}, cell_data=cell_data)
 
 
 def interface_mesh(model: Any, results: Any) -> Any:
@@ -132,53 +174,108 @@ def interface_mesh(model: Any, results: Any) -> Any:
 
 def write_vtk(
     model: Any, results: Any, path_prefix: PathLike, *, inputs: Iterable[PathLike] = ()
-) -> Tuple[Path, Path]:
-    """Write ``PATH_PREFIX-blocks.vtu`` and ``PATH_PREFIX-interfaces.vtu`` (VTK unstructured grids).
+) -> Tuple[Path, Any]:
+    """Write ``PATH_PREFIX-blocks.vtu`` and ``PATH_PREFIX-interfaces.vtu`` (VTK unstructured grids); of a
+    time history, a time series instead: ``PATH_PREFIX-blocks-NNNN.vtu`` per record and ``PATH_PREFIX.pvd``.
 
     Args:
         model: the :class:`masonry_dem.Model` analysed.
-        results: its :class:`masonry_dem.Results` (the last converged step).
+        results: its :class:`masonry_dem.Results` (the last converged step), or a
+            :class:`masonry_dem.TimeHistory` (``Model.simulate``): then one blocks file per recorded time
+            (:func:`history_block_mesh`: displacements relative to the ground, from the undeformed wall,
+            and velocities), numbered from 0, and a ParaView collection ``PATH_PREFIX.pvd`` listing them
+            with their times [s]. A time history has no interface forces or states: no interfaces file.
         path_prefix: the files' path without the ``-blocks.vtu`` / ``-interfaces.vtu`` ending; a trailing
-            ``.vtu`` is dropped. The folder is created if missing.
+            ``.vtu`` (or ``.pvd``) is dropped. The folder is created if missing.
         inputs: files that must not be overwritten (the case file): a target that is one of them, or
-            that is not a regular file, is refused with InputError before either file is written.
+            that is not a regular file, is refused with InputError before any file is written.
     Returns:
-        The paths of the blocks file and of the interfaces file.
+        The paths of the blocks file and of the interfaces file; of a time history, the path of the
+        ``.pvd`` file and the list of the blocks files, in the order of the records.
     """
     prefix = str(path_prefix)
-    if prefix.endswith(".vtu"):
-        prefix = prefix[: -len(".vtu")]
+    for ending in (".vtu", ".pvd"):
+        if prefix.endswith(ending):
+            prefix = prefix[: -len(ending)]
+    if is_time_history(results):
+        return _write_vtk_series(model, results, prefix, list(inputs))
     blocks_path, faces_path = Path(prefix + "-blocks.vtu"), Path(prefix + "-interfaces.vtu")
-    inputs = list(inputs)
-    for path in (blocks_path, faces_path):
-        check_target(path, inputs)
-    blocks_path.parent.mkdir(parents=True, exist_ok=True)
-    for path, mesh in ((blocks_path, block_mesh(model, results)), (faces_path, interface_mesh(model, results))):
-        atomic_path(path, lambda tmp, mesh=mesh: mesh.write(tmp, file_format="vtu"), inputs=inputs)
+    meshes = [(blocks_path, block_mesh(model, results)), (faces_path, interface_mesh(model, results))]
+    _write_meshes(meshes, list(inputs))
     return blocks_path, faces_path
 
 
-def write_curve_csv(results: Any, path: PathLike, *, inputs: Iterable[PathLike] = ()) -> Path:
-    """Write the load curve as CSV: header ``multiplier,displacement_m``, one row per converged step.
+def _write_meshes(meshes: List[Tuple[Path, Any]], inputs: List[PathLike]) -> None:
+    """Write each (path, mesh) as .vtu, atomically, after checking every target (the folders created)."""
+    for path, _ in meshes:
+        check_target(path, inputs)
+    for path, mesh in meshes:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        atomic_path(path, lambda tmp, mesh=mesh: mesh.write(tmp, file_format="vtu"), inputs=inputs)
+
+
+def _write_vtk_series(model: Any, history: Any, prefix: str, inputs: List[PathLike]) -> Tuple[Path, List[Path]]:
+    """The time series of :func:`write_vtk`: a blocks file per record and the ``.pvd`` collection."""
+    times = np.asarray(history.times, dtype=np.float64).reshape(-1)
+    digits = max(4, len(str(len(times) - 1)))
+    paths = [Path(f"{prefix}-blocks-{k:0{digits}d}.vtu") for k in range(len(times))]
+    pvd_path = Path(prefix + ".pvd")
+    check_target(pvd_path, inputs)
+    _write_meshes([(p, history_block_mesh(model, history, k)) for k, p in enumerate(paths)], inputs)
+    lines = ['<?xml version="1.0"?>', '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
+             "  <Collection>"]
+    for t, p in zip(times, paths):
+        lines.append(f'    <DataSet timestep="{t:.17g}" group="" part="0" file="{escape(p.name, {chr(34): "&quot;"})}"/>')
+    lines += ["  </Collection>", "</VTKFile>"]
+    pvd_path.parent.mkdir(parents=True, exist_ok=True)
+    with atomic_file(pvd_path, "w", encoding="utf-8", newline="\n", inputs=inputs) as f:
+        f.write("\n".join(lines) + "\n")
+    return pvd_path, paths
+
+
+def write_curve_csv(
+    results: Any, path: PathLike, *, inputs: Iterable[PathLike] = (), model: Any = None
+) -> Path:
+    """Write the load curve as CSV: header ``multiplier,displacement_m``, one row per converged step; of a
+    time history, its response: header :data:`HISTORY_CSV_HEADER`, one row per recorded time.
 
     ``multiplier`` is lambda (the force on the top beam in N with ``live = "top_horizontal"``),
-    ``displacement_m`` the horizontal displacement of the control point [m]. Numbers are written with 17
-    significant digits (they read back exactly); non-finite values as ``nan``. Read it back with
-    ``numpy.loadtxt(path, delimiter=",", skiprows=1)``. A target that is not a regular file (``/dev/null``,
-    a FIFO, a folder) or is one of ``inputs`` (the case file) is refused with InputError. Returns the path.
+    ``displacement_m`` the horizontal displacement of the control point [m]. Of a
+    :class:`masonry_dem.TimeHistory` (``Model.simulate``): ``time_s`` [s]; ``displacement_m`` [m] and
+    ``rotation_rad`` [rad] of the model's default control block (the top beam, else the highest wall block
+    at the right end; :func:`masonry_dem.history.default_control_block`); ``max_translation_m`` the largest
+    translation of any block [m]; and the energies [J] (kinetic, elastic in the joints, work of the external
+    loads since t = 0, dissipated). Displacements are relative to the ground (the frame of the base), from
+    the undeformed wall. Numbers are written with 17 significant digits (they read back exactly);
+    non-finite values as ``nan``. Read it back with ``numpy.loadtxt(path, delimiter=",", skiprows=1)``. A
+    target that is not a regular file (``/dev/null``, a FIFO, a folder) or is one of ``inputs`` (the case
+    file) is refused with InputError. Returns the path.
+
+    ``model``: the :class:`masonry_dem.Model` simulated, required with a time history (which does not
+    know its blocks: the control block is the model's); ignored with Results.
     """
+    if is_time_history(results):
+        if model is None:
+            raise TypeError("write_curve_csv of a TimeHistory needs model= (the Model simulated: its control block)")
+        u, phi = control_response(model, results)
+        energies = [np.asarray(getattr(results, name), dtype=np.float64).reshape(-1) for name in ENERGIES]
+        columns = [np.asarray(results.times, dtype=np.float64).reshape(-1), u, phi, largest_translation(results)]
+        return _write_columns(path, HISTORY_CSV_HEADER, columns + energies, list(inputs))
     lam = np.asarray(results.curve_multiplier, dtype=np.float64).reshape(-1)
     disp = np.asarray(results.curve_displacement, dtype=np.float64).reshape(-1)
     if len(lam) != len(disp):
         raise ValueError(f"the curve has {len(lam)} multipliers but {len(disp)} displacements")
+    return _write_columns(path, CSV_HEADER, [lam, disp], list(inputs))
+
+
+def _write_columns(path: PathLike, header: str, columns: List[np.ndarray], inputs: List[PathLike]) -> Path:
+    """Write ``header`` and a row per entry of the (equally long) ``columns``, 17 significant digits, atomically."""
     path = Path(path)
-    inputs = list(inputs)
     check_target(path, inputs)
     if str(path.parent):
         path.parent.mkdir(parents=True, exist_ok=True)
-
     with atomic_file(path, "w", encoding="ascii", newline="\n", inputs=inputs) as f:
-        f.write(CSV_HEADER + "\n")
-        for a, b in zip(lam, disp):
-            f.write(f"{a:.17g},{b:.17g}\n")
+        f.write(header + "\n")
+        for row in zip(*columns):
+            f.write(",".join(f"{v:.17g}" for v in row) + "\n")
     return path

@@ -1,0 +1,80 @@
+"""Time histories (:class:`masonry_dem.TimeHistory`, from ``Model.simulate``) as results: the response of the
+control block, shared by the exports (:mod:`masonry_dem.export`) and the figures (:mod:`masonry_dem.plot`).
+
+Displacements of a time history (``TimeHistory.displacements``, (k, n_all, 3): u1 [m], u2 [m], phi [rad]) are
+relative to the ground: the blocks move in the frame of the base (a base acceleration acts as the inertial
+forces -m a_g(t)), and they are measured from the undeformed wall (the geometry of ``Model.rects``), as the
+``initial_displacements`` given to ``Model.simulate`` are. The base's rows are zero.
+"""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+from typing import Any, Tuple
+
+import numpy as np
+
+from ._core import TimeHistory
+
+__all__ = [
+    "ENERGIES",
+    "is_time_history",
+    "default_control_block",
+    "control_response",
+    "largest_translation",
+    "peak_record",
+    "record",
+]
+
+#: The energies a time history holds ((k,) arrays [J]), in the order the exports write them.
+ENERGIES = ("kinetic_energy", "elastic_energy", "external_work", "dissipated")
+
+
+def is_time_history(results: Any) -> bool:
+    """Whether ``results`` is a :class:`masonry_dem.TimeHistory` (else a :class:`masonry_dem.Results`)."""
+    return isinstance(results, TimeHistory)
+
+
+def default_control_block(model: Any) -> int:
+    """The model's default control block, as the solvers choose it: the top beam if there is one, else the
+    highest wall block at the right end (largest y1, then largest x1)."""
+    if model.top_index is not None:
+        return int(model.top_index)
+    wall = np.asarray(model.rects, dtype=np.float64)[: int(model.n_blocks)]
+    order = np.lexsort((wall[:, 2], wall[:, 3]))  # by y1, then x1; the last is the largest
+    return int(order[-1])
+
+
+def control_response(model: Any, history: Any) -> Tuple[np.ndarray, np.ndarray]:
+    """((k,) horizontal displacement u1 [m], (k,) rotation phi [rad]) of the default control block at each
+    recorded time, relative to the ground (see the module docstring)."""
+    disp = np.asarray(history.displacements, dtype=np.float64)
+    c = default_control_block(model)
+    return disp[:, c, 0].copy(), disp[:, c, 2].copy()
+
+
+def largest_translation(history: Any) -> np.ndarray:
+    """(k,) the largest translation sqrt(u1^2 + u2^2) [m] of any block's centroid at each recorded time."""
+    disp = np.asarray(history.displacements, dtype=np.float64)
+    if disp.size == 0:
+        return np.zeros(len(np.asarray(history.times)))
+    return np.asarray(np.hypot(disp[..., 0], disp[..., 1]).max(axis=1))
+
+
+def peak_record(model: Any, history: Any) -> int:
+    """The index of the record with the largest |horizontal displacement| of the control block (the first
+    such; 0 for an empty or motionless history)."""
+    u, _ = control_response(model, history)
+    return int(np.argmax(np.abs(u))) if len(u) else 0
+
+
+def record(history: Any, k: int) -> SimpleNamespace:
+    """The ``k``-th record as a result the panels and the VTK writer read: ``displacements`` and
+    ``velocities`` ((n_all, 3)), ``time`` [s], ``method`` "dynamic" and the history's ``status``."""
+    return SimpleNamespace(
+        displacements=np.asarray(history.displacements, dtype=np.float64)[k],
+        velocities=np.asarray(history.velocities, dtype=np.float64)[k],
+        time=float(np.asarray(history.times)[k]),
+        method="dynamic",
+        status=history.status,
+    )
