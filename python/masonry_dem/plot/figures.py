@@ -13,8 +13,13 @@ from matplotlib.figure import Figure
 
 from .._core import InputError
 from ..atomic import atomic_file
-from ..report import _plural
+from ..history import default_control_block, is_time_history, peak_record, record
+from ..report import _plural, corner_motion
 from .panels import (
+    DEFORMED_FRACTION,
+    _wall_height,
+    plot_response,
+    plot_wall,
     _draw_curve,
     _draw_curve_overlay,
     _draw_wall,
@@ -138,11 +143,13 @@ def report_figure(
     live: str = "horizontal_weight",
     dpi: int = 150,
 ) -> Figure:
-    """A one-page report: the crack pattern, the collapse mechanism, the deformed shape and the load curve.
+    """A one-page report: the crack pattern, the collapse mechanism, the deformed shape and the load curve;
+    of a time history, its response (:func:`history_figure`).
 
     Args:
         model: the :class:`masonry_dem.Model` analysed.
-        results: its :class:`masonry_dem.Results` (the wall panels show this one).
+        results: its :class:`masonry_dem.Results` (the wall panels show this one), or a
+            :class:`masonry_dem.TimeHistory` (``Model.simulate``; ``other`` and ``live`` are then ignored).
         title: the case title (the figure title adds the method, status and collapse multiplier).
         other: optionally the result of the other method on the same model: its curve is overlaid.
         path: output file (PNG), written with the Agg canvas; without it the figure goes through pyplot.
@@ -151,6 +158,8 @@ def report_figure(
     Returns:
         The figure.
     """
+    if is_time_history(results):
+        return history_figure(model, results, title=title, path=path, dpi=dpi)
     aspect = _aspect(model)
     if aspect > 1.1:
         # a wide wall: two rows, the crack pattern and the mechanism above, the deformed shape and the curve
@@ -174,6 +183,61 @@ def report_figure(
     else:
         plot_curve(ax_curve, results, live=live)
     return _finish(fig, _with_title(title, _result_heading(results, live)), path, dpi)
+
+
+def history_figure(
+    model: Any,
+    history: Any,
+    title: Optional[str] = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    dpi: int = 150,
+) -> Figure:
+    """The response to a time history (``Model.simulate``): the horizontal displacement [mm] and the rotation
+    [rad] of the control block (the model's default: the top beam, else the highest wall block at the right
+    end) against time, and the deformed wall at the record of the largest |displacement| (marked on the
+    curves). Displacements are relative to the ground (the frame of the base), from the undeformed wall; the
+    wall is drawn at true scale when its largest displacement is at least 5% of its height, else magnified.
+
+    Args:
+        model: the :class:`masonry_dem.Model` simulated.
+        history: its :class:`masonry_dem.TimeHistory`.
+        title: the case title (the figure title adds the status, the steps and the time step).
+        path: output file (PNG), written with the Agg canvas; without it the figure goes through pyplot.
+        dpi: resolution of the PNG.
+    Returns:
+        The figure.
+    """
+    a = float(np.clip(_aspect(model), 0.35, 2.5))
+    fig = _new_figure((5.0 * a + 7.5, 6.5), path is not None)
+    grid = fig.add_gridspec(2, 2, width_ratios=[max(a, 0.6), 1.3])
+    ax_wall = fig.add_subplot(grid[:, 0])
+    ax_u = fig.add_subplot(grid[0, 1])
+    ax_phi = fig.add_subplot(grid[1, 1], sharex=ax_u)
+    times = np.asarray(history.times, dtype=np.float64)
+    peak = peak_record(model, history)
+    if len(times):
+        shown = record(history, peak)
+        rects = np.asarray(model.rects, dtype=np.float64)
+        largest = float(corner_motion(rects, shown.displacements).max()) if len(rects) else 0.0
+        true_scale = largest >= DEFORMED_FRACTION * _wall_height(model)
+        plot_deformed(ax_wall, model, shown, scale=1.0 if true_scale else None)
+        ax_wall.set_title(f"{ax_wall.get_title()}\nat t = {shown.time:.4g} s (largest control displacement)",
+                          fontsize=10)
+    else:
+        plot_wall(ax_wall, model)
+    plot_response(ax_u, model, history, "displacement", mark=peak if len(times) else None)
+    plot_response(ax_phi, model, history, "rotation", mark=peak if len(times) else None)
+    ax_u.set_xlabel("")
+    ax_u.set_title(f"control block {default_control_block(model)}, relative to the ground", fontsize=10)
+    return _finish(fig, _with_title(title, _history_heading(history)), path, dpi)
+
+
+def _history_heading(history: Any) -> str:
+    """The status, the steps and the time step of a time history, for a figure's heading."""
+    text = f"time history, {history.status}, {_plural(int(history.steps), 'step')} of {history.time_step:.3g} s"
+    if history.error:
+        text += f" ({' '.join(str(history.error).split())})"
+    return text
 
 
 def plot_comparison(

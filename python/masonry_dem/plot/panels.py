@@ -13,6 +13,7 @@ from matplotlib.collections import LineCollection, PatchCollection
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Polygon, Rectangle
 
+from ..history import default_control_block
 from ..report import (
     STATUS_NOTES,
     CRACK_TOLERANCE,
@@ -477,3 +478,35 @@ def _draw_curve_overlay(ax: Any, runs: Sequence[Tuple[str, Any]], live: str) -> 
     ax.set_title(
         "load curves (open marker: collapse or peak" + ("; dashed: limit analysis)" if limits else ")"), fontsize=10
     )
+
+
+# --- time histories (Model.simulate) ----------------------------------------------------------------------------
+
+#: The quantities :func:`plot_response` draws: (axis label, factor from the history's unit, component of the
+#: control block's (u1, u2, phi)).
+RESPONSE_QUANTITIES = {
+    "displacement": ("horizontal displacement [mm]", 1e3, 0),
+    "rotation": ("rotation [rad]", 1.0, 2),
+}
+
+
+def plot_response(
+    ax: Any, model: Any, history: Any, quantity: str = "displacement", mark: Optional[int] = None
+) -> None:
+    """Draw the control block's response to a time history (``Model.simulate``) on ``ax`` against time [s]:
+    its horizontal displacement [mm] (``quantity = "displacement"``) or its rotation [rad] (``"rotation"``),
+    relative to the ground (:mod:`masonry_dem.history`). ``mark``: a record to mark with a dot (the one the
+    deformed shape shows). The control block is the model's default one (the top beam, else the highest wall
+    block at the right end)."""
+    if quantity not in RESPONSE_QUANTITIES:
+        raise ValueError(f"quantity must be one of {sorted(RESPONSE_QUANTITIES)}, not {quantity!r}")
+    label, factor, dof = RESPONSE_QUANTITIES[quantity]
+    times = np.asarray(history.times, dtype=np.float64)
+    values = np.asarray(history.displacements, dtype=np.float64)[:, default_control_block(model), dof] * factor
+    ax.plot(times, values, color="#1f77b4", linewidth=1.2)
+    ax.axhline(0.0, color="#808080", linewidth=0.6)
+    if mark is not None and 0 <= mark < len(times):
+        ax.plot([times[mark]], [values[mark]], "o", color="#d62728", markersize=5, zorder=3)
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel(label)
+    ax.grid(True, linewidth=0.4, alpha=0.6)
