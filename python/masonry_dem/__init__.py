@@ -18,7 +18,10 @@ sets their results side by side.
 Plots (:mod:`masonry_dem.plot`, matplotlib, imported on first use): panels ``plot_wall``,
 ``plot_deformed``, ``plot_cracks``, ``plot_mechanism``, ``plot_curve``, the one-page ``report_figure``,
 and ``plot_results`` / ``plot_comparison``. Exports: :func:`write_vtk` (two .vtu files for ParaView,
-meshio) and :func:`write_curve_csv`. Progress bars: :mod:`masonry_dem.progress` (tqdm, optional).
+meshio) and :func:`write_curve_csv`. A ``TimeHistory`` is a result for all three (``report_figure``: the
+response against time; ``write_vtk``: a .vtu per record and a .pvd; ``write_curve_csv(history, path,
+model=model)``: a row per record), its displacements relative to the ground (:mod:`masonry_dem.history`).
+Progress bars: :mod:`masonry_dem.progress` (tqdm, optional).
 
 Studies (:mod:`masonry_dem.study`, Dask, pandas and pyarrow, imported on first use): :func:`load_study` reads a
 study file (docs/study-format.md), :func:`run_study` runs its analyses on a Dask cluster (local by default),

@@ -14,11 +14,16 @@ Panels, each drawn on a matplotlib ``Axes`` given by the caller:
 * :func:`plot_curve` (ax, *results, labels=None): load multiplier lambda (or the top-beam force in kN)
   against the horizontal displacement of the control point [mm]; several results overlaid. A limit
   analysis (method "limit") has no curve: its multiplier is drawn as a horizontal line.
+* :func:`plot_response` (ax, model, history, quantity="displacement", mark=None): the control block's
+  horizontal displacement [mm] or rotation [rad] against time [s] of a time history (``Model.simulate``),
+  relative to the ground (the frame of the base), from the undeformed wall.
 
 Figures (written as PNG with the Agg canvas when a ``path`` is given, else made through pyplot):
 
 * :func:`report_figure`: one page with the crack pattern, the mechanism, the deformed shape and the curve
-  (``masonry-dem run --plot``).
+  (``masonry-dem run --plot``); of a :class:`masonry_dem.TimeHistory`, :func:`history_figure`.
+* :func:`history_figure`: a time history's response: the control block's displacement and rotation against
+  time, and the deformed wall at the record of the largest displacement.
 * :func:`plot_results`: the wall (mechanism and joint states in one panel) and the curve.
 * :func:`plot_comparison`: the static and the explicit (dynamic) analyses of one case side by side, and
   optionally its limit analysis: the walls with their crack patterns, and the curves overlaid, the limit
@@ -35,7 +40,7 @@ Matplotlib is imported when this package is.
 """
 
 from ..report import interface_categories
-from .figures import figure_path, plot_comparison, plot_results, report_figure, save_figure
+from .figures import figure_path, history_figure, plot_comparison, plot_results, report_figure, save_figure
 from .panels import (
     DEFORMED_FRACTION as DEFORMED_FRACTION,
     EXTRA_STYLES as EXTRA_STYLES,
@@ -46,6 +51,7 @@ from .panels import (
     plot_curve,
     plot_deformed,
     plot_mechanism,
+    plot_response,
     plot_wall,
 )
 
@@ -55,7 +61,9 @@ __all__ = [
     "plot_cracks",
     "plot_mechanism",
     "plot_curve",
+    "plot_response",
     "report_figure",
+    "history_figure",
     "plot_results",
     "plot_comparison",
     "figure_path",
