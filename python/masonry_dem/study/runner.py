@@ -10,8 +10,9 @@ written as soon as its chunk comes back (:class:`~masonry_dem.study.store.Result
 
 Failures: an analysis that raises becomes a row with status "error" in the worker; a task whose worker
 died (killed, out of memory) is run again by Dask (``distributed.scheduler.allowed-failures`` times); a
-chunk that kept killing its workers is split into single analyses, and an analysis that still does gets
-its row with status "lost". Ctrl-C (KeyboardInterrupt in this process) cancels the tasks, writes every row
+chunk that kept killing its workers is split into single analyses; one that still does is run again alone on
+the cluster (a worker's death takes the analyses beside it too), and if it kills its worker then, it gets its
+row with status "lost". Ctrl-C (KeyboardInterrupt in this process) cancels the tasks, writes every row
 that came back and raises KeyboardInterrupt again, its ``results`` the rows written: resume the study to
 finish it.
 """
@@ -24,7 +25,7 @@ import logging
 import math
 import os
 import signal
-from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional, Sequence
+from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional, Sequence, Tuple
 
 import pandas as pd
 
@@ -158,14 +159,16 @@ def _workers(client: Any) -> int:
         return 1
 
 
-def _rows(future: Any, study: Study, items: Sequence[Item]) -> Optional[List[Dict[str, Any]]]:
-    """The rows of a finished task; None for a chunk of several whose workers kept dying (to be split)."""
+def _rows(future: Any, study: Study, items: Sequence[Item], alone: bool) -> Optional[List[Dict[str, Any]]]:
+    """The rows of a finished task; None for one whose workers kept dying while other tasks ran (to be run
+    again: split into single analyses, each alone on the cluster at last). Only an analysis that killed its
+    worker while nothing else ran (``alone``) is the culprit: its row has status "lost"."""
     from distributed import KilledWorker
 
     try:
         return list(future.result())
     except KilledWorker as exc:
-        if len(items) > 1:
+        if len(items) > 1 or not alone:
             return None
         return [failed_row(study, items[0], "lost", f"its worker died each time it ran it ({exc})")]
     except Exception as exc:  # the task itself failed (it catches the analyses' errors): every row says why
@@ -175,18 +178,27 @@ def _rows(future: Any, study: Study, items: Sequence[Item]) -> Optional[List[Dic
 def _compute(
     client: Any, study: Study, chunks: _Chunks, store: ResultStore, on_rows: Callable[[List[Dict[str, Any]]], None]
 ) -> None:
-    """Run the chunks on ``client``, keeping :data:`IN_FLIGHT` tasks per worker, until none is left."""
+    """Run the chunks on ``client``, keeping :data:`IN_FLIGHT` tasks per worker, until none is left.
+
+    A task whose workers kept dying is split into single analyses; a single analysis that dies with other
+    tasks around (the worker's death kills them all: a bystander cannot be told from the culprit) is a
+    suspect, run again once nothing else runs, one at a time."""
     from distributed import as_completed
 
-    running: Dict[Any, List[Item]] = {}
+    running: Dict[Any, Tuple[List[Item], bool]] = {}
+    suspects: List[Item] = []
     queue = as_completed()
 
-    def submit(items: List[Item]) -> None:
+    def submit(items: List[Item], alone: bool = False) -> None:
         future = client.submit(run_chunk, study, items, pure=False, retries=1)
-        running[future] = items
+        running[future] = (items, alone)
         queue.add(future)
 
     def refill() -> None:
+        if suspects:
+            if not running:
+                submit([suspects.pop(0)], alone=True)
+            return
         workers = _workers(client)
         while chunks.left and len(running) < IN_FLIGHT * workers:
             items = chunks.take(workers)
@@ -196,11 +208,15 @@ def _compute(
     refill()
     try:
         for future in queue:
-            items = running.pop(future)
-            rows = _rows(future, study, items)
-            if rows is None:  # split a chunk that kept killing workers: the culprit alone gets "lost"
-                for item in items:
-                    submit([item])
+            items, alone = running.pop(future)
+            rows = _rows(future, study, items, alone)
+            if rows is None:
+                if len(items) > 1:
+                    for item in items:
+                        submit([item])
+                else:
+                    suspects.extend(items)
+                refill()
                 continue
             chunks.learn(rows)
             store.add(rows)
