@@ -6,11 +6,21 @@ export VIRTUAL_ENV := $(abspath $(VENV))
 
 .PHONY: demo test develop rust-test py-test fuzz fuzz-short bench clean
 
+# What the package needs (pyproject's dependencies, and maturin to build it), and what the tests add.
+RUNTIME_DEPS = "maturin>=1.5,<2" "numpy>=1.21" "matplotlib>=3.5" "tqdm>=4.60" "meshio>=5" "dask[distributed]>=2024.1" "pandas>=2.0" "pyarrow>=14"
+TEST_DEPS = "pytest>=7" "atheris>=2.3" "hypothesis>=6" "scipy>=1.9" "clarabel>=0.9"
+
 $(VENV)/.deps: pyproject.toml
-	$(PYTHON) -m venv $(VENV)
-	$(PY) -m pip install -q --upgrade pip
-	$(PY) -m pip install -q "maturin>=1.5,<2" "numpy>=1.21" "matplotlib>=3.5" "tqdm>=4.60" "meshio>=5" "pytest>=7" "atheris>=2.3" "hypothesis>=6" "scipy>=1.9" "clarabel>=0.9" "dask[distributed]>=2024.1" "pandas>=2.0" "pyarrow>=14"
-	touch $@
+	@echo "setting up $(VENV) with the packages masonry-dem needs (pip, a minute or two the first time)..."
+	@$(PYTHON) -m venv $(VENV)
+	@$(PY) -m pip install -q --upgrade pip
+	@$(PY) -m pip install -q $(RUNTIME_DEPS)
+	@touch $@
+
+$(VENV)/.test-deps: $(VENV)/.deps
+	@echo "adding the test tools to $(VENV) (pytest, hypothesis, atheris, scipy, clarabel)..."
+	@$(PY) -m pip install -q $(TEST_DEPS)
+	@touch $@
 
 # Release build of the extension, installed into .venv (python sources are linked, not copied).
 # pip lists every satisfied requirement while maturin installs the package: the log is kept in
@@ -28,7 +38,7 @@ rust-test:
 	RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -q -p masonry-dem
 	cargo test --release
 
-py-test: develop
+py-test: develop $(VENV)/.test-deps
 	$(PY) -m pytest -q tests/python
 	$(MAKE) fuzz-short
 
@@ -36,14 +46,18 @@ py-test: develop
 # in out/fuzz-corpus (seeded with examples/); findings are written as out/fuzz/crash-* (or timeout-*, oom-*).
 FUZZ_TIME ?= 600
 FUZZ_FLAGS = -timeout=60 -rss_limit_mb=3072 -max_len=16384 -artifact_prefix=out/fuzz/
-fuzz: develop
+fuzz: develop $(VENV)/.test-deps
 	mkdir -p out/fuzz out/fuzz-corpus
 	$(PY) tests/fuzz/fuzz_case.py out/fuzz-corpus examples tests/fuzz/seeds $(FUZZ_FLAGS) -max_total_time=$(FUZZ_TIME) -print_final_stats=1
 
 # 20 seconds, part of `make test`: a fresh corpus from examples/ only, so the run does not depend on earlier ones.
-fuzz-short: develop
-	rm -rf out/fuzz-short-corpus && mkdir -p out/fuzz out/fuzz-short-corpus
-	$(PY) tests/fuzz/fuzz_case.py out/fuzz-short-corpus examples tests/fuzz/seeds $(FUZZ_FLAGS) -max_total_time=20 -print_final_stats=1
+# The fuzzer's output goes to out/fuzz-short.log: its summary is printed, the end of the log if it finds something.
+fuzz-short: develop $(VENV)/.test-deps
+	@rm -rf out/fuzz-short-corpus && mkdir -p out/fuzz out/fuzz-short-corpus
+	@echo "fuzzing the case-file reader and model building for 20 s (log: out/fuzz-short.log)..."
+	@$(PY) tests/fuzz/fuzz_case.py out/fuzz-short-corpus examples tests/fuzz/seeds $(FUZZ_FLAGS) -max_total_time=20 -print_final_stats=1 > out/fuzz-short.log 2>&1 \
+		|| { tail -n 60 out/fuzz-short.log; echo "the fuzzer found a failing input: see out/fuzz/ and out/fuzz-short.log"; exit 1; }
+	@grep -E "^(Done|stat::number_of_executed_units|stat::new_units_added)" out/fuzz-short.log || true
 
 test: rust-test py-test
 
