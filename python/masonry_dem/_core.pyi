@@ -92,6 +92,9 @@ class Model:
     @property
     def top_index(self) -> Optional[int]: ...
     @property
+    def default_control_block(self) -> int:
+        """The block the solvers follow when no control block is given: the top beam if any, else the highest wall block at the right end."""
+    @property
     def rects(self) -> FloatArray:
         """(n_all, 4) rectangles of all blocks, wall blocks first, then base, then top beam."""
     @property

@@ -36,13 +36,8 @@ def is_time_history(results: Any) -> bool:
 
 
 def default_control_block(model: Any) -> int:
-    """The model's default control block, as the solvers choose it: the top beam if there is one, else the
-    highest wall block at the right end (largest y1, then largest x1)."""
-    if model.top_index is not None:
-        return int(model.top_index)
-    wall = np.asarray(model.rects, dtype=np.float64)[: int(model.n_blocks)]
-    order = np.lexsort((wall[:, 2], wall[:, 3]))  # by y1, then x1; the last is the largest
-    return int(order[-1])
+    """The model's default control block, the solvers' own (``Model.default_control_block``)."""
+    return int(model.default_control_block)
 
 
 def control_response(model: Any, history: Any) -> Tuple[np.ndarray, np.ndarray]:

@@ -86,6 +86,12 @@ impl PyModel {
     fn top_index(&self) -> Option<usize> {
         self.inner.top()
     }
+    /// The block the solvers follow when no control block is given: the top beam if any, else the
+    /// highest wall block at the right end.
+    #[getter]
+    fn default_control_block(&self) -> usize {
+        self.inner.default_control_block()
+    }
     #[getter]
     fn rects<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         rects_to_py(py, self.inner.rects())
