@@ -86,6 +86,8 @@ pub struct Progress {
     /// iterations), which repeats the figures of the last converged step: a display may skip
     /// it; returning false stops the run all the same.
     pub poll: bool,
+    /// The time reached \[s\] (time histories; NaN elsewhere).
+    pub time: f64,
 }
 
 /// The checks every quasi-static analysis makes of its options: `analysis.steps`,

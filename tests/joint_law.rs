@@ -287,6 +287,7 @@ fn softening_dissipates_the_fracture_energies() {
         dilatancy: 0.0,
         fracture_energy_tension: gf1,
         fracture_energy_shear: gf2,
+        ..JointLaw::default()
     };
     let a = SEC.area;
     // mode II: slip under a fixed compression of 10 kN

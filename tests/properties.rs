@@ -72,6 +72,7 @@ fn law_strategy() -> impl Strategy<Value = JointLaw> {
                 dilatancy,
                 fracture_energy_tension: gf1,
                 fracture_energy_shear: gf2,
+                ..JointLaw::default()
             }
         })
 }

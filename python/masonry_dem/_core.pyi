@@ -224,33 +224,63 @@ class Model:
         large_rotations: Optional[bool] = None,
         threads: Optional[int] = None,
         progress: Optional[Callable[[int, float, float, float], None]] = None,
+        vertical_acceleration: Optional[tuple[npt.ArrayLike, npt.ArrayLike]] = None,
+        record_interval: Optional[float] = None,
     ) -> "TimeHistory":
         """Time history with the explicit solver. Options left out (None) take the core's
-        defaults: safety 0.8, damping "none" (coefficient 0), live_multiplier 0, record_every 1,
-        large_rotations True, threads 0 (all cores).
+        defaults: safety 0.8, damping "none" (coefficient 0), live_multiplier 0, a record every
+        record_interval = 0.001 s, large_rotations True, threads 0 (all cores).
 
         Free motion from initial conditions
         (initial_displacements / initial_velocities: (n_all, 3) arrays of u1 [m], u2 [m],
-        phi [rad] and their rates) and/or a horizontal base acceleration given as (times [s],
-        accelerations [m/s2]), linear between samples. live_multiplier: lambda held constant.
-        large_rotations: block kinematics with finite rotations (needed for rocking); False uses
-        the linearized kinematics of the static solver. Records every record_every-th step.
+        phi [rad] and their rates) and/or the ground's motion: base_acceleration (horizontal) and
+        vertical_acceleration (upwards), each (times [s], accelerations [m/s2]), linear between
+        samples and zero outside them; the blocks move in the frame of the base (displacements
+        relative to the ground). live_multiplier: lambda held constant. large_rotations: block
+        kinematics with finite rotations (needed for rocking); False uses the linearized
+        kinematics of the static solver. Impacts lose energy by the joints' restitution (joint
+        key "restitution", default 0.3: Housner's impact of a rocking block); the time step
+        is lowered for the contact dashpots this takes. Records every record_interval seconds
+        or every record_every-th step (not both); Model.record_size gives the memory up front.
         Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory
-        computed so far as its `results` attribute."""
-    def critical_time_step(self) -> float:
-        """The stability limit of the explicit solver's time step [s] (Gershgorin bound)."""
+        computed so far as its `results` attribute.
+        progress: optional callable(step, time [s], nan, fraction done)."""
+    def record_size(
+        self,
+        duration: float,
+        time_step: Optional[float] = None,
+        record_every: Optional[int] = None,
+        record_interval: Optional[float] = None,
+    ) -> tuple[int, float]:
+        """(records, bytes) that Model.simulate with these options would hold (its time step as
+        simulate chooses it); refuses what simulate refuses."""
+    def critical_time_step(self, time_history: bool = False) -> float:
+        """The stability limit of the explicit solver's time step [s] (Gershgorin bound); with
+        time_history=True, that of Model.simulate: lowered for the contact dashpots of the
+        joints' restitution (the factor sqrt(1 + z^2) - z with z = 3 zeta, zeta the dashpot's
+        damping ratio)."""
 
 class TimeHistory:
-    status: str  # "completed" | "failed"
+    """A time history (Model.simulate). Energy balance at each record: initial kinetic + elastic
+    energy + external_work = kinetic_energy + elastic_energy + dissipated + energy_error."""
+
+    status: str  # "completed" | "failed" | "interrupted"
     error: Optional[str]
     time_step: float  # [s]
     times: FloatArray  # (k,) [s]
-    displacements: FloatArray  # (k, n_all, 3): u1 [m], u2 [m], phi [rad]
+    displacements: FloatArray  # (k, n_all, 3): u1 [m], u2 [m], phi [rad], relative to the ground
     velocities: FloatArray  # (k, n_all, 3)
+    ground_acceleration: FloatArray  # (k, 2) the ground's (horizontal, vertical) acceleration [m/s2]
+    base_shear: FloatArray  # (k,) horizontal force of the wall on its base [N] (+x positive)
     kinetic_energy: FloatArray  # (k,) [J]
     elastic_energy: FloatArray  # (k,) energy stored in the joints [J]
-    external_work: FloatArray  # (k,) work of the external loads since t = 0 [J]
-    dissipated: FloatArray  # (k,) external_work - kinetic - elastic [J] (damping, friction)
+    external_work: FloatArray  # (k,) work of the external loads since t = 0 (weights, loads, base motion) [J]
+    gravity_work: FloatArray  # (k,) the weights' part of external_work [J]
+    friction_dissipation: FloatArray  # (k,) dissipated by friction and loss of strength in the joints [J]
+    damping_dissipation: FloatArray  # (k,) dissipated by the damping of the motion [J]
+    impact_dissipation: FloatArray  # (k,) dissipated by impacts (the joints' restitution) [J]
+    dissipated: FloatArray  # (k,) the three dissipations together [J]
+    energy_error: FloatArray  # (k,) the balance's error [J]
     steps: int
     elapsed_s: float
 

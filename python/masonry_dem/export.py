@@ -60,9 +60,7 @@ PathLike = Union[str, "os.PathLike[str]"]
 CSV_HEADER = "multiplier,displacement_m"
 
 #: The header line of a time history's CSV (units in the names: s, m, rad, J).
-HISTORY_CSV_HEADER = (
-    "time_s,displacement_m,rotation_rad,max_translation_m,kinetic_energy_J,elastic_energy_J,external_work_J,dissipated_J"
-)
+HISTORY_CSV_HEADER = "time_s,displacement_m,rotation_rad,max_translation_m," + ",".join(f"{e}_J" for e in ENERGIES)
 
 #: Codes of the interface families in the ``family`` field.
 FAMILY_CODES = {"bed": 0, "head": 1, "base": 2, "top": 3}
@@ -244,8 +242,9 @@ def write_curve_csv(
     :class:`masonry_dem.TimeHistory` (``Model.simulate``): ``time_s`` [s]; ``displacement_m`` [m] and
     ``rotation_rad`` [rad] of the model's default control block (the top beam, else the highest wall block
     at the right end; :func:`masonry_dem.history.default_control_block`); ``max_translation_m`` the largest
-    translation of any block [m]; and the energies [J] (kinetic, elastic in the joints, work of the external
-    loads since t = 0, dissipated). Displacements are relative to the ground (the frame of the base), from
+    translation of any block [m]; and the energy balance [J] (:data:`masonry_dem.history.ENERGIES`: kinetic,
+    elastic in the joints, work of the external loads since t = 0 and of the weights among them, dissipated by
+    friction, by damping and by impacts, their sum, and the balance's error). Displacements are relative to the ground (the frame of the base), from
     the undeformed wall. Numbers are written with 17 significant digits (they read back exactly);
     non-finite values as ``nan``. Read it back with ``numpy.loadtxt(path, delimiter=",", skiprows=1)``. A
     target that is not a regular file (``/dev/null``, a FIFO, a folder) or is one of ``inputs`` (the case

@@ -26,8 +26,19 @@ __all__ = [
     "record",
 ]
 
-#: The energies a time history holds ((k,) arrays [J]), in the order the exports write them.
-ENERGIES = ("kinetic_energy", "elastic_energy", "external_work", "dissipated")
+#: The energies a time history holds ((k,) arrays [J]), in the order the exports write them: initial energy +
+#: external work = kinetic + elastic + dissipated (friction, damping, impacts) + the balance's error.
+ENERGIES = (
+    "kinetic_energy",
+    "elastic_energy",
+    "external_work",
+    "gravity_work",
+    "friction_dissipation",
+    "damping_dissipation",
+    "impact_dissipation",
+    "dissipated",
+    "energy_error",
+)
 
 
 def is_time_history(results: Any) -> bool:

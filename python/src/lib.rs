@@ -14,7 +14,7 @@ use masonry_dem::limit::{self, LimitOptions};
 use masonry_dem::results::{Results, Status};
 use masonry_dem::analysis::Control;
 use masonry_dem::interface::Family;
-use masonry_dem::explicit::{self, Damping, DynamicOptions, ExplicitOptions, TimeHistory};
+use masonry_dem::explicit::{self, Damping, DynamicOptions, Recording, ExplicitOptions, TimeHistory};
 use masonry_dem::static_solver::{self, StaticOptions};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};

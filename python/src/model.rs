@@ -247,7 +247,7 @@ impl PyModel {
 
     /// Time history with the explicit solver (see _core.pyi).
     /// Options left out (None) take the core's defaults (`DynamicOptions::default()`).
-    #[pyo3(signature = (duration, time_step=None, safety=None, damping=None, damping_coefficient=None, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=None, record_every=None, large_rotations=None, threads=None, progress=None))]
+    #[pyo3(signature = (duration, time_step=None, safety=None, damping=None, damping_coefficient=None, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=None, record_every=None, large_rotations=None, threads=None, progress=None, vertical_acceleration=None, record_interval=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate(
         &self,
@@ -265,38 +265,43 @@ impl PyModel {
         large_rotations: Option<bool>,
         threads: Option<i64>,
         progress: Option<Py<PyAny>>,
+        vertical_acceleration: Option<&Bound<'_, PyAny>>,
+        record_interval: Option<f64>,
     ) -> PyResult<Py<PyTimeHistory>> {
-        let defaults = DynamicOptions::default();
-        let base_acceleration = match base_acceleration.filter(|o| !o.is_none()) {
-            None => None,
-            Some(o) => {
-                let (t, a): (Vec<f64>, Vec<f64>) = o.extract().map_err(|_| {
-                    InputError::new_err("base_acceleration: expected (times, accelerations), two sequences of numbers")
-                })?;
-                Some((t, a))
-            }
-        };
-        let opts = DynamicOptions {
+        let opts = dynamic_options(
             duration,
             time_step,
-            safety: safety.unwrap_or(defaults.safety),
-            damping: Damping::from_keys(damping, damping_coefficient, defaults.damping).map_err(to_py)?,
-            initial_displacement: rows3_from(initial_displacements, "initial_displacements")?,
-            initial_velocity: rows3_from(initial_velocities, "initial_velocities")?,
-            base_acceleration,
-            live_multiplier: live_multiplier.unwrap_or(defaults.live_multiplier),
-            record_every: record_every.map_or(Ok(defaults.record_every), |v| count("record_every", v, 1))?,
-            large_rotations: large_rotations.unwrap_or(defaults.large_rotations),
-            threads: threads.map_or(Ok(defaults.threads), |v| count("threads", v, 0))?,
-        };
+            safety,
+            (damping, damping_coefficient),
+            (initial_displacements, initial_velocities),
+            (base_acceleration, vertical_acceleration),
+            live_multiplier,
+            (record_every, record_interval),
+            large_rotations,
+            threads,
+        )?;
         analyse(py, &self.inner, progress, move |model, monitor| {
             explicit::simulate_with(model, &opts, monitor).map(|inner| PyTimeHistory { inner })
         })
     }
 
-    /// The stability limit of the explicit solver's time step [s].
-    fn critical_time_step(&self) -> f64 {
-        explicit::critical_time_step(&self.inner)
+    /// (records, bytes) a time history with these options would hold (see _core.pyi).
+    #[pyo3(signature = (duration, time_step=None, record_every=None, record_interval=None))]
+    fn record_size(&self, duration: f64, time_step: Option<f64>, record_every: Option<i64>, record_interval: Option<f64>) -> PyResult<(usize, f64)> {
+        let opts = DynamicOptions { duration, time_step, record: recording(record_every, record_interval)?, ..DynamicOptions::default() };
+        explicit::record_size(&self.inner, &opts).map_err(to_py)
+    }
+
+
+    /// The stability limit of the explicit solver's time step [s]; with `time_history`, of a
+    /// time history (lowered for the contact dashpots of the joints' restitution).
+    #[pyo3(signature = (time_history=false))]
+    fn critical_time_step(&self, time_history: bool) -> f64 {
+        if time_history {
+            explicit::history_time_step_limit(&self.inner)
+        } else {
+            explicit::critical_time_step(&self.inner)
+        }
     }
 
     fn __repr__(&self) -> String {
@@ -306,4 +311,57 @@ impl PyModel {
             self.inner.interfaces().len()
         )
     }
+}
+
+/// The recording of a time history: `record_every` steps or `record_interval` seconds (not
+/// both); neither: the core's default.
+fn recording(record_every: Option<i64>, record_interval: Option<f64>) -> PyResult<Recording> {
+    match (record_every, record_interval) {
+        (Some(_), Some(_)) => Err(InputError::new_err("give record_every (steps) or record_interval (seconds), not both")),
+        (Some(k), None) => Ok(Recording::Every(count("record_every", k, 1)?)),
+        (None, Some(i)) => Ok(Recording::Interval(i)),
+        (None, None) => Ok(DynamicOptions::default().record),
+    }
+}
+
+/// An acceleration history `(times, accelerations)` from Python, `what` naming it in errors.
+fn series(o: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<(Vec<f64>, Vec<f64>)>> {
+    match o.filter(|o| !o.is_none()) {
+        None => Ok(None),
+        Some(o) => o
+            .extract::<(Vec<f64>, Vec<f64>)>()
+            .map(Some)
+            .map_err(|_| InputError::new_err(format!("{what}: expected (times, accelerations), two sequences of numbers"))),
+    }
+}
+
+/// The options of `Model.simulate`, those left out (None) the core's defaults.
+#[allow(clippy::too_many_arguments)]
+fn dynamic_options(
+    duration: f64,
+    time_step: Option<f64>,
+    safety: Option<f64>,
+    (damping, damping_coefficient): (Option<&str>, Option<f64>),
+    (initial_displacements, initial_velocities): (Option<&Bound<'_, PyAny>>, Option<&Bound<'_, PyAny>>),
+    (base_acceleration, vertical_acceleration): (Option<&Bound<'_, PyAny>>, Option<&Bound<'_, PyAny>>),
+    live_multiplier: Option<f64>,
+    (record_every, record_interval): (Option<i64>, Option<f64>),
+    large_rotations: Option<bool>,
+    threads: Option<i64>,
+) -> PyResult<DynamicOptions> {
+    let defaults = DynamicOptions::default();
+    Ok(DynamicOptions {
+        duration,
+        time_step,
+        safety: safety.unwrap_or(defaults.safety),
+        damping: Damping::from_keys(damping, damping_coefficient, defaults.damping).map_err(to_py)?,
+        initial_displacement: rows3_from(initial_displacements, "initial_displacements")?,
+        initial_velocity: rows3_from(initial_velocities, "initial_velocities")?,
+        base_acceleration: series(base_acceleration, "base_acceleration")?,
+        vertical_acceleration: series(vertical_acceleration, "vertical_acceleration")?,
+        live_multiplier: live_multiplier.unwrap_or(defaults.live_multiplier),
+        record: recording(record_every, record_interval)?,
+        large_rotations: large_rotations.unwrap_or(defaults.large_rotations),
+        threads: threads.map_or(Ok(defaults.threads), |v| count("threads", v, 0))?,
+    })
 }

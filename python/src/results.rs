@@ -43,21 +43,64 @@ impl PyTimeHistory {
     fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
         history3(py, &self.inner.velocities, self.inner.n_blocks)
     }
+    /// (k, 2) the ground's acceleration (horizontal, vertical) at each record [m/s2].
+    #[getter]
+    fn ground_acceleration<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+        let rows: Vec<Vec<f64>> = self.inner.ground_acceleration.iter().map(|g| g.to_vec()).collect();
+        if rows.is_empty() {
+            return Ok(numpy::PyArray2::zeros(py, [0, 2], false));
+        }
+        Ok(numpy::PyArray2::from_vec2(py, &rows)?)
+    }
+    /// (k,) the horizontal force of the wall on its base [N] (+x positive).
+    #[getter]
+    fn base_shear<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.base_shear.clone().into_pyarray(py)
+    }
+    /// (k,) kinetic energy [J].
     #[getter]
     fn kinetic_energy<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.kinetic_energy.clone().into_pyarray(py)
     }
+    /// (k,) elastic energy in the joints [J].
     #[getter]
     fn elastic_energy<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.elastic_energy.clone().into_pyarray(py)
     }
+    /// (k,) work of the external loads since t = 0 (weights, loads, the base's motion) [J].
     #[getter]
     fn external_work<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.external_work.clone().into_pyarray(py)
     }
+    /// (k,) the weights' part of external_work [J].
+    #[getter]
+    fn gravity_work<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.gravity_work.clone().into_pyarray(py)
+    }
+    /// (k,) dissipated in the joints by friction and loss of strength [J].
+    #[getter]
+    fn friction_dissipation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.friction_dissipation.clone().into_pyarray(py)
+    }
+    /// (k,) dissipated by the damping of the motion (local, viscous) [J].
+    #[getter]
+    fn damping_dissipation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.damping_dissipation.clone().into_pyarray(py)
+    }
+    /// (k,) dissipated by the contact dashpots of impacts (joints' restitution) [J].
+    #[getter]
+    fn impact_dissipation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.impact_dissipation.clone().into_pyarray(py)
+    }
+    /// (k,) the three dissipations together [J].
     #[getter]
     fn dissipated<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.dissipated.clone().into_pyarray(py)
+    }
+    /// (k,) the balance's error: initial energy + external work - kinetic - elastic - dissipated [J].
+    #[getter]
+    fn energy_error<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.energy_error.clone().into_pyarray(py)
     }
     #[getter]
     fn steps(&self) -> usize {

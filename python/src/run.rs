@@ -135,7 +135,7 @@ where
     let run = Run::new(progress);
     let res = run.execute(py, move |run| {
         guarded(|| {
-            let mut monitor = |p: &masonry_dem::analysis::Progress| run.report(p.step, p.multiplier, p.displacement, p.fraction, p.poll);
+            let mut monitor = |p: &masonry_dem::analysis::Progress| run.report(p.step, if p.time.is_nan() { p.multiplier } else { p.time }, p.displacement, p.fraction, p.poll);
             work(&model, &mut monitor)
         })
     })?;

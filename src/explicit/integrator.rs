@@ -65,6 +65,15 @@ pub(super) struct Integrator<'a> {
     /// reference centroids and (cos, sin) of the current rotation of each block
     pub(super) centroids: Vec<[f64; 2]>,
     pub(super) cs: Vec<[f64; 2]>,
+    /// time histories only (else empty): per interface, the jumps, the contact dashpot and the
+    /// energies (see [`Dyn`])
+    pub(super) dynm: Vec<Dyn>,
+    /// the next interface pass primes `dynm` (takes the jumps, damps nothing)
+    pub(super) prime: bool,
+    /// energy dissipated by the damping of the motion (local or viscous) \[J\], summed only
+    /// with `track_damping`
+    pub(super) damping_work: f64,
+    pub(super) track_damping: bool,
 }
 
 impl<'a> Integrator<'a> {
@@ -122,6 +131,10 @@ impl<'a> Integrator<'a> {
             large: false,
             centroids: vec![],
             cs: vec![],
+            dynm: vec![],
+            prime: false,
+            damping_work: 0.0,
+            track_damping: false,
         };
         it.set_parts(n_parts);
         Ok(it)
@@ -220,6 +233,8 @@ impl<'a> Integrator<'a> {
             kinds: &self.kinds,
             centroids: &self.centroids,
             cs: &self.cs,
+            dt: self.dt,
+            prime: self.prime,
         };
         let (large, hw) = (self.large, self.hw);
         let work = |p: Part| pass.run(p, hw, large);
@@ -232,6 +247,7 @@ impl<'a> Integrator<'a> {
             forces: &mut self.forces,
             flags: &mut self.flags,
             warm: &mut self.warm,
+            dynm: &mut self.dynm,
             terms: &mut self.terms,
             f_int: &mut self.f_int,
         };
@@ -241,6 +257,7 @@ impl<'a> Integrator<'a> {
             // the parts one after the other: the same sums
             work(all);
         }
+        self.prime = false;
         self.gather_in(par);
     }
 
@@ -395,6 +412,9 @@ impl<'a> Integrator<'a> {
             self.interface_forces_in(false);
         }
         set_ext(&mut self.f_ext, &self.f_int);
+        if self.track_damping {
+            self.damping_work += self.dt * self.damping_power();
+        }
         self.accelerations_kick(Some(0.5 * self.dt));
         if let Some((d, _)) = prescribed {
             self.a[d] = 0.0;
@@ -413,6 +433,50 @@ impl<'a> Integrator<'a> {
             }
         }
         (r / f.max(f64::MIN_POSITIVE)).sqrt()
+    }
+
+    /// The power the damping of the motion takes from it at the current forces and velocities
+    /// (those of the next kick: the mid-step velocities) \[W\], never negative.
+    fn damping_power(&self) -> f64 {
+        let mut p = 0.0;
+        for d in 0..self.u.len() {
+            if !self.free[d] {
+                continue;
+            }
+            let v = self.v[d];
+            p += match self.damping {
+                Damping::None => 0.0,
+                Damping::Local(alpha) => alpha * (self.f_ext[d] - self.f_int[d]).abs() * v.abs(),
+                Damping::Viscous(c) => c * self.mass[d] * v * v,
+            };
+        }
+        p
+    }
+
+    /// Starts the energy accounting and the contact dashpots of a time history: each interface's
+    /// dashpot from its law's restitution and the reduced mass of its blocks (see
+    /// [`super::contact`]); the next interface pass takes the jumps.
+    pub(super) fn start_dynamics(&mut self) {
+        let model = self.model;
+        let free_mass = |i: usize| {
+            if self.free[3 * i] || self.free[3 * i + 1] {
+                model.mass()[i]
+            } else {
+                f64::INFINITY
+            }
+        };
+        self.dynm = model
+            .interfaces()
+            .iter()
+            .enumerate()
+            .map(|(k, it)| {
+                let sec = &model.sections()[k];
+                let reduced = 1.0 / (1.0 / free_mass(it.a) + 1.0 / free_mass(it.b));
+                Dyn { c: super::contact::coefficients(self.law(k), sec.area, sec.length, reduced), half: 0.5 * sec.length, ..Dyn::default() }
+            })
+            .collect();
+        self.prime = true;
+        self.track_damping = !matches!(self.damping, Damping::None);
     }
 
     pub(super) fn kinetic_energy(&self) -> f64 {

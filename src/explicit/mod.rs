@@ -133,10 +133,12 @@ pub struct DynamicOptions {
     /// Horizontal base acceleration history: times \[s\] and accelerations [m/s2], linear between
     /// samples, zero outside.
     pub base_acceleration: Option<(Vec<f64>, Vec<f64>)>,
+    /// Vertical base acceleration history (upwards positive), as `base_acceleration`.
+    pub vertical_acceleration: Option<(Vec<f64>, Vec<f64>)>,
     /// Live load multiplier held constant during the run.
     pub live_multiplier: f64,
-    /// Record every n-th step.
-    pub record_every: usize,
+    /// Which states are recorded (the first and the last always are).
+    pub record: Recording,
     /// Finite rotations of the blocks (rocking); false: the linearized kinematics.
     pub large_rotations: bool,
     /// Threads of the interface pass (0: all cores).
@@ -153,13 +155,27 @@ impl Default for DynamicOptions {
             initial_displacement: None,
             initial_velocity: None,
             base_acceleration: None,
+            vertical_acceleration: None,
             live_multiplier: 0.0,
-            record_every: 1,
+            record: Recording::Interval(DEFAULT_RECORD_INTERVAL),
             large_rotations: true,
             threads: 0,
         }
     }
 }
+
+/// Which states of a time history are recorded.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Recording {
+    /// Every n-th time step.
+    Every(usize),
+    /// The first state at or after each multiple of this interval of time \[s\].
+    Interval(f64),
+}
+
+/// The default interval between the recorded states of a time history \[s\] (1 kHz: finer
+/// than any earthquake record's samples, and the impacts of a rocking block timed to 1 ms).
+pub const DEFAULT_RECORD_INTERVAL: f64 = 1e-3;
 
 /// A recorded time history.
 #[derive(Debug, Clone, PartialEq)]
@@ -179,14 +195,33 @@ pub struct TimeHistory {
     pub displacements: Vec<[f64; 3]>,
     /// Velocities, laid out as `displacements`.
     pub velocities: Vec<[f64; 3]>,
-    /// Kinetic energy \[J\] at each recorded time.
+    /// The ground's acceleration (horizontal, vertical) [m/s2] at each recorded time.
+    pub ground_acceleration: Vec<[f64; 2]>,
+    /// The horizontal force of the wall on its base \[N\] (positive along +x) at each recorded
+    /// time: the joints' forces on the base block, their dashpots' included.
+    pub base_shear: Vec<f64>,
+    /// The energy balance, at each recorded time \[J\]: the initial kinetic and elastic energies
+    /// plus the external work are the kinetic and elastic energies, the dissipated energy and
+    /// the balance's error. Kinetic energy.
     pub kinetic_energy: Vec<f64>,
     /// Elastic energy stored in the joints \[J\].
     pub elastic_energy: Vec<f64>,
-    /// Work done on the blocks by the external loads (dead, live, base inertia) \[J\].
+    /// Work done on the blocks by the external loads since the start (weights, dead and live
+    /// loads, the inertial forces of the base's motion) \[J\].
     pub external_work: Vec<f64>,
-    /// Energy dissipated by damping and joint plasticity \[J\].
+    /// The part of `external_work` done by the weights \[J\].
+    pub gravity_work: Vec<f64>,
+    /// Energy dissipated in the joints by friction and by the loss of strength \[J\].
+    pub friction_dissipation: Vec<f64>,
+    /// Energy dissipated by the damping of the motion (local or viscous) \[J\].
+    pub damping_dissipation: Vec<f64>,
+    /// Energy dissipated by the contact dashpots of impacts (see [`contact`]) \[J\].
+    pub impact_dissipation: Vec<f64>,
+    /// The sum of the three dissipations \[J\].
     pub dissipated: Vec<f64>,
+    /// The balance's error: initial kinetic and elastic energies + external work - kinetic -
+    /// elastic - dissipated \[J\] (the integrator's, of order time step squared).
+    pub energy_error: Vec<f64>,
     /// Steps taken (time steps for a time history).
     pub steps: usize,
     /// Wall-clock time of the run \[s\].
@@ -251,6 +286,7 @@ pub fn critical_time_step(model: &Model) -> f64 {
     }
 }
 
+pub mod contact;
 mod integrator;
 mod pass;
 mod quasi_static;
@@ -264,4 +300,4 @@ use pass::*;
 pub use integrator::Stepper;
 pub(crate) use quasi_static::{relax_at_displacement, relax_dead_state};
 pub use quasi_static::{solve, solve_with};
-pub use time_history::{simulate, simulate_with};
+pub use time_history::{history_time_step_limit, record_count, record_size, simulate, simulate_with};

@@ -130,8 +130,26 @@ pub(super) fn pack(st: &JointState, h: &mut [f64]) {
     }
 }
 
-/// A part of the interface pass: the interfaces from `k0` (their histories, forces, flags and
-/// warm sets), the force sums of the blocks from `b0`, and the terms from `t0`.
+/// What a time history keeps of an interface besides its joint history: the jumps of the last
+/// step (their increment gives the rates of the dashpot), the contact dashpot (see
+/// [`super::contact`]) and the energy it dissipated.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Dyn {
+    /// the jumps, the slip without the slip point's term (see [`Pass::dynamics`])
+    pub(super) jumps: [f64; 3],
+    /// cos of the relative rotation (finite rotations)
+    pub(super) cos: f64,
+    /// c_N, c_T, c_M of the dashpot (zero: none)
+    pub(super) c: [f64; 3],
+    /// half the interface's length \[m\]
+    pub(super) half: f64,
+    /// energy dissipated by the dashpot \[J\]
+    pub(super) damped: f64,
+}
+
+/// A part of the interface pass: the interfaces from `k0` (their histories, forces, flags,
+/// warm sets and, in a time history, their [`Dyn`]), the force sums of the blocks from `b0`,
+/// and the terms from `t0`.
 pub(super) struct Part<'s> {
     pub(super) k0: usize,
     pub(super) b0: usize,
@@ -141,6 +159,8 @@ pub(super) struct Part<'s> {
     pub(super) forces: &'s mut [[f64; 3]],
     pub(super) flags: &'s mut [u8],
     pub(super) warm: &'s mut [u8],
+    /// empty outside time histories
+    pub(super) dynm: &'s mut [Dyn],
     /// the forces on the blocks whose sums the pass does not form, in the order of
     /// [`Straddlers::slots`]
     pub(super) terms: &'s mut [[f64; 3]],
@@ -156,11 +176,12 @@ impl<'s> Part<'s> {
         let (f0, f1) = self.forces.split_at_mut(kk);
         let (fl0, fl1) = self.flags.split_at_mut(kk);
         let (w0, w1) = self.warm.split_at_mut(kk);
+        let (d0, d1) = self.dynm.split_at_mut(kk.min(self.dynm.len()));
         let (t0, t1) = self.terms.split_at_mut(t - self.t0);
         let (s0, s1) = self.f_int.split_at_mut(3 * bb);
         (
-            Part { k0: self.k0, b0: self.b0, t0: self.t0, hist: h0, broken: br0, forces: f0, flags: fl0, warm: w0, terms: t0, f_int: s0 },
-            Part { k0: k, b0: blk, t0: t, hist: h1, broken: br1, forces: f1, flags: fl1, warm: w1, terms: t1, f_int: s1 },
+            Part { k0: self.k0, b0: self.b0, t0: self.t0, hist: h0, broken: br0, forces: f0, flags: fl0, warm: w0, dynm: d0, terms: t0, f_int: s0 },
+            Part { k0: k, b0: blk, t0: t, hist: h1, broken: br1, forces: f1, flags: fl1, warm: w1, dynm: d1, terms: t1, f_int: s1 },
         )
     }
 }
@@ -189,6 +210,10 @@ pub(super) struct Pass<'a> {
     /// rotations
     pub(super) centroids: &'a [[f64; 2]],
     pub(super) cs: &'a [[f64; 2]],
+    /// the time step \[s\] (the rates of the dashpots)
+    pub(super) dt: f64,
+    /// the first pass of a time history: its [`Dyn`] take the jumps, and nothing is damped
+    pub(super) prime: bool,
 }
 
 impl Pass<'_> {
@@ -219,7 +244,7 @@ impl Pass<'_> {
     /// The interface pass over part `p`, with histories of `HW` numbers and finite rotations
     /// if `LARGE` (one copy of the loop for each).
     pub(super) fn part<const HW: usize, const LARGE: bool>(&self, p: Part) {
-        let Part { k0, b0, hist, broken, forces, flags, warm, terms, f_int, .. } = p;
+        let Part { k0, b0, hist, broken, forces, flags, warm, dynm, terms, f_int, .. } = p;
         let (u, shapes) = (self.u, self.shapes);
         // every sum starts from +0.0, as the gather's
         f_int.fill(0.0);
@@ -256,7 +281,8 @@ impl Pass<'_> {
                 let ecc = if f[0] < 0.0 { (f[2] / f[0]).clamp(-0.5 * it.l, 0.5 * it.l) } else { 0.0 };
                 let kin = it.large_kinematics(g[a], g[b], &u[3 * a..3 * a + 3], &u[3 * b..3 * b + 3], cs[a], cs[b], ecc);
                 self.update(k, gk, kin.jumps, h, br, f, fl, ws);
-                let x = kin.forces(*f);
+                let total = self.dynamics(dynm.get_mut(i), gk, kin.jumps, (kin.e, kin.rel[0]), *f);
+                let x = kin.forces(total);
                 sum(ik.a, a, [x[0], x[1], x[2]]);
                 sum(ik.b, b, [x[3], x[4], x[5]]);
             } else {
@@ -272,11 +298,38 @@ impl Pass<'_> {
                 };
                 let e = [row(0), row(1), row(2)];
                 self.update(k, gk, e, h, br, f, fl, ws);
-                let [xa, xb] = gk.side_sums(f);
+                let total = self.dynamics(dynm.get_mut(i), gk, e, (0.0, 1.0), *f);
+                let [xa, xb] = gk.side_sums(&total);
                 sum(ik.a, a, xa);
                 sum(ik.b, b, xb);
             }
         }
+    }
+
+    /// In a time history (`dy` given): the contact dashpot's force and dissipation over the
+    /// jumps' increment up to `e`; the force on the blocks, the law's `f` plus the dashpot's.
+    /// Outside time histories, `f`. With finite rotations the slip holds the slip point's term
+    /// `ecc (cos - 1)` ([`crate::interface::Interface::large_kinematics`]), whose eccentricity
+    /// follows the force of the last step: its increment is taken at this step's eccentricity
+    /// (`(ecc, cos)`), so that a change of the eccentricity is not a slip.
+    #[inline(always)]
+    pub(super) fn dynamics(&self, dy: Option<&mut Dyn>, gk: &Shape, e: [f64; 3], (ecc, cos): (f64, f64), f: [f64; 3]) -> [f64; 3] {
+        let Some(dy) = dy else { return f };
+        let raw = [e[0], e[1] - ecc * (cos - 1.0), e[2]];
+        if self.prime {
+            (dy.jumps, dy.cos) = (raw, cos);
+            return f;
+        }
+        let de = [raw[0] - dy.jumps[0], raw[1] - dy.jumps[1] + ecc * (cos - dy.cos), raw[2] - dy.jumps[2]];
+        (dy.jumps, dy.cos) = (raw, cos);
+        if dy.c[0] == 0.0 && dy.c[1] == 0.0 {
+            return f;
+        }
+        let inv = 1.0 / self.dt;
+        let mu = self.laws[gk.family as usize].friction;
+        let d = super::contact::dashpot(&dy.c, dy.half, mu, [de[0] * inv, de[1] * inv, de[2] * inv], f);
+        dy.damped += d[0] * de[0] + d[1] * de[1] + d[2] * de[2];
+        [f[0] + d[0], f[1] + d[1], f[2] + d[2]]
     }
 
     /// [`Pass::part`] for `hw` and `large`.

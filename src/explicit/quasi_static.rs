@@ -47,7 +47,7 @@ pub(crate) fn relax_dead_state(
             }
         }
         if monitor_due(k, &mut last) {
-            let p = Progress { step: k + 1, multiplier: 0.0, displacement: f64::NAN, fraction: f64::NAN, poll: false };
+            let p = Progress { step: k + 1, multiplier: 0.0, displacement: f64::NAN, fraction: f64::NAN, poll: false, time: f64::NAN };
             if !monitor(&p) {
                 return Err(Error::Interrupted);
             }
@@ -285,7 +285,7 @@ impl<'a> QuasiStatic<'a> {
                 }
             }
             if monitor_due(k, &mut last) {
-                let p = Progress { step: s.steps, multiplier: *lam, displacement: s.u[cd], fraction: f64::NAN, poll: false };
+                let p = Progress { step: s.steps, multiplier: *lam, displacement: s.u[cd], fraction: f64::NAN, poll: false, time: f64::NAN };
                 if !monitor(&p) {
                     return Level::Stopped;
                 }
@@ -354,7 +354,7 @@ impl<'a> QuasiStatic<'a> {
                 self.s.v.fill(0.0);
                 self.curve_l.push(l);
                 self.curve_u.push(self.s.u[self.cd]);
-                let p = Progress { step: self.s.steps, multiplier: l, displacement: self.s.u[self.cd], fraction: f64::NAN, poll: false };
+                let p = Progress { step: self.s.steps, multiplier: l, displacement: self.s.u[self.cd], fraction: f64::NAN, poll: false, time: f64::NAN };
                 if !monitor(&p) {
                     return ControlFlow::Break(End::interrupted(None));
                 }
@@ -416,7 +416,7 @@ impl<'a> QuasiStatic<'a> {
         self.curve_l.push(st.lam);
         self.curve_u.push(self.s.u[self.cd]);
         let fraction = k as f64 / st.count as f64;
-        let p = Progress { step: self.s.steps, multiplier: st.lam, displacement: self.s.u[self.cd], fraction, poll: false };
+        let p = Progress { step: self.s.steps, multiplier: st.lam, displacement: self.s.u[self.cd], fraction, poll: false, time: f64::NAN };
         if !monitor(&p) {
             return ControlFlow::Break(End::interrupted(Some(mech)));
         }

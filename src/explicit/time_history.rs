@@ -2,6 +2,7 @@
 
 use super::*;
 use std::ops::ControlFlow;
+use crate::interface::Family;
 
 /// Integrates the equations of motion in time (free motion, base acceleration).
 pub fn simulate(model: &Model, opts: &DynamicOptions) -> Result<TimeHistory, Error> {
@@ -14,9 +15,11 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
     let start = Instant::now();
     check_options(model, opts)?;
     let nb = model.n_blocks();
-    let mut s = Integrator::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
+    let dt = history_time_step(model, opts)?;
+    let mut s = Integrator::new(model, Some(dt), opts.safety, opts.damping, opts.threads)?;
     s.set_large(opts.large_rotations);
     set_initial_state(&mut s, opts);
+    s.start_dynamics();
     let loads = Loads::new(model, opts, &s);
     loads.apply(&mut s.f_ext, 0.0);
     s.interface_forces();
@@ -24,14 +27,43 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
     let n_steps = count_time_steps(opts, s.dt)?;
     let h = TimeHistory::reserved(opts, s.dt, n_steps, nb)?;
     // work of the external forces, by the trapezoidal rule on each step
-    let (f_prev, u_prev) = (s.f_ext.clone(), s.u.clone());
-    let mut run = Run { s, loads, h, n_steps, record_every: opts.record_every, work: 0.0, f_prev, u_prev };
-    run.h.record(&run.s, 0.0, 0.0);
+    let (f_prev, fi_prev, u_prev) = (s.f_ext.clone(), s.f_int.clone(), s.u.clone());
+    let (ke0, ee0, u0) = (s.kinetic_energy(), s.elastic_energy(), s.u.clone());
+    let mut run = Run { s, loads, h, n_steps, record: opts.record, work: 0.0, joints: 0.0, f_prev, fi_prev, u_prev, ke0, ee0, u0 };
+    run.record(0.0);
     run.integrate(monitor);
     let Run { s, mut h, .. } = run;
     h.steps = s.steps;
     h.elapsed_s = start.elapsed().as_secs_f64();
     Ok(h)
+}
+
+/// The stable time step of a time history of `model` \[s\]: [`critical_time_step`] lowered for
+/// the contact dashpots of its joints' restitution ([`contact::stability_factor`] of 3 zeta: a
+/// block rocking on a dashpot of damping ratio zeta has up to 3 zeta).
+pub fn history_time_step_limit(model: &Model) -> f64 {
+    let zeta = [Family::Bed, Family::Head, Family::Base, Family::Top]
+        .iter()
+        .map(|&f| contact::damping_ratio(model.laws().of(f).restitution))
+        .fold(0.0, f64::max);
+    critical_time_step(model) * contact::stability_factor(3.0 * zeta)
+}
+
+/// The time step of a time history: the given one, or `safety` times the stability limit, both
+/// within that limit lowered for the contact dashpots (see [`contact::stability_factor`]: the
+/// rocking of a block on a dashpot of damping ratio zeta has up to 3 zeta).
+fn history_time_step(model: &Model, opts: &DynamicOptions) -> Result<f64, Error> {
+    let crit = critical_time_step(model);
+    let limit = history_time_step_limit(model);
+    match opts.time_step {
+        Some(dt) if dt.is_finite() && dt > limit && dt <= crit => Err(Error::input(format!(
+            "analysis.time_step = {dt:.3e} s exceeds the stability limit of this model with its contact dashpots (restitution), {limit:.3e} s"
+        ))),
+        Some(dt) => Ok(dt),
+        None if !(opts.safety > 0.0 && opts.safety <= 1.0) => Err(Error::input(format!("safety must lie in (0, 1], got {}", opts.safety))),
+        None if !crit.is_finite() => Err(Error::input("no stiffness holds the model: no stable time step")),
+        None => Ok(opts.safety * limit),
+    }
 }
 
 /// Checks the options of a time history against the model, in the order their errors are
@@ -40,23 +72,29 @@ fn check_options(model: &Model, opts: &DynamicOptions) -> Result<(), Error> {
     if !(opts.duration.is_finite() && opts.duration > 0.0) {
         return Err(Error::input(format!("duration must be a finite number > 0, got {}", opts.duration)));
     }
-    if opts.record_every == 0 {
-        return Err(Error::input("record_every must be at least 1"));
+    match opts.record {
+        Recording::Every(0) => return Err(Error::input("record_every must be at least 1")),
+        Recording::Interval(i) if !(i.is_finite() && i > 0.0) => {
+            return Err(Error::input(format!("record_interval must be a finite number of seconds > 0, got {i}")))
+        }
+        _ => {}
     }
     if !opts.live_multiplier.is_finite() {
         return Err(Error::input("live_multiplier must be finite"));
     }
     let nb = model.n_blocks();
-    if let Some((t, a)) = &opts.base_acceleration {
-        if t.len() != a.len() || t.is_empty() {
-            return Err(Error::input(format!(
-                "base_acceleration: times and accelerations must be non-empty and of equal length (got {} and {})",
-                t.len(),
-                a.len()
-            )));
-        }
-        if t.iter().chain(a).any(|x| !x.is_finite()) || t.windows(2).any(|w| w[1] <= w[0]) {
-            return Err(Error::input("base_acceleration: times must increase and every value must be finite"));
+    for (what, series) in [("base_acceleration", &opts.base_acceleration), ("vertical_acceleration", &opts.vertical_acceleration)] {
+        if let Some((t, a)) = series {
+            if t.len() != a.len() || t.is_empty() {
+                return Err(Error::input(format!(
+                    "{what}: times and accelerations must be non-empty and of equal length (got {} and {})",
+                    t.len(),
+                    a.len()
+                )));
+            }
+            if t.iter().chain(a).any(|x| !x.is_finite()) || t.windows(2).any(|w| w[1] <= w[0]) {
+                return Err(Error::input(format!("{what}: times must increase and every value must be finite")));
+            }
         }
     }
     for (what, init) in [("initial_displacement", &opts.initial_displacement), ("initial_velocity", &opts.initial_velocity)] {
@@ -125,6 +163,7 @@ struct Loads {
     lam: f64,
     mass: Vec<f64>,
     base: Option<(Vec<f64>, Vec<f64>)>,
+    vertical: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 impl Loads {
@@ -136,96 +175,162 @@ impl Loads {
             lam: opts.live_multiplier,
             mass: s.mass.clone(),
             base: opts.base_acceleration.clone(),
+            vertical: opts.vertical_acceleration.clone(),
         }
     }
 
-    /// The base acceleration at time `t`: linear between the samples, zero outside them.
-    fn base_acceleration(&self, t: f64) -> f64 {
-        match &self.base {
-            None => 0.0,
-            Some((ts, a)) => {
-                if t < ts[0] || t > ts[ts.len() - 1] {
-                    return 0.0;
-                }
-                let k = ts.partition_point(|&x| x <= t).clamp(1, ts.len() - 1);
-                let (t0, t1) = (ts[k - 1], ts[k]);
-                a[k - 1] + (a[k] - a[k - 1]) * (t - t0) / (t1 - t0)
-            }
-        }
+    /// The base acceleration (horizontal, vertical) at time `t`.
+    fn ground(&self, t: f64) -> [f64; 2] {
+        [sample(&self.base, t), sample(&self.vertical, t)]
     }
 
     /// The external forces at time `t`, into `f`.
     fn apply(&self, f: &mut [f64], t: f64) {
         let (fd, fl, lam, mass) = (&self.fd, &self.fl, self.lam, &self.mass);
-        let g = self.base_acceleration(t);
+        let g = self.ground(t);
         for d in 0..f.len() {
-            f[d] = fd[d] + lam * fl[d] - if d % 3 == 0 { mass[d] * g } else { 0.0 };
+            let inertia = match d % 3 {
+                0 => mass[d] * g[0],
+                1 => mass[d] * g[1],
+                _ => 0.0,
+            };
+            f[d] = fd[d] + lam * fl[d] - inertia;
         }
     }
 }
 
+/// An acceleration history at time `t`: linear between the samples, zero outside them (and
+/// zero without one).
+fn sample(series: &Option<(Vec<f64>, Vec<f64>)>, t: f64) -> f64 {
+    let Some((ts, a)) = series else { return 0.0 };
+    let n = ts.len();
+    if n == 0 || t < ts[0] || t > ts[n - 1] {
+        return 0.0;
+    }
+    if n == 1 {
+        return a[0];
+    }
+    let k = ts.partition_point(|&x| x <= t).clamp(1, n - 1);
+    let (t0, t1) = (ts[k - 1], ts[k]);
+    a[k - 1] + (a[k] - a[k - 1]) * (t - t0) / (t1 - t0)
+}
+
+/// The records a time history of `n_steps` time steps of `dt` under `record` takes: one per
+/// `record_every` steps or per interval, the first and the last (an upper bound).
+pub fn record_count(record: Recording, dt: f64, n_steps: usize) -> usize {
+    match record {
+        Recording::Every(k) => n_steps / k.max(1) + 2,
+        Recording::Interval(i) => ((n_steps as f64 * dt / i).floor() as usize).min(n_steps) + 2,
+    }
+}
+
+/// The bytes a time history of `model` under `opts` will hold, and its number of records:
+/// per record, the displacements and velocities of every block (48 bytes a block) and 12
+/// numbers (times, ground, base shear, energies). Checks the options as [`simulate`] does.
+pub fn record_size(model: &Model, opts: &DynamicOptions) -> Result<(usize, f64), Error> {
+    check_options(model, opts)?;
+    let dt = history_time_step(model, opts)?;
+    let n_steps = count_time_steps(opts, dt)?;
+    let records = record_count(opts.record, dt, n_steps);
+    Ok((records, records as f64 * (48.0 * model.n_blocks() as f64 + 8.0 * 13.0)))
+}
+
 impl TimeHistory {
-    /// An empty history with room for every record of `n_steps` time steps of `dt` (one every
-    /// `record_every`, the first and the last), reserved once so that recording does not
-    /// allocate inside the time loop; refused beyond [`MAX_RECORDED_VALUES`].
+    /// An empty history with room for every record of `n_steps` time steps of `dt` (see
+    /// [`record_count`]), reserved once so that recording does not allocate inside the time
+    /// loop; refused beyond [`MAX_RECORDED_VALUES`].
     fn reserved(opts: &DynamicOptions, dt: f64, n_steps: usize, nb: usize) -> Result<TimeHistory, Error> {
-        let cap = n_steps / opts.record_every + 2;
+        let cap = record_count(opts.record, dt, n_steps);
         // two histories (displacements, velocities) of 3 values per block and record
         let stored = 6.0 * cap as f64 * nb as f64;
         if stored > MAX_RECORDED_VALUES as f64 {
             return Err(Error::input(format!(
-                "recording {cap} states of {nb} blocks (duration {} s, time step {dt:.3e} s, record_every {}) stores {stored:.0} numbers, more than the limit of {MAX_RECORDED_VALUES}: raise record_every or shorten the duration",
-                opts.duration, opts.record_every
+                "recording {cap} states of {nb} blocks (duration {} s, time step {dt:.3e} s, {}) stores {stored:.0} numbers ({:.1} GB), more than the limit of {MAX_RECORDED_VALUES}: raise record_interval (or record_every) or shorten the duration",
+                opts.duration,
+                match opts.record {
+                    Recording::Every(k) => format!("record_every {k}"),
+                    Recording::Interval(i) => format!("record_interval {i} s"),
+                },
+                stored * 8e-9
             )));
         }
+        let series = || Vec::with_capacity(cap);
         Ok(TimeHistory {
             status: Status::Completed,
             error: None,
             time_step: dt,
-            times: Vec::with_capacity(cap),
+            times: series(),
             n_blocks: nb,
             displacements: Vec::with_capacity(cap * nb),
             velocities: Vec::with_capacity(cap * nb),
-            kinetic_energy: Vec::with_capacity(cap),
-            elastic_energy: Vec::with_capacity(cap),
-            external_work: Vec::with_capacity(cap),
-            dissipated: Vec::with_capacity(cap),
+            ground_acceleration: Vec::with_capacity(cap),
+            base_shear: series(),
+            kinetic_energy: series(),
+            elastic_energy: series(),
+            external_work: series(),
+            gravity_work: series(),
+            friction_dissipation: series(),
+            damping_dissipation: series(),
+            impact_dissipation: series(),
+            dissipated: series(),
+            energy_error: series(),
             steps: 0,
             elapsed_s: 0.0,
         })
     }
-
-    /// Records the state of `s` at time `t`, with the external forces' work so far and the
-    /// energy dissipated (that work less the kinetic and elastic energies).
-    fn record(&mut self, s: &Integrator, t: f64, work: f64) {
-        let nb = self.n_blocks;
-        self.times.push(t);
-        self.displacements.extend((0..nb).map(|i| [s.u[3 * i], s.u[3 * i + 1], s.u[3 * i + 2]]));
-        self.velocities.extend((0..nb).map(|i| [s.v[3 * i], s.v[3 * i + 1], s.v[3 * i + 2]]));
-        let ke = s.kinetic_energy();
-        let ee = s.elastic_energy();
-        self.kinetic_energy.push(ke);
-        self.elastic_energy.push(ee);
-        self.external_work.push(work);
-        self.dissipated.push(work - ke - ee);
-    }
 }
 
-/// A time history being integrated: the integrator, its loads, the history so far, and the
-/// external forces' work with the forces and displacements of the last step (the work of a
-/// step by the trapezoidal rule).
+/// A time history being integrated: the integrator, its loads, the history so far, the work
+/// of the external forces and of the joints' forces on the blocks (the trapezoidal rule on each
+/// step: the forces and displacements of the last step are kept), and the initial energies and
+/// displacements.
 struct Run<'a> {
     s: Integrator<'a>,
     loads: Loads,
     h: TimeHistory,
     n_steps: usize,
-    record_every: usize,
+    record: Recording,
     work: f64,
+    joints: f64,
     f_prev: Vec<f64>,
+    fi_prev: Vec<f64>,
     u_prev: Vec<f64>,
+    ke0: f64,
+    ee0: f64,
+    u0: Vec<f64>,
 }
 
 impl Run<'_> {
+    /// Records the state at time `t`: displacements, velocities, the ground's acceleration, the
+    /// base shear and the energy balance.
+    fn record(&mut self, t: f64) {
+        let (s, h) = (&self.s, &mut self.h);
+        let nb = h.n_blocks;
+        let model = s.model;
+        h.times.push(t);
+        h.displacements.extend((0..nb).map(|i| [s.u[3 * i], s.u[3 * i + 1], s.u[3 * i + 2]]));
+        h.velocities.extend((0..nb).map(|i| [s.v[3 * i], s.v[3 * i + 1], s.v[3 * i + 2]]));
+        h.ground_acceleration.push(self.loads.ground(t));
+        let base = model.kinds().iter().enumerate().filter(|(_, k)| **k == crate::interface::BlockKind::Base);
+        h.base_shear.push(-base.map(|(i, _)| s.f_int[3 * i]).sum::<f64>());
+        let (ke, ee) = (s.kinetic_energy(), s.elastic_energy());
+        let gravity: f64 = (0..nb).map(|i| -model.weight()[i] * (s.u[3 * i + 1] - self.u0[3 * i + 1])).sum();
+        // what the joints' forces took from the blocks, less what the dashpots dissipated and
+        // the elastic energy gained, the joints dissipated
+        let impacts: f64 = s.dynm.iter().map(|x| x.damped).sum();
+        let friction = self.joints - impacts - (ee - self.ee0);
+        let dissipated = friction + s.damping_work + impacts;
+        h.kinetic_energy.push(ke);
+        h.elastic_energy.push(ee);
+        h.external_work.push(self.work);
+        h.gravity_work.push(gravity);
+        h.friction_dissipation.push(friction);
+        h.damping_dissipation.push(s.damping_work);
+        h.impact_dissipation.push(impacts);
+        h.dissipated.push(dissipated);
+        h.energy_error.push(self.ke0 + self.ee0 + self.work - ke - ee - dissipated);
+    }
+
     /// Time steps 1 to `n_steps`, calling `monitor` when due (see [`monitor_due`]). A
     /// non-finite displacement, or the monitor saying stop, ends the history there with its
     /// status and reason.
@@ -240,28 +345,43 @@ impl Run<'_> {
         }
     }
 
-    /// Time step `n`: the step, its work, the record if one is due (every `record_every`-th
-    /// step and the last) and the monitor if due; stops on a non-finite displacement or when
-    /// the monitor says so.
+    /// Whether step `n` is recorded: every `record_every`-th step, or the first at or after each
+    /// multiple of the interval, and the last.
+    fn due(&self, n: usize) -> bool {
+        n == self.n_steps
+            || match self.record {
+                Recording::Every(k) => n % k == 0,
+                Recording::Interval(i) => {
+                    let dt = self.s.dt;
+                    (n as f64 * dt / i).floor() > ((n - 1) as f64 * dt / i).floor()
+                }
+            }
+    }
+
+    /// Time step `n`: the step, its work, the record if one is due and the monitor if due;
+    /// stops on a non-finite displacement or when the monitor says so.
     fn time_step(&mut self, n: usize, last: &mut Instant, monitor: &mut dyn FnMut(&Progress) -> bool) -> ControlFlow<(Status, String)> {
         let (s, loads) = (&mut self.s, &self.loads);
         let t = n as f64 * s.dt;
         let mut set_ext = |f: &mut [f64], _: &[f64]| loads.apply(f, t);
         s.step(&mut set_ext, None);
         for d in 0..s.u.len() {
-            self.work += 0.5 * (s.f_ext[d] + self.f_prev[d]) * (s.u[d] - self.u_prev[d]);
+            let du = s.u[d] - self.u_prev[d];
+            self.work += 0.5 * (s.f_ext[d] + self.f_prev[d]) * du;
+            self.joints += 0.5 * (s.f_int[d] + self.fi_prev[d]) * du;
         }
         self.f_prev.copy_from_slice(&s.f_ext);
+        self.fi_prev.copy_from_slice(&s.f_int);
         self.u_prev.copy_from_slice(&s.u);
         if s.u.iter().any(|x| !x.is_finite()) {
             return ControlFlow::Break((Status::Failed, format!("non-finite displacement at t = {t:.6} s (step {n})")));
         }
-        if n % self.record_every == 0 || n == self.n_steps {
-            self.h.record(s, t, self.work);
+        if self.due(n) {
+            self.record(t);
         }
         if monitor_due(n - 1, last) {
             let fraction = n as f64 / self.n_steps as f64;
-            let p = Progress { step: n, multiplier: loads.lam, displacement: f64::NAN, fraction, poll: false };
+            let p = Progress { step: n, multiplier: self.loads.lam, displacement: f64::NAN, fraction, poll: false, time: t };
             if !monitor(&p) {
                 return ControlFlow::Break((Status::Interrupted, Error::Interrupted.to_string()));
             }

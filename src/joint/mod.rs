@@ -67,6 +67,13 @@ pub struct JointLaw {
     /// Mode-II fracture energy G_f^II [N/m]; the cohesion softens as `c exp(-c s / G_f^II)` with
     /// the accumulated plastic slip s. 0: brittle.
     pub fracture_energy_shear: f64,
+    /// e_n, the coefficient of restitution of an impact at the joint [-], in
+    /// [[`MIN_RESTITUTION`], 1]: the ratio of the velocities of separation and approach of a mass
+    /// striking the joint. Time histories only: the explicit solver puts a dashpot at each end of
+    /// a closed interface, of the damping ratio that gives this restitution (see
+    /// [`crate::explicit::contact`]); 1 is an elastic impact (no dashpot). Quasi-static analyses do
+    /// not read it.
+    pub restitution: f64,
 }
 
 impl Default for JointLaw {
@@ -80,9 +87,21 @@ impl Default for JointLaw {
             dilatancy: 0.0,
             fracture_energy_tension: 0.0,
             fracture_energy_shear: 0.0,
+            restitution: DEFAULT_RESTITUTION,
         }
     }
 }
+
+/// The default coefficient of restitution of the joints ([`JointLaw::restitution`]): the value
+/// with which a rigid block rocking on its base loses, at each impact, the energy Housner's
+/// model of the impact gives it (angular momentum conserved about the new pivot); see
+/// [`crate::explicit::contact`].
+pub const DEFAULT_RESTITUTION: f64 = 0.3;
+
+/// The smallest coefficient of restitution accepted: that of a critically damped dashpot
+/// (exp(-2)), below which the stable time step of the explicit solver would shrink without
+/// bound.
+pub const MIN_RESTITUTION: f64 = 0.135_335_283_236_612_7;
 
 /// The range of shear_stiffness / normal_stiffness a joint law may have: the one in which the
 /// static and explicit solvers give wall 1's collapse multiplier within 1% in load and
@@ -138,6 +157,12 @@ impl JointLaw {
             return Err(Error::input(format!(
                 "{what}.fracture_energy_tension and {what}.fracture_energy_shear must both be 0 (brittle joints) or both > 0 (softening), got {} and {}",
                 self.fracture_energy_tension, self.fracture_energy_shear
+            )));
+        }
+        if !(MIN_RESTITUTION..=1.0).contains(&self.restitution) {
+            return Err(Error::input(format!(
+                "{what}.restitution = {} must lie in [{MIN_RESTITUTION:.4}, 1] (the coefficient of restitution of an impact: 1 is elastic, {MIN_RESTITUTION:.4} a critically damped contact)",
+                self.restitution
             )));
         }
         if self.dilatancy > self.friction * (1.0 + 1e-12) {

@@ -69,7 +69,7 @@ impl FromStr for Family {
 
 impl JointLaw {
     /// The keys of a joint law in the case file, in the order of the struct's fields.
-    pub const KEYS: [&'static str; 8] = [
+    pub const KEYS: [&'static str; 9] = [
         "normal_stiffness",
         "shear_stiffness",
         "friction",
@@ -78,6 +78,7 @@ impl JointLaw {
         "dilatancy",
         "fracture_energy_tension",
         "fracture_energy_shear",
+        "restitution",
     ];
 
     /// Sets the parameter named by case-file key `key` to `value`; `table` names the law in
@@ -92,6 +93,7 @@ impl JointLaw {
             "dilatancy" => &mut self.dilatancy,
             "fracture_energy_tension" => &mut self.fracture_energy_tension,
             "fracture_energy_shear" => &mut self.fracture_energy_shear,
+            "restitution" => &mut self.restitution,
             _ => {
                 return Err(Error::input_at(
                     table,

@@ -339,6 +339,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             displacement: self.u[self.control_dof],
             fraction: f64::NAN,
             poll: true,
+            time: f64::NAN,
         };
         let (interrupted, monitor) = (&mut self.interrupted, &mut self.monitor);
         crate::limit::limit_analysis_with(model, &crate::limit::LimitOptions::default(), &mut |_| {

@@ -206,6 +206,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             displacement: self.u[self.control_dof],
             fraction,
             poll: false,
+            time: f64::NAN,
         };
         self.report(&p)
     }
@@ -233,6 +234,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             displacement: self.curve_u.last().copied().unwrap_or(f64::NAN),
             fraction: f64::NAN,
             poll: true,
+            time: f64::NAN,
         };
         self.report(&p)
     }
@@ -305,7 +307,7 @@ impl<'a, 'm> Solver<'a, 'm> {
         let monitor = &mut self.monitor;
         let interrupted = &mut self.interrupted;
         let mut relay = |_: &crate::explicit::Progress| {
-            let p = Progress { step: steps, multiplier: 0.0, displacement: f64::NAN, fraction: f64::NAN, poll: true };
+            let p = Progress { step: steps, multiplier: 0.0, displacement: f64::NAN, fraction: f64::NAN, poll: true, time: f64::NAN };
             *interrupted |= !monitor(&p);
             !*interrupted
         };

@@ -10,6 +10,8 @@ from pathlib import Path
 from typing import Callable, List, Tuple
 
 import numpy as np
+
+from masonry_dem.history import ENERGIES
 import pytest
 
 import masonry_dem as md
@@ -110,14 +112,16 @@ def test_time_history_shapes() -> None:
     th = model.simulate(0.01, record_every=5)
     assert th.status == "completed", th.error
     assert th.error is None
-    assert th.time_step == pytest.approx(0.8 * model.critical_time_step())
+    assert th.time_step == pytest.approx(0.8 * model.critical_time_step(time_history=True))
+    assert model.critical_time_step(time_history=True) < model.critical_time_step()
     k = len(th.times)
     assert k >= 2
     assert th.times.shape == (k,)
     assert th.displacements.shape == (k, n_all, 3)
     assert th.velocities.shape == (k, n_all, 3)
-    for name in ("kinetic_energy", "elastic_energy", "external_work", "dissipated"):
+    for name in ENERGIES + ("base_shear",):
         assert getattr(th, name).shape == (k,), name
+    assert th.ground_acceleration.shape == (k, 2)
     for name in ("times", "displacements", "velocities", "kinetic_energy"):
         assert getattr(th, name).dtype == np.float64, name
     assert th.times[0] == 0.0
@@ -128,7 +132,13 @@ def test_time_history_shapes() -> None:
     assert th.times[-1] == pytest.approx(th.steps * th.time_step)
     assert 5 * (k - 2) < th.steps <= 5 * (k - 1)
     assert th.elapsed_s >= 0
-    np.testing.assert_allclose(th.dissipated, th.external_work - th.kinetic_energy - th.elastic_energy, atol=1e-9)
+    # the balance: initial energy + external work = kinetic + elastic + dissipated + error, the dissipated
+    # energy the sum of its three parts
+    e0 = th.kinetic_energy[0] + th.elastic_energy[0]
+    np.testing.assert_allclose(e0 + th.external_work - th.kinetic_energy - th.elastic_energy - th.dissipated,
+                               th.energy_error, atol=1e-9)
+    np.testing.assert_allclose(th.dissipated, th.friction_dissipation + th.damping_dissipation + th.impact_dissipation,
+                               atol=1e-12)
     # the base does not move
     base = model.base_index
     assert base is not None and np.all(th.displacements[:, base] == 0)
