@@ -65,6 +65,9 @@ pub struct Modes {
     /// `(phi^T M r)^2` with `r` the unit translation of every block. Over all the modes they add
     /// up to the mass of the blocks free to move in that direction.
     pub effective_mass: Vec<[f64; 2]>,
+    /// The mass free to move along x and along y \[kg\]: what the effective masses of all the
+    /// modes add up to.
+    pub free_mass: [f64; 2],
     /// The shift `sigma` the operator `(K - sigma M)^-1 M` was built with \[rad2/s2\].
     pub shift: f64,
     /// The size of the Lanczos basis the modes were extracted from.
@@ -366,6 +369,7 @@ impl<'a> Problem<'a> {
             shapes: vec![],
             residuals: vec![],
             effective_mass: vec![],
+            free_mass: [0, 1].map(|dir| self.dofs.iter().zip(&self.mass).filter(|(&g, _)| g % 3 == dir).map(|(_, m)| m).sum()),
             shift: sigma,
             basis,
         };

@@ -168,6 +168,8 @@ fn the_lowest_modes_of_a_wall_are_those_of_the_whole_spectrum() {
     let wall_mass: f64 = model.mass()[..model.n_wall()].iter().sum();
     let mx: f64 = all.effective_mass.iter().map(|e| e[0]).sum();
     assert_close(mx, wall_mass, 1e-8, "sum of the effective masses along x [kg]");
+    assert_close(all.free_mass[0], wall_mass, 1e-12, "mass free along x [kg]");
+    assert_close(all.free_mass[1], wall_mass, 1e-12, "mass free along y [kg]");
     // a shift between modes 3 and 4 finds the 4 modes nearest it
     let sigma = 0.5 * (all.eigenvalues[3] + all.eigenvalues[4]);
     let near = modes(&model, 4, Some(sigma)).unwrap();
