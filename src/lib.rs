@@ -9,6 +9,8 @@
 //! - [`static_solver`]: the static incremental solver (load or displacement control);
 //! - [`limit`]: limit analysis (the collapse multiplier as a linear program, with its certificate);
 //! - [`explicit`]: the explicit (molecular dynamics) solver: quasi-static analyses and time histories;
+//! - [`modal`]: modal analysis of the elastic model (natural frequencies and mode shapes), and
+//!   Rayleigh damping coefficients;
 //! - [`analysis`]: what the incremental analyses share (how the load is driven, progress);
 //! - [`results`]: what an analysis returns; [`error`]: the error type.
 //!
@@ -43,6 +45,7 @@ pub mod interface;
 pub mod joint;
 pub mod limit;
 pub(crate) mod linalg;
+pub mod modal;
 pub mod model;
 pub mod results;
 pub mod static_solver;

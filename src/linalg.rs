@@ -8,7 +8,8 @@
 //! partial pivoting up to [`DENSE_LU_MAX`] equations. The limit analysis's normal equations,
 //! symmetric and semi-definite, go to an LDL^T on the Cholesky's analysis. Each symbolic
 //! analysis is done once, when first needed; each `factorize` is a numeric refactorization into
-//! preallocated buffers.
+//! preallocated buffers. The modal analysis's small dense symmetric eigenproblem is solved here
+//! too ([`symmetric_eigen`]), and its solves of several right-hand sides at once, in `eigen`.
 
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -26,6 +27,9 @@ use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, LuSymbolicParams, N
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, Par, Side};
+
+mod eigen;
+pub use eigen::symmetric_eigen;
 
 /// A sparse square matrix with a fixed pattern and its factorization.
 pub struct SparseLu {

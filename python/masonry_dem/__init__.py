@@ -23,6 +23,10 @@ response against time; ``write_vtk``: a .vtu per record and a .pvd; ``write_curv
 model=model)``: a row per record), its displacements relative to the ground (:mod:`masonry_dem.history`).
 Progress bars: :mod:`masonry_dem.progress` (tqdm, optional).
 
+Modal analysis (:mod:`masonry_dem.modal`): :func:`modes` gives the natural frequencies [Hz] and mass-normalized
+mode shapes of the elastic model, :func:`rayleigh_damping` Rayleigh coefficients from two of them, and
+:func:`plot_modes` draws the shapes as deformed walls.
+
 Studies (:mod:`masonry_dem.study`, Dask, pandas and pyarrow, imported on first use): :func:`load_study` reads a
 study file (docs/study-format.md), :func:`run_study` runs its analyses on a Dask cluster (local by default),
 one row each in a Parquet file, :func:`read_results` reads them back.
@@ -40,6 +44,7 @@ from ._core import (
 from ._checked import Model, pattern, running_bond
 from .case import Case, load_case, parse_case, result_dict, run_case, write_result_json
 from .export import write_curve_csv, write_vtk
+from .modal import Modes, modes, plot_modes, rayleigh_damping
 from .api import (
     curve_columns,
     dry_joint,
@@ -70,6 +75,10 @@ __all__ = [
     "write_result_json",
     "write_vtk",
     "write_curve_csv",
+    "Modes",
+    "modes",
+    "rayleigh_damping",
+    "plot_modes",
     # the functions of api.__all__, listed as literals: type checkers read a package's re-exports (py.typed)
     # from a literal __all__ only (tests/python/test_api.py::test_exports checks that the lists agree)
     "mortar_joint",

@@ -316,3 +316,25 @@ class Results:
     steps: int  # converged steps (0 for "limit")
     elapsed_s: float
     certificate: Optional[_Certificate]  # limit analysis's (also a static load-control run's check on associative dry joints)
+
+class Modes:
+    """The natural modes of a model's elastic joints (``modes``), lowest frequency first."""
+
+    frequencies_hz: FloatArray  # (n,) natural frequencies [Hz]
+    angular_frequencies: FloatArray  # (n,) [rad/s]; 0 for a mode of no stiffness (a mechanism)
+    eigenvalues: FloatArray  # (n,) omega^2 as computed [rad2/s2]
+    shapes: FloatArray  # (n, n_all, 3): u1, u2, phi of every block (as Model.rects); phi^T M phi = 1, fixed dofs 0
+    residuals: FloatArray  # (n,) ||K phi - omega^2 M phi|| / ||K phi||
+    effective_mass: FloatArray  # (n, 2) effective modal masses along x and y [kg]
+    free_mass: tuple[float, float]  # the mass free to move along x and y [kg] (the effective masses' sum over all modes)
+    shift: float  # the shift sigma of the operator (K - sigma M)^-1 M [rad2/s2]
+    basis: int  # size of the Lanczos basis
+    def __len__(self) -> int: ...
+
+def modes(model: Model, n: int, shift: Optional[float] = None) -> Modes:
+    """The n lowest natural modes of the model's elastic joints (K phi = omega^2 M phi on the free dofs), or
+    with a shift [rad2/s2] the n whose omega^2 are nearest to it. Releases the GIL."""
+
+def rayleigh(f1_hz: float, f2_hz: float, zeta1: float, zeta2: Optional[float] = None) -> tuple[float, float]:
+    """Rayleigh damping C = alpha M + beta K: (alpha [1/s], beta [s]) giving the damping ratio zeta1 at f1_hz
+    and zeta2 (default zeta1) at f2_hz [Hz]."""

@@ -89,6 +89,7 @@ mod walls;
 mod model;
 mod results;
 mod run;
+mod modal;
 
 use convert::*;
 use walls::*;
@@ -134,5 +135,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyModel>()?;
     m.add_class::<PyResults>()?;
     m.add_class::<PyTimeHistory>()?;
+    modal::register(m)?;
     Ok(())
 }

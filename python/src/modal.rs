@@ -1,0 +1,100 @@
+//! Modal analysis: `modes` (the natural frequencies and shapes of a model's elastic joints, as a
+//! `Modes` of numpy arrays) and `rayleigh` (Rayleigh damping coefficients from two frequencies).
+
+use crate::*;
+use masonry_dem::modal::{self, Modes};
+
+/// The natural modes of a model (see _core.pyi).
+#[pyclass(name = "Modes", module = "masonry_dem._core", frozen)]
+pub(crate) struct PyModes {
+    inner: Modes,
+    n_blocks: usize,
+}
+
+#[pymethods]
+impl PyModes {
+    #[getter]
+    fn frequencies_hz<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.frequencies.clone().into_pyarray(py)
+    }
+    #[getter]
+    fn angular_frequencies<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.angular.clone().into_pyarray(py)
+    }
+    #[getter]
+    fn eigenvalues<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.eigenvalues.clone().into_pyarray(py)
+    }
+    #[getter]
+    fn shapes<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
+        let rows: Vec<[f64; 3]> = self.inner.shapes.iter().flat_map(|s| s.chunks_exact(3).map(|c| [c[0], c[1], c[2]])).collect();
+        history3(py, &rows, self.n_blocks)
+    }
+    #[getter]
+    fn residuals<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.residuals.clone().into_pyarray(py)
+    }
+    #[getter]
+    fn effective_mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let flat: Vec<f64> = self.inner.effective_mass.iter().flatten().copied().collect();
+        // the shape matches the data by construction: no panic can come from here
+        Array2::from_shape_vec((self.inner.effective_mass.len(), 2), flat)
+            .unwrap_or_else(|_| Array2::zeros((0, 2)))
+            .into_pyarray(py)
+    }
+    #[getter]
+    fn free_mass(&self) -> (f64, f64) {
+        (self.inner.free_mass[0], self.inner.free_mass[1])
+    }
+    #[getter]
+    fn shift(&self) -> f64 {
+        self.inner.shift
+    }
+    #[getter]
+    fn basis(&self) -> usize {
+        self.inner.basis
+    }
+    fn __len__(&self) -> usize {
+        self.inner.frequencies.len()
+    }
+    fn __repr__(&self) -> String {
+        let f: Vec<String> = self.inner.frequencies.iter().take(6).map(|f| format!("{f:.3}")).collect();
+        let more = if self.inner.frequencies.len() > 6 { ", ..." } else { "" };
+        format!("Modes({} modes, f = [{}{more}] Hz)", self.inner.frequencies.len(), f.join(", "))
+    }
+}
+
+/// The lowest `n` natural modes of the model's elastic joints (see _core.pyi). Releases the GIL.
+#[pyfunction]
+#[pyo3(signature = (model, n, shift=None))]
+pub(crate) fn modes(py: Python<'_>, model: PyRef<'_, PyModel>, n: i64, shift: Option<f64>) -> PyResult<PyModes> {
+    let n = count("n", n, 1)?;
+    let model = Arc::clone(&model.inner);
+    let inner = py.detach(|| guarded(|| modal::modes(&model, n, shift)))?;
+    Ok(PyModes { inner, n_blocks: model.n_blocks() })
+}
+
+/// Rayleigh damping (alpha [1/s], beta [s]) giving the ratios zeta1 at f1_hz and zeta2 (default
+/// zeta1) at f2_hz (see _core.pyi).
+#[pyfunction]
+#[pyo3(signature = (f1_hz, f2_hz, zeta1, zeta2=None))]
+pub(crate) fn rayleigh(f1_hz: f64, f2_hz: f64, zeta1: f64, zeta2: Option<f64>) -> PyResult<(f64, f64)> {
+    // the frequencies checked here, so that the messages speak of hertz
+    for (name, f) in [("f1_hz", f1_hz), ("f2_hz", f2_hz)] {
+        if !(f.is_finite() && f > 0.0) {
+            return Err(InputError::new_err(format!("rayleigh: {name} must be a finite frequency > 0 Hz, got {f}")));
+        }
+    }
+    if f1_hz == f2_hz {
+        return Err(InputError::new_err(format!("rayleigh: f1_hz and f2_hz are equal ({f1_hz} Hz): two different frequencies fix alpha and beta")));
+    }
+    let w = |f: f64| 2.0 * std::f64::consts::PI * f;
+    guarded(|| modal::rayleigh_coefficients(w(f1_hz), w(f2_hz), zeta1, zeta2.unwrap_or(zeta1)))
+}
+
+/// Adds the modal analysis's functions and class to the module.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(modes, m)?)?;
+    m.add_function(wrap_pyfunction!(rayleigh, m)?)?;
+    m.add_class::<PyModes>()
+}
