@@ -13,7 +13,7 @@
 //! The damping ratio `zeta` is the one with which a mass striking such a dashpot and spring
 //! (cut, as here, when its force turns to tension) rebounds with the velocity ratio
 //! `restitution` ([`restitution_of`], [`damping_ratio`]): 1 is elastic (no dashpot), and the
-//! smallest value, [`MIN_RESTITUTION`](crate::joint::MIN_RESTITUTION) = exp(-2), is the
+//! smallest value, [`MIN_RESTITUTION`] = exp(-2), is the
 //! critically damped contact.
 //!
 //! The default restitution of the joints ([`DEFAULT_RESTITUTION`](crate::joint::DEFAULT_RESTITUTION))
