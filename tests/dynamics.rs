@@ -113,3 +113,38 @@ fn base_acceleration_beyond_friction_makes_the_block_slide_back() {
     let (t, v): (Vec<f64>, Vec<f64>) = h.times.iter().enumerate().filter(|(_, t)| **t >= 0.05).map(|(k, t)| (*t, h.velocity(k)[0][0])).unzip();
     assert_close(slope(&t, &v), -(ag - mu * g), 0.01, "relative sliding acceleration [m/s2]");
 }
+
+#[test]
+fn rayleigh_damping_gives_its_damping_ratio_to_a_mode() {
+    // a 0.4 x 0.175 m block's vertical vibration on its base joint (elastic impacts: no contact
+    // dashpot), omega^2 = kN A / m, about its static settlement; Rayleigh damping set for 5% at
+    // omega and 3% at 3 omega: the logarithmic decrement of the vibration gives 5%
+    let (g, k) = (9.81, 1e10);
+    let law = JointLaw { restitution: 1.0, ..dry(0.65, 0.0, k) };
+    let m = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175)], gravity: g, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
+    let mass = 0.4 * 0.175 * 1000.0;
+    let omega = (k * 0.4 / mass).sqrt();
+    let (alpha, beta) = masonry_dem::modal::rayleigh_coefficients(omega, 3.0 * omega, 0.05, 0.03).unwrap();
+    let settled = -mass * g / (k * 0.4);
+    // a fine time step: the central difference's own error on the damping is of order omega dt
+    let dt = 2.0 / omega / 200.0;
+    let opts = DynamicOptions {
+        duration: 12.0 * std::f64::consts::TAU / omega,
+        time_step: Some(dt),
+        damping: masonry_dem::explicit::Damping::Viscous(alpha),
+        stiffness_damping: beta,
+        initial_displacement: Some(vec![[0.0, settled, 0.0], [0.0; 3]]),
+        initial_velocity: Some(vec![[0.0, 1e-4, 0.0], [0.0; 3]]),
+        large_rotations: false,
+        record: Recording::Every(1),
+        ..Default::default()
+    };
+    let h = simulate(&m, &opts).unwrap();
+    let y: Vec<f64> = (0..h.times.len()).map(|k| h.displacement(k)[0][1] - settled).collect();
+    let peaks: Vec<f64> = (1..y.len() - 1).filter(|&k| y[k] > y[k - 1] && y[k] >= y[k + 1]).map(|k| y[k]).collect();
+    assert!(peaks.len() >= 10, "{} peaks", peaks.len());
+    let delta = (peaks[0] / peaks[9]).ln() / 9.0;
+    let zeta = delta / (4.0 * std::f64::consts::PI.powi(2) + delta * delta).sqrt();
+    eprintln!("damping ratio of the vertical mode: {zeta:.5} (set 0.05)");
+    assert_close(zeta, 0.05, 0.02, "damping ratio");
+}

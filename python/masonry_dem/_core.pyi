@@ -226,6 +226,7 @@ class Model:
         progress: Optional[Callable[[int, float, float, float], None]] = None,
         vertical_acceleration: Optional[tuple[npt.ArrayLike, npt.ArrayLike]] = None,
         record_interval: Optional[float] = None,
+        rayleigh: Optional[tuple[float, float]] = None,
     ) -> "TimeHistory":
         """Time history with the explicit solver. Options left out (None) take the core's
         defaults: safety 0.8, damping "none" (coefficient 0), live_multiplier 0, a record every
@@ -240,7 +241,9 @@ class Model:
         kinematics with finite rotations (needed for rocking); False uses the linearized
         kinematics of the static solver. Impacts lose energy by the joints' restitution (joint
         key "restitution", default 0.3: Housner's impact of a rocking block); the time step
-        is lowered for the contact dashpots this takes. Records every record_interval seconds
+        is lowered for the contact dashpots this takes. rayleigh=(alpha [1/s], beta [s]): Rayleigh
+        damping alpha M + beta K (masonry_dem.rayleigh_damping from two modes), the beta K part as
+        dashpots at the closed interfaces; instead of damping / damping_coefficient. Records every record_interval seconds
         or every record_every-th step (not both); Model.record_size gives the memory up front.
         Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory
         computed so far as its `results` attribute.
@@ -277,7 +280,7 @@ class TimeHistory:
     external_work: FloatArray  # (k,) work of the external loads since t = 0 (weights, loads, base motion) [J]
     gravity_work: FloatArray  # (k,) the weights' part of external_work [J]
     friction_dissipation: FloatArray  # (k,) dissipated by friction and loss of strength in the joints [J]
-    damping_dissipation: FloatArray  # (k,) dissipated by the damping of the motion [J]
+    damping_dissipation: FloatArray  # (k,) dissipated by the damping of the motion (local, viscous, Rayleigh) [J]
     impact_dissipation: FloatArray  # (k,) dissipated by impacts (the joints' restitution) [J]
     dissipated: FloatArray  # (k,) the three dissipations together [J]
     energy_error: FloatArray  # (k,) the balance's error [J]

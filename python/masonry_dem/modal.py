@@ -77,8 +77,8 @@ def rayleigh_damping(
         pair: which two modes of a :class:`Modes` or a model (default the first two).
     Returns:
         ``(alpha, beta)``: ``alpha`` [1/s], ``beta`` [s]; at an angular frequency ``omega`` the ratio is
-        ``alpha / (2 omega) + beta omega / 2``. The explicit solver's ``damping="viscous"`` is the mass-proportional
-        part alone (``damping_coefficient=alpha``).
+        ``alpha / (2 omega) + beta omega / 2``; give it to ``Model.simulate(rayleigh=(alpha, beta))`` (the
+        mass-proportional part on the blocks, the stiffness-proportional part at the closed interfaces).
     Raises:
         InputError: frequencies not > 0 or equal, ratios < 0, or ratios needing a negative coefficient.
     """

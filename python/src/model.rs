@@ -247,7 +247,7 @@ impl PyModel {
 
     /// Time history with the explicit solver (see _core.pyi).
     /// Options left out (None) take the core's defaults (`DynamicOptions::default()`).
-    #[pyo3(signature = (duration, time_step=None, safety=None, damping=None, damping_coefficient=None, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=None, record_every=None, large_rotations=None, threads=None, progress=None, vertical_acceleration=None, record_interval=None))]
+    #[pyo3(signature = (duration, time_step=None, safety=None, damping=None, damping_coefficient=None, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=None, record_every=None, large_rotations=None, threads=None, progress=None, vertical_acceleration=None, record_interval=None, rayleigh=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate(
         &self,
@@ -267,12 +267,13 @@ impl PyModel {
         progress: Option<Py<PyAny>>,
         vertical_acceleration: Option<&Bound<'_, PyAny>>,
         record_interval: Option<f64>,
+        rayleigh: Option<(f64, f64)>,
     ) -> PyResult<Py<PyTimeHistory>> {
         let opts = dynamic_options(
             duration,
             time_step,
             safety,
-            (damping, damping_coefficient),
+            (damping, damping_coefficient, rayleigh),
             (initial_displacements, initial_velocities),
             (base_acceleration, vertical_acceleration),
             live_multiplier,
@@ -298,7 +299,7 @@ impl PyModel {
     #[pyo3(signature = (time_history=false))]
     fn critical_time_step(&self, time_history: bool) -> f64 {
         if time_history {
-            explicit::history_time_step_limit(&self.inner)
+            explicit::history_time_step_limit(&self.inner, 0.0)
         } else {
             explicit::critical_time_step(&self.inner)
         }
@@ -341,7 +342,7 @@ fn dynamic_options(
     duration: f64,
     time_step: Option<f64>,
     safety: Option<f64>,
-    (damping, damping_coefficient): (Option<&str>, Option<f64>),
+    (damping, damping_coefficient, rayleigh): (Option<&str>, Option<f64>, Option<(f64, f64)>),
     (initial_displacements, initial_velocities): (Option<&Bound<'_, PyAny>>, Option<&Bound<'_, PyAny>>),
     (base_acceleration, vertical_acceleration): (Option<&Bound<'_, PyAny>>, Option<&Bound<'_, PyAny>>),
     live_multiplier: Option<f64>,
@@ -350,11 +351,20 @@ fn dynamic_options(
     threads: Option<i64>,
 ) -> PyResult<DynamicOptions> {
     let defaults = DynamicOptions::default();
+    // Rayleigh damping alpha M + beta K: viscous alpha and stiffness-proportional beta
+    let (damping, stiffness_damping) = match rayleigh {
+        Some(_) if damping.is_some() || damping_coefficient.is_some() => {
+            return Err(InputError::new_err("give rayleigh=(alpha, beta), or damping and damping_coefficient, not both"))
+        }
+        Some((alpha, beta)) => (Damping::from_keys(Some("viscous"), Some(alpha), defaults.damping).map_err(to_py)?, beta),
+        None => (Damping::from_keys(damping, damping_coefficient, defaults.damping).map_err(to_py)?, defaults.stiffness_damping),
+    };
     Ok(DynamicOptions {
         duration,
         time_step,
         safety: safety.unwrap_or(defaults.safety),
-        damping: Damping::from_keys(damping, damping_coefficient, defaults.damping).map_err(to_py)?,
+        damping,
+        stiffness_damping,
         initial_displacement: rows3_from(initial_displacements, "initial_displacements")?,
         initial_velocity: rows3_from(initial_velocities, "initial_velocities")?,
         base_acceleration: series(base_acceleration, "base_acceleration")?,

@@ -82,7 +82,7 @@ impl PyTimeHistory {
     fn friction_dissipation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.friction_dissipation.clone().into_pyarray(py)
     }
-    /// (k,) dissipated by the damping of the motion (local, viscous) [J].
+    /// (k,) dissipated by the damping of the motion (local, viscous, stiffness-proportional) [J].
     #[getter]
     fn damping_dissipation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.damping_dissipation.clone().into_pyarray(py)

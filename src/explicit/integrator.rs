@@ -455,8 +455,9 @@ impl<'a> Integrator<'a> {
 
     /// Starts the energy accounting and the contact dashpots of a time history: each interface's
     /// dashpot from its law's restitution and the reduced mass of its blocks (see
-    /// [`super::contact`]); the next interface pass takes the jumps.
-    pub(super) fn start_dynamics(&mut self) {
+    /// [`super::contact`]), plus `beta` times its elastic stiffness (stiffness-proportional
+    /// damping); the next interface pass takes the jumps.
+    pub(super) fn start_dynamics(&mut self, beta: f64) {
         let model = self.model;
         let free_mass = |i: usize| {
             if self.free[3 * i] || self.free[3 * i + 1] {
@@ -472,7 +473,11 @@ impl<'a> Integrator<'a> {
             .map(|(k, it)| {
                 let sec = &model.sections()[k];
                 let reduced = 1.0 / (1.0 / free_mass(it.a) + 1.0 / free_mass(it.b));
-                Dyn { c: super::contact::coefficients(self.law(k), sec.area, sec.length, reduced), half: 0.5 * sec.length, ..Dyn::default() }
+                let impacts = super::contact::coefficients(self.law(k), sec.area, sec.length, reduced);
+                let d = crate::joint::stiffness(self.law(k), sec);
+                let c: [f64; 3] = std::array::from_fn(|j| impacts[j] + beta * d[j]);
+                let share = std::array::from_fn(|j| if c[j] > 0.0 { impacts[j] / c[j] } else { 1.0 });
+                Dyn { c, share, half: 0.5 * sec.length, ..Dyn::default() }
             })
             .collect();
         self.prime = true;

@@ -126,6 +126,11 @@ pub struct DynamicOptions {
     pub safety: f64,
     /// The damping of the motion.
     pub damping: Damping,
+    /// beta \[s\], stiffness-proportional damping `beta K` at the closed interfaces (dashpots
+    /// `beta (kN A, kT A, kN I)` on the jump rates, cut as the contact dashpots are): with
+    /// `Damping::Viscous(alpha)`, Rayleigh damping `alpha M + beta K`
+    /// ([`crate::modal::rayleigh_coefficients`]). 0: none.
+    pub stiffness_damping: f64,
     /// Initial (u1, u2, phi) of every block; None: zero.
     pub initial_displacement: Option<Vec<[f64; 3]>>,
     /// Initial velocities of every block; None: zero.
@@ -152,6 +157,7 @@ impl Default for DynamicOptions {
             time_step: None,
             safety: SAFETY,
             damping: Damping::None,
+            stiffness_damping: 0.0,
             initial_displacement: None,
             initial_velocity: None,
             base_acceleration: None,
@@ -213,7 +219,7 @@ pub struct TimeHistory {
     pub gravity_work: Vec<f64>,
     /// Energy dissipated in the joints by friction and by the loss of strength \[J\].
     pub friction_dissipation: Vec<f64>,
-    /// Energy dissipated by the damping of the motion (local or viscous) \[J\].
+    /// Energy dissipated by the damping of the motion (local, viscous, and stiffness-proportional) \[J\].
     pub damping_dissipation: Vec<f64>,
     /// Energy dissipated by the contact dashpots of impacts (see [`contact`]) \[J\].
     pub impact_dissipation: Vec<f64>,

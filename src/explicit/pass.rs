@@ -143,8 +143,12 @@ pub(super) struct Dyn {
     pub(super) c: [f64; 3],
     /// half the interface's length \[m\]
     pub(super) half: f64,
-    /// energy dissipated by the dashpot \[J\]
+    /// the share of each dashpot that models impacts (the rest is stiffness-proportional damping)
+    pub(super) share: [f64; 3],
+    /// energy dissipated by the dashpots' impact share \[J\]
     pub(super) damped: f64,
+    /// energy dissipated by their stiffness-proportional share \[J\]
+    pub(super) stiffness_damped: f64,
 }
 
 /// A part of the interface pass: the interfaces from `k0` (their histories, forces, flags,
@@ -322,13 +326,16 @@ impl Pass<'_> {
         }
         let de = [raw[0] - dy.jumps[0], raw[1] - dy.jumps[1] + ecc * (cos - dy.cos), raw[2] - dy.jumps[2]];
         (dy.jumps, dy.cos) = (raw, cos);
-        if dy.c[0] == 0.0 && dy.c[1] == 0.0 {
+        if dy.c == [0.0; 3] {
             return f;
         }
         let inv = 1.0 / self.dt;
         let mu = self.laws[gk.family as usize].friction;
         let d = super::contact::dashpot(&dy.c, dy.half, mu, [de[0] * inv, de[1] * inv, de[2] * inv], f);
-        dy.damped += d[0] * de[0] + d[1] * de[1] + d[2] * de[2];
+        let w = [d[0] * de[0], d[1] * de[1], d[2] * de[2]];
+        let impacts = dy.share[0] * w[0] + dy.share[1] * w[1] + dy.share[2] * w[2];
+        dy.damped += impacts;
+        dy.stiffness_damped += w[0] + w[1] + w[2] - impacts;
         [f[0] + d[0], f[1] + d[1], f[2] + d[2]]
     }
 

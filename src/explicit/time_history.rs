@@ -19,7 +19,7 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
     let mut s = Integrator::new(model, Some(dt), opts.safety, opts.damping, opts.threads)?;
     s.set_large(opts.large_rotations);
     set_initial_state(&mut s, opts);
-    s.start_dynamics();
+    s.start_dynamics(opts.stiffness_damping);
     let loads = Loads::new(model, opts, &s);
     loads.apply(&mut s.f_ext, 0.0);
     s.interface_forces();
@@ -39,14 +39,17 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
 }
 
 /// The stable time step of a time history of `model` \[s\]: [`critical_time_step`] lowered for
-/// the contact dashpots of its joints' restitution ([`contact::stability_factor`] of 3 zeta: a
-/// block rocking on a dashpot of damping ratio zeta has up to 3 zeta).
-pub fn history_time_step_limit(model: &Model) -> f64 {
+/// the contact dashpots of its joints' restitution and for stiffness-proportional damping
+/// `beta` \[s\] ([`contact::stability_factor`] of 3 zeta + beta omega_max / 2: a block rocking
+/// on a dashpot of damping ratio zeta has up to 3 zeta, and beta K gives the fastest mode
+/// beta omega_max / 2).
+pub fn history_time_step_limit(model: &Model, beta: f64) -> f64 {
     let zeta = [Family::Bed, Family::Head, Family::Base, Family::Top]
         .iter()
         .map(|&f| contact::damping_ratio(model.laws().of(f).restitution))
         .fold(0.0, f64::max);
-    critical_time_step(model) * contact::stability_factor(3.0 * zeta)
+    let crit = critical_time_step(model);
+    crit * contact::stability_factor(3.0 * zeta + beta / crit)
 }
 
 /// The time step of a time history: the given one, or `safety` times the stability limit, both
@@ -54,7 +57,7 @@ pub fn history_time_step_limit(model: &Model) -> f64 {
 /// rocking of a block on a dashpot of damping ratio zeta has up to 3 zeta).
 fn history_time_step(model: &Model, opts: &DynamicOptions) -> Result<f64, Error> {
     let crit = critical_time_step(model);
-    let limit = history_time_step_limit(model);
+    let limit = history_time_step_limit(model, opts.stiffness_damping);
     match opts.time_step {
         Some(dt) if dt.is_finite() && dt > limit && dt <= crit => Err(Error::input(format!(
             "analysis.time_step = {dt:.3e} s exceeds the stability limit of this model with its contact dashpots (restitution), {limit:.3e} s"
@@ -78,6 +81,9 @@ fn check_options(model: &Model, opts: &DynamicOptions) -> Result<(), Error> {
             return Err(Error::input(format!("record_interval must be a finite number of seconds > 0, got {i}")))
         }
         _ => {}
+    }
+    if !(opts.stiffness_damping.is_finite() && opts.stiffness_damping >= 0.0) {
+        return Err(Error::input(format!("stiffness_damping (beta) must be a finite number of seconds >= 0, got {}", opts.stiffness_damping)));
     }
     if !opts.live_multiplier.is_finite() {
         return Err(Error::input("live_multiplier must be finite"));
@@ -317,15 +323,16 @@ impl Run<'_> {
         let gravity: f64 = (0..nb).map(|i| -model.weight()[i] * (s.u[3 * i + 1] - self.u0[3 * i + 1])).sum();
         // what the joints' forces took from the blocks, less what the dashpots dissipated and
         // the elastic energy gained, the joints dissipated
-        let impacts: f64 = s.dynm.iter().map(|x| x.damped).sum();
-        let friction = self.joints - impacts - (ee - self.ee0);
-        let dissipated = friction + s.damping_work + impacts;
+        let (impacts, stiffness) = s.dynm.iter().fold((0.0, 0.0), |(i, k), x| (i + x.damped, k + x.stiffness_damped));
+        let damping = s.damping_work + stiffness;
+        let friction = self.joints - impacts - stiffness - (ee - self.ee0);
+        let dissipated = friction + damping + impacts;
         h.kinetic_energy.push(ke);
         h.elastic_energy.push(ee);
         h.external_work.push(self.work);
         h.gravity_work.push(gravity);
         h.friction_dissipation.push(friction);
-        h.damping_dissipation.push(s.damping_work);
+        h.damping_dissipation.push(damping);
         h.impact_dissipation.push(impacts);
         h.dissipated.push(dissipated);
         h.energy_error.push(self.ke0 + self.ee0 + self.work - ke - ee - dissipated);

@@ -117,3 +117,14 @@ def test_plot_writes_a_png(tmp_path: Path) -> None:
     assert ax.get_title().startswith("mode 3:")
     with pytest.raises(md.InputError):
         md.plot_modes(model, m, k=7)
+
+
+def test_rayleigh_damping_runs_in_a_time_history() -> None:
+    """Rayleigh coefficients from two modes go into Model.simulate; damping and rayleigh together are refused."""
+    model = md.Model([[0.0, 0.0, 0.4, 0.175]], gravity=9.81, joints={"default": {"restitution": 1.0}})
+    alpha, beta = md.rayleigh_damping(model, 0.05)
+    history = model.simulate(0.002, rayleigh=(alpha, beta), initial_velocities=[[0.0, 1e-4, 0.0], [0.0, 0.0, 0.0]])
+    assert history.status == "completed", history.error
+    assert history.damping_dissipation[-1] > 0 and history.impact_dissipation[-1] == 0
+    with pytest.raises(md.InputError, match="not both"):
+        model.simulate(0.001, rayleigh=(alpha, beta), damping="viscous")
