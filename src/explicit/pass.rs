@@ -143,6 +143,9 @@ pub(super) struct Dyn {
     pub(super) c: [f64; 3],
     /// half the interface's length \[m\]
     pub(super) half: f64,
+    /// the dashpot's force at the last step (its work over a step is trapezoidal, as the
+    /// integrator's work of every force)
+    pub(super) force: [f64; 3],
     /// the share of each dashpot that models impacts (the rest is stiffness-proportional damping)
     pub(super) share: [f64; 3],
     /// energy dissipated by the dashpots' impact share \[J\]
@@ -332,7 +335,9 @@ impl Pass<'_> {
         let inv = 1.0 / self.dt;
         let mu = self.laws[gk.family as usize].friction;
         let d = super::contact::dashpot(&dy.c, dy.half, mu, [de[0] * inv, de[1] * inv, de[2] * inv], f);
-        let w = [d[0] * de[0], d[1] * de[1], d[2] * de[2]];
+        let p = dy.force;
+        dy.force = d;
+        let w = [0.5 * (p[0] + d[0]) * de[0], 0.5 * (p[1] + d[1]) * de[1], 0.5 * (p[2] + d[2]) * de[2]];
         let impacts = dy.share[0] * w[0] + dy.share[1] * w[1] + dy.share[2] * w[2];
         dy.damped += impacts;
         dy.stiffness_damped += w[0] + w[1] + w[2] - impacts;
