@@ -27,6 +27,14 @@ Modal analysis (:mod:`masonry_dem.modal`): :func:`modes` gives the natural frequ
 mode shapes of the elastic model, :func:`rayleigh_damping` Rayleigh coefficients from two of them, and
 :func:`plot_modes` draws the shapes as deformed walls.
 
+Ground motions (:mod:`masonry_dem.ground_motion`): :class:`GroundMotion` records read from a two-column CSV or a
+PEER NGA .AT2 file (:func:`read_ground_motion`, :func:`read_at2`; in g or m/s2) or built in (:func:`one_sine`,
+:func:`ricker`), scaled, for ``Model.simulate(base_acceleration=..., vertical_acceleration=...)``; a case file's
+[ground_motion] and [time_history] tables run with ``Case.simulate`` (``masonry-dem simulate``).
+:mod:`masonry_dem.response` gives the peaks of the response (drift, rotation, base shear, energy balance);
+:func:`masonry_dem.plot.response_figure`, :func:`masonry_dem.plot.plot_energy` and :func:`write_animation` (a GIF,
+or an MP4 with ffmpeg) draw it.
+
 Studies (:mod:`masonry_dem.study`, Dask, pandas and pyarrow, imported on first use): :func:`load_study` reads a
 study file (docs/study-format.md), :func:`run_study` runs its analyses on a Dask cluster (local by default),
 one row each in a Parquet file, :func:`read_results` reads them back.
@@ -46,11 +54,16 @@ from .case import Case, load_case, parse_case, result_dict, run_case, write_resu
 from .export import write_curve_csv, write_vtk
 from .modal import Modes, modes, plot_modes, rayleigh_damping
 from .api import (
+    GroundMotion,
     curve_columns,
     dry_joint,
     interface_columns,
     interfaces_dataframe,
     mortar_joint,
+    one_sine,
+    read_at2,
+    read_ground_motion,
+    ricker,
     to_dataframe,
     to_dict,
     to_json,
@@ -89,6 +102,13 @@ __all__ = [
     "interfaces_dataframe",
     "curve_columns",
     "interface_columns",
+    "GroundMotion",
+    "read_ground_motion",
+    "read_at2",
+    "one_sine",
+    "ricker",
+    # the animation of a time history, imported on first use (matplotlib)
+    "write_animation",
     # studies, imported on first use (Dask, pandas and pyarrow take a while to import)
     "load_study",
     "run_study",
@@ -99,7 +119,12 @@ _STUDY_NAMES = ("load_study", "run_study", "read_results")
 
 
 def __getattr__(name: str):  # type: ignore[no-untyped-def]
-    """The study functions and :mod:`masonry_dem.study` itself, imported when first asked for."""
+    """The study functions and :mod:`masonry_dem.study` itself, and ``write_animation``
+    (:mod:`masonry_dem.plot`, matplotlib), imported when first asked for."""
+    if name == "write_animation":
+        from .plot.animation import write_animation
+
+        return write_animation
     if name in _STUDY_NAMES or name == "study":
         import importlib
 

@@ -21,6 +21,11 @@ Conversions (the compiled ``Results`` cannot be subclassed, so these are plain f
 * :func:`to_dataframe` / :func:`interfaces_dataframe`: pandas DataFrames of the curve and of the
   interfaces, when pandas is installed (a dependency of masonry-dem since the studies; without it they raise
   ImportError). :func:`curve_columns` / :func:`interface_columns` give the same columns as NumPy arrays.
+
+Ground motions for ``Model.simulate`` (:mod:`masonry_dem.ground_motion`; times in s, accelerations in m/s2):
+:class:`GroundMotion` (``.scaled(f)``, ``.peak``, ``.duration``, ``.as_tuple()`` for ``base_acceleration=``),
+:func:`read_ground_motion` (a two-column CSV in g or m/s2, or a PEER NGA .AT2 file in g, by its suffix),
+:func:`read_at2`, and the pulses :func:`one_sine` and :func:`ricker`.
 """
 
 from __future__ import annotations
@@ -35,6 +40,8 @@ import numpy as np
 from ._core import InputError
 from .case import JOINT_STATE_KEYS, certificate_dict, write_result_json
 from .case.result_file import json_float as _float
+from .ground_motion import GroundMotion, one_sine, read_at2, ricker
+from .ground_motion import read as read_ground_motion
 
 __all__ = [
     "mortar_joint",
@@ -45,6 +52,11 @@ __all__ = [
     "interfaces_dataframe",
     "curve_columns",
     "interface_columns",
+    "GroundMotion",
+    "read_ground_motion",
+    "read_at2",
+    "one_sine",
+    "ricker",
     "CURVE_COLUMNS",
     "INTERFACE_COLUMNS",
 ]

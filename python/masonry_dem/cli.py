@@ -7,6 +7,13 @@
     masonry-dem validate [DIR] [--method static|dynamic|limit|both|all] [--quiet]
     masonry-dem study STUDY.toml [--scheduler ADDRESS] [--workers N] [--out OUT.parquet] [--resume]
                       [--csv OUT.csv] [--plot OUT.png] [--quiet]
+    masonry-dem simulate CASE.toml [--scale F] [--duration S] [--json OUT.json] [--plot OUT.png]
+                         [--csv OUT.csv] [--vtk PREFIX] [--gif OUT.gif] [--quiet]
+
+``simulate`` runs the time history of a case under its ground motion ([ground_motion], [time_history]; see
+:mod:`masonry_dem.ground_motion`) and prints the peaks of the response (:mod:`masonry_dem.response`); it exits 1
+when the solver fails. Its outputs: the response figure (``--plot``), the animation (``--gif``), a row per record
+(``--csv``), a VTK time series (``--vtk``) and the JSON of :func:`masonry_dem.response.history_dict`.
 
 ``study`` runs the many analyses of a study file (docs/study-format.md) on Dask, writing one row per
 analysis to a Parquet file as they finish (see :mod:`masonry_dem.study`); ``--resume`` finishes a study
@@ -116,6 +123,92 @@ def _study(args: Any) -> int:
     if interrupted:
         return _error(f"interrupted: {len(frame):,} of {study.size:,} analyses written to {out}; "
                       "run again with --resume to finish", EXIT_INTERRUPTED)
+    return EXIT_OK
+
+
+def _simulate(args: Any) -> int:
+    """``masonry-dem simulate``: run the case's time history, write the outputs, print the summary."""
+    from .response import history_dict, summary_text
+
+    try:
+        case = load_case(args.case)
+    except OSError as exc:
+        return _error(f"cannot read {args.case}: {exc.strerror or exc}", EXIT_INPUT)
+    if case.ground_motion is None:
+        raise InputError(f"{args.case}: no [ground_motion] table: simulate needs a ground motion (a record file "
+                         "or a pulse; see docs/case-format.md)")
+    inputs = [args.case] + [str(p) for p in case.ground_motion.files]
+    kwargs = case.simulate_kwargs(args.scale, args.duration)  # checks the arguments before any run
+    targets, plot_file = _output_targets(args.json, args.plot, None, args.csv)
+    vtk_prefix = args.vtk
+    if vtk_prefix:
+        for ending in (".vtu", ".pvd"):
+            if vtk_prefix.endswith(ending):
+                vtk_prefix = vtk_prefix[: -len(ending)]
+        targets.append(vtk_prefix + ".pvd")
+    if args.gif:
+        from .plot.animation import ANIMATION_FORMATS
+
+        suffix = Path(args.gif).suffix.lower()
+        if suffix not in ANIMATION_FORMATS:
+            raise InputError(f"--gif {args.gif}: expected a .gif (or .mp4) file name")
+        if suffix == ".mp4":
+            from matplotlib import animation
+
+            if not animation.writers.is_available("ffmpeg"):
+                raise InputError(f"--gif {args.gif}: an MP4 needs ffmpeg, which is not installed (write a .gif)")
+        targets.append(args.gif)
+    _check_outputs(targets, inputs)
+    model = case.build_model()
+    motion, _ = case.ground_motion.components(args.scale)
+    interrupted = False
+    label = f"simulate {kwargs['duration']:.4g} s"
+    with progress_bar(label, enabled=_show_progress(args.quiet), time_history=True) as bar:
+        try:
+            history = case.simulate(model, args.scale, args.duration, progress=bar or None)
+        except KeyboardInterrupt as exc:
+            history = getattr(exc, "results", None)
+            if history is None:
+                raise
+            interrupted = True
+    interrupted = interrupted or history.status == "interrupted"
+    title = case.title + (f" (ground motion x{motion.scale:g})" if motion.scale != 1.0 else "")
+
+    def outputs() -> Iterator[Any]:
+        if args.json:
+            from .case.result_file import write_json
+
+            _prepare(args.json)
+            write_json(args.json, history_dict(model, history, case.title, motion), inputs=inputs)
+            yield args.json
+        if args.csv:
+            from .export import write_curve_csv
+
+            yield write_curve_csv(history, args.csv, inputs=inputs, model=model)
+        if vtk_prefix and not interrupted and len(history.times):
+            from .export import write_vtk
+
+            pvd, _ = write_vtk(model, history, vtk_prefix, inputs=inputs)
+            yield pvd
+        if plot_file is not None and not interrupted:
+            from .plot import response_figure
+
+            _prepare(plot_file)
+            response_figure(model, history, motion=motion, title=title, path=plot_file)
+            yield plot_file
+        if args.gif and not interrupted and len(history.times):
+            from .plot import write_animation
+
+            yield write_animation(model, history, args.gif, title=title, inputs=inputs)
+
+    wrote, write_error = _write_outputs(outputs())
+    failed_to_write = _print_report(summary_text(model, history, title, motion), wrote, write_error)
+    if failed_to_write is not None:
+        return failed_to_write
+    if interrupted:
+        return _error("interrupted (no plot, VTK files or animation drawn)", EXIT_INTERRUPTED)
+    if history.status == "failed":
+        return _error(f"the time history failed: {history.error or 'unknown reason'}", EXIT_FAILURE)
     return EXIT_OK
 
 
@@ -417,6 +510,8 @@ def _main(argv: Optional[Sequence[str]]) -> int:
             return _validate(args.directory, args.method, args.quiet)
         if args.command == "study":
             return _study(args)
+        if args.command == "simulate":
+            return _simulate(args)
         from .default_case import default_case
 
         return _execute(default_case(), None, args.json, args.plot, args.quiet, args.vtk, args.csv)

@@ -4,6 +4,7 @@ statuses and defaults the commands share (:mod:`masonry_dem.cli` runs them)."""
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import textwrap
 from pathlib import Path
@@ -28,7 +29,8 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of ``masonry-dem`` (subcommands ``run``, ``compare``, ``demo`` and ``validate``)."""
+    """The argument parser of ``masonry-dem`` (subcommands ``run``, ``compare``, ``demo``, ``validate``, ``study``
+    and ``simulate``)."""
     parser = _Parser(
         prog=PROG,
         description="Nonlinear in-plane analysis of masonry walls of rigid blocks with Mohr-Coulomb joints.",
@@ -44,6 +46,7 @@ def build_parser() -> argparse.ArgumentParser:
               masonry-dem compare CASE.toml --plot out/compare.png   static, dynamic and limit side by side
               masonry-dem validate --method static              check examples/ against their reference values
               masonry-dem study examples/studies/wall1-fragility.toml --plot out/fragility.png   1,000 analyses on Dask
+              masonry-dem simulate examples/ferris-tinloi-wall1-elcentro.toml --plot out/ec.png   a ground motion
 
             Case files are TOML (format 1, SI units); see examples/*.toml.
             exit status: 0 ok, 1 analysis failed or other error, 2 bad input (case file, arguments)."""
@@ -56,6 +59,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_demo(sub)
     _add_validate(sub)
     _add_study(sub)
+    _add_simulate(sub)
     return parser
 
 
@@ -210,6 +214,61 @@ def _add_study(sub: Any) -> None:
     study.add_argument("--plot", metavar="OUT.png", help="write the summary figure: the multiplier's histogram and "
                        "distribution, against each varied parameter, the weakest analyses' mechanisms (PNG)")
     _add_quiet(study)
+
+
+def _scale(text: str) -> float:
+    """A --scale factor: a finite number."""
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not math.isfinite(x):
+        raise argparse.ArgumentTypeError(f"expected a finite number, got {text!r}")
+    return x
+
+
+def _duration(text: str) -> float:
+    """A --duration: a finite number > 0 [s]."""
+    x = _scale(text)
+    if x <= 0:
+        raise argparse.ArgumentTypeError(f"expected a time > 0 [s], got {text!r}")
+    return x
+
+
+def _add_simulate(sub: Any) -> None:
+    what = (
+        "Run the time history of a case file under its ground motion ([ground_motion]: a record file, .csv or\n"
+        "PEER .AT2, or a built-in one-sine or Ricker pulse; [time_history]: duration, record interval, damping;\n"
+        "docs/case-format.md) with the explicit solver, and print a summary: duration, time step, status, peak\n"
+        "drift, peak rotation, peak base shear, energy balance error."
+    )
+    examples = """\
+            examples:
+              masonry-dem simulate examples/ferris-tinloi-wall1-elcentro.toml --plot out/ec.png
+              masonry-dem simulate examples/ferris-tinloi-wall1-elcentro.toml --scale 2 --gif out/ec.gif
+              masonry-dem simulate CASE.toml --duration 5 --csv out/h.csv --vtk out/h --json out/h.json
+
+            --vtk out/h writes out/h-blocks-0000.vtu, ... (one per record) and out/h.pvd: open the .pvd in
+            ParaView and play it. Displacements are relative to the ground.
+            exit status: 0 completed, 1 the solver failed, 2 bad input, 130 interrupted."""
+    simulate = _subcommand(sub, "simulate", "run a case's time history under its ground motion", what, examples)
+    simulate.add_argument("case", metavar="CASE.toml", help="case file (TOML, format 1) with a [ground_motion] table")
+    simulate.add_argument("--scale", metavar="F", type=_scale, help="the factor on the ground motion, replacing "
+                          "[ground_motion] scale (the vertical component follows it unless the case gives "
+                          "vertical_scale)")
+    simulate.add_argument("--duration", metavar="S", type=_duration, help="the length of the time history [s], "
+                          "replacing [time_history] duration (default: the record's, or 3 periods of a pulse)")
+    simulate.add_argument("--json", metavar="OUT.json", help="write the summary, the peaks and the response at "
+                          "each record (JSON)")
+    simulate.add_argument("--plot", metavar="OUT.png", help="write the response figure: rotation, drift, base "
+                          "shear and ground acceleration against time, and the wall at the largest drift (PNG)")
+    simulate.add_argument("--csv", metavar="OUT.csv", help="write a row per record: time, displacement and "
+                          "rotation of the control block, largest translation, energies (CSV)")
+    simulate.add_argument("--vtk", metavar="PREFIX", help="write PREFIX-blocks-NNNN.vtu per record and PREFIX.pvd "
+                          "(a time series for ParaView)")
+    simulate.add_argument("--gif", metavar="OUT.gif", help="write an animation of the blocks over time (GIF; "
+                          "an .mp4 name writes an MP4 where ffmpeg is installed)")
+    _add_quiet(simulate)
 
 
 def _add_outputs(parser: argparse.ArgumentParser, plot_default: Optional[str]) -> None:

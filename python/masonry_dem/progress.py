@@ -46,11 +46,16 @@ def progress_text(
     fraction: float,
     live: str = "horizontal_weight",
     unit: str = "steps",
+    time_history: bool = False,
 ) -> str:
     """The numbers shown by the bar: ``λ = 0.6425, 12,345 steps``; the control displacement in mm is
     added when ``fraction`` is known (displacement control). With ``live = "top_horizontal"`` the
     multiplier is a force in N, shown as ``H = 56.9 kN``. ``unit``: the word after the count
-    ("iterations" for a limit analysis)."""
+    ("iterations" for a limit analysis). ``time_history``: the numbers of ``Model.simulate``, whose second
+    is the time [s]: ``t = 1.234 s, 12,345 steps``."""
+    if time_history:
+        shown = f"{multiplier:.4g} s" if math.isfinite(multiplier) else "-"
+        return f"t = {shown}, {int(step):,} {unit}"
     name = multiplier_symbol(live)
     lam = f"{name} = {format_multiplier(multiplier, live) if math.isfinite(multiplier) else '-'}"
     parts = [lam]
@@ -91,6 +96,7 @@ class ProgressBar:
         interval: the bar is redrawn at most every ``interval`` seconds (default :data:`DEFAULT_INTERVAL`).
         leave: keep the last state of the bar on screen when closed (default: erase it).
         unit: the word after the count (default "steps"; "iterations" for a limit analysis).
+        time_history: the callback of ``Model.simulate`` (its second number is the time [s], shown as such).
 
     Raises:
         ImportError: tqdm is not installed (use :func:`progress_bar` to fall back to no bar).
@@ -104,9 +110,11 @@ class ProgressBar:
         interval: Optional[float] = None,
         leave: bool = False,
         unit: str = "steps",
+        time_history: bool = False,
     ) -> None:
         from tqdm import tqdm  # lazily: tqdm is optional
 
+        self.time_history = time_history
         self.label = label
         self.live = live
         self.unit = unit
@@ -149,7 +157,8 @@ class ProgressBar:
                 bar.bar_format = _FORMAT_FRACTION if known else _FORMAT_OPEN
             if known:
                 bar.n = int(round(min(max(fraction, 0.0), 1.0) * _TICKS))
-            text = progress_text(step, float(multiplier), float(displacement), fraction, self.live, self.unit)
+            text = progress_text(step, float(multiplier), float(displacement), fraction, self.live, self.unit,
+                                 self.time_history)
             bar.set_description_str(f"{self.label}: {text}", refresh=False)
             bar.refresh()
         except Exception:  # never let a drawing problem reach the solver
@@ -183,6 +192,7 @@ def progress_bar(
     enabled: bool = True,
     leave: bool = False,
     unit: str = "steps",
+    time_history: bool = False,
 ) -> Union[ProgressBar, NullProgress]:
     """A :class:`ProgressBar`, or a :class:`NullProgress` when ``enabled`` is false or tqdm is missing.
 
@@ -192,6 +202,6 @@ def progress_bar(
     if not enabled:
         return NullProgress()
     try:
-        return ProgressBar(label, file=file, live=live, leave=leave, unit=unit)
+        return ProgressBar(label, file=file, live=live, leave=leave, unit=unit, time_history=time_history)
     except ImportError:
         return NullProgress()

@@ -13,6 +13,9 @@ The keys are a public contract, described in ``docs/case-format.md``; this packa
   (``Model.solve_limit``). Its parameters are :class:`ModelParameters` and :class:`AnalysisParameters`;
   a key the file leaves out is left to the core's default.
 * :func:`result_dict` / :func:`write_result_json` produce the result file (:mod:`.result_file`).
+* A case with a [ground_motion] (a record file, read with the case, or a pulse) and a [time_history] runs its
+  time history with :meth:`Case.simulate` (``masonry-dem simulate``): :class:`GroundMotionParameters`,
+  :class:`TimeHistoryParameters`.
 
 Units are SI throughout: m, N, Pa, kg, s.
 """
@@ -24,7 +27,9 @@ from .mapping import (
     METHODS,
     AnalysisParameters,
     Case,
+    GroundMotionParameters,
     ModelParameters,
+    TimeHistoryParameters,
 )
 from .reader import (
     ANALYSIS_KEYS as ANALYSIS_KEYS,
@@ -33,9 +38,12 @@ from .reader import (
     DYNAMIC_KEYS as DYNAMIC_KEYS,
     FAMILIES as FAMILIES,
     GEOMETRY_KINDS as GEOMETRY_KINDS,
+    GROUND_MOTION_KEYS as GROUND_MOTION_KEYS,
     LAW_KEYS as LAW_KEYS,
     MAX_CASE_BYTES as MAX_CASE_BYTES,
+    PULSES as PULSES,
     REFERENCE_KEYS as REFERENCE_KEYS,
+    TIME_HISTORY_KEYS as TIME_HISTORY_KEYS,
     case_from_dict,
     load_case,
     parse_case,
@@ -59,6 +67,8 @@ __all__ = [
     "Case",
     "ModelParameters",
     "AnalysisParameters",
+    "GroundMotionParameters",
+    "TimeHistoryParameters",
     "load_case",
     "parse_case",
     "case_from_dict",

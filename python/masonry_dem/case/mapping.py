@@ -3,7 +3,9 @@ analysis with the static solver (``Model.solve_static``), the explicit one (``Mo
 limit analysis (``Model.solve_limit``).
 
 A case holds what its file gives in two frozen objects: :class:`ModelParameters` (the wall, the arguments
-of ``Model``) and :class:`AnalysisParameters` (the options of the solvers). A parameter the file leaves out
+of ``Model``) and :class:`AnalysisParameters` (the options of the solvers); a case with a ground motion also
+:class:`GroundMotionParameters` (its [ground_motion], the records read) and :class:`TimeHistoryParameters`
+(its [time_history]), which :meth:`Case.simulate` hands to ``Model.simulate``. A parameter the file leaves out
 is None there and is left out of the call, so that the core's own default applies (the bindings fill it in
 from the Rust ``Default``s). :data:`CORE_DEFAULTS` holds the few defaults Python has to show or to check
 a key against, read from the core (``_core.DEFAULTS``); nothing passes them back to it.
@@ -20,6 +22,7 @@ import numpy as np
 
 from .. import _core
 from .._core import InputError, MasonryError
+from ..ground_motion import GroundMotion, simulate_arguments
 from .table import _quote
 
 #: The methods of a case, each the name of one of the core's solvers.
@@ -40,6 +43,10 @@ SOLVER_OPTIONS = {"static": INCREMENTAL_OPTIONS, "dynamic": INCREMENTAL_OPTIONS 
 CORE_DEFAULTS: Mapping[str, Any] = MappingProxyType(dict(_core.DEFAULTS))
 
 Progress = Callable[[int, float, float, float], None]
+
+#: The length of a time history under a built-in pulse when [time_history] gives no ``duration``, in periods
+#: of the pulse.
+PULSE_PERIODS = 3.0
 
 
 def _in_file(exc: MasonryError, source: str) -> MasonryError:
@@ -107,6 +114,64 @@ class AnalysisParameters:
     def arguments(self, method: str) -> Dict[str, Any]:
         """The keyword arguments of the solver of ``method``: the options given that it takes."""
         return _given(self, SOLVER_OPTIONS[method])
+
+
+@dataclass(frozen=True, eq=False)
+class GroundMotionParameters:
+    """The ground motion of a case ([ground_motion]): the records as read, unscaled, and their factors.
+
+    Attributes:
+        horizontal: the horizontal component (:class:`masonry_dem.ground_motion.GroundMotion`) [m/s2].
+        scale: the factor on the horizontal component (``scale``, default 1).
+        vertical: the vertical component (``vertical_file``), upward positive, or None.
+        vertical_scale: the factor on the vertical component; None: the horizontal's ``scale``.
+        files: the record files read (never to be overwritten by an output).
+        pulse: "one-sine" or "ricker" for a built-in pulse, else None.
+        period: the pulse's period [s], else None.
+    """
+
+    horizontal: GroundMotion
+    scale: float = 1.0
+    vertical: Optional[GroundMotion] = None
+    vertical_scale: Optional[float] = None
+    files: tuple = ()
+    pulse: Optional[str] = None
+    period: Optional[float] = None
+
+    def components(self, scale: Optional[float] = None) -> "tuple[GroundMotion, Optional[GroundMotion]]":
+        """(horizontal, vertical or None), scaled: the horizontal by ``scale`` (default: the case's), the
+        vertical by ``vertical_scale``, or by the horizontal's factor when the case gives none."""
+        factor = self.scale if scale is None else float(scale)
+        horizontal = self.horizontal.scaled(factor)
+        if self.vertical is None:
+            return horizontal, None
+        return horizontal, self.vertical.scaled(factor if self.vertical_scale is None else self.vertical_scale)
+
+    @property
+    def default_duration(self) -> float:
+        """The length of a time history left to its default [s]: the records' (the last sample of either
+        component), or :data:`PULSE_PERIODS` periods of a pulse (at least the pulse's own length)."""
+        ends = [self.horizontal.duration] + ([self.vertical.duration] if self.vertical is not None else [])
+        if self.pulse is not None and self.period is not None:
+            ends.append(PULSE_PERIODS * self.period)
+        return float(max(ends))
+
+
+@dataclass(frozen=True)
+class TimeHistoryParameters:
+    """The options of a time history ([time_history]), None when the case leaves them out: duration [s]
+    (default: the ground motion's, :attr:`GroundMotionParameters.default_duration`), and record_interval [s],
+    damping, damping_coefficient, time_step [s] and large_rotations (default: the core's, of
+    ``Model.simulate``); with damping "rayleigh", damping_ratio: the ratio of Rayleigh damping at the elastic
+    model's first two modes."""
+
+    duration: Optional[float] = None
+    record_interval: Optional[float] = None
+    damping: Optional[str] = None
+    damping_coefficient: Optional[float] = None
+    damping_ratio: Optional[float] = None
+    time_step: Optional[float] = None
+    large_rotations: Optional[bool] = None
 
 
 class _Arguments(MutableMapping):  # type: ignore[type-arg]
@@ -181,6 +246,9 @@ class Case:
             "tolerance": float, "source": str, "methods": tuple}`` (the multiplier is a force in N with
             live = "top_horizontal"; tolerance is relative, default 0.01; source may be ""; methods are
             those the reference applies to). ``masonry-dem validate`` checks the case against it.
+        ground_motion: the optional [ground_motion] (:class:`GroundMotionParameters`, the records read), or
+            None; ``masonry-dem simulate`` and :meth:`simulate` run the wall under it.
+        time_history: the [time_history] options (:class:`TimeHistoryParameters`; all None when left out).
 
     The same parameters as dicts of keyword arguments: :attr:`model_kwargs`, :attr:`analysis_kwargs`,
     :attr:`dynamic_kwargs` and :meth:`solver_kwargs`.
@@ -192,6 +260,8 @@ class Case:
     method: str = "static"
     source: str = "<case>"
     reference: Optional[Dict[str, Any]] = None
+    ground_motion: Optional[GroundMotionParameters] = None
+    time_history: TimeHistoryParameters = field(default_factory=TimeHistoryParameters)
 
     @property
     def model_kwargs(self) -> MutableMapping[str, Any]:
@@ -282,3 +352,76 @@ class Case:
         """Build the model and run the analysis; ``method`` overrides the case's method."""
         method = self.check_method(method)
         return self.solve(self.build_model(), method, progress)
+
+    def simulate_kwargs(
+        self, scale: Optional[float] = None, duration: Optional[float] = None, model: Optional["_core.Model"] = None
+    ) -> Dict[str, Any]:
+        """The keyword arguments of ``Model.simulate`` for this case's time history, without ``progress``:
+        ``duration`` [s] (the argument, else [time_history] duration, else the ground motion's),
+        ``base_acceleration`` (and ``vertical_acceleration``) scaled by ``scale`` (default: the case's
+        [ground_motion] scale; see :meth:`GroundMotionParameters.components`), and the [time_history] options
+        given (record_interval [s], damping, damping_coefficient, time_step [s], large_rotations; the others are
+        left to the core's defaults). Rayleigh damping (damping "rayleigh") is ``rayleigh=(alpha, beta)`` for
+        damping_ratio at the first two modes of ``model`` (:func:`masonry_dem.rayleigh_damping`), which it needs.
+
+        Raises:
+            masonry_dem.InputError: the case has no [ground_motion], or ``scale`` / ``duration`` is not a
+                finite number (duration > 0), or Rayleigh damping without ``model``.
+        """
+        if self.ground_motion is None:
+            raise InputError(f"{self.source}: no [ground_motion] table: a time history needs a ground motion "
+                             "(a record file or a pulse)", "ground_motion")
+        if scale is not None:
+            scale = _checked_number("scale", scale, self.source, positive=False)
+        if duration is not None:
+            duration = _checked_number("duration", duration, self.source, positive=True)
+        options = self.time_history
+        length = duration if duration is not None else options.duration
+        if length is None:
+            length = self.ground_motion.default_duration
+        kwargs: Dict[str, Any] = {"duration": float(length)}
+        kwargs.update(simulate_arguments(*self.ground_motion.components(scale)))
+        kwargs.update(_given(options, ("record_interval", "damping", "damping_coefficient", "time_step",
+                                       "large_rotations")))
+        if options.damping == "rayleigh":
+            if model is None:
+                raise InputError(f"{self.source}: [time_history] damping = \"rayleigh\" is set from the model's "
+                                 "modes: simulate_kwargs needs model=", "time_history.damping")
+            from ..modal import rayleigh_damping
+
+            del kwargs["damping"]
+            kwargs["rayleigh"] = rayleigh_damping(model, float(options.damping_ratio))  # type: ignore[arg-type]
+        return kwargs
+
+    def simulate(
+        self,
+        model: "_core.Model",
+        scale: Optional[float] = None,
+        duration: Optional[float] = None,
+        progress: Optional[Progress] = None,
+    ) -> "_core.TimeHistory":
+        """Run this case's time history on ``model`` (built by :meth:`build_model`): ``Model.simulate`` with
+        :meth:`simulate_kwargs` (``scale``: the factor on the ground motion, replacing [ground_motion] scale;
+        ``duration`` [s], replacing [time_history] duration). ``progress``: the solvers' callback. The
+        solver does not raise for a failure: check ``TimeHistory.status``. Errors of the core about the input
+        are re-raised with the file name in front."""
+        kwargs = self.simulate_kwargs(scale, duration, model)
+        if progress is not None:
+            kwargs["progress"] = progress
+        try:
+            return model.simulate(**kwargs)
+        except MasonryError as exc:
+            raise _in_file(exc, self.source) from exc
+
+
+def _checked_number(name: str, value: Any, source: str, positive: bool) -> float:
+    """``value`` as a finite float (> 0 if ``positive``), else InputError naming ``name``."""
+    import math
+
+    try:
+        x = float(value) if not isinstance(value, bool) else math.nan
+    except (TypeError, ValueError):
+        x = math.nan
+    if not math.isfinite(x) or (positive and x <= 0):
+        raise InputError(f"{source}: {name}: expected a finite number{' > 0' if positive else ''}, got {value!r}", name)
+    return x

@@ -8,12 +8,24 @@ from __future__ import annotations
 import os
 import re
 import sys
+from dataclasses import replace
 from pathlib import Path
 from typing import Any, Callable, Dict, Mapping, Optional, Tuple, Union
 
 from .. import _core
 from .._core import InputError
-from .mapping import CORE_DEFAULTS, EXPLICIT_OPTIONS, METHODS, AnalysisParameters, Case, ModelParameters, generate_blocks
+from .. import ground_motion as _gm
+from .mapping import (
+    CORE_DEFAULTS,
+    EXPLICIT_OPTIONS,
+    METHODS,
+    AnalysisParameters,
+    Case,
+    GroundMotionParameters,
+    ModelParameters,
+    TimeHistoryParameters,
+    generate_blocks,
+)
 from .result_file import FORMAT
 from .table import _got, _non_negative, _open_unit, _positive, _quote, _short, _Table
 
@@ -24,7 +36,10 @@ else:  # pragma: no cover - exercised on Python < 3.11 only
 
 PathLike = Union[str, "os.PathLike[str]"]
 
-TOP_KEYS = ("format", "title", "geometry", "base", "top", "joints", "loads", "analysis", "reference")
+TOP_KEYS = (
+    "format", "title", "geometry", "base", "top", "joints", "loads", "analysis", "reference", "ground_motion",
+    "time_history",
+)
 # Keys of a joint law, in the order of docs/case-format.md, and the interface families that may override them.
 # the joint-law keys come from the core, which defines the law
 LAW_KEYS = tuple(_core.JOINT_LAW_KEYS)
@@ -38,6 +53,18 @@ DYNAMIC_KEYS = EXPLICIT_OPTIONS  # the explicit solver's options, by the same na
 DAMPINGS = ("local", "viscous", "none")
 # Keys of the optional [reference] table (a published or exact answer, checked by ``masonry-dem validate``).
 REFERENCE_KEYS = ("collapse_multiplier", "tolerance", "source", "methods")
+# Keys of the optional [ground_motion] table: a record file (and a vertical one), or a built-in pulse.
+GROUND_MOTION_KEYS = (
+    "file", "units", "scale", "vertical_file", "vertical_scale", "pulse", "amplitude", "amplitude_g", "period",
+)
+#: The built-in pulses of [ground_motion] pulse.
+PULSES = ("one-sine", "ricker")
+# Keys of the optional [time_history] table (``masonry-dem simulate``).
+TIME_HISTORY_KEYS = (
+    "duration", "record_interval", "damping", "damping_coefficient", "damping_ratio", "time_step", "large_rotations",
+)
+#: The kinds of damping of a time history: those of the quasi-static explicit solver and Rayleigh damping.
+TIME_HISTORY_DAMPINGS = DAMPINGS + ("rayleigh",)
 #: The relative tolerance of a [reference] that gives none (a default of the case file, not of the core).
 DEFAULT_REFERENCE_TOLERANCE = 0.01
 
@@ -80,7 +107,7 @@ def load_case(path: PathLike) -> Case:
             with the file name (as given) and names the key.
     """
     source = os.fspath(path)
-    return parse_case(read_text(path), source=source, default_title=Path(path).stem)
+    return parse_case(read_text(path), source=source, default_title=Path(path).stem, base_dir=Path(path).parent)
 
 
 def read_text(path: PathLike, what: str = "case file") -> str:
@@ -130,8 +157,11 @@ def _duplicate_key(text: str, message: str) -> Optional[str]:
     return f"duplicate key '{_short(name)}' (line {line_no}): a key or table may be given only once"
 
 
-def parse_case(text: str, source: str = "<string>", default_title: str = "untitled") -> Case:
-    """Check a case given as TOML text; ``source`` names it in error messages."""
+def parse_case(
+    text: str, source: str = "<string>", default_title: str = "untitled", base_dir: Optional[PathLike] = None
+) -> Case:
+    """Check a case given as TOML text; ``source`` names it in error messages; ``base_dir``: the folder the
+    record files of [ground_motion] are relative to (default: the current folder)."""
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -143,15 +173,21 @@ def parse_case(text: str, source: str = "<string>", default_title: str = "untitl
         raise InputError(f"{source}: invalid TOML: {exc}") from None
     except RecursionError:  # arrays or inline tables nested a thousand deep
         raise InputError(f"{source}: invalid TOML: arrays or tables nested too deep") from None
-    return case_from_dict(data, source=source, default_title=default_title)
+    return case_from_dict(data, source=source, default_title=default_title, base_dir=base_dir)
 
 
-def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_title: str = "untitled") -> Case:
+def case_from_dict(
+    data: Mapping[str, Any],
+    source: str = "<case>",
+    default_title: str = "untitled",
+    base_dir: Optional[PathLike] = None,
+) -> Case:
     """Check a parsed case (nested dicts as from ``tomllib``) and map it onto the core's arguments.
 
     Every key is checked before the core is called (the core then generates the geometry). A key left out
     is left out of the core's arguments too (None in :class:`ModelParameters` and
-    :class:`AnalysisParameters`): the core's default applies.
+    :class:`AnalysisParameters`): the core's default applies. The record files of [ground_motion] are read
+    here, relative to ``base_dir`` (default: the current folder).
     """
     top = _Table(data, "", source, TOP_KEYS)
     title = _title(top, default_title)
@@ -160,6 +196,9 @@ def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_titl
     wall.update(joints=_joints(top), **_loads(top, beam=wall["top_rotation"] is not None))
     method, analysis = _analysis(top)
     reference = _reference(top.table("reference", REFERENCE_KEYS))
+    time_history = _time_history(top.table("time_history", TIME_HISTORY_KEYS))
+    gravity = wall["gravity"] if wall["gravity"] is not None else float(CORE_DEFAULTS["gravity"])
+    motion = _ground_motion(top.table("ground_motion", GROUND_MOTION_KEYS), gravity, base_dir)
     # All keys are valid: map them onto the core (the generators may still refuse a geometry).
     blocks = generate_blocks(kind, geometry, source)
     return Case(
@@ -169,6 +208,8 @@ def case_from_dict(data: Mapping[str, Any], source: str = "<case>", default_titl
         method=method,
         source=source,
         reference=reference,
+        ground_motion=motion,
+        time_history=time_history,
     )
 
 
@@ -357,3 +398,118 @@ def _reference(table: Optional[_Table]) -> Optional[Dict[str, Any]]:
         "source": table.string("source", ""),
         "methods": tuple(methods),
     }
+
+
+def _ground_motion(table: Optional[_Table], gravity: float, base_dir: Optional[PathLike]) -> Optional[GroundMotionParameters]:
+    """[ground_motion]: a record file (``file``, ``units``, and optionally ``vertical_file``) or a built-in
+    ``pulse`` (``amplitude`` or ``amplitude_g``, ``period``), and the factors ``scale`` / ``vertical_scale``.
+    The files are read now (relative to ``base_dir``); values in g are converted with ``gravity`` [m/s2], the
+    case's."""
+    if table is None:
+        return None
+    if ("file" in table) == ("pulse" in table):
+        raise table.error("[ground_motion] needs exactly one of file (a record) and pulse (a built-in pulse); "
+                          + ("both are given" if "file" in table else "neither is given"), table.where("file"))
+    scale = table.number("scale", 1.0)
+    vertical_scale = table.number("vertical_scale", None)
+    if "pulse" in table:
+        pulse = table.string("pulse", choices=PULSES)
+        for key in ("units", "vertical_file", "vertical_scale"):
+            if key in table:
+                raise table.key_error(key, f'applies to a record file, not to pulse = "{pulse}"')
+        if ("amplitude" in table) == ("amplitude_g" in table):
+            raise table.error(f"[ground_motion] pulse = \"{pulse}\" needs exactly one of amplitude [m/s2] and "
+                              f"amplitude_g [g]; {'both are' if 'amplitude' in table else 'neither is'} given",
+                              table.where("amplitude"))
+        if "amplitude" in table:
+            amplitude = table.number("amplitude")
+        else:
+            _need_gravity(table, "amplitude_g", gravity)
+            amplitude = table.number("amplitude_g") * gravity
+        period = table.number("period", check=_positive)
+        build = _gm.one_sine if pulse == "one-sine" else _gm.ricker
+        motion = build(amplitude, period)
+        if gravity > 0:
+            motion = replace(motion, gravity=gravity)  # its peak in g told against the case's gravity
+        return GroundMotionParameters(horizontal=motion, scale=scale, pulse=pulse, period=period)
+    for key in ("amplitude", "amplitude_g", "period"):
+        if key in table:
+            raise table.key_error(key, "applies to a pulse, not to a record file")
+    if vertical_scale is not None and "vertical_file" not in table:
+        raise table.key_error("vertical_scale", "needs vertical_file (the vertical record it scales)")
+    units = table.string("units", None, _gm.UNITS)
+    horizontal, path = _record(table, "file", units, gravity, base_dir)
+    vertical, files = None, (path,)
+    if "vertical_file" in table:
+        vertical, vertical_path = _record(table, "vertical_file", units, gravity, base_dir)
+        files += (vertical_path,)
+    return GroundMotionParameters(
+        horizontal=horizontal, scale=scale, vertical=vertical, vertical_scale=vertical_scale, files=files
+    )
+
+
+def _need_gravity(table: _Table, key: str, gravity: float) -> None:
+    if not gravity > 0:
+        raise table.key_error(key, f"a value in g needs gravity > 0 ([loads] gravity is {gravity:g})")
+
+
+def _record(
+    table: _Table, key: str, units: Optional[str], gravity: float, base_dir: Optional[PathLike]
+) -> Tuple[_gm.GroundMotion, Path]:
+    """The record file of ``key``, read (:func:`masonry_dem.ground_motion.read`); its errors name the key."""
+    name = table.string(key)
+    if not name:
+        raise table.key_error(key, "expected the name of a record file (.csv or .AT2), got an empty string")
+    path = Path(name)
+    if base_dir is not None and not path.is_absolute():
+        path = Path(base_dir) / path
+    suffix = path.suffix.lower()
+    if suffix not in _gm.SUFFIXES:
+        raise table.key_error(key, f"{name!r}: unknown record format {path.suffix!r} (expected .csv, .txt, .dat or .AT2)")
+    if _gm.SUFFIXES[suffix] == "at2":
+        if units not in (None, "g"):
+            raise table.key_error("units", f'an AT2 record ({name}) is in g, got "{units}"')
+    if units in (None, "g"):
+        _need_gravity(table, "units" if units else key, gravity)
+    try:
+        return _gm.read(path, units=units, g=gravity if gravity > 0 else _gm.G), path
+    except OSError as exc:
+        raise table.key_error(key, f"cannot read {path}: {exc.strerror or exc}") from None
+    except InputError as exc:
+        raise table.key_error(key, str(exc)) from None
+
+
+def _time_history(table: Optional[_Table]) -> TimeHistoryParameters:
+    """[time_history]: the options of ``Model.simulate`` given (None: left out)."""
+    if table is None:
+        return TimeHistoryParameters()
+    damping = table.string("damping", None, TIME_HISTORY_DAMPINGS)
+    coefficient = table.number("damping_coefficient", None, _non_negative)
+    ratio = table.number("damping_ratio", None, _non_negative)
+    if (damping == "rayleigh") != (ratio is not None):
+        if damping == "rayleigh":
+            raise table.key_error("damping_ratio", 'is needed with damping = "rayleigh" (e.g. 0.05 for 5%)')
+        raise table.key_error("damping_ratio", 'belongs to damping = "rayleigh"')
+    if damping == "rayleigh" and coefficient is not None:
+        raise table.key_error("damping_coefficient", 'does not apply to damping = "rayleigh" (give damping_ratio)')
+    if coefficient is not None:
+        if damping is None or damping == "none":
+            raise table.key_error(
+                "damping_coefficient", 'needs damping = "local" or "viscous" (a time history is undamped by default)'
+            )
+        if damping == "local" and coefficient >= 1:
+            raise table.key_error(
+                "damping_coefficient", f'must be < 1 with damping = "local" (alpha in [0, 1)), got {coefficient}'
+            )
+    large = table.data.get("large_rotations")
+    if large is not None and not isinstance(large, bool):
+        raise table.key_error("large_rotations", f"expected true or false, {_got(large)}")
+    return TimeHistoryParameters(
+        duration=table.number("duration", None, _positive),
+        record_interval=table.number("record_interval", None, _positive),
+        damping=damping,
+        damping_coefficient=coefficient,
+        damping_ratio=ratio,
+        time_step=table.number("time_step", None, _positive),
+        large_rotations=large,
+    )

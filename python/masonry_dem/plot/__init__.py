@@ -14,16 +14,27 @@ Panels, each drawn on a matplotlib ``Axes`` given by the caller:
 * :func:`plot_curve` (ax, *results, labels=None): load multiplier lambda (or the top-beam force in kN)
   against the horizontal displacement of the control point [mm]; several results overlaid. A limit
   analysis (method "limit") has no curve: its multiplier is drawn as a horizontal line.
-* :func:`plot_response` (ax, model, history, quantity="displacement", mark=None): the control block's
-  horizontal displacement [mm] or rotation [rad] against time [s] of a time history (``Model.simulate``),
-  relative to the ground (the frame of the base), from the undeformed wall.
+* :func:`plot_response` (ax, model, history, quantity="displacement", mark=None, motion=None): a time
+  history's (``Model.simulate``) response against time [s]: the control block's horizontal displacement
+  [mm] or rotation [rad], the drift [%] (its displacement over the wall height), the base shear [kN] or the
+  ground acceleration [m/s²]; displacements relative to the ground (the frame of the base), from the
+  undeformed wall.
+* :func:`plot_energy` (history, ax=None): a time history's energy balance [J] against time: the energy
+  dissipated by friction, damping and impacts, the elastic and the kinetic energy stacked, the external work
+  over them, and the balance error.
 
 Figures (written as PNG with the Agg canvas when a ``path`` is given, else made through pyplot):
 
 * :func:`report_figure`: one page with the crack pattern, the mechanism, the deformed shape and the curve
   (``masonry-dem run --plot``); of a :class:`masonry_dem.TimeHistory`, :func:`history_figure`.
 * :func:`history_figure`: a time history's response: the control block's displacement and rotation against
-  time, and the deformed wall at the record of the largest displacement.
+  time (or other quantities of :func:`plot_response`), and the deformed wall at the record of the largest
+  displacement.
+* :func:`response_figure`: the response to a ground motion (``masonry-dem simulate --plot``): rotation, drift,
+  base shear and the ground acceleration against time, and the deformed wall (the mechanism) at the largest
+  drift. :func:`energy_figure`: the energy balance on its own.
+* :func:`write_animation` (model, history, path): the blocks moving over time, as a GIF (Pillow) or an MP4
+  (ffmpeg), with the drift against time under them (:mod:`.animation`).
 * :func:`plot_results`: the wall (mechanism and joint states in one panel) and the curve.
 * :func:`plot_comparison`: the static and the explicit (dynamic) analyses of one case side by side, and
   optionally its limit analysis: the walls with their crack patterns, and the curves overlaid, the limit
@@ -40,7 +51,18 @@ Matplotlib is imported when this package is.
 """
 
 from ..report import interface_categories
-from .figures import figure_path, history_figure, plot_comparison, plot_results, report_figure, save_figure
+from .animation import write_animation
+from .figures import (
+    RESPONSE_PANELS as RESPONSE_PANELS,
+    energy_figure,
+    figure_path,
+    history_figure,
+    plot_comparison,
+    plot_results,
+    report_figure,
+    response_figure,
+    save_figure,
+)
 from .panels import (
     DEFORMED_FRACTION as DEFORMED_FRACTION,
     EXTRA_STYLES as EXTRA_STYLES,
@@ -50,6 +72,7 @@ from .panels import (
     plot_cracks,
     plot_curve,
     plot_deformed,
+    plot_energy,
     plot_mechanism,
     plot_response,
     plot_wall,
@@ -62,8 +85,12 @@ __all__ = [
     "plot_mechanism",
     "plot_curve",
     "plot_response",
+    "plot_energy",
     "report_figure",
     "history_figure",
+    "response_figure",
+    "energy_figure",
+    "write_animation",
     "plot_results",
     "plot_comparison",
     "figure_path",

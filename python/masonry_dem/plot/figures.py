@@ -29,6 +29,7 @@ from .panels import (
     plot_cracks,
     plot_curve,
     plot_deformed,
+    plot_energy,
     plot_mechanism,
 )
 
@@ -185,18 +186,25 @@ def report_figure(
     return _finish(fig, _with_title(title, _result_heading(results, live)), path, dpi)
 
 
+#: The panels of :func:`response_figure`, top to bottom (quantities of :func:`plot_response`).
+RESPONSE_PANELS = ("rotation", "drift", "base_shear", "ground_acceleration")
+
+
 def history_figure(
     model: Any,
     history: Any,
     title: Optional[str] = None,
     path: Optional[Union[str, "os.PathLike[str]"]] = None,
     dpi: int = 150,
+    quantities: Tuple[str, ...] = ("displacement", "rotation"),
+    motion: Any = None,
 ) -> Figure:
-    """The response to a time history (``Model.simulate``): the horizontal displacement [mm] and the rotation
-    [rad] of the control block (the model's default: the top beam, else the highest wall block at the right
-    end) against time, and the deformed wall at the record of the largest |displacement| (marked on the
-    curves). Displacements are relative to the ground (the frame of the base), from the undeformed wall; the
-    wall is drawn at true scale when its largest displacement is at least 5% of its height, else magnified.
+    """The response to a time history (``Model.simulate``): quantities of the response against time, one panel
+    each, above one another (by default the horizontal displacement [mm] and the rotation [rad] of the control
+    block: the model's default, the top beam, else the highest wall block at the right end), and the deformed
+    wall at the record of the largest |displacement| of the control block, i.e. of the largest drift (marked
+    on the curves). Displacements are relative to the ground (the frame of the base), from the undeformed wall;
+    the wall is drawn at true scale when its largest displacement is at least 5% of its height, else magnified.
 
     Args:
         model: the :class:`masonry_dem.Model` simulated.
@@ -204,15 +212,20 @@ def history_figure(
         title: the case title (the figure title adds the status, the steps and the time step).
         path: output file (PNG), written with the Agg canvas; without it the figure goes through pyplot.
         dpi: resolution of the PNG.
+        quantities: the panels, quantities of :func:`plot_response` ("displacement", "rotation", "drift",
+            "base_shear", "ground_acceleration"), top to bottom.
+        motion: the horizontal ground motion (:class:`masonry_dem.ground_motion.GroundMotion`), drawn when the
+            history does not carry its ``ground_acceleration``.
     Returns:
         The figure.
     """
     a = float(np.clip(_aspect(model), 0.35, 2.5))
-    fig = _new_figure((5.0 * a + 7.5, 6.5), path is not None)
-    grid = fig.add_gridspec(2, 2, width_ratios=[max(a, 0.6), 1.3])
+    n = max(1, len(quantities))
+    fig = _new_figure((5.0 * a + 7.5, max(6.5, 2.0 * n + 1.0)), path is not None)
+    grid = fig.add_gridspec(n, 2, width_ratios=[max(a, 0.6), 1.3])
     ax_wall = fig.add_subplot(grid[:, 0])
-    ax_u = fig.add_subplot(grid[0, 1])
-    ax_phi = fig.add_subplot(grid[1, 1], sharex=ax_u)
+    axes = [fig.add_subplot(grid[0, 1])]
+    axes += [fig.add_subplot(grid[k, 1], sharex=axes[0]) for k in range(1, n)]
     times = np.asarray(history.times, dtype=np.float64)
     peak = peak_record(model, history)
     if len(times):
@@ -221,15 +234,61 @@ def history_figure(
         largest = float(corner_motion(rects, shown.displacements).max()) if len(rects) else 0.0
         true_scale = largest >= DEFORMED_FRACTION * _wall_height(model)
         plot_deformed(ax_wall, model, shown, scale=1.0 if true_scale else None)
-        ax_wall.set_title(f"{ax_wall.get_title()}\nat t = {shown.time:.4g} s (largest control displacement)",
-                          fontsize=10)
+        if true_scale:
+            _include_blocks(ax_wall, model, shown.displacements)
+        which = "largest drift" if "drift" in quantities else "largest control displacement"
+        ax_wall.set_title(f"{ax_wall.get_title()}\nat t = {shown.time:.4g} s ({which})", fontsize=10)
     else:
         plot_wall(ax_wall, model)
-    plot_response(ax_u, model, history, "displacement", mark=peak if len(times) else None)
-    plot_response(ax_phi, model, history, "rotation", mark=peak if len(times) else None)
-    ax_u.set_xlabel("")
-    ax_u.set_title(f"control block {default_control_block(model)}, relative to the ground", fontsize=10)
+    for ax, quantity in zip(axes, quantities):
+        plot_response(ax, model, history, quantity, mark=peak if len(times) else None, motion=motion)
+    for ax in axes[:-1]:
+        ax.set_xlabel("")
+    axes[0].set_title(f"control block {default_control_block(model)}, relative to the ground", fontsize=10)
     return _finish(fig, _with_title(title, _history_heading(history)), path, dpi)
+
+
+def _include_blocks(ax: Any, model: Any, disp: np.ndarray) -> None:
+    """Widen the limits of a wall panel to take in the blocks moved by ``disp`` at true scale (a block thrown
+    off the wall stays in view)."""
+    from .animation import moved_extent
+
+    (x_lo, x_hi), (y_lo, y_hi) = moved_extent(model, np.asarray(disp, dtype=np.float64)[None])
+    pad = 0.05 * _wall_height(model)
+    xl, xh = ax.get_xlim()
+    yl, yh = ax.get_ylim()
+    ax.set_xlim(min(xl, x_lo - pad), max(xh, x_hi + pad))
+    ax.set_ylim(min(yl, y_lo - pad), max(yh, y_hi + pad))
+
+
+def response_figure(
+    model: Any,
+    history: Any,
+    motion: Any = None,
+    title: Optional[str] = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    dpi: int = 150,
+) -> Figure:
+    """The response of a wall to a ground motion (``masonry-dem simulate --plot``): :func:`history_figure` with
+    the panels of :data:`RESPONSE_PANELS`, the control block's rotation [rad], the drift [%] (its horizontal
+    displacement over the wall height), the base shear [kN] and the ground acceleration [m/s²] under them,
+    against time [s], and the deformed wall (the mechanism) at the largest drift. ``motion``: the horizontal
+    :class:`masonry_dem.ground_motion.GroundMotion`, drawn when the history does not carry its input. Other
+    arguments as in :func:`history_figure`."""
+    return history_figure(model, history, title=title, path=path, dpi=dpi, quantities=RESPONSE_PANELS, motion=motion)
+
+
+def energy_figure(
+    history: Any,
+    title: Optional[str] = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    dpi: int = 150,
+) -> Figure:
+    """The energy balance of a time history on one panel (:func:`plot_energy`); a PNG if ``path`` is given
+    (Agg canvas), else through pyplot. ``title``: the case title, before the status in the heading."""
+    fig = _new_figure((9.0, 5.0), path is not None)
+    plot_energy(history, ax=fig.add_subplot(1, 1, 1))
+    return _finish(fig, _with_title(title, _history_heading(history)), path, dpi, fontsize=12)
 
 
 def _history_heading(history: Any) -> str:

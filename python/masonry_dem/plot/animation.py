@@ -1,0 +1,216 @@
+"""An animation of a time history (``Model.simulate``): the blocks moving over time, as a GIF or an MP4.
+
+:func:`write_animation` draws the wall at a sequence of records, the blocks moved by their displacements
+relative to the ground (the base stays put), the time in the title, and under the wall the drift of the control
+block against time with a cursor at the frame's time. A GIF is written with matplotlib's PillowWriter (Pillow
+comes with matplotlib); an MP4 with its FFMpegWriter, which needs the ``ffmpeg`` program. For ParaView, write the
+VTK time series instead (:func:`masonry_dem.write_vtk` of the history: a ``.vtu`` per record and a ``.pvd``).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+from typing import Any, Iterable, Optional, Union
+
+import numpy as np
+
+from .._core import InputError
+from ..atomic import atomic_path, check_target
+from ..report import deformed_corners
+
+__all__ = ["write_animation", "ANIMATION_FORMATS", "MAX_FRAMES", "animation_frames", "moved_extent"]
+
+#: The formats :func:`write_animation` writes, by suffix.
+ANIMATION_FORMATS = (".gif", ".mp4")
+
+#: The most frames an animation has by default (``every`` left out): a longer history is sampled more coarsely.
+MAX_FRAMES = 400
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+def moved_extent(model: Any, disp: np.ndarray, scale: float = 1.0) -> tuple:
+    """((x_lo, x_hi), (y_lo, y_hi)) [m] of the blocks (the base at rest) moved by ``scale`` * ``disp``, a
+    (frames, n_all, 3) array of displacements (u1 [m], u2 [m], phi [rad]), over all the frames."""
+    rects = np.asarray(model.rects, dtype=np.float64)
+    x0, y0, x1, y1 = rects.T
+    corners = np.stack([np.c_[x0, y0], np.c_[x1, y0], np.c_[x1, y1], np.c_[x0, y1]], axis=1)  # (n, 4, 2)
+    centroid = 0.5 * np.c_[x0 + x1, y0 + y1]
+    r = corners - centroid[:, None, :]
+    d = np.asarray(disp, dtype=np.float64)
+    phi = scale * d[..., 2][..., None]  # (f, n, 1)
+    c, s = np.cos(phi), np.sin(phi)
+    moved = (centroid[None, :, None, :] + scale * d[..., None, :2]
+             + np.stack([c * r[None, ..., 0] - s * r[None, ..., 1], s * r[None, ..., 0] + c * r[None, ..., 1]], -1))
+    if model.base_index is not None:
+        moved[:, int(model.base_index)] = corners[int(model.base_index)]
+    finite = moved[np.all(np.isfinite(moved), axis=-1)]
+    if finite.size == 0:
+        finite = corners.reshape(-1, 2)
+    return (float(finite[:, 0].min()), float(finite[:, 0].max())), (float(finite[:, 1].min()), float(finite[:, 1].max()))
+
+
+def animation_frames(
+    times: np.ndarray, fps: float, every: Optional[int] = None, start: Optional[float] = None,
+    stop: Optional[float] = None,
+) -> np.ndarray:
+    """The records an animation shows, those from ``start`` to ``stop`` [s] (default: all): every ``every``-th
+    one when given; else about one per 1 / ``fps`` seconds of the history (real time), but at most
+    :data:`MAX_FRAMES`. The last record of the span is always shown."""
+    times = np.asarray(times, dtype=np.float64)
+    keep = np.ones(len(times), dtype=bool)
+    if start is not None:
+        keep &= times >= start
+    if stop is not None:
+        keep &= times <= stop
+    chosen = np.flatnonzero(keep)
+    if len(chosen) == 0:
+        return np.zeros(0, dtype=np.int64)
+    return chosen[_frames(times[chosen], fps, every)]
+
+
+def _frames(times: np.ndarray, fps: float, every: Optional[int]) -> np.ndarray:
+    k = len(times)
+    if every is None:
+        span = float(times[-1] - times[0]) if k > 1 else 0.0
+        interval = float(np.median(np.diff(times))) if k > 1 else 1.0
+        wanted = min(MAX_FRAMES, max(2, int(math.ceil(span * fps)) + 1))
+        every = max(1, int(round(span / max(wanted - 1, 1) / interval))) if interval > 0 else 1
+        every = max(every, int(math.ceil(k / MAX_FRAMES)))
+    frames = np.arange(0, k, every, dtype=np.int64)
+    if frames[-1] != k - 1:
+        frames = np.append(frames, k - 1)
+    return frames
+
+
+def write_animation(
+    model: Any,
+    history: Any,
+    path: PathLike,
+    fps: float = 25,
+    scale: float = 1.0,
+    every: Optional[int] = None,
+    title: Optional[str] = None,
+    dpi: int = 80,
+    start: Optional[float] = None,
+    stop: Optional[float] = None,
+    inputs: Iterable[PathLike] = (),
+) -> Path:
+    """Write an animation of a time history: the blocks moving (relative to the ground, over their dashed
+    outlines at rest), the time in the title, and the drift of the control block [%] against time under the
+    wall, with a cursor.
+
+    Args:
+        model: the :class:`masonry_dem.Model` simulated.
+        history: its :class:`masonry_dem.TimeHistory` (displacements relative to the ground).
+        path: the file: ``.gif`` (Pillow) or ``.mp4`` (ffmpeg, if installed; else an InputError says so).
+        fps: frames per second of the animation.
+        scale: the magnification of the displacements and rotations (1: true scale).
+        every: show every ``every``-th record; default: about one frame per 1 / ``fps`` seconds of the
+            history (the animation plays in real time), at most :data:`MAX_FRAMES` frames.
+        title: the case title, before the time in the title of each frame.
+        dpi: resolution [dots per inch] of the frames (the figure is 6.4 inches wide, 512 pixels at 80, or narrower
+            for a tall wall; its height follows the wall's).
+        start, stop: the span of the history shown [s] (default: all of it).
+        inputs: files that must not be overwritten (the case file).
+    Returns:
+        The path written (atomically: a temporary file in its folder, then renamed).
+    Raises:
+        masonry_dem.InputError: another suffix, an MP4 without ffmpeg, bad ``fps`` / ``scale`` / ``every``, a
+            target that is not a regular file, or an empty history.
+    """
+    from matplotlib import animation
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.collections import LineCollection, PolyCollection
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Rectangle
+
+    from ..response import drift
+    from .panels import _wall_axes, _wall_limits
+
+    target = Path(path)
+    suffix = target.suffix.lower()
+    if suffix not in ANIMATION_FORMATS:
+        raise InputError(f"cannot write the animation {path}: unknown format {target.suffix!r} (use .gif or .mp4)")
+    if isinstance(fps, bool) or not (isinstance(fps, (int, float)) and math.isfinite(fps) and fps > 0):
+        raise InputError(f"write_animation: fps must be a number > 0, got {fps!r}")
+    if isinstance(scale, bool) or not (isinstance(scale, (int, float)) and math.isfinite(scale) and scale >= 0):
+        raise InputError(f"write_animation: scale must be a number >= 0, got {scale!r}")
+    if every is not None and (isinstance(every, bool) or not isinstance(every, int) or every < 1):
+        raise InputError(f"write_animation: every must be an integer >= 1, got {every!r}")
+    if suffix == ".mp4" and not animation.writers.is_available("ffmpeg"):
+        raise InputError(f"cannot write the animation {path}: an MP4 needs ffmpeg, which is not installed "
+                         "(write a .gif instead, or install ffmpeg)")
+    inputs = list(inputs)
+    check_target(target, inputs)
+
+    times = np.asarray(history.times, dtype=np.float64).reshape(-1)
+    frames = animation_frames(times, float(fps), every, start, stop)
+    if len(frames) == 0:
+        raise InputError("write_animation: no record to show" + (" between start and stop" if len(times) else
+                                                                  " (the time history is empty)"))
+    disp = np.asarray(history.displacements, dtype=np.float64)
+    rects = np.asarray(model.rects, dtype=np.float64)
+    base = model.base_index
+    moving = [i for i in range(len(rects)) if i != base]
+    colors = ["#7f7f7f" if i == model.top_index else "#efe3c8" for i in moving]
+
+    # the wall panel's limits: the wall with room for the mechanism, and every block in view in every frame
+    (xl, xh), (yl, yh) = _wall_limits(model)
+    (x_lo, x_hi), (y_lo, y_hi) = moved_extent(model, disp[frames], scale)
+    pad = 0.03 * (rects[:, 3].max() - rects[:, 1].min())
+    xlim = (min(xl, x_lo - pad), max(xh, x_hi + pad))
+    ylim = (min(yl, y_lo - pad), max(yh, y_hi + pad))
+    tall = float(np.clip((ylim[1] - ylim[0]) / (xlim[1] - xlim[0]), 0.3, 1.6))
+    width = 6.4 if tall <= 1.0 else max(4.0, 6.4 / tall)  # a tall wall: a narrower figure
+    fig = Figure(figsize=(width, width * tall + 2.4), layout="constrained")
+    FigureCanvasAgg(fig)
+    ax_wall, ax_drift = fig.subplots(2, 1, gridspec_kw={"height_ratios": [width * tall + 0.6, 1.8]})
+    if base is not None:
+        x0, y0, x1, y1 = rects[int(base)]
+        ax_wall.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, facecolor="#d9d9d9", edgecolor="#555555",
+                                    hatch="///", linewidth=0.8, zorder=1))
+    blocks = PolyCollection([], facecolors=colors, edgecolors="#5a4a3a", linewidths=0.6, zorder=2)
+    ax_wall.add_collection(blocks)
+    outlines = [deformed_corners(rects[i], (0.0, 0.0, 0.0), 0.0) for i in moving]
+    ax_wall.add_collection(LineCollection([np.vstack([o, o[:1]]) for o in outlines], colors="#404040",
+                                          linewidths=0.5, linestyles="--", zorder=3))
+    _wall_axes(ax_wall, model)
+    ax_wall.set_xlim(*xlim)
+    ax_wall.set_ylim(*ylim)
+    scale_note = "true scale" if scale == 1 else f"displacements ×{scale:g}"
+    note = f"relative to the ground, {scale_note}; dashed: at rest"
+
+    d = drift(model, history) * 100.0
+    ax_drift.plot(times, d, color="#1f77b4", linewidth=1.0)
+    ax_drift.axhline(0.0, color="#808080", linewidth=0.6)
+    cursor = ax_drift.axvline(times[0], color="#d62728", linewidth=1.0)
+    if frames[-1] > frames[0]:
+        ax_drift.set_xlim(times[frames[0]], times[frames[-1]])  # the span shown
+    ax_drift.set_xlabel("time [s]")
+    ax_drift.set_ylabel("drift [%]")
+    ax_drift.grid(True, linewidth=0.4, alpha=0.6)
+    heading = f"{title} — " if title else ""
+
+    def draw(k: int) -> None:
+        blocks.set_verts([deformed_corners(rects[i], disp[k, i], scale) for i in moving])
+        cursor.set_xdata([times[k], times[k]])
+        ax_wall.set_title(f"{heading}t = {times[k]:.2f} s\n{note}", fontsize=9)
+
+    writer: Any
+    if suffix == ".gif":
+        writer = animation.PillowWriter(fps=fps)
+    else:
+        writer = animation.FFMpegWriter(fps=fps, codec="h264", extra_args=["-pix_fmt", "yuv420p"])
+
+    def write(tmp: str) -> None:
+        with writer.saving(fig, tmp, dpi):
+            for k in frames:
+                draw(int(k))
+                writer.grab_frame()
+
+    if str(target.parent):
+        target.parent.mkdir(parents=True, exist_ok=True)
+    return atomic_path(target, write, inputs=inputs)
