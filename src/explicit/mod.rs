@@ -11,6 +11,11 @@
 //! - Quasi-static load control: each load level is relaxed until the unbalanced-force ratio is
 //!   below a tolerance; a level at which the wall runs away (or does not settle) is a failure,
 //!   and the collapse multiplier is bracketed by halving the load step, as in the static solver.
+//!   A wall creeping towards an equilibrium near its collapse multiplier (moving well beyond its
+//!   elastic response, but slowing down or with its unbalanced forces falling fast enough to
+//!   settle within `max_steps_per_level`) keeps relaxing; a level runs away on evidence that it
+//!   will not settle (over successive windows, neither), or when a block moves 1% of the wall's
+//!   size.
 //! - Quasi-static displacement control: the control dof is driven; lambda follows from the
 //!   control dof's own equation (the condition of the static solver's bordered system).
 //! - Time histories: free motion from initial conditions, or a horizontal base acceleration
@@ -90,7 +95,9 @@ pub struct ExplicitOptions {
     pub time_step: Option<f64>,
     /// Fraction of the stability limit used by the automatic time step.
     pub safety: f64,
-    /// Time steps allowed to settle one level before it counts as not settling.
+    /// Time steps allowed to settle one level before it counts as not settling; a level whose
+    /// unbalanced forces fall too slowly to settle within them, while the wall does not slow
+    /// down, counts as running away before.
     pub max_steps_per_level: usize,
     /// Threads of the interface loop; 0: all cores.
     pub threads: usize,

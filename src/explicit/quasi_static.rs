@@ -116,8 +116,8 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
     let mut run = QuasiStatic::new(model, opts, control_block, start)?;
     let end = match run.settle_dead_loads(monitor) {
         ControlFlow::Break(end) => end,
-        ControlFlow::Continue((dead_steps, u_fail)) => match opts.control {
-            Control::Load => run.load_control(u_fail, monitor),
+        ControlFlow::Continue((dead_steps, limits)) => match opts.control {
+            Control::Load => run.load_control(&limits, monitor),
             Control::Displacement { max_displacement } => run.displacement_control(max_displacement, dead_steps, monitor),
         },
     };
@@ -194,6 +194,78 @@ impl Snapshot {
     }
 }
 
+/// When a level runs away. A block moving up to `elastic` from where the level started is the
+/// wall's response to the step of load. Beyond it the wall may still be creeping towards an
+/// equilibrium (near the collapse multiplier joints slip and hinges open as the forces
+/// redistribute, over many time steps), and the level runs away only with evidence that it will
+/// not settle: over [`STRIKES`] successive windows of `window` time steps, the peak kinetic
+/// energy of each at least the one before (the wall is not slowing down) while the unbalanced
+/// ratio falls too slowly to reach `ratio` within `max_steps` (by the lowest ratio of the
+/// window and of the one before, extrapolated). A block moving more than `u_max` (or a motion
+/// that is not finite) runs away at once.
+#[derive(Debug, Clone, Copy)]
+struct Limits {
+    elastic: f64,
+    u_max: f64,
+    window: usize,
+    ratio: f64,
+    max_steps: usize,
+}
+
+/// Successive windows of evidence that make a runaway (see [`Limits`]).
+const STRIKES: usize = 3;
+
+/// What [`Limits::ran_away`] remembers of a level's motion: the peak kinetic energy and the
+/// lowest unbalanced ratio of the window so far and of the last one, and how many windows in a
+/// row gave evidence of a runaway.
+struct Trend {
+    peak: f64,
+    low: f64,
+    last_peak: f64,
+    last_low: f64,
+    strikes: usize,
+}
+
+impl Default for Trend {
+    fn default() -> Self {
+        // the first window has none before it to compare with
+        Trend { peak: 0.0, low: f64::INFINITY, last_peak: f64::INFINITY, last_low: f64::NAN, strikes: 0 }
+    }
+}
+
+impl Limits {
+    /// No limit (displacement control: the drive sets the motion).
+    const NONE: Limits = Limits { elastic: f64::INFINITY, u_max: f64::INFINITY, window: usize::MAX, ratio: 0.0, max_steps: 0 };
+
+    /// A block moving more than `u` runs away at once, whatever the trend.
+    fn at(u: f64) -> Limits {
+        Limits { elastic: u, u_max: u, window: usize::MAX, ratio: 0.0, max_steps: 0 }
+    }
+
+    /// Whether the level runs away after `k` time steps (a multiple of 16), a block having
+    /// moved at most `moved`, with the wall's kinetic energy `ke` and unbalanced ratio `ratio`
+    /// (`trend`: the level's so far).
+    fn ran_away(&self, trend: &mut Trend, k: usize, moved: f64, ke: f64, ratio: f64) -> bool {
+        if !moved.is_finite() || moved > self.u_max {
+            return true;
+        }
+        trend.peak = trend.peak.max(ke);
+        trend.low = trend.low.min(ratio);
+        if k % self.window != 0 {
+            return false;
+        }
+        // windows still needed at the rate the ratio fell over this one (none: it did not fall)
+        let fell = trend.last_low - trend.low;
+        let needed = if fell > 0.0 { (trend.low - self.ratio) / fell } else { f64::INFINITY };
+        let late = k as f64 + needed * self.window as f64 > self.max_steps as f64;
+        let strike = moved > self.elastic && trend.peak >= trend.last_peak && late;
+        trend.strikes = if strike { trend.strikes + 1 } else { 0 };
+        (trend.last_peak, trend.last_low) = (trend.peak, trend.low);
+        (trend.peak, trend.low) = (0.0, f64::INFINITY);
+        trend.strikes >= STRIKES
+    }
+}
+
 /// Load control between levels: the scale of the loads, the next step of lambda, the last
 /// lambda at which the wall settled and its state, and the last mechanism seen (the motion of
 /// the last level that ran away).
@@ -254,10 +326,9 @@ impl<'a> QuasiStatic<'a> {
 
     /// Relaxes the wall at multiplier `lam` (or, with `drive`, with the control dof held at
     /// that value and lambda from its equation) until the unbalanced-force ratio is below the
-    /// options', calling the monitor when due. The level runs away when a block moves more than
-    /// `u_fail` from where the level started, or when it does not settle within the options'
-    /// steps per level.
-    fn relax(&mut self, lam: &mut f64, drive: Option<f64>, u_fail: f64, monitor: &mut dyn FnMut(&Progress) -> bool) -> Level {
+    /// options', calling the monitor when due. The level runs away as `limits` judge it
+    /// ([`Limits::ran_away`]), or when it does not settle within the options' steps per level.
+    fn relax(&mut self, lam: &mut f64, drive: Option<f64>, limits: &Limits, monitor: &mut dyn FnMut(&Progress) -> bool) -> Level {
         let (opts, nb, cd, fd, fl) = (self.opts, self.nb, self.cd, &self.fd, &self.fl);
         let s = &mut self.s;
         let u0 = s.u.clone();
@@ -271,16 +342,18 @@ impl<'a> QuasiStatic<'a> {
                 f[d] = fd[d] + l * fl[d];
             }
         };
+        let mut trend = Trend::default();
         let mut last = Instant::now();
         for k in 0..opts.max_steps_per_level {
             s.step(&mut set_ext, drive.map(|x| (cd, x)));
             *lam = lam_cell.get();
             if k % 16 == 15 {
-                if s.unbalanced_ratio(drive.map(|_| cd)) <= opts.unbalanced_ratio {
+                let ratio = s.unbalanced_ratio(drive.map(|_| cd));
+                if ratio <= opts.unbalanced_ratio {
                     return Level::Settled;
                 }
                 let moved = (0..nb).map(|i| (s.u[3 * i] - u0[3 * i]).hypot(s.u[3 * i + 1] - u0[3 * i + 1])).fold(0.0, f64::max);
-                if moved > u_fail || !moved.is_finite() {
+                if limits.ran_away(&mut trend, k + 1, moved, s.kinetic_energy(), ratio) {
                     return Level::RanAway;
                 }
             }
@@ -296,14 +369,13 @@ impl<'a> QuasiStatic<'a> {
 
     /// Relaxes the wall under its dead loads (a block moving more than 1% of the wall's size
     /// means it does not stand), then holds the dofs held after them and starts the curve at
-    /// lambda = 0: the time steps the dead state took, and how far a block may move in a level
-    /// after it before the level counts as running away.
-    fn settle_dead_loads(&mut self, monitor: &mut dyn FnMut(&Progress) -> bool) -> ControlFlow<End, (usize, f64)> {
+    /// lambda = 0: the time steps the dead state took, and the limits of the motion of a load
+    /// level after it.
+    fn settle_dead_loads(&mut self, monitor: &mut dyn FnMut(&Progress) -> bool) -> ControlFlow<End, (usize, Limits)> {
         let size = self.model.size();
         let mut lam = 0.0;
         let steps_before = self.s.steps;
-        let u_fail0 = 1e-2 * size;
-        match self.relax(&mut lam, None, u_fail0, monitor) {
+        match self.relax(&mut lam, None, &Limits::at(1e-2 * size), monitor) {
             Level::Settled => {}
             Level::Stopped => return ControlFlow::Break(End::interrupted(None)),
             Level::RanAway => {
@@ -318,22 +390,26 @@ impl<'a> QuasiStatic<'a> {
         self.curve_l.push(0.0);
         self.curve_u.push(s.u[self.cd]);
         // displacements beyond 20 x the settlement under dead load (at least 1e-4 of the wall) are
-        // a running mechanism, not an elastic response
+        // no elastic response: a mechanism, running or creeping; beyond 1% of the wall, as under
+        // the dead loads, one that does not stop. The windows of its trend: the time the dead
+        // state took to settle (at least 1,024 time steps), a multiple of 16 steps.
         let settle = (0..self.nb).map(|i| s.u[3 * i].hypot(s.u[3 * i + 1])).fold(0.0, f64::max);
-        let u_fail = (20.0 * settle).max(1e-4 * size);
-        ControlFlow::Continue((dead_steps, u_fail))
+        let window = dead_steps.max(1024).div_ceil(16) * 16;
+        let (ratio, max_steps) = (self.opts.unbalanced_ratio, self.opts.max_steps_per_level);
+        let limits = Limits { elastic: (20.0 * settle).max(1e-4 * size), u_max: 1e-2 * size, window, ratio, max_steps };
+        ControlFlow::Continue((dead_steps, limits))
     }
 
     /// Load control: levels of lambda, each relaxed until the wall settles; a level at which it
-    /// runs away (a block moving more than `u_fail`) is undone and the step halved, until the
-    /// bracket on the collapse multiplier is within the tolerance.
-    fn load_control(&mut self, u_fail: f64, monitor: &mut dyn FnMut(&Progress) -> bool) -> End {
+    /// runs away (as `limits` judge it) is undone and the step halved, until the bracket on the
+    /// collapse multiplier is within the tolerance.
+    fn load_control(&mut self, limits: &Limits, monitor: &mut dyn FnMut(&Progress) -> bool) -> End {
         let scale = crate::analysis::lambda_scale(self.model);
         let dl = 4.0 * scale / self.opts.steps as f64;
         let mut steps = LoadSteps { scale, dl, lam_conv: 0.0, saved: Snapshot::of(&self.s), mechanism: None };
         let max_levels = 100 * self.opts.steps + 1000;
         for _ in 0..max_levels {
-            if let ControlFlow::Break(end) = self.load_level(&mut steps, u_fail, monitor) {
+            if let ControlFlow::Break(end) = self.load_level(&mut steps, limits, monitor) {
                 return end;
             }
         }
@@ -345,9 +421,9 @@ impl<'a> QuasiStatic<'a> {
     /// the curve (the run ends if the monitor says stop or lambda leaves its range); run away,
     /// it is undone and the step halved (the run ends with a collapse once the bracket is
     /// within the tolerance).
-    fn load_level(&mut self, st: &mut LoadSteps, u_fail: f64, monitor: &mut dyn FnMut(&Progress) -> bool) -> ControlFlow<End> {
+    fn load_level(&mut self, st: &mut LoadSteps, limits: &Limits, monitor: &mut dyn FnMut(&Progress) -> bool) -> ControlFlow<End> {
         let mut l = st.lam_conv + st.dl;
-        match self.relax(&mut l, None, u_fail, monitor) {
+        match self.relax(&mut l, None, limits, monitor) {
             Level::Settled => {
                 st.lam_conv = l;
                 st.saved = Snapshot::of(&self.s);
@@ -407,7 +483,7 @@ impl<'a> QuasiStatic<'a> {
     fn stage(&mut self, st: &mut Stages, k: usize, monitor: &mut dyn FnMut(&Progress) -> bool) -> ControlFlow<End> {
         let target = st.u_start + st.max_displacement * k as f64 / st.count as f64;
         self.drive(target, st.dead_steps, &mut st.lam);
-        match self.relax(&mut st.lam, Some(target), f64::INFINITY, monitor) {
+        match self.relax(&mut st.lam, Some(target), &Limits::NONE, monitor) {
             Level::Settled | Level::RanAway => {}
             Level::Stopped => return ControlFlow::Break(End::interrupted(None)),
         }
