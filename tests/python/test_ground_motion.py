@@ -453,6 +453,10 @@ def test_response_figure(tmp_path: Path, rocked: Tuple[Any, Any, Any]) -> None:
     np.testing.assert_array_equal(ax_rot.get_lines()[0].get_ydata(), history.displacements[:, c, 2])
     np.testing.assert_array_equal(ax_shear.get_lines()[0].get_ydata(), np.asarray(history.base_shear) * 1e-3)
     np.testing.assert_array_equal(ax_ground.get_lines()[0].get_ydata(), np.asarray(history.ground_acceleration)[:, 0])
+    # at=: the wall at the first record at or after that time (a collapse), not at the largest drift
+    t = float(history.times[len(history.times) // 3])
+    fig = response_figure(model, history, motion=motion, at=t)
+    assert f"at t = {t:.4g} s (the time given)" in fig.axes[0].get_title()
 
 
 def test_response_figure_draws_the_motion_when_the_history_lacks_it(tmp_path: Path, rocked: Tuple[Any, Any, Any]) -> None:

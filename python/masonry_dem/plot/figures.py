@@ -198,6 +198,7 @@ def history_figure(
     dpi: int = 150,
     quantities: Tuple[str, ...] = ("displacement", "rotation"),
     motion: Any = None,
+    at: Optional[float] = None,
 ) -> Figure:
     """The response to a time history (``Model.simulate``): quantities of the response against time, one panel
     each, above one another (by default the horizontal displacement [mm] and the rotation [rad] of the control
@@ -216,6 +217,8 @@ def history_figure(
             "base_shear", "ground_acceleration"), top to bottom.
         motion: the horizontal ground motion (:class:`masonry_dem.ground_motion.GroundMotion`), drawn when the
             history does not carry its ``ground_acceleration``.
+        at: draw the wall at the first record at or after this time [s] (e.g. a collapse) instead of the
+            largest drift.
     Returns:
         The figure.
     """
@@ -228,6 +231,10 @@ def history_figure(
     axes += [fig.add_subplot(grid[k, 1], sharex=axes[0]) for k in range(1, n)]
     times = np.asarray(history.times, dtype=np.float64)
     peak = peak_record(model, history)
+    which = "largest drift" if "drift" in quantities else "largest control displacement"
+    if at is not None and len(times):
+        peak = int(min(np.searchsorted(times, float(at)), len(times) - 1))
+        which = "the time given"
     if len(times):
         shown = record(history, peak)
         rects = np.asarray(model.rects, dtype=np.float64)
@@ -236,7 +243,6 @@ def history_figure(
         plot_deformed(ax_wall, model, shown, scale=1.0 if true_scale else None)
         if true_scale:
             _include_blocks(ax_wall, model, shown.displacements)
-        which = "largest drift" if "drift" in quantities else "largest control displacement"
         ax_wall.set_title(f"{ax_wall.get_title()}\nat t = {shown.time:.4g} s ({which})", fontsize=10)
     else:
         plot_wall(ax_wall, model)
@@ -268,14 +274,16 @@ def response_figure(
     title: Optional[str] = None,
     path: Optional[Union[str, "os.PathLike[str]"]] = None,
     dpi: int = 150,
+    at: Optional[float] = None,
 ) -> Figure:
     """The response of a wall to a ground motion (``masonry-dem simulate --plot``): :func:`history_figure` with
     the panels of :data:`RESPONSE_PANELS`, the control block's rotation [rad], the drift [%] (its horizontal
     displacement over the wall height), the base shear [kN] and the ground acceleration [m/s²] under them,
-    against time [s], and the deformed wall (the mechanism) at the largest drift. ``motion``: the horizontal
-    :class:`masonry_dem.ground_motion.GroundMotion`, drawn when the history does not carry its input. Other
-    arguments as in :func:`history_figure`."""
-    return history_figure(model, history, title=title, path=path, dpi=dpi, quantities=RESPONSE_PANELS, motion=motion)
+    against time [s], and the deformed wall (the mechanism) at the largest drift, or at time ``at`` [s].
+    ``motion``: the horizontal :class:`masonry_dem.ground_motion.GroundMotion`, drawn when the history does not
+    carry its input. Other arguments as in :func:`history_figure`."""
+    return history_figure(model, history, title=title, path=path, dpi=dpi, quantities=RESPONSE_PANELS, motion=motion,
+                          at=at)
 
 
 def energy_figure(
