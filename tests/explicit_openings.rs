@@ -186,3 +186,22 @@ fn survey() {
     }
 }
 
+
+/// A wall whose courses end in slivers (2.5 cm pieces): the limit analysis's mechanism is a
+/// sliver tipping over, whose unbalanced force is too small against the wall's to stop a level
+/// from counting as settled. The explicit solver must not call a multiplier above the exact one
+/// a collapse: either it finds the collapse (within 1% below, the bracket above), or the check
+/// against limit analysis says it failed.
+#[test]
+fn a_sliver_tipping_over_is_not_hidden_above_the_exact_collapse() {
+    let p = RunningBond { block_length: 0.4, block_height: 0.175, courses: 6, length: 2.025, first_course: FirstCourse::Half, openings: vec![] };
+    let m = model_of(&p, 0.65);
+    let exact = limit_analysis(&m, &LimitOptions::default()).unwrap().collapse_multiplier;
+    let (status, lam, _, error) = explicit(&m);
+    eprintln!("sliver wall: limit analysis {exact:.5}, explicit {status:?} {lam:.5} {error:?}");
+    match status {
+        Status::Collapse => assert!(lam <= exact * 1.001 && lam >= exact * 0.99, "{lam} against {exact}"),
+        Status::Failed => assert!(error.unwrap().contains("above the collapse multiplier of limit analysis")),
+        s => panic!("status {s:?}"),
+    }
+}
