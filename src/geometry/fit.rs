@@ -50,20 +50,36 @@ pub fn courses_for_height(block_height: f64, height: f64) -> Result<CourseFit> {
     let rest = height - whole * block_height;
     if rest <= REL_TOL * height {
         if whole >= 1.0 {
-            return Ok(CourseFit { whole: whole as usize, last: None });
+            return Ok(CourseFit {
+                whole: whole as usize,
+                last: None,
+            });
         }
     } else if rest >= MIN_LAST_COURSE * block_height {
-        return Ok(CourseFit { whole: whole as usize, last: Some(rest) });
+        return Ok(CourseFit {
+            whole: whole as usize,
+            last: Some(rest),
+        });
     }
     Err(no_fit(block_height, height, whole as usize, rest))
 }
 
 /// The refusal of a last course `rest` high, below [`MIN_LAST_COURSE`], with the nearest fits.
 fn no_fit(block_height: f64, height: f64, whole: usize, rest: f64) -> Error {
-    let courses = |n: usize| if n == 1 { "1 course".to_string() } else { format!("{n} courses") };
+    let courses = |n: usize| {
+        if n == 1 {
+            "1 course".to_string()
+        } else {
+            format!("{n} courses")
+        }
+    };
     let (mut heights, mut sizes) = (vec![], vec![]);
     for n in [whole, whole + 1].into_iter().filter(|&n| n >= 1) {
-        heights.push(format!("{} m ({})", metres(n as f64 * block_height), courses(n)));
+        heights.push(format!(
+            "{} m ({})",
+            metres(n as f64 * block_height),
+            courses(n)
+        ));
         sizes.push(format!("{} m ({})", metres(height / n as f64), courses(n)));
     }
     Error::input(format!(

@@ -16,7 +16,8 @@ pub const MIN_PART: f64 = 0.05;
 /// it.
 ///
 /// Snapping: an opening's edge closer to one of a block's edges than `snap` \[m\] (`[across, up]`)
-/// is moved onto that edge for that block, so that no part thinner than `snap` is made or cut off.
+/// is moved onto that edge for that block, so that no part thinner than `snap` is made or cut off;
+/// a block that an opening crosses over less than `snap` (a thin opening) is left whole.
 /// The area removed is then exactly the area of the openings' union within the wall, except where
 /// an edge was snapped: there it differs by at most the snap distance times the edge's length.
 /// [`running_bond`](super::running_bond) snaps at [`MIN_PART`] of its block's length and height.
@@ -33,7 +34,12 @@ pub const MIN_PART: f64 = 0.05;
 /// let cut = cut_openings(vec![block], &[Rect::new(-1.0, 0.005, 2.0, 1.0)], [0.02, 0.01], "openings").unwrap();
 /// assert!(cut.is_empty());
 /// ```
-pub fn cut_openings(blocks: Vec<Rect>, openings: &[Rect], snap: [f64; 2], what: &str) -> Result<Vec<Rect>> {
+pub fn cut_openings(
+    blocks: Vec<Rect>,
+    openings: &[Rect],
+    snap: [f64; 2],
+    what: &str,
+) -> Result<Vec<Rect>> {
     for (i, o) in openings.iter().enumerate() {
         o.validate(&format!("{what}[{i}]"))?;
     }
@@ -55,11 +61,15 @@ fn cut(b: Rect, o: &Rect, snap: [f64; 2], out: &mut Vec<Rect>) {
     let x1 = snapped(o.x1, b.x0, b.x1, snap[0]);
     let y0 = snapped(o.y0, b.y0, b.y1, snap[1]);
     let y1 = snapped(o.y1, b.y0, b.y1, snap[1]);
-    if x0 >= b.x1 || x1 <= b.x0 || y0 >= b.y1 || y1 <= b.y0 {
-        out.push(b); // beside the opening (or touching it)
+    let (mx0, mx1) = (x0.max(b.x0), x1.min(b.x1));
+    if mx1 - mx0 < snap[0].max(f64::MIN_POSITIVE)
+        || y1.min(b.y1) - y0.max(b.y0) < snap[1].max(f64::MIN_POSITIVE)
+    {
+        // beside the opening, touching it, or crossed by a part of it thinner than the snap (no
+        // sliver is cut out)
+        out.push(b);
         return;
     }
-    let (mx0, mx1) = (x0.max(b.x0), x1.min(b.x1));
     if x0 > b.x0 {
         out.push(Rect::new(b.x0, b.y0, x0, b.y1));
     }
