@@ -13,6 +13,7 @@ fn wall2(dilatancy: f64) -> Model {
         block_length: 0.4,
         block_height: 0.175,
         courses: 10,
+        height: None,
         length: 2.0,
         first_course: FirstCourse::Half,
         openings: vec![],

@@ -5,13 +5,35 @@
 //! use masonry_dem::geometry::{running_bond, RunningBond, FirstCourse};
 //! // Ferris & Tin-Loi wall 1: 6 courses of 0.4 x 0.175 m blocks, 2 m long.
 //! let blocks = running_bond(&RunningBond {
-//!     block_length: 0.4, block_height: 0.175, courses: 6, length: 2.0,
+//!     block_length: 0.4, block_height: 0.175, courses: 6, height: None, length: 2.0,
 //!     first_course: FirstCourse::Half, openings: vec![],
 //! }).unwrap();
 //! assert_eq!(blocks.len(), 33);
 //! ```
+//!
+//! A wall of a given height instead of a number of courses, with a window cut out of it:
+//!
+//! ```
+//! use masonry_dem::geometry::{running_bond, Rect, RunningBond, FirstCourse};
+//! // 2.5 m of 0.12 m courses: 20 whole courses (2.4 m) and a last course cut to 0.1 m.
+//! let blocks = running_bond(&RunningBond {
+//!     block_length: 0.25, block_height: 0.12, courses: 0, height: Some(2.5), length: 4.0,
+//!     first_course: FirstCourse::Half, openings: vec![Rect::new(1.0, 0.9, 2.2, 1.8)],
+//! }).unwrap();
+//! let top = blocks.iter().map(|b| b.y1).fold(0.0, f64::max);
+//! assert!((top - 2.5).abs() < 1e-12);
+//! // the blocks at the window's edges are cut there: exactly its 1.08 m2 is removed
+//! let area: f64 = blocks.iter().map(|b| b.area()).sum();
+//! assert!((4.0 * 2.5 - area - 1.2 * 0.9).abs() < 1e-9);
+//! ```
 
 use crate::error::{positive, Error, Result};
+
+mod fit;
+mod openings;
+
+pub use fit::{courses_for_height, CourseFit, MIN_LAST_COURSE};
+pub use openings::{cut_openings, MIN_PART};
 
 /// An axis-aligned rectangle `[x0, x1] x [y0, y1]` in metres.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -108,13 +130,21 @@ pub struct RunningBond {
     pub block_length: f64,
     /// Height of a course \[m\].
     pub block_height: f64,
-    /// Number of courses.
+    /// Number of courses; 0 when `height` gives the wall's height instead (exactly one of the two).
     pub courses: usize,
+    /// Height of the wall \[m\], instead of `courses` (which must then be 0): the whole courses that
+    /// fit and, if some height is left, a last course cut to it; see [`courses_for_height`] (a
+    /// last course lower than [`MIN_LAST_COURSE`] of `block_height` is refused, with the nearest fits).
+    /// `None`: `courses` whole courses.
+    pub height: Option<f64>,
     /// Length of the wall \[m\]; each course's end blocks are cut to it.
     pub length: f64,
     /// Which block starts the lowest course.
     pub first_course: FirstCourse,
-    /// Rectangles `[x0, y0, x1, y1]`; blocks whose centroid is inside are removed.
+    /// Rectangles `[x0, y0, x1, y1]` \[m\] cut out of the wall: a block partly inside one is cut at
+    /// its edges into the parts outside it, so that the jambs, sill and lintel are straight and
+    /// exactly the opening's area is removed, except that no part thinner than [`MIN_PART`] of the
+    /// block is made (see [`cut_openings`]).
     pub openings: Vec<Rect>,
 }
 
@@ -128,17 +158,19 @@ pub fn running_bond(p: &RunningBond) -> Result<Vec<Rect>> {
     positive("geometry.running_bond.block_length", p.block_length)?;
     positive("geometry.running_bond.block_height", p.block_height)?;
     positive("geometry.running_bond.length", p.length)?;
-    if p.courses == 0 {
-        return Err(Error::input("geometry.running_bond.courses must be at least 1"));
-    }
-    let estimate = (p.length / p.block_length + 2.0) * p.courses as f64;
+    let fit = course_fit(p)?;
+    let courses = fit.whole + usize::from(fit.last.is_some());
+    let estimate = (p.length / p.block_length + 2.0) * courses as f64;
     check_count("geometry.running_bond", estimate)?;
-    check_height("geometry.running_bond", p.block_height, p.courses)?;
+    check_height("geometry.running_bond", p.block_height, courses)?;
     let tol = REL_TOL * p.length.max(p.block_length);
     let mut out = Vec::with_capacity(estimate as usize);
-    for k in 0..p.courses {
+    for k in 0..courses {
         let y0 = k as f64 * p.block_height;
-        let y1 = (k + 1) as f64 * p.block_height;
+        let y1 = match (k < fit.whole, p.height) {
+            (false, Some(h)) => h, // the last course, cut to the wall's height
+            _ => (k + 1) as f64 * p.block_height,
+        };
         let half_start = (p.first_course == FirstCourse::Half) == (k % 2 == 0);
         let mut x = 0.0;
         let mut first = true;
@@ -158,7 +190,26 @@ pub fn running_bond(p: &RunningBond) -> Result<Vec<Rect>> {
             x = x1;
         }
     }
-    remove_openings(out, &p.openings, "geometry.running_bond")
+    let snap = [MIN_PART * p.block_length, MIN_PART * p.block_height];
+    cut_openings(out, &p.openings, snap, "geometry.running_bond.openings")
+}
+
+/// The courses of `p`: `courses` whole ones, or those of `height` (exactly one of the two given).
+fn course_fit(p: &RunningBond) -> Result<CourseFit> {
+    match (p.courses, p.height) {
+        (0, None) => Err(Error::input(
+            "geometry.running_bond.courses must be at least 1 (or give geometry.running_bond.height instead)",
+        )),
+        (n, None) => Ok(CourseFit { whole: n, last: None }),
+        (0, Some(h)) => {
+            positive("geometry.running_bond.height", h)?;
+            courses_for_height(p.block_height, h)
+        }
+        (n, Some(h)) => Err(Error::input(format!(
+            "geometry.running_bond: give exactly one of courses and height, not both (courses = {n}, height = {} m)",
+            coord(h)
+        ))),
+    }
 }
 
 /// The blocks of a wall given course by course, bottom to top. Each entry is a length in units
@@ -196,16 +247,6 @@ pub fn pattern(block_length: f64, block_height: f64, rows: &[Vec<f64>]) -> Resul
         }
     }
     Ok(out)
-}
-
-fn remove_openings(blocks: Vec<Rect>, openings: &[Rect], what: &str) -> Result<Vec<Rect>> {
-    for (i, o) in openings.iter().enumerate() {
-        o.validate(&format!("{what}.openings[{i}]"))?;
-    }
-    Ok(blocks
-        .into_iter()
-        .filter(|b| !openings.iter().any(|o| o.contains_strictly(b.centroid())))
-        .collect())
 }
 
 /// The largest number of blocks a model may have; larger requests are refused before allocating.

@@ -23,7 +23,7 @@
 //! use masonry_dem::model::{JointLaws, Model, ModelSpec};
 //! use masonry_dem::static_solver::{solve, StaticOptions};
 //!
-//! let blocks = running_bond(&RunningBond { block_length: 0.4, block_height: 0.175, courses: 6,
+//! let blocks = running_bond(&RunningBond { block_length: 0.4, block_height: 0.175, courses: 6, height: None,
 //!     length: 2.0, first_course: FirstCourse::Half, openings: vec![] }).unwrap();
 //! let law = JointLaw { friction: 0.65, dilatancy: 0.65, ..JointLaw::default() };
 //! let model = Model::new(ModelSpec { blocks, gravity: 10.0, joints: JointLaws::uniform(law),

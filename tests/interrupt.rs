@@ -16,6 +16,7 @@ fn a_poll_that_says_stop_stops_the_static_solver() {
         block_length: 0.4,
         block_height: 0.175,
         courses: 32,
+        height: None,
         length: 12.8,
         first_course: FirstCourse::Half,
         openings: vec![],

@@ -142,6 +142,7 @@ fn wall(courses: usize, length: f64) -> Model {
         block_length: 0.4,
         block_height: 0.175,
         courses,
+        height: None,
         length,
         first_course: FirstCourse::Half,
         openings: vec![],

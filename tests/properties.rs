@@ -427,6 +427,7 @@ fn wall_strategy() -> impl Strategy<Value = WallCase> {
                 block_length: bl,
                 block_height: aspect * bl,
                 courses,
+                height: None,
                 length: bl * (n as f64 + if half_more { 0.5 } else { 0.0 }),
                 first_course: if half_first { FirstCourse::Half } else { FirstCourse::Full },
                 openings: vec![],

@@ -14,6 +14,7 @@ pub fn spec(courses: usize, per_course: usize) -> ModelSpec {
         block_length: 0.4,
         block_height: 0.175,
         courses,
+        height: None,
         length: 0.4 * per_course as f64,
         first_course: FirstCourse::Half,
         openings: vec![],

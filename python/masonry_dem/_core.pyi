@@ -27,16 +27,24 @@ from .errors import MechanismError as MechanismError
 def running_bond(
     block_length: float,
     block_height: float,
-    courses: int,
-    length: float,
+    courses: Optional[int] = None,
+    length: Optional[float] = None,
     first_course: Optional[Literal["half", "full"]] = None,
     openings: Optional[Sequence[Sequence[float]]] = None,
+    *,
+    height: Optional[float] = None,
 ) -> FloatArray:
     """Blocks [x0, y0, x1, y1] (shape (n, 4), m) of a running-bond wall standing at y = 0 from x = 0.
 
+    block_length, block_height: a whole block's size [m]; length: the wall's length [m] (required).
+    Exactly one of courses (whole courses) and height (the wall's height [m]): with height, the whole
+    courses that fit and, if more is left, a last course cut to the remainder; a remainder under 25%
+    of block_height is refused, the message naming the nearest heights and block heights that fit.
     Courses alternate between starting with a half block ("half") and a whole block ("full");
-    a block that would cross x = length is cut there. Blocks whose centroid lies inside an
-    opening [x0, y0, x1, y1] are removed."""
+    a block that would cross x = length is cut there. Openings [x0, y0, x1, y1] [m] are cut out:
+    a block partly inside one is cut at its edges into the parts outside it (straight jambs, sill
+    and lintel; exactly the opening's area removed), an edge within 5% of a block's size of a joint
+    being moved onto the joint so that no sliver of a block is made."""
 
 def pattern(block_length: float, block_height: float, rows: Sequence[Sequence[float]]) -> FloatArray:
     """Blocks [x0, y0, x1, y1] (shape (n, 4), m) from courses listed bottom to top; each entry is a

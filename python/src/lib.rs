@@ -132,6 +132,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     }
     m.add_function(wrap_pyfunction!(running_bond, m)?)?;
     m.add_function(wrap_pyfunction!(pattern, m)?)?;
+    m.add_function(wrap_pyfunction!(cut_openings, m)?)?;
     m.add_class::<PyModel>()?;
     m.add_class::<PyResults>()?;
     m.add_class::<PyTimeHistory>()?;

@@ -2,24 +2,41 @@
 
 use crate::*;
 
-/// Blocks [x0, y0, x1, y1] (shape (n, 4), m) of a running-bond wall standing at y = 0 from x = 0.
+/// Blocks [x0, y0, x1, y1] (shape (n, 4), m) of a running-bond wall standing at y = 0 from x = 0,
+/// `courses` courses or `height` m high (exactly one of the two).
 #[pyfunction]
-#[pyo3(signature = (block_length, block_height, courses, length, first_course=None, openings=None))]
+#[pyo3(signature = (block_length, block_height, courses=None, length=None, first_course=None, openings=None, *, height=None))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn running_bond<'py>(
     py: Python<'py>,
     block_length: f64,
     block_height: f64,
-    courses: i64,
-    length: f64,
+    courses: Option<i64>,
+    length: Option<f64>,
     first_course: Option<&str>,
     openings: Option<&Bound<'py, PyAny>>,
+    height: Option<f64>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let first_course = first_course.map_or(Ok(FirstCourse::default()), str::parse).map_err(to_py)?;
-    if courses < 1 {
-        return Err(InputError::new_err(format!(
-            "geometry.running_bond.courses must be at least 1, got {courses}"
-        )));
-    }
+    let Some(length) = length else {
+        return Err(InputError::new_err(
+            "geometry.running_bond.length is required: the length of the wall [m]",
+        ));
+    };
+    let courses = match (courses, height) {
+        (Some(n), _) if n < 1 => {
+            return Err(InputError::new_err(format!(
+                "geometry.running_bond.courses must be at least 1, got {n}"
+            )))
+        }
+        (None, None) => {
+            return Err(InputError::new_err(
+                "geometry.running_bond needs exactly one of courses and height; neither is given",
+            ))
+        }
+        (Some(n), _) => n as usize,
+        (None, Some(_)) => 0, // from the height
+    };
     let openings = match openings {
         Some(o) if !o.is_none() => rects_from(o, "geometry.running_bond.openings")?,
         _ => vec![],
@@ -27,7 +44,8 @@ pub(crate) fn running_bond<'py>(
     let p = RunningBond {
         block_length,
         block_height,
-        courses: courses as usize,
+        courses,
+        height,
         length,
         first_course,
         openings,
@@ -46,4 +64,22 @@ pub(crate) fn pattern<'py>(
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let blocks = guarded(|| geometry::pattern(block_length, block_height, &rows))?;
     Ok(rects_to_py(py, &blocks))
+}
+
+/// `blocks` [x0, y0, x1, y1] (m) with `openings` cut out as `running_bond` cuts them: a block partly
+/// inside an opening becomes its parts outside it, an opening's edge within 5% of `block_length`
+/// (across) or `block_height` (up) of a block's edge being moved onto it.
+#[pyfunction]
+pub(crate) fn cut_openings<'py>(
+    py: Python<'py>,
+    blocks: &Bound<'py, PyAny>,
+    openings: &Bound<'py, PyAny>,
+    block_length: f64,
+    block_height: f64,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let blocks = rects_from(blocks, "blocks")?;
+    let openings = rects_from(openings, "geometry.running_bond.openings")?;
+    let snap = [geometry::MIN_PART * block_length, geometry::MIN_PART * block_height];
+    let cut = guarded(|| geometry::cut_openings(blocks, &openings, snap, "geometry.running_bond.openings"))?;
+    Ok(rects_to_py(py, &cut))
 }

@@ -33,6 +33,7 @@ pub fn ferris(courses: usize, law: JointLaw) -> Model {
         block_length: 0.4,
         block_height: 0.175,
         courses,
+        height: None,
         length: 2.0,
         first_course: FirstCourse::Half,
         openings: vec![],

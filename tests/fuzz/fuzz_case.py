@@ -49,7 +49,7 @@ STRINGS = ["", "half", "full", "fixed", "none", "free", "static", "dynamic", "lo
 KEYS: Dict[str, List[str]] = {
     "": ["format", "title", "geometry", "base", "top", "joints", "loads", "analysis", "reference", "extra"],
     "geometry": ["thickness", "density", "running_bond", "pattern", "blocks"],
-    "geometry.running_bond": ["block_length", "block_height", "courses", "length", "first_course", "openings"],
+    "geometry.running_bond": ["block_length", "block_height", "courses", "height", "length", "first_course", "openings"],
     "geometry.pattern": ["block_length", "block_height", "rows"],
     "base": ["kind"],
     "top": ["rotation", "force"],

@@ -11,9 +11,9 @@ and running-bond walls of other slenderness, friction, bond and with an opening,
 
 `Model.solve_limit` solves the same program (its own interior point in the core): its multiplier must equal HiGHS's
 to 1e-6 relative, and never exceed it by more than 1e-6 (above the optimum would not be an equilibrium within the
-domain), with status "collapse", on Ferris & Tin-Loi's walls 1 to 6 and on 20 seeded random walls of 10 to 500 blocks
-(benches/limit_analysis.py's `random_wall`); on a random wall that cannot stand (HiGHS: infeasible) its status must
-be "no_equilibrium".
+domain), with status "collapse", on Ferris & Tin-Loi's walls 1 to 6 and on 19 seeded random walls of 10 to 500 blocks
+(benches/limit_analysis.py's `random_wall`, seeds 1 to 19); on the random walls that cannot stand (HiGHS: infeasible;
+seeds 0 and 263) its status must be "no_equilibrium".
 
 Ferris & Tin-Loi's walls (Int. J. Mech. Sci. 43, 2001, 209-224): 1 and 2 are the case files of examples/. The
 geometry of 3 to 6 is taken from the public re-run of the six walls in HybriDFEM (github.com/thlgrs/HybriDFEM-3.1,
@@ -111,14 +111,17 @@ def test_solve_limit_on_ferris_tinloi_walls(number):
     check_limit_against_lp(*ferris_tinloi_wall(number))
 
 
-@pytest.mark.parametrize("seed", range(20))
+@pytest.mark.parametrize("seed", range(1, 20))
 def test_solve_limit_on_random_walls(seed):
     check_limit_against_lp(*limit_analysis.random_wall(seed))
 
 
-def test_solve_limit_on_a_random_wall_that_cannot_stand():
-    # seed 263: a lintel course of 0.3 m blocks over a 0.7 m opening, friction 0.35, too weakly held by its ends
-    model, mu = limit_analysis.random_wall(263)
+# seed 263: a lintel course of 0.3 m blocks over a 0.7 m opening, friction 0.35, too weakly held by its ends;
+# seed 0: a 1.04 m opening (2.1 blocks of 0.49 m) three courses under the top, friction 0.32 (since openings cut
+# the blocks at their edges its jambs are straight; whole-block removal left corbelled jambs that held it)
+@pytest.mark.parametrize("seed", [0, 263])
+def test_solve_limit_on_a_random_wall_that_cannot_stand(seed):
+    model, mu = limit_analysis.random_wall(seed)
     exact, message = limit_analysis.collapse_multiplier(model, mu)
     assert "infeasible" in message.lower(), (exact, message)
     assert model.solve_limit().status == "no_equilibrium"

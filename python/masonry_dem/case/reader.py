@@ -45,7 +45,7 @@ TOP_KEYS = (
 LAW_KEYS = tuple(_core.JOINT_LAW_KEYS)
 FAMILIES = ("bed", "head", "base", "top")
 GEOMETRY_KINDS = ("running_bond", "pattern", "blocks")
-RUNNING_BOND_KEYS = ("block_length", "block_height", "courses", "length", "first_course", "openings")
+RUNNING_BOND_KEYS = ("block_length", "block_height", "courses", "height", "length", "first_course", "openings")
 # Keys of [analysis]: those of the incremental methods (static and dynamic), then those of the explicit solver
 # only. Limit analysis (method = "limit") has no load path: it uses none of them (they are checked, then ignored).
 ANALYSIS_KEYS = ("method", "control", "control_point", "max_displacement", "steps", "tolerance")
@@ -248,10 +248,16 @@ def _geometry(top: _Table) -> Tuple[str, Dict[str, Any], Dict[str, Any]]:
 def _running_bond(geo: _Table) -> Dict[str, Any]:
     rb = geo.table("running_bond", RUNNING_BOND_KEYS)
     assert rb is not None
+    if ("courses" in rb) == ("height" in rb):  # exactly one: whole courses, or a height [m]
+        if "courses" in rb:
+            raise rb.key_error("height", "give exactly one of courses and height; both are given")
+        message = f"missing key 'courses' in [{rb.path}] (or height: exactly one of courses and height)"
+        raise rb.error(message, rb.where("courses"))
     return dict(
         block_length=rb.number("block_length", check=_positive),
         block_height=rb.number("block_height", check=_positive),
-        courses=rb.integer("courses", minimum=1),
+        courses=rb.integer("courses", None, minimum=1),
+        height=rb.number("height", None, _positive),
         length=rb.number("length", check=_positive),
         first_course=rb.string("first_course", None, ("half", "full")),
         openings=rb.rectangles("openings", required=False),

@@ -22,6 +22,7 @@ from typing import Any, Dict, Iterator, List, Mapping, NamedTuple, Optional, Seq
 
 import numpy as np
 
+from .. import _core
 from ..case import Case, ModelParameters, case_from_dict
 
 #: The load directions: "+x" the case as it is, "-x" the wall mirrored (x -> x_min + x_max - x).
@@ -241,6 +242,8 @@ def _set(data: Dict[str, Any], name: str, value: Any, variation: Optional[Variat
         geometry[name] = value
     elif name in ("block_length", "block_height", "courses", "length"):
         geometry["running_bond"][name] = value
+        if name == "courses":  # a number of courses replaces the base case's height
+            geometry["running_bond"].pop("height", None)
     elif name == "gravity":
         data.setdefault("loads", {})["gravity"] = value
     elif name == "precompression":
@@ -292,8 +295,8 @@ def texture_blocks(rb: Mapping[str, Any], texture: Texture, rng: np.random.Gener
     """The blocks [x0, y0, x1, y1] [m] of a running-bond wall (the keys of [geometry.running_bond]) with a
     random texture: course by course from the bottom, the course's height, then its first block and the
     others, each drawn from ``rng`` in that order. A course ends at ``length``; a last piece shorter than
-    ``min_fraction`` block lengths is joined to the block before it. Blocks whose centroid lies inside an
-    opening are left out."""
+    ``min_fraction`` block lengths is joined to the block before it. The openings are cut out of the blocks
+    as the case file's running bond cuts them (the core's cut_openings)."""
     length_unit, height_unit = float(rb["block_length"]), float(rb["block_height"])
     length, half_first = float(rb["length"]), rb.get("first_course", "half") == "half"
     shortest = texture.min_fraction * length_unit
@@ -309,7 +312,9 @@ def texture_blocks(rb: Mapping[str, Any], texture: Texture, rng: np.random.Gener
         blocks += [[x0, y, x1, y + height] for x0, x1 in zip(edges[:-1], edges[1:])]
         y += height
     openings = rb.get("openings") or []
-    return [b for b in blocks if not any(_inside(b, o) for o in openings)]
+    if not openings:
+        return blocks
+    return [[float(v) for v in b] for b in _core.cut_openings(blocks, openings, length_unit, height_unit)]
 
 
 def _course_edges(
@@ -327,7 +332,3 @@ def _course_edges(
         del edges[-2]  # the short last piece joins the block before it
     return edges
 
-
-def _inside(block: Sequence[float], opening: Sequence[float]) -> bool:
-    cx, cy = (block[0] + block[2]) / 2, (block[1] + block[3]) / 2
-    return opening[0] < cx < opening[2] and opening[1] < cy < opening[3]

@@ -313,6 +313,12 @@ def _texture(vary: _Table, base: Mapping[str, Any]) -> Texture:
         raise table.error(
             "vary.texture: the base case's [geometry] must be a running_bond (a texture perturbs it)", "vary.texture"
         )
+    if "height" in base["geometry"]["running_bond"]:
+        raise table.error(
+            "vary.texture: the base case's [geometry.running_bond] must give courses, not height (a texture draws"
+            " each course's height)",
+            "vary.texture",
+        )
     fraction = table.number("min_fraction", 0.25, lambda x: None if 0 < x < 1 else "must lie in (0, 1)")
     return Texture(
         length_std=table.number("length_std", 0.0, _non_negative),
