@@ -165,10 +165,12 @@ def parse_quantity(text: Any, kind: str, what: Optional[str] = None) -> float:
     shown = text if len(text) <= 40 else text[:37] + "..."
     found = _NUMBER.fullmatch(text)
     if not found:
-        raise InputError(f"{name}: expected a number and its unit, like \"{_example(kind)}\", got \"{shown}\"")
+        raise InputError(f"{name}: expected a number, got string \"{shown}\" (or {expected} with its unit, like "
+                         f"\"{_example(kind)}\")")
     number, unit_text = found.groups()
     if not unit_text:
-        raise InputError(f"{name}: \"{shown}\" has no unit: give {expected}, or a plain number in SI units")
+        raise InputError(f"{name}: expected a number, got string \"{shown}\" without a unit (write the number "
+                         f"in SI without quotes, or {expected} with its unit, like \"{_example(kind)}\")")
     unit = _normal_unit(unit_text)
     if unit not in UNITS:
         close = difflib.get_close_matches(unit, list(UNITS), n=1, cutoff=0.6)
