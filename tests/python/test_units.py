@@ -223,3 +223,15 @@ def test_documented_units() -> None:
     assert section, "docs/case-format.md has a '## Units' section"
     for unit in ("MPa", "N/mm3", "mm", "kN", "N/mm", "kg/m3", "m/s2", "ms"):
         assert f"`{unit}`" in section.group(1) or unit in section.group(1), unit
+
+
+def test_study_texture_reads_lengths_with_units() -> None:
+    """A study's random texture reads the running bond's lengths as the case does (it used float())."""
+    from masonry_dem.study.model import Texture, texture_blocks
+
+    si = {"block_length": 0.4, "block_height": 0.2, "courses": 3, "length": 1.2, "openings": [[0.3, 0.0, 0.5, 0.2]]}
+    units = dict(si, block_length="400 mm", block_height="20 cm", length="1.2 m",
+                 openings=[["300 mm", "0 m", "0.5 m", "200 mm"]])
+    texture = Texture(length_std=0.1, height_std=0.05)
+    expected = texture_blocks(si, texture, np.random.default_rng(1))
+    assert texture_blocks(units, texture, np.random.default_rng(1)) == expected
