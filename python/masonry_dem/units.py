@@ -185,7 +185,8 @@ def parse_quantity(text: Any, kind: str, what: Optional[str] = None) -> float:
         raise InputError(f"'{shown}' is {KINDS[unit_kind]}; {name} is {expected}")
     exponent = re.search(r"[eE]([+-]?\d+)$", number)
     try:
-        if exponent and abs(int(exponent.group(1))) > 400:  # no exact product of a number of 10^400 digits
+        # exact unless the number is so long, or its exponent so large, that the fraction would be huge
+        if len(number) > 400 or (exponent and abs(int(exponent.group(1))) > 400):
             value = float(number) * float(factor)
         else:
             value = float(Fraction(number) * factor)

@@ -98,6 +98,9 @@ def test_parse_quantity_refuses(text: str, pattern: str) -> None:
 
 def test_parse_quantity_tiny_exponent_is_quick() -> None:
     assert parse_quantity("1e-99999999 m", "length") == 0.0  # not an exact fraction of 10^99999999 digits
+    assert parse_quantity("0." + "1" * 5000 + " m", "length") == pytest.approx(0.1111111111111111)
+    with pytest.raises(md.InputError, match="beyond the range of a float"):
+        parse_quantity("1" * 5000 + " m", "length")
 
 
 def test_every_unit_has_a_known_kind() -> None:
