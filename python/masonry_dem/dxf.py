@@ -101,12 +101,14 @@ def read_dxf(
     source = os.fspath(path)
     if not (isinstance(tolerance, (int, float)) and tolerance > 0):
         raise ValueError(f"read_dxf: tolerance must be > 0 [m], got {tolerance!r}")
-    if not os.path.isfile(source):  # ezdxf reports a missing file as an unreadable one
+    if not os.path.exists(source):  # ezdxf reports a missing file as one that is not DXF
         raise FileNotFoundError(2, "No such file or directory", source)
+    if not os.path.isfile(source):  # a folder, /dev/zero, a pipe: nothing to read to its end
+        raise InputError(f"{source}: not a file")
     try:
         doc = ezdxf.readfile(source)
-    except ezdxf.DXFError as exc:
-        raise InputError(f"{source}: not a DXF file that can be read ({exc})") from None
+    except (ezdxf.DXFError, ValueError, KeyError, IndexError, TypeError) as exc:  # a damaged drawing
+        raise InputError(f"{source}: not a DXF file that can be read ({type(exc).__name__}: {exc})") from None
     except OSError as exc:  # ezdxf's refusal of a file that is not DXF at all
         if "not a DXF file" not in str(exc):
             raise

@@ -160,6 +160,8 @@ def test_nothing_to_read(tmp_path: Path) -> None:
 def test_bad_files(tmp_path: Path) -> None:
     with pytest.raises(FileNotFoundError):
         read_dxf(tmp_path / "missing.dxf")
+    with pytest.raises(md.InputError, match="not a file"):
+        read_dxf(tmp_path)
     text = tmp_path / "notes.dxf"
     text.write_text("not a drawing\n")
     with pytest.raises(md.InputError, match="notes.dxf: not a DXF file"):
