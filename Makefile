@@ -8,7 +8,7 @@ export VIRTUAL_ENV := $(abspath $(VENV))
 
 # What the package needs (pyproject's dependencies, and maturin to build it), and what the tests add.
 RUNTIME_DEPS = "maturin>=1.5,<2" "numpy>=1.21" "matplotlib>=3.5" "tqdm>=4.60" "meshio>=5" "dask[distributed]>=2024.1" "pandas>=2.0" "pyarrow>=14"
-TEST_DEPS = "pytest>=7" "atheris>=2.3" "hypothesis>=6" "scipy>=1.9" "clarabel>=0.9"
+TEST_DEPS = "pytest>=7" "atheris>=2.3" "hypothesis>=6" "scipy>=1.9" "clarabel>=0.9" "ezdxf>=1.1"
 
 $(VENV)/.deps: pyproject.toml
 	@echo "setting up $(VENV) with the packages masonry-dem needs (pip, a minute or two the first time)..."

@@ -23,6 +23,10 @@ response against time; ``write_vtk``: a .vtu per record and a .pvd; ``write_curv
 model=model)``: a row per record), its displacements relative to the ground (:mod:`masonry_dem.history`).
 Progress bars: :mod:`masonry_dem.progress` (tqdm, optional).
 
+Units (:mod:`masonry_dem.units`): ``md.MPa``, ``md.mm``, ``md.kN``, ``md.N_per_mm3``, ... are the SI values of
+the units (``0.25 * md.MPa`` is 250000.0 Pa); :func:`parse_quantity` reads "0.25 MPa" into SI. A drawing's
+rectangles become blocks with :func:`masonry_dem.dxf.read_dxf` (a DXF file; ezdxf, the extra ``dxf``).
+
 Modal analysis (:mod:`masonry_dem.modal`): :func:`modes` gives the natural frequencies [Hz] and mass-normalized
 mode shapes of the elastic model, :func:`rayleigh_damping` Rayleigh coefficients from two of them, and
 :func:`plot_modes` draws the shapes as deformed walls.
@@ -67,6 +71,31 @@ from .api import (
     to_dataframe,
     to_dict,
     to_json,
+    parse_quantity,
+    m,
+    cm,
+    mm,
+    km,
+    s,
+    ms,
+    kg,
+    N,
+    kN,
+    MN,
+    Pa,
+    kPa,
+    MPa,
+    GPa,
+    N_per_m3,
+    kN_per_m3,
+    MN_per_m3,
+    N_per_mm3,
+    N_per_m,
+    N_per_mm,
+    J_per_m2,
+    kg_per_m3,
+    t_per_m3,
+    m_per_s2,
 )
 
 __all__ = [
@@ -107,6 +136,32 @@ __all__ = [
     "read_at2",
     "one_sine",
     "ricker",
+    # units (masonry_dem.units): md.MPa, md.mm, md.kN, ... are the SI values of the units (0.25 * md.MPa is in Pa)
+    "parse_quantity",
+    "m",
+    "cm",
+    "mm",
+    "km",
+    "s",
+    "ms",
+    "kg",
+    "N",
+    "kN",
+    "MN",
+    "Pa",
+    "kPa",
+    "MPa",
+    "GPa",
+    "N_per_m3",
+    "kN_per_m3",
+    "MN_per_m3",
+    "N_per_mm3",
+    "N_per_m",
+    "N_per_mm",
+    "J_per_m2",
+    "kg_per_m3",
+    "t_per_m3",
+    "m_per_s2",
     # the animation of a time history, imported on first use (matplotlib)
     "write_animation",
     # studies, imported on first use (Dask, pandas and pyarrow take a while to import)

@@ -42,6 +42,10 @@ from .case import JOINT_STATE_KEYS, certificate_dict, write_result_json
 from .case.result_file import json_float as _float
 from .ground_motion import GroundMotion, one_sine, read_at2, ricker
 from .ground_motion import read as read_ground_motion
+from .units import (
+    GPa, J_per_m2, MN, MN_per_m3, MPa, N, N_per_m, N_per_m3, N_per_mm, N_per_mm3, Pa, cm, kg, kg_per_m3, km, kN,
+    kN_per_m3, kPa, m, m_per_s2, mm, ms, parse_quantity, s, t_per_m3,
+)
 
 __all__ = [
     "mortar_joint",
@@ -57,6 +61,32 @@ __all__ = [
     "read_at2",
     "one_sine",
     "ricker",
+    # units (masonry_dem.units): SI values of the units, and values read with their unit
+    "parse_quantity",
+    "m",
+    "cm",
+    "mm",
+    "km",
+    "s",
+    "ms",
+    "kg",
+    "N",
+    "kN",
+    "MN",
+    "Pa",
+    "kPa",
+    "MPa",
+    "GPa",
+    "N_per_m3",
+    "kN_per_m3",
+    "MN_per_m3",
+    "N_per_mm3",
+    "N_per_m",
+    "N_per_mm",
+    "J_per_m2",
+    "kg_per_m3",
+    "t_per_m3",
+    "m_per_s2",
     "CURVE_COLUMNS",
     "INTERFACE_COLUMNS",
 ]

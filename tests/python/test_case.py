@@ -304,7 +304,7 @@ def test_wrong_type_is_named(tmp_path: Path, old: str, new: str, expected: str) 
         ("[loads]\ngravity = false\n", "loads.gravity: expected a number, got boolean"),
         ("[loads]\nlive = 1\n", "loads.live: expected a string, got integer"),
         ("[analysis]\nsteps = 10.5\n", "analysis.steps: expected an integer, got float"),
-        ("[analysis]\nmax_displacement = '2mm'\n", "analysis.max_displacement: expected a number, got string"),
+        ("[analysis]\nmax_displacement = 'two mm'\n", "analysis.max_displacement: expected a number, got string"),
         ("[analysis]\nmethod = true\n", "analysis.method: expected a string, got boolean"),
         ("[base]\nkind = false\n", "base.kind: expected a string, got boolean"),
         ("[top]\nforce = 5.0\n", "top.force: expected an array, got float"),
@@ -374,7 +374,7 @@ def test_missing_geometry(tmp_path: Path) -> None:
     message = input_error(tmp_path, "format = 1\n")
     assert "missing key 'geometry' at the top level" in message
     message = input_error(tmp_path, "format = 1\n[geometry]\nthickness = 1.0\n")
-    assert "[geometry] needs exactly one of running_bond, pattern, blocks; none is given" in message
+    assert "[geometry] needs exactly one of running_bond, pattern, blocks, dxf; none is given" in message
 
 
 def test_two_geometries(tmp_path: Path) -> None:
@@ -382,7 +382,7 @@ def test_two_geometries(tmp_path: Path) -> None:
         tmp_path, RUNNING_BOND.replace("[geometry.running_bond]", "blocks = [[0, 0, 1, 1]]\n[geometry.running_bond]")
     )
     assert (
-        "[geometry] needs exactly one of running_bond, pattern, blocks; running_bond and blocks are both given"
+        "[geometry] needs exactly one of running_bond, pattern, blocks, dxf; running_bond and blocks are both given"
         in message
     )
     three = RUNNING_BOND.replace("[geometry.running_bond]", "blocks = [[0, 0, 1, 1]]\n[geometry.running_bond]")

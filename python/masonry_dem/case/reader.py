@@ -44,7 +44,9 @@ TOP_KEYS = (
 # the joint-law keys come from the core, which defines the law
 LAW_KEYS = tuple(_core.JOINT_LAW_KEYS)
 FAMILIES = ("bed", "head", "base", "top")
-GEOMETRY_KINDS = ("running_bond", "pattern", "blocks")
+GEOMETRY_KINDS = ("running_bond", "pattern", "blocks", "dxf")
+# Keys of [geometry] besides its kinds: the wall's, and the options of a drawing (dxf)
+DXF_KEYS = ("dxf_layer", "dxf_units")
 RUNNING_BOND_KEYS = ("block_length", "block_height", "courses", "height", "length", "first_course", "openings")
 # Keys of [analysis]: those of the incremental methods (static and dynamic), then those of the explicit solver
 # only. Limit analysis (method = "limit") has no load path: it uses none of them (they are checked, then ignored).
@@ -65,6 +67,16 @@ TIME_HISTORY_KEYS = (
 )
 #: The kinds of damping of a time history: those of the quasi-static explicit solver and Rayleigh damping.
 TIME_HISTORY_DAMPINGS = DAMPINGS + ("rayleigh",)
+#: The kind of quantity of each joint-law key that also takes a string with its unit ("0.25 MPa"; the others
+#: are dimensionless). docs/case-format.md, "Units", lists these and the other keys that take units.
+LAW_UNITS = {
+    "normal_stiffness": "stiffness",
+    "shear_stiffness": "stiffness",
+    "cohesion": "stress",
+    "tensile_strength": "stress",
+    "fracture_energy_tension": "fracture_energy",
+    "fracture_energy_shear": "fracture_energy",
+}
 #: The relative tolerance of a [reference] that gives none (a default of the case file, not of the core).
 DEFAULT_REFERENCE_TOLERANCE = 0.01
 
@@ -191,7 +203,7 @@ def case_from_dict(
     """
     top = _Table(data, "", source, TOP_KEYS)
     title = _title(top, default_title)
-    kind, geometry, wall = _geometry(top)
+    kind, geometry, wall = _geometry(top, base_dir)
     wall.update(base=_base(top), **_top_beam(top))
     wall.update(joints=_joints(top), **_loads(top, beam=wall["top_rotation"] is not None))
     method, analysis = _analysis(top)
@@ -225,22 +237,30 @@ def _title(top: _Table, default_title: str) -> str:
     return str(top.string("title", default=default_title))
 
 
-def _geometry(top: _Table) -> Tuple[str, Dict[str, Any], Dict[str, Any]]:
+def _geometry(top: _Table, base_dir: Optional[PathLike]) -> Tuple[str, Dict[str, Any], Dict[str, Any]]:
     """[geometry]: its kind, the arguments of the core's generator of that kind, and the wall's thickness
-    and density (None when left out)."""
-    geo = top.table("geometry", ("thickness", "density") + GEOMETRY_KINDS, required=True)
+    and density (None when left out). A drawing (dxf) is read here, relative to ``base_dir``, and becomes
+    a block list (kind "blocks")."""
+    geo = top.table("geometry", ("thickness", "density") + GEOMETRY_KINDS + DXF_KEYS, required=True)
     assert geo is not None
-    wall = {"thickness": geo.number("thickness", None, _positive), "density": geo.number("density", None, _positive)}
+    wall = {
+        "thickness": geo.number("thickness", None, _positive, unit="length"),
+        "density": geo.number("density", None, _positive, unit="density"),
+    }
     given = [k for k in GEOMETRY_KINDS if k in geo]
+    kinds = ", ".join(GEOMETRY_KINDS)
     if not given:
-        raise geo.error("[geometry] needs exactly one of running_bond, pattern, blocks; none is given")
+        raise geo.error(f"[geometry] needs exactly one of {kinds}; none is given")
     if len(given) > 1:
-        raise geo.error(
-            f"[geometry] needs exactly one of running_bond, pattern, blocks; {' and '.join(given)} are both given"
-            if len(given) == 2
-            else "[geometry] needs exactly one of running_bond, pattern, blocks; all three are given"
-        )
+        count = {2: "both", 3: "all three", 4: "all four"}[len(given)]
+        named = f"{' and '.join(given)} are both given" if len(given) == 2 else f"{count} are given"
+        raise geo.error(f"[geometry] needs exactly one of {kinds}; {named}")
     kind = given[0]
+    for key in DXF_KEYS:
+        if key in geo and kind != "dxf":
+            raise geo.key_error(key, f"applies to a drawing (dxf), not to {kind}")
+    if kind == "dxf":
+        return "blocks", _drawing(geo, base_dir), wall
     read = {"running_bond": _running_bond, "pattern": _pattern, "blocks": _block_list}[kind]
     return kind, read(geo), wall
 
@@ -254,11 +274,11 @@ def _running_bond(geo: _Table) -> Dict[str, Any]:
         message = f"missing key 'courses' in [{rb.path}] (or height: exactly one of courses and height)"
         raise rb.error(message, rb.where("courses"))
     return dict(
-        block_length=rb.number("block_length", check=_positive),
-        block_height=rb.number("block_height", check=_positive),
+        block_length=rb.number("block_length", check=_positive, unit="length"),
+        block_height=rb.number("block_height", check=_positive, unit="length"),
         courses=rb.integer("courses", None, minimum=1),
-        height=rb.number("height", None, _positive),
-        length=rb.number("length", check=_positive),
+        height=rb.number("height", None, _positive, unit="length"),
+        length=rb.number("length", check=_positive, unit="length"),
         first_course=rb.string("first_course", None, ("half", "full")),
         openings=rb.rectangles("openings", required=False),
     )
@@ -267,8 +287,8 @@ def _running_bond(geo: _Table) -> Dict[str, Any]:
 def _pattern(geo: _Table) -> Dict[str, Any]:
     pt = geo.table("pattern", ("block_length", "block_height", "rows"))
     assert pt is not None
-    block_length = pt.number("block_length", check=_positive)
-    block_height = pt.number("block_height", check=_positive)
+    block_length = pt.number("block_length", check=_positive, unit="length")
+    block_height = pt.number("block_height", check=_positive, unit="length")
     rows_in = pt.array("rows")
     assert rows_in is not None
     rows = []
@@ -290,6 +310,29 @@ def _block_list(geo: _Table) -> Dict[str, Any]:
     return dict(blocks=rects)
 
 
+def _drawing(geo: _Table, base_dir: Optional[PathLike]) -> Dict[str, Any]:
+    """``dxf``: the rectangles of a drawing (:func:`masonry_dem.dxf.read_dxf`), relative to ``base_dir``, on
+    the layer ``dxf_layer`` (all layers when left out) and in ``dxf_units`` (the drawing's $INSUNITS when left
+    out); its errors name the key and the file."""
+    from .. import dxf as _dxf  # ezdxf is imported when a case has a drawing only
+
+    name = geo.string("dxf")
+    if not name:
+        raise geo.key_error("dxf", "expected the name of a drawing (.dxf), got an empty string")
+    layer = geo.string("dxf_layer", None)
+    units = geo.string("dxf_units", None, tuple(_dxf.UNITS))
+    path = Path(name)
+    if base_dir is not None and not path.is_absolute():
+        path = Path(base_dir) / path
+    try:
+        blocks = _dxf.read_dxf(path, layer=layer, units=units)
+    except OSError as exc:
+        raise geo.key_error("dxf", f"cannot read {path}: {exc.strerror or exc}") from None
+    except (InputError, ImportError) as exc:
+        raise geo.key_error("dxf", str(exc)) from None
+    return dict(blocks=blocks.tolist())
+
+
 def _base(top: _Table) -> Optional[bool]:
     """[base]: whether the wall stands on a fixed foundation (None: left out)."""
     table = top.table("base", ("kind",))
@@ -307,7 +350,7 @@ def _top_beam(top: _Table) -> Dict[str, Any]:
         beam["top_vertical"] = table.string("vertical", None, ("free", "held"))
         force = table.array("force", required=False)
         if force is not None:
-            beam["top_force"] = table.numbers(table.where("force"), force, 2, " [Fx, Fy]")
+            beam["top_force"] = table.numbers(table.where("force"), force, 2, " [Fx, Fy]", unit="force")
     return beam
 
 
@@ -331,7 +374,7 @@ def _law(table: _Table) -> Dict[str, float]:
     # stiffnesses must be positive, every other parameter non-negative (the core checks the rest)
     positive = ("normal_stiffness", "shear_stiffness")
     return {
-        key: table.number(key, check=_positive if key in positive else _non_negative)
+        key: table.number(key, check=_positive if key in positive else _non_negative, unit=LAW_UNITS.get(key))
         for key in LAW_KEYS
         if key in table
     }
@@ -342,7 +385,7 @@ def _loads(top: _Table, beam: bool) -> Dict[str, Any]:
     table = top.table("loads", ("gravity", "live"))
     if table is None:
         return dict(gravity=None, live=None)
-    gravity = table.number("gravity", None, _non_negative)
+    gravity = table.number("gravity", None, _non_negative, unit="acceleration")
     live = table.string("live", None, ("horizontal_weight", "top_horizontal"))
     if live == "top_horizontal" and not beam:
         raise table.key_error("live", '"top_horizontal" pushes the top beam: add a [top] table')
@@ -359,7 +402,7 @@ def _analysis(top: _Table) -> Tuple[str, AnalysisParameters]:
     table.string("control_point", None, ("top",))
     options = dict(
         control=control,
-        max_displacement=table.number("max_displacement", None, _positive),
+        max_displacement=table.number("max_displacement", None, _positive, unit="length"),
         steps=table.integer("steps", None, minimum=1),
         tolerance=table.number("tolerance", None, _open_unit),
     )
@@ -377,7 +420,7 @@ def _dynamic_options(table: _Table) -> Dict[str, Any]:
     return dict(
         damping=damping,
         damping_coefficient=coefficient,
-        time_step=table.number("time_step", None, _positive),
+        time_step=table.number("time_step", None, _positive, unit="time"),
         unbalanced_ratio=table.number("unbalanced_ratio", None, _open_unit),
         threads=table.integer("threads", None, minimum=0),
     )
@@ -428,11 +471,11 @@ def _ground_motion(table: Optional[_Table], gravity: float, base_dir: Optional[P
                               f"amplitude_g [g]; {'both are' if 'amplitude' in table else 'neither is'} given",
                               table.where("amplitude"))
         if "amplitude" in table:
-            amplitude = table.number("amplitude")
+            amplitude = table.number("amplitude", unit="acceleration")
         else:
             _need_gravity(table, "amplitude_g", gravity)
             amplitude = table.number("amplitude_g") * gravity
-        period = table.number("period", check=_positive)
+        period = table.number("period", check=_positive, unit="time")
         build = _gm.one_sine if pulse == "one-sine" else _gm.ricker
         motion = build(amplitude, period)
         if gravity > 0:
@@ -511,11 +554,11 @@ def _time_history(table: Optional[_Table]) -> TimeHistoryParameters:
     if large is not None and not isinstance(large, bool):
         raise table.key_error("large_rotations", f"expected true or false, {_got(large)}")
     return TimeHistoryParameters(
-        duration=table.number("duration", None, _positive),
-        record_interval=table.number("record_interval", None, _positive),
+        duration=table.number("duration", None, _positive, unit="time"),
+        record_interval=table.number("record_interval", None, _positive, unit="time"),
         damping=damping,
         damping_coefficient=coefficient,
         damping_ratio=ratio,
-        time_step=table.number("time_step", None, _positive),
+        time_step=table.number("time_step", None, _positive, unit="time"),
         large_rotations=large,
     )

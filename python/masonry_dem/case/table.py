@@ -12,6 +12,7 @@ import math
 from typing import Any, Callable, List, Mapping, Optional, Sequence
 
 from .._core import InputError
+from ..units import KINDS, parse_quantity, unit_names
 
 #: A check of a number: None when it is fine, else what is wrong ("must be > 0").
 Check = Callable[[float], Optional[str]]
@@ -131,16 +132,28 @@ class _Table:
             return None
         return self.data[key]
 
-    def number(self, key: str, default: Any = REQUIRED, check: Optional[Check] = None) -> Any:
-        """A finite float (TOML integer or float, not boolean), or ``default`` when absent (see the class)."""
+    def number(
+        self, key: str, default: Any = REQUIRED, check: Optional[Check] = None, unit: Optional[str] = None
+    ) -> Any:
+        """A finite float (TOML integer or float, not boolean), or ``default`` when absent (see the class).
+
+        ``unit``: the kind of quantity (a key of :data:`masonry_dem.units.KINDS`, e.g. "stress") when the key
+        also takes a string with its unit ("0.25 MPa"), read into SI; a plain number is SI as it is.
+        """
         value = self._get(key, default is REQUIRED)
         if value is None:
             return None if default is None else float(default)
-        return self._number_value(self.where(key), value, check)
+        return self._number_value(self.where(key), value, check, unit)
 
-    def _number_value(self, label: str, value: Any, check: Optional[Check] = None) -> float:
+    def _number_value(self, label: str, value: Any, check: Optional[Check] = None, unit: Optional[str] = None) -> float:
+        if unit is not None and isinstance(value, str):
+            return self._quantity(label, value, check, unit)
         if not _is_number(value):
-            raise self.error(f"{label}: expected a number, {_got(value)}", label)
+            if unit is not None:
+                extra = f" ({KINDS[unit]} in SI, or a string with its unit: {unit_names(unit)})"
+            else:
+                extra = " (this key takes no unit)" if isinstance(value, str) else ""
+            raise self.error(f"{label}: expected a number, {_got(value)}{extra}", label)
         try:
             x = float(value)
         except OverflowError:  # an integer beyond the range of a float
@@ -151,6 +164,17 @@ class _Table:
             problem = check(x)
             if problem:
                 raise self.error(f"{label}: {problem}, got {_int_text(value) if isinstance(value, int) else value}", label)
+        return x
+
+    def _quantity(self, label: str, text: str, check: Optional[Check], unit: str) -> float:
+        """A string with its unit ("0.25 MPa") read into SI (:func:`masonry_dem.units.parse_quantity`)."""
+        try:
+            x = parse_quantity(text, unit, what=label)
+        except InputError as exc:
+            raise self.error(str(exc), label) from None
+        problem = check(x) if check is not None else None
+        if problem:
+            raise self.error(f"{label}: {problem}, got {_quote(text)}", label)
         return x
 
     def integer(
@@ -198,24 +222,28 @@ class _Table:
             raise self.key_error(key, f"expected an array, got {_type_name(value)}")
         return value
 
-    def numbers(self, label: str, value: Any, length: Optional[int] = None, what: str = "") -> List[float]:
-        """An array of finite numbers (of ``length`` entries if given); ``label`` names it in messages."""
+    def numbers(
+        self, label: str, value: Any, length: Optional[int] = None, what: str = "", unit: Optional[str] = None
+    ) -> List[float]:
+        """An array of finite numbers (of ``length`` entries if given); ``label`` names it in messages;
+        ``unit``: the kind of quantity of every entry when an entry may be a string with its unit."""
         if not isinstance(value, list):
             expected = f"an array of {length} numbers{what}" if length else "an array of numbers"
             raise self.error(f"{label}: expected {expected}, got {_type_name(value)}", label)
         if length is not None and len(value) != length:
             raise self.error(f"{label}: expected {length} numbers{what}, got {len(value)}", label)
-        return [self._number_value(f"{label}[{i}]", v) for i, v in enumerate(value)]
+        return [self._number_value(f"{label}[{i}]", v, unit=unit) for i, v in enumerate(value)]
 
     def rectangles(self, key: str, required: bool = True) -> Optional[List[List[float]]]:
-        """An array of rectangles [x0, y0, x1, y1] [m] with x1 > x0 and y1 > y0."""
+        """An array of rectangles [x0, y0, x1, y1] [m] with x1 > x0 and y1 > y0 (each a number [m] or a
+        length with its unit, "175 mm")."""
         items = self.array(key, required)
         if items is None:
             return None
         rects = []
         for i, item in enumerate(items):
             label = f"{self.where(key)}[{i}]"
-            x0, y0, x1, y1 = self.numbers(label, item, 4, " [x0, y0, x1, y1]")
+            x0, y0, x1, y1 = self.numbers(label, item, 4, " [x0, y0, x1, y1]", unit="length")
             if not (x1 > x0 and y1 > y0):
                 raise self.error(f"{label}: expected x1 > x0 and y1 > y0, got {item}", label)
             rects.append([x0, y0, x1, y1])

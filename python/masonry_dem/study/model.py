@@ -24,6 +24,7 @@ import numpy as np
 
 from .. import _core
 from ..case import Case, ModelParameters, case_from_dict
+from ..units import parse_quantity
 
 #: The load directions: "+x" the case as it is, "-x" the wall mirrored (x -> x_min + x_max - x).
 DIRECTIONS = ("+x", "-x")
@@ -297,8 +298,9 @@ def texture_blocks(rb: Mapping[str, Any], texture: Texture, rng: np.random.Gener
     others, each drawn from ``rng`` in that order. A course ends at ``length``; a last piece shorter than
     ``min_fraction`` block lengths is joined to the block before it. The openings are cut out of the blocks
     as the case file's running bond cuts them (the core's cut_openings)."""
-    length_unit, height_unit = float(rb["block_length"]), float(rb["block_height"])
-    length, half_first = float(rb["length"]), rb.get("first_course", "half") == "half"
+    # lengths may be written with their unit ("400 mm"): the case was checked, so they read
+    length_unit, height_unit = parse_quantity(rb["block_length"], "length"), parse_quantity(rb["block_height"], "length")
+    length, half_first = parse_quantity(rb["length"], "length"), rb.get("first_course", "half") == "half"
     shortest = texture.min_fraction * length_unit
     blocks: List[List[float]] = []
     y = 0.0
@@ -311,7 +313,7 @@ def texture_blocks(rb: Mapping[str, Any], texture: Texture, rng: np.random.Gener
         edges = _course_edges(first, length_unit, length, shortest, texture.length_std, rng)
         blocks += [[x0, y, x1, y + height] for x0, x1 in zip(edges[:-1], edges[1:])]
         y += height
-    openings = rb.get("openings") or []
+    openings = [[parse_quantity(v, "length") for v in o] for o in rb.get("openings") or []]
     if not openings:
         return blocks
     return [[float(v) for v in b] for b in _core.cut_openings(blocks, openings, length_unit, height_unit)]
