@@ -84,7 +84,10 @@ __all__ = ["main", "build_parser"]
 
 def _study(args: Any) -> int:
     """``masonry-dem study``: run the study, write its rows (and plot), print its summary."""
-    from .study import load_study, run_study
+    try:
+        from .study import load_study, run_study
+    except ImportError as exc:  # the extra "studies" is not installed: the message says how to install it
+        return _error(str(exc), EXIT_FAILURE)
     from .study.progress import study_bar
     from .study.summary import summary_figure, summary_text
 
