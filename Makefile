@@ -59,6 +59,29 @@ fuzz-short: develop
 
 test: rust-test py-test
 
+# The wheel a user would install, checked as a newcomer would use it: a portable (manylinux2014, glibc >= 2.17)
+# wheel built with zig as the linker into out/wheels, installed with its dependencies alone into a fresh
+# out/wheel-venv, and the demo and the validation run there from outside the repository, so that the
+# installed package and its shipped examples are used, not the sources.
+WHEEL_VENV := out/wheel-venv
+wheel-check: $(VENV)/.deps
+	@$(PY) -m pip install -q "maturin[zig]>=1.5,<2"
+	@rm -rf out/wheels $(WHEEL_VENV) && mkdir -p out/wheels
+	@echo "building the portable wheel (release, zig; a few minutes the first time)..."
+	@PATH="$(abspath $(VENV))/bin:$$PATH" $(VENV)/bin/maturin build --release --zig --compatibility manylinux2014 -o out/wheels > out/wheel-build.log 2>&1 \
+		|| { tail -n 40 out/wheel-build.log; echo "the wheel build failed: see out/wheel-build.log"; exit 1; }
+	@ls out/wheels/*.whl
+	@ls out/wheels/*manylinux2014_x86_64*.whl > /dev/null 2>&1 || { echo "the wheel is not manylinux2014"; exit 1; }
+	@$(PY) -c "import sys, zipfile; names = zipfile.ZipFile(sys.argv[1]).namelist(); \
+		need = ['masonry_dem/examples/ferris-tinloi-wall1.toml', 'masonry_dem/examples/elcentro-1940-ns.csv', \
+		'masonry_dem/examples/studies/wall1-fragility.toml']; missing = [n for n in need if n not in names]; \
+		sys.exit(f'not in the wheel: {missing}' if missing else 0)" out/wheels/*.whl
+	@echo "installing it into a fresh $(WHEEL_VENV)..."
+	@$(PYTHON) -m venv $(WHEEL_VENV)
+	@$(WHEEL_VENV)/bin/python -m pip install -q out/wheels/*.whl
+	cd $(WHEEL_VENV) && VIRTUAL_ENV=$(abspath $(WHEEL_VENV)) bin/masonry-dem demo --plot ../wheel-demo.png
+	cd $(WHEEL_VENV) && VIRTUAL_ENV=$(abspath $(WHEEL_VENV)) bin/masonry-dem validate --quiet
+
 bench:
 	cargo bench
 
