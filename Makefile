@@ -4,30 +4,28 @@ VENV := .venv
 PY := $(VENV)/bin/python
 export VIRTUAL_ENV := $(abspath $(VENV))
 
-.PHONY: demo test develop rust-test py-test fuzz fuzz-short bench clean
+.PHONY: demo test develop rust-test py-test fuzz fuzz-short wheel-check bench clean
 
-# What the package needs (pyproject's dependencies, and maturin to build it), and what the tests add.
-RUNTIME_DEPS = "maturin>=1.5,<2" "numpy>=1.21" "matplotlib>=3.5" "tqdm>=4.60" "meshio>=5" "dask[distributed]>=2024.1" "pandas>=2.0" "pyarrow>=14"
-TEST_DEPS = "pytest>=7" "atheris>=2.3" "hypothesis>=6" "scipy>=1.9" "clarabel>=0.9" "ezdxf>=1.1"
+# The package's dependencies are pyproject.toml's: `maturin develop` installs them with the package, and the
+# extras named here (studies and pandas for the README's commands; test too when a goal runs the tests).
+EXTRAS = studies,pandas
+ifneq ($(filter test py-test fuzz fuzz-short,$(MAKECMDGOALS)),)
+EXTRAS = studies,pandas,test
+endif
 
 $(VENV)/.deps: pyproject.toml
-	@echo "setting up $(VENV) with the packages masonry-dem needs (pip, a minute or two the first time)..."
+	@echo "setting up $(VENV) (pip and maturin; the packages masonry-dem needs come with the build)..."
 	@$(PYTHON) -m venv $(VENV)
 	@$(PY) -m pip install -q --upgrade pip
-	@$(PY) -m pip install -q $(RUNTIME_DEPS)
+	@$(PY) -m pip install -q "maturin>=1.5,<2"
 	@touch $@
 
-$(VENV)/.test-deps: $(VENV)/.deps
-	@echo "adding the test tools to $(VENV) (pytest, hypothesis, atheris, scipy, clarabel)..."
-	@$(PY) -m pip install -q $(TEST_DEPS)
-	@touch $@
-
-# Release build of the extension, installed into .venv (python sources are linked, not copied).
-# pip lists every satisfied requirement while maturin installs the package: the log is kept in
-# .venv/develop.log and shown only if the build fails.
+# Release build of the extension, installed into .venv (python sources are linked, not copied) with its
+# dependencies and $(EXTRAS) (a minute or two of pip the first time). pip lists every satisfied requirement
+# while maturin installs the package: the log is kept in .venv/develop.log and shown only if the build fails.
 develop: $(VENV)/.deps
-	@echo "building the extension (release; a few minutes the first time)..."
-	@$(VENV)/bin/maturin develop --release -q > $(VENV)/develop.log 2>&1 || { cat $(VENV)/develop.log; exit 1; }
+	@echo "building the extension (release; a few minutes the first time) with the extras $(EXTRAS)..."
+	@$(VENV)/bin/maturin develop --release -q --extras $(EXTRAS) > $(VENV)/develop.log 2>&1 || { cat $(VENV)/develop.log; exit 1; }
 
 demo: develop
 	$(VENV)/bin/masonry-dem demo --plot out/demo.png
@@ -38,7 +36,7 @@ rust-test:
 	RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -q -p masonry-dem
 	cargo test --release
 
-py-test: develop $(VENV)/.test-deps
+py-test: develop
 	$(PY) -m pytest -q tests/python
 	$(MAKE) fuzz-short
 
@@ -46,13 +44,13 @@ py-test: develop $(VENV)/.test-deps
 # in out/fuzz-corpus (seeded with examples/); findings are written as out/fuzz/crash-* (or timeout-*, oom-*).
 FUZZ_TIME ?= 600
 FUZZ_FLAGS = -timeout=60 -rss_limit_mb=3072 -max_len=16384 -artifact_prefix=out/fuzz/
-fuzz: develop $(VENV)/.test-deps
+fuzz: develop
 	mkdir -p out/fuzz out/fuzz-corpus
 	$(PY) tests/fuzz/fuzz_case.py out/fuzz-corpus examples tests/fuzz/seeds $(FUZZ_FLAGS) -max_total_time=$(FUZZ_TIME) -print_final_stats=1
 
 # 20 seconds, part of `make test`: a fresh corpus from examples/ only, so the run does not depend on earlier ones.
 # The fuzzer's output goes to out/fuzz-short.log: its summary is printed, the end of the log if it finds something.
-fuzz-short: develop $(VENV)/.test-deps
+fuzz-short: develop
 	@rm -rf out/fuzz-short-corpus && mkdir -p out/fuzz out/fuzz-short-corpus
 	@echo "fuzzing the case-file reader and model building for 20 s (log: out/fuzz-short.log)..."
 	@$(PY) tests/fuzz/fuzz_case.py out/fuzz-short-corpus examples tests/fuzz/seeds $(FUZZ_FLAGS) -max_total_time=20 -print_final_stats=1 > out/fuzz-short.log 2>&1 \
@@ -60,6 +58,29 @@ fuzz-short: develop $(VENV)/.test-deps
 	@grep -E "^(Done|stat::number_of_executed_units|stat::new_units_added)" out/fuzz-short.log || true
 
 test: rust-test py-test
+
+# The wheel a user would install, checked as a newcomer would use it: a portable (manylinux2014, glibc >= 2.17)
+# wheel built with zig as the linker into out/wheels, installed with its dependencies alone into a fresh
+# out/wheel-venv, and the demo and the validation run there from outside the repository, so that the
+# installed package and its shipped examples are used, not the sources.
+WHEEL_VENV := out/wheel-venv
+wheel-check: $(VENV)/.deps
+	@$(PY) -m pip install -q "maturin[zig]>=1.5,<2"
+	@rm -rf out/wheels $(WHEEL_VENV) && mkdir -p out/wheels
+	@echo "building the portable wheel (release, zig; a few minutes the first time)..."
+	@PATH="$(abspath $(VENV))/bin:$$PATH" $(VENV)/bin/maturin build --release --zig --compatibility manylinux2014 -o out/wheels > out/wheel-build.log 2>&1 \
+		|| { tail -n 40 out/wheel-build.log; echo "the wheel build failed: see out/wheel-build.log"; exit 1; }
+	@ls out/wheels/*.whl
+	@ls out/wheels/*manylinux2014_x86_64*.whl > /dev/null 2>&1 || { echo "the wheel is not manylinux2014"; exit 1; }
+	@$(PY) -c "import sys, zipfile; names = zipfile.ZipFile(sys.argv[1]).namelist(); \
+		need = ['masonry_dem/examples/ferris-tinloi-wall1.toml', 'masonry_dem/examples/elcentro-1940-ns.csv', \
+		'masonry_dem/examples/studies/wall1-fragility.toml']; missing = [n for n in need if n not in names]; \
+		sys.exit(f'not in the wheel: {missing}' if missing else 0)" out/wheels/*.whl
+	@echo "installing it into a fresh $(WHEEL_VENV)..."
+	@$(PYTHON) -m venv $(WHEEL_VENV)
+	@$(WHEEL_VENV)/bin/python -m pip install -q out/wheels/*.whl
+	cd $(WHEEL_VENV) && VIRTUAL_ENV=$(abspath $(WHEEL_VENV)) bin/masonry-dem demo --plot ../wheel-demo.png
+	cd $(WHEEL_VENV) && VIRTUAL_ENV=$(abspath $(WHEEL_VENV)) bin/masonry-dem validate --quiet
 
 bench:
 	cargo bench

@@ -19,8 +19,8 @@ Conversions (the compiled ``Results`` cannot be subclassed, so these are plain f
 * :func:`to_json`: the result file of docs/case-format.md (:func:`masonry_dem.result_dict`), written under a
   temporary name and renamed.
 * :func:`to_dataframe` / :func:`interfaces_dataframe`: pandas DataFrames of the curve and of the
-  interfaces, when pandas is installed (a dependency of masonry-dem since the studies; without it they raise
-  ImportError). :func:`curve_columns` / :func:`interface_columns` give the same columns as NumPy arrays.
+  interfaces, when pandas is installed (the extra "pandas": ``pip install 'masonry-dem[pandas]'``; without it
+  they raise ImportError saying so). :func:`curve_columns` / :func:`interface_columns` give the same columns as NumPy arrays.
 
 Ground motions for ``Model.simulate`` (:mod:`masonry_dem.ground_motion`; times in s, accelerations in m/s2):
 :class:`GroundMotion` (``.scaled(f)``, ``.peak``, ``.duration``, ``.as_tuple()`` for ``base_acceleration=``),
@@ -295,8 +295,8 @@ def _pandas(func: str, alternative: str) -> Any:
         import pandas
     except ImportError as exc:
         raise ImportError(
-            f"masonry_dem.{func} needs pandas, which is not installed (a dependency of masonry-dem "
-            f"that is missing here): pip install pandas; or use masonry_dem.{alternative} "
+            f"masonry_dem.{func} needs pandas, which is not installed here (masonry-dem's extra "
+            f"\"pandas\"): pip install 'masonry-dem[pandas]'; or use masonry_dem.{alternative} "
             f"for the same columns as NumPy arrays"
         ) from exc
     return pandas

@@ -20,7 +20,8 @@ analysis to a Parquet file as they finish (see :mod:`masonry_dem.study`); ``--re
 that was stopped, computing only the rows missing. It exits 0 once every row is written (the rows of
 failed analyses included, with their error), 130 when interrupted (the rows done are kept).
 
-``validate`` runs every case file of DIR (default: the repository's examples/) that carries a [reference]
+``validate`` runs every case file of DIR (default: the examples shipped with the package, whatever the current
+directory; in the repository, its examples/; the first line names the folder) that carries a [reference]
 table and prints a table of its collapse multipliers against the reference (see :mod:`masonry_dem.validate`);
 it exits 1 if any is outside its tolerance or failed.
 
@@ -67,7 +68,6 @@ from .case import (
     write_result_json,
 )
 from .cli_parser import (
-    EXAMPLES_DIR,
     EXIT_FAILURE,
     EXIT_INPUT,
     EXIT_INTERRUPTED,
@@ -84,7 +84,10 @@ __all__ = ["main", "build_parser"]
 
 def _study(args: Any) -> int:
     """``masonry-dem study``: run the study, write its rows (and plot), print its summary."""
-    from .study import load_study, run_study
+    try:
+        from .study import load_study, run_study
+    except ImportError as exc:  # the extra "studies" is not installed: the message says how to install it
+        return _error(str(exc), EXIT_FAILURE)
     from .study.progress import study_bar
     from .study.summary import summary_figure, summary_text
 
@@ -461,12 +464,12 @@ def _compare(
 
 def _validate(directory: Optional[str], method: str, quiet: bool = False) -> int:
     """``masonry-dem validate``: print the validation table; 1 if a case is outside its tolerance or failed."""
-    from .validate import validate_folder
+    from .validate import default_folder, validate_folder
 
-    folder = Path(directory) if directory else EXAMPLES_DIR
+    folder = Path(directory) if directory else default_folder()
     if not folder.is_dir():
         what = "no such folder" if not folder.exists() else "not a folder"
-        hint = "" if directory else " (the default, examples/ of the repository; give DIR)"
+        hint = "" if directory else " (the default, the examples shipped with masonry-dem: is the package complete? give DIR)"
         return _error(f"{what}: {folder}{hint}", EXIT_INPUT)
 
     def solve(case: Case, model: Any, method: str) -> Any:
@@ -480,6 +483,8 @@ def _validate(directory: Optional[str], method: str, quiet: bool = False) -> int
     cases, _skipped = collect(folder)  # reads and checks every case file before running any
     if not cases:
         return _error(f"no case file with a [reference] table in {folder}", EXIT_INPUT)
+    if not directory:
+        echo(f"cases of {folder} (the examples shipped with masonry-dem)")
     rows, _ = validate_folder(folder, method, solve=solve, echo=echo)
     return EXIT_OK if all(row.passed for row in rows) else EXIT_FAILURE
 

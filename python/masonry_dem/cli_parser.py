@@ -7,18 +7,15 @@ import argparse
 import math
 import os
 import textwrap
-from pathlib import Path
 from typing import Any, NoReturn, Optional
 
 from ._core import __version__
 from .case import DEFAULT_REFERENCE_TOLERANCE, METHODS
-from .validate import METHOD_CHOICES
+from .validate import METHOD_CHOICES, default_folder
 
 PROG = "masonry-dem"
 EXIT_OK, EXIT_FAILURE, EXIT_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
 DEMO_PLOT = os.path.join("out", "demo.png")
-#: The default folder of ``masonry-dem validate``: examples/ of the repository holding this package.
-EXAMPLES_DIR = Path(__file__).resolve().parents[2] / "examples"
 
 
 class _Parser(argparse.ArgumentParser):
@@ -161,7 +158,7 @@ def _add_validate(sub: Any) -> None:
         ),
         epilog=f"""\
             examples:
-              masonry-dem validate                       examples/ of the repository, the three methods
+              masonry-dem validate                       the examples shipped with masonry-dem, the three methods
               masonry-dem validate --method static       the static solver only (a second or so)
               masonry-dem validate --method both         the static and the explicit solver
               masonry-dem validate my-cases/ --method dynamic
@@ -176,7 +173,7 @@ def _add_validate(sub: Any) -> None:
         "directory",
         metavar="DIR",
         nargs="?",
-        help=f"folder of case files (default: the repository's examples/, {EXAMPLES_DIR})",
+        help=f"folder of case files (default: the examples shipped with masonry-dem, {default_folder()})",
     )
     validate.add_argument(
         "--method",

@@ -12,7 +12,9 @@ A case *passes* when every method run on it ended without failure (a limit analy
 
 :func:`collect` reads the folder, :func:`validate_case` runs one case, :func:`table_header`,
 :func:`table_row` and :func:`table_footer` print the table row by row (so a long run shows its progress),
-:func:`validate_folder` does it all and returns the rows.
+:func:`validate_folder` does it all and returns the rows. :func:`default_folder` is the folder validated when
+none is given: the example cases shipped in the package (``masonry_dem/examples``; in the repository a symbolic
+link to its ``examples/``), so ``masonry-dem validate`` works from an installed wheel, from any directory.
 """
 
 from __future__ import annotations
@@ -29,7 +31,9 @@ from .report import format_multiplier
 __all__ = [
     "METHOD_CHOICES",
     "ValidationRow",
+    "PACKAGED_EXAMPLES",
     "collect",
+    "default_folder",
     "methods_of",
     "validate_case",
     "validate_folder",
@@ -45,6 +49,13 @@ METHOD_CHOICES = METHODS + ("both", "all")
 COLUMN_NAMES = {"static": "static", "dynamic": "explicit", "limit": "limit"}
 #: Statuses that count as a failed run ("interrupted": stopped by the user).
 FAILED_STATUSES = ("failed", "interrupted", "no_equilibrium", "unbounded", "stalled")
+
+#: The example case files shipped in the package: ``masonry_dem/examples`` (a wheel holds a copy; in the
+#: repository it is a symbolic link to the top-level examples/, which maturin follows when it builds a wheel).
+PACKAGED_EXAMPLES = Path(__file__).resolve().parent / "examples"
+#: The repository's examples/, when the package runs from a checkout whose link above was not made (a checkout
+#: with ``core.symlinks = false``, where the link is a small text file).
+_REPOSITORY_EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 #: A solver call: (case, model, method) -> Results.
 Solve = Callable[[Case, Any, str], Any]
@@ -111,6 +122,17 @@ class ValidationRow:
         if not math.isfinite(self.error):
             return "FAIL (no collapse multiplier)"
         return f"FAIL (> {_percent(self.tolerance)})"
+
+
+def default_folder() -> Path:
+    """The folder ``masonry-dem validate`` runs without an argument: the examples shipped in the package
+    (:data:`PACKAGED_EXAMPLES`, resolved: in the repository, its examples/), else the repository's examples/
+    when the package runs from a checkout without the link. It does not depend on the current directory.
+    When neither is a folder, the packaged one (``collect`` then reports it missing)."""
+    for folder in (PACKAGED_EXAMPLES, _REPOSITORY_EXAMPLES):
+        if folder.is_dir():
+            return folder.resolve()
+    return PACKAGED_EXAMPLES
 
 
 def collect(directory: PathLike) -> Tuple[List[Tuple[Path, Case]], List[Path]]:

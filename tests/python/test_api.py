@@ -258,7 +258,7 @@ def test_dataframes_without_pandas(wall: tuple, monkeypatch: pytest.MonkeyPatch)
     for call in (lambda: md.to_dataframe(results), lambda: md.interfaces_dataframe(results, model)):
         with pytest.raises(ImportError, match="pandas") as info:
             call()
-        assert "pip install pandas" in str(info.value)
+        assert "pip install 'masonry-dem[pandas]'" in str(info.value)  # the extra of pyproject.toml
 
 
 def test_exports() -> None:

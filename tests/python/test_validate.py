@@ -153,12 +153,14 @@ def test_validate_folder_in_process(tmp_path: Path) -> None:
 # --------------------------------------------------------------------------------------------------
 
 
-def test_validate_examples_static() -> None:
-    """The default folder is the repository's examples/ (run from elsewhere to prove it)."""
-    proc = masonry_dem("validate", "--method", "static", cwd=Path(__file__).parent)
+def test_validate_examples_static(tmp_path: Path) -> None:
+    """The default folder is the examples shipped in the package (masonry_dem/examples, in the repository a link
+    to its examples/), whatever the current directory: run from an empty one, as from an installed wheel."""
+    proc = masonry_dem("validate", "--method", "static", cwd=tmp_path)
     assert proc.returncode == 0, (proc.stdout, proc.stderr)
     assert proc.stderr == ""
-    header = proc.stdout.splitlines()[0]
+    first, header = proc.stdout.splitlines()[:2]
+    assert first == f"cases of {EXAMPLES} (the examples shipped with masonry-dem)"
     for word in ("case", "reference", "static", "explicit", "error", "time", "verdict"):
         assert word in header
     rows = table_rows(proc.stdout)

@@ -18,6 +18,17 @@ direction) and one or several methods ("static", "dynamic", "limit"):
 * :mod:`.summary` prints the summary and draws the summary figure (matplotlib, imported on first use).
 """
 
+import importlib.util as _util
+
+#: The packages studies need beyond masonry-dem's own: its extra "studies" (pyproject.toml).
+_NEEDS = {"dask": "dask[distributed]", "distributed": "dask[distributed]", "pandas": "pandas", "pyarrow": "pyarrow"}
+_MISSING = list(dict.fromkeys(pip for module, pip in _NEEDS.items() if _util.find_spec(module) is None))
+if _MISSING:
+    raise ImportError(
+        f"masonry-dem's studies need {', '.join(_MISSING)}, not installed here: "
+        "pip install 'masonry-dem[studies]'"
+    )
+
 from .model import DIRECTIONS, DISTRIBUTIONS, Item, Study, Texture, Variation
 from .runner import run_study
 from .spec import load_study, parse_study, study_from_dict
