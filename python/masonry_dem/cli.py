@@ -164,6 +164,12 @@ def _simulate(args: Any) -> int:
     _check_outputs(targets, inputs)
     model = case.build_model()
     motion, _ = case.ground_motion.components(args.scale)
+    if not args.quiet:
+        # the memory the records will take, before the run (the time step as simulate chooses it)
+        records, size = model.record_size(kwargs["duration"], time_step=kwargs.get("time_step"),
+                                          record_interval=kwargs.get("record_interval"))
+        print(f"recording {records:,} states of the {len(model.rects):,} blocks: {size / 2**20:.1f} MB",
+              file=sys.stderr)
     interrupted = False
     label = f"simulate {kwargs['duration']:.4g} s"
     with progress_bar(label, enabled=_show_progress(args.quiet), time_history=True) as bar:

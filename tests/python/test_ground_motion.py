@@ -415,6 +415,12 @@ def test_simulate_cli(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
     assert (out / "h.png").stat().st_size > 10_000
     assert (out / "h.gif").read_bytes()[:6] in (b"GIF89a", b"GIF87a")
     assert (out / "h.pvd").exists() and (out / "h-blocks-0000.vtu").exists()
+    # without -q the memory of the records is stated before the run, as the run holds them
+    status = main(["simulate", str(case_file), "--duration", "0.1"])
+    err = capsys.readouterr().err
+    model = md.parse_case(BLOCK_CASE + PULSE).build_model()
+    records, size = model.record_size(0.1, record_interval=0.005)
+    assert status == 0 and f"recording {records:,} states of the 2 blocks: {size / 2**20:.1f} MB" in err, err
 
 
 def test_simulate_cli_errors(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
