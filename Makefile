@@ -88,7 +88,7 @@ wheel-check: $(VENV)/.deps
 # The documentation site (mkdocs.yml: docs/*.md and the API reference from the docstrings) into out/site,
 # warnings as errors. The extra `docs` (mkdocs-material, mkdocstrings) comes with the build.
 docs: develop
-	$(VENV)/bin/mkdocs build --strict -d out/site
+	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/mkdocs build --strict -d out/site
 
 bench:
 	cargo bench
