@@ -95,3 +95,39 @@ def test_no_signature_shows_ellipsis(name, obj):
             continue
         assert "Ellipsis" not in str(sig) and "=..." not in str(sig), f"{label}{sig}"
         assert all(p.default is not Ellipsis for p in sig.parameters.values()), f"{label}{sig}"
+
+
+def _stub_docstrings():
+    """{(class or None, name): docstring} of _core.pyi: functions, classes, methods, properties and attributes."""
+    import ast
+    from pathlib import Path
+
+    from masonry_dem import _core
+
+    tree = ast.parse((Path(md.__file__).parent / "_core.pyi").read_text())
+    docs = {}
+    for node in tree.body:
+        if isinstance(node, ast.FunctionDef):
+            docs[(None, node.name)] = ast.get_docstring(node)
+        elif isinstance(node, ast.ClassDef) and hasattr(_core, node.name):
+            docs[(node.name, None)] = ast.get_docstring(node)
+            for k, item in enumerate(node.body):
+                if isinstance(item, ast.FunctionDef) and not item.name.startswith("_"):
+                    docs[(node.name, item.name)] = ast.get_docstring(item)
+                elif isinstance(item, ast.AnnAssign) and k + 1 < len(node.body):
+                    after = node.body[k + 1]
+                    if isinstance(after, ast.Expr) and isinstance(after.value, ast.Constant):
+                        docs[(node.name, item.target.id)] = inspect.cleandoc(after.value.value)
+    return {key: doc for key, doc in docs.items() if doc}
+
+
+def test_runtime_docstrings_are_the_stubs():
+    # the stubs are the reference (IDEs and the API reference read them): the core's docstrings hold the same words
+    from masonry_dem import _core
+
+    for (cls, name), doc in _stub_docstrings().items():
+        owner = _core if cls is None else getattr(_core, cls)
+        if name is not None and not hasattr(owner, name):
+            continue  # a stub of what is not compiled in (rayleigh is masonry_dem.modal's)
+        obj = owner if name is None else (getattr(_core, name) if cls is None else vars(owner)[name])
+        assert inspect.cleandoc(obj.__doc__ or "") == doc, f"{cls}.{name}: runtime docstring differs from _core.pyi"
