@@ -4,13 +4,16 @@ VENV := .venv
 PY := $(VENV)/bin/python
 export VIRTUAL_ENV := $(abspath $(VENV))
 
-.PHONY: demo test develop rust-test py-test fuzz fuzz-short wheel-check bench clean
+.PHONY: demo test develop rust-test py-test fuzz fuzz-short wheel-check docs bench clean
 
 # The package's dependencies are pyproject.toml's: `maturin develop` installs them with the package, and the
 # extras named here (studies and pandas for the README's commands; test too when a goal runs the tests).
 EXTRAS = studies,pandas
 ifneq ($(filter test py-test fuzz fuzz-short,$(MAKECMDGOALS)),)
 EXTRAS = studies,pandas,test
+endif
+ifneq ($(filter docs,$(MAKECMDGOALS)),)
+EXTRAS := $(EXTRAS),docs
 endif
 
 $(VENV)/.deps: pyproject.toml
@@ -81,6 +84,11 @@ wheel-check: $(VENV)/.deps
 	@$(WHEEL_VENV)/bin/python -m pip install -q out/wheels/*.whl
 	cd $(WHEEL_VENV) && VIRTUAL_ENV=$(abspath $(WHEEL_VENV)) bin/masonry-dem demo --plot ../wheel-demo.png
 	cd $(WHEEL_VENV) && VIRTUAL_ENV=$(abspath $(WHEEL_VENV)) bin/masonry-dem validate --quiet
+
+# The documentation site (mkdocs.yml: docs/*.md and the API reference from the docstrings) into out/site,
+# warnings as errors. The extra `docs` (mkdocs-material, mkdocstrings) comes with the build.
+docs: develop
+	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/mkdocs build --strict -d out/site
 
 bench:
 	cargo bench

@@ -67,6 +67,10 @@ class Model(_core.Model):
         pass
 
 
+# The constructor's signature as help(), Jupyter and inspect show it: the core's (its text signature, each
+# argument but blocks defaulting to None, the core's default), not the (*args, **kwargs) __new__ passes on.
+Model.__signature__ = inspect.signature(_core.Model)  # type: ignore[attr-defined]
+
 for _name in ("fix", "solve_static", "solve_limit", "solve_dynamic", "simulate"):
     setattr(Model, _name, input_errors(getattr(_core.Model, _name), f"Model.{_name}"))
 del _name

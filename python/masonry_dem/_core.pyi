@@ -41,7 +41,7 @@ def running_bond(
     courses that fit and, if more is left, a last course cut to the remainder; a remainder under 25%
     of block_height is refused, the message naming the nearest heights and block heights that fit.
     Courses alternate between starting with a half block ("half") and a whole block ("full");
-    a block that would cross x = length is cut there. Openings [x0, y0, x1, y1] [m] are cut out:
+    a block that would cross x = length is cut there. Openings [x0, y0, x1, y1] (in m) are cut out:
     a block partly inside one is cut at its edges into the parts outside it (straight jambs, sill
     and lintel; exactly the opening's area removed), an edge within 5% of a block's size of a joint
     being moved onto the joint so that no sliver of a block is made."""
@@ -94,11 +94,14 @@ class Model:
     def n_blocks(self) -> int:
         """Number of wall blocks (base and top beam not counted)."""
     @property
-    def n_interfaces(self) -> int: ...
+    def n_interfaces(self) -> int:
+        """Number of interfaces (the joints between blocks, and with the base and the top beam)."""
     @property
-    def base_index(self) -> Optional[int]: ...
+    def base_index(self) -> Optional[int]:
+        """Index of the base (the fixed foundation) among the blocks; None without one."""
     @property
-    def top_index(self) -> Optional[int]: ...
+    def top_index(self) -> Optional[int]:
+        """Index of the top beam among the blocks; None without one."""
     @property
     def default_control_block(self) -> int:
         """The block the solvers follow when no control block is given: the top beam if any, else the highest wall block at the right end."""
@@ -275,25 +278,44 @@ class TimeHistory:
     """A time history (Model.simulate). Energy balance at each record: initial kinetic + elastic
     energy + external_work = kinetic_energy + elastic_energy + dissipated + energy_error."""
 
-    status: str  # "completed" | "failed" | "interrupted"
+    status: str
+    """How the run ended: "completed", "failed" or "interrupted"."""
     error: Optional[str]
-    time_step: float  # [s]
-    times: FloatArray  # (k,) [s]
-    displacements: FloatArray  # (k, n_all, 3): u1 [m], u2 [m], phi [rad], relative to the ground
-    velocities: FloatArray  # (k, n_all, 3)
-    ground_acceleration: FloatArray  # (k, 2) the ground's (horizontal, vertical) acceleration [m/s2]
-    base_shear: FloatArray  # (k,) horizontal force of the wall on its base [N] (+x positive)
-    kinetic_energy: FloatArray  # (k,) [J]
-    elastic_energy: FloatArray  # (k,) energy stored in the joints [J]
-    external_work: FloatArray  # (k,) work of the external loads since t = 0 (weights, loads, base motion) [J]
-    gravity_work: FloatArray  # (k,) the weights' part of external_work [J]
-    friction_dissipation: FloatArray  # (k,) dissipated by friction and loss of strength in the joints [J]
-    damping_dissipation: FloatArray  # (k,) dissipated by the damping of the motion (local, viscous, Rayleigh) [J]
-    impact_dissipation: FloatArray  # (k,) dissipated by impacts (the joints' restitution) [J]
-    dissipated: FloatArray  # (k,) the three dissipations together [J]
-    energy_error: FloatArray  # (k,) the balance's error [J]
+    """Why, when the status is "failed" or "interrupted" (None otherwise)."""
+    time_step: float
+    """The time step used [s]."""
+    times: FloatArray
+    """(k,) time of each record [s]."""
+    displacements: FloatArray
+    """(k, n_all, 3): u1 [m], u2 [m], phi [rad], relative to the ground."""
+    velocities: FloatArray
+    """(k, n_all, 3): du1/dt [m/s], du2/dt [m/s], dphi/dt [rad/s], relative to the ground."""
+    ground_acceleration: FloatArray
+    """(k, 2) the ground's (horizontal, vertical) acceleration [m/s2]."""
+    base_shear: FloatArray
+    """(k,) horizontal force of the wall on its base [N] (+x positive)."""
+    kinetic_energy: FloatArray
+    """(k,) kinetic energy of the blocks [J]."""
+    elastic_energy: FloatArray
+    """(k,) energy stored in the joints [J]."""
+    external_work: FloatArray
+    """(k,) work of the external loads since t = 0 (weights, loads, base motion) [J]."""
+    gravity_work: FloatArray
+    """(k,) the weights' part of external_work [J]."""
+    friction_dissipation: FloatArray
+    """(k,) dissipated by friction and loss of strength in the joints [J]."""
+    damping_dissipation: FloatArray
+    """(k,) dissipated by the damping of the motion (local, viscous, Rayleigh) [J]."""
+    impact_dissipation: FloatArray
+    """(k,) dissipated by impacts (the joints' restitution) [J]."""
+    dissipated: FloatArray
+    """(k,) the three dissipations together [J]."""
+    energy_error: FloatArray
+    """(k,) the balance's error [J]."""
     steps: int
+    """Time steps computed."""
     elapsed_s: float
+    """Wall-clock time of the run [s]."""
 
 class _Certificate(TypedDict):
     """What a limit analysis certifies (Results.certificate)."""
@@ -309,37 +331,71 @@ class _Certificate(TypedDict):
     peak_strengths: bool  # some joint has cohesion or tensile strength, taken at its peak (no softening)
 
 class Results:
-    method: str  # "static" | "dynamic" | "limit"
-    status: str  # "collapse" | "completed" | "failed" | "unbounded" | "no_equilibrium" (limit) | "stalled" | "displacement_limit" (static)
-    error: Optional[str]  # why, when the status is "failed", "no_equilibrium", "unbounded", "stalled" or "displacement_limit"
-    collapse_multiplier: float  # lambda at collapse, or the peak of the curve; NaN unless the status is "collapse"
-    last_equilibrium: float  # the largest lambda found in equilibrium (load control: the last step), whatever the status; NaN if none
-    curve_multiplier: FloatArray  # (k,) lambda at each converged step, from 0 (empty for "limit")
-    curve_displacement: FloatArray  # (k,) horizontal displacement of the control point [m] (empty for "limit")
+    """The results of an analysis (Model.solve_static, solve_dynamic, solve_limit): the curve of the live load's
+    multiplier lambda [-] against the control block's displacement [m], the displacements [m, rad] and the joints'
+    forces [N, N m] and states at the end, and the collapse multiplier."""
+
+    method: str
+    """The solver: "static", "dynamic" or "limit"."""
+    status: str
+    """How the analysis ended: "collapse", "completed", "failed", "interrupted", "unbounded" or "no_equilibrium" (limit),
+    "stalled" or "displacement_limit" (static)."""
+    error: Optional[str]
+    """Why, when the status is "failed", "no_equilibrium", "unbounded", "stalled" or "displacement_limit"."""
+    collapse_multiplier: float
+    """Lambda at collapse, or the peak of the curve; NaN unless the status is "collapse"."""
+    last_equilibrium: float
+    """The largest lambda found in equilibrium (load control: the last step), whatever the status; NaN if none."""
+    curve_multiplier: FloatArray
+    """(k,) lambda at each converged step, from 0 (empty for "limit")."""
+    curve_displacement: FloatArray
+    """(k,) horizontal displacement of the control point [m] (empty for "limit")."""
     control_block: int
-    displacements: FloatArray  # (n_all, 3): u1 [m], u2 [m], phi [rad] at the last converged step (zeros for "limit")
-    mechanism: FloatArray  # (n_all, 3): last increment (limit: the block velocities), scaled so that max |u| is 1
-    interface_forces: FloatArray  # (m, 3): N [N] (tension > 0), T [N], M [N m] (limit: at collapse)
-    interface_states: IntArray  # (m,) bit flags: 1 open, 2 sliding, 4 rocking; 0 elastic (limit: of the mechanism)
-    broken: npt.NDArray[np.bool_]  # (m,) joint lost its cohesion and tensile strength
-    joint_states: dict[str, int]  # counts: elastic, sliding, rocking, open
-    iterations: int  # total equilibrium iterations (static), time steps (dynamic), interior-point iterations (limit)
-    steps: int  # converged steps (0 for "limit")
+    """The block whose horizontal displacement the curve follows (Model.default_control_block unless given)."""
+    displacements: FloatArray
+    """(n_all, 3): u1 [m], u2 [m], phi [rad] at the last converged step (zeros for "limit")."""
+    mechanism: FloatArray
+    """(n_all, 3): last increment (limit: the block velocities), scaled so that max |u| is 1."""
+    interface_forces: FloatArray
+    """(m, 3): N [N] (tension > 0), T [N], M [N m] (limit: at collapse)."""
+    interface_states: IntArray
+    """(m,) bit flags: 1 open, 2 sliding, 4 rocking; 0 elastic (limit: of the mechanism)."""
+    broken: npt.NDArray[np.bool_]
+    """(m,) bool: the joint lost its cohesion and tensile strength."""
+    joint_states: dict[str, int]
+    """Counts of the interfaces by state: {"elastic": n, "sliding": n, "rocking": n, "open": n}."""
+    iterations: int
+    """Total equilibrium iterations (static), time steps (dynamic), interior-point iterations (limit)."""
+    steps: int
+    """Converged steps (0 for "limit")."""
     elapsed_s: float
-    certificate: Optional[_Certificate]  # limit analysis's (also a static load-control run's check on associative dry joints)
+    """Wall-clock time of the analysis [s]."""
+    certificate: Optional[_Certificate]
+    """What a limit analysis certifies, as a dict (keys: multiplier, primal_residual, dual_residual, duality_gap,
+    iterations, upper_bound, sequence, sequence_converged, peak_strengths): a limit analysis's own, or that of the
+    check of a static load-control run on associative dry joints; None otherwise."""
 
 class Modes:
     """The natural modes of a model's elastic joints (``modes``), lowest frequency first."""
 
-    frequencies_hz: FloatArray  # (n,) natural frequencies [Hz]
-    angular_frequencies: FloatArray  # (n,) [rad/s]; 0 for a mode of no stiffness (a mechanism)
-    eigenvalues: FloatArray  # (n,) omega^2 as computed [rad2/s2]
-    shapes: FloatArray  # (n, n_all, 3): u1, u2, phi of every block (as Model.rects); phi^T M phi = 1, fixed dofs 0
-    residuals: FloatArray  # (n,) ||K phi - omega^2 M phi|| / ||K phi||
-    effective_mass: FloatArray  # (n, 2) effective modal masses along x and y [kg]
-    free_mass: tuple[float, float]  # the mass free to move along x and y [kg] (the effective masses' sum over all modes)
-    shift: float  # the shift sigma of the operator (K - sigma M)^-1 M [rad2/s2]
-    basis: int  # size of the Lanczos basis
+    frequencies_hz: FloatArray
+    """(n,) natural frequencies [Hz]."""
+    angular_frequencies: FloatArray
+    """(n,) angular frequencies [rad/s]; 0 for a mode of no stiffness (a mechanism)."""
+    eigenvalues: FloatArray
+    """(n,) omega^2 as computed [rad2/s2]."""
+    shapes: FloatArray
+    """(n, n_all, 3): u1, u2, phi of every block (as Model.rects); phi^T M phi = 1, fixed dofs 0."""
+    residuals: FloatArray
+    """(n,) ||K phi - omega^2 M phi|| / ||K phi||."""
+    effective_mass: FloatArray
+    """(n, 2) effective modal masses along x and y [kg]."""
+    free_mass: tuple[float, float]
+    """The mass free to move along x and y [kg] (the effective masses' sum over all modes)."""
+    shift: float
+    """The shift sigma of the operator (K - sigma M)^-1 M [rad2/s2]."""
+    basis: int
+    """Size of the Lanczos basis."""
     def __len__(self) -> int: ...
 
 def modes(model: Model, n: int, shift: Optional[float] = None) -> Modes:

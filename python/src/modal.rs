@@ -4,7 +4,7 @@
 use crate::*;
 use masonry_dem::modal::{self, Modes};
 
-/// The natural modes of a model (see _core.pyi).
+/// The natural modes of a model's elastic joints (``modes``), lowest frequency first.
 #[pyclass(name = "Modes", module = "masonry_dem._core", frozen)]
 pub(crate) struct PyModes {
     inner: Modes,
@@ -13,27 +13,33 @@ pub(crate) struct PyModes {
 
 #[pymethods]
 impl PyModes {
+    /// (n,) natural frequencies [Hz].
     #[getter]
     fn frequencies_hz<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.frequencies.clone().into_pyarray(py)
     }
+    /// (n,) angular frequencies [rad/s]; 0 for a mode of no stiffness (a mechanism).
     #[getter]
     fn angular_frequencies<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.angular.clone().into_pyarray(py)
     }
+    /// (n,) omega^2 as computed [rad2/s2].
     #[getter]
     fn eigenvalues<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.eigenvalues.clone().into_pyarray(py)
     }
+    /// (n, n_all, 3): u1, u2, phi of every block (as Model.rects); phi^T M phi = 1, fixed dofs 0.
     #[getter]
     fn shapes<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
         let rows: Vec<[f64; 3]> = self.inner.shapes.iter().flat_map(|s| s.chunks_exact(3).map(|c| [c[0], c[1], c[2]])).collect();
         history3(py, &rows, self.n_blocks)
     }
+    /// (n,) ||K phi - omega^2 M phi|| / ||K phi||.
     #[getter]
     fn residuals<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.residuals.clone().into_pyarray(py)
     }
+    /// (n, 2) effective modal masses along x and y [kg].
     #[getter]
     fn effective_mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let flat: Vec<f64> = self.inner.effective_mass.iter().flatten().copied().collect();
@@ -42,14 +48,17 @@ impl PyModes {
             .unwrap_or_else(|_| Array2::zeros((0, 2)))
             .into_pyarray(py)
     }
+    /// The mass free to move along x and y [kg] (the effective masses' sum over all modes).
     #[getter]
     fn free_mass(&self) -> (f64, f64) {
         (self.inner.free_mass[0], self.inner.free_mass[1])
     }
+    /// The shift sigma of the operator (K - sigma M)^-1 M [rad2/s2].
     #[getter]
     fn shift(&self) -> f64 {
         self.inner.shift
     }
+    /// Size of the Lanczos basis.
     #[getter]
     fn basis(&self) -> usize {
         self.inner.basis
@@ -64,7 +73,8 @@ impl PyModes {
     }
 }
 
-/// The lowest `n` natural modes of the model's elastic joints (see _core.pyi). Releases the GIL.
+/// The n lowest natural modes of the model's elastic joints (K phi = omega^2 M phi on the free dofs), or
+/// with a shift [rad2/s2] the n whose omega^2 are nearest to it. Releases the GIL.
 #[pyfunction]
 #[pyo3(signature = (model, n, shift=None))]
 pub(crate) fn modes(py: Python<'_>, model: PyRef<'_, PyModel>, n: i64, shift: Option<f64>) -> PyResult<PyModes> {
@@ -74,8 +84,8 @@ pub(crate) fn modes(py: Python<'_>, model: PyRef<'_, PyModel>, n: i64, shift: Op
     Ok(PyModes { inner, n_blocks: model.n_blocks() })
 }
 
-/// Rayleigh damping (alpha [1/s], beta [s]) giving the ratios zeta1 at f1_hz and zeta2 (default
-/// zeta1) at f2_hz (see _core.pyi).
+/// Rayleigh damping C = alpha M + beta K: (alpha [1/s], beta [s]) giving the damping ratio zeta1 at f1_hz
+/// and zeta2 (default zeta1) at f2_hz [Hz].
 #[pyfunction]
 #[pyo3(signature = (f1_hz, f2_hz, zeta1, zeta2=None))]
 pub(crate) fn rayleigh(f1_hz: f64, f2_hz: f64, zeta1: f64, zeta2: Option<f64>) -> PyResult<(f64, f64)> {

@@ -2,7 +2,25 @@
 
 use crate::*;
 
-/// A wall of rigid blocks joined by zero-thickness Mohr-Coulomb interfaces (see _core.pyi).
+/// A wall of rigid blocks joined by zero-thickness Mohr-Coulomb interfaces.
+///
+/// blocks: (n, 4) array of axis-aligned rectangles [x0, y0, x1, y1] in m.
+/// thickness: out-of-plane thickness [m]; density [kg/m3].
+/// base: True puts a fixed rigid foundation under the lowest blocks, spanning the wall.
+/// top_rotation: None (no top beam), "fixed" or "free": a rigid, weightless beam resting on the
+///     highest blocks and spanning the wall; top_force: dead force [Fx, Fy] on it [N].
+/// top_vertical: "free" (the vertical force on the beam stays top_force[1]; the beam may rise) or
+///     "held" (the beam's vertical position is held once the dead loads are on, so the vertical
+///     force becomes a reaction that changes with the live load; quasi-static analyses only).
+/// joints: {family: law} with family in "default", "bed", "head", "base", "top"; a law is a dict
+///     with keys normal_stiffness [N/m3], shear_stiffness [N/m3], friction [-], cohesion [Pa],
+///     tensile_strength [Pa], dilatancy [-] (tan psi), fracture_energy_tension and
+///     fracture_energy_shear [N/m] (both 0: brittle, cohesion and tensile strength lost at the
+///     first failure; both > 0: exponential softening). Missing keys of a family law fall back
+///     to "default"; missing keys of "default" fall back to 1e10, 1e10, 0.65, 0, 0, 0, 0, 0.
+/// gravity [m/s2]; live: "horizontal_weight" (lambda * W_i on every block towards +x) or
+///     "top_horizontal" (lambda newtons on the top beam towards +x).
+/// Raises InputError naming the key, block or interface on bad input.
 #[pyclass(name = "Model", module = "masonry_dem._core", subclass)]
 pub(crate) struct PyModel {
     pub(crate) inner: Arc<Model>,
@@ -63,43 +81,48 @@ impl PyModel {
         Arc::make_mut(&mut self.inner).fix(block, dof, value).map_err(to_py)
     }
 
-    /// The live load: "horizontal_weight" (lambda times each block's weight) or "top_horizontal"
-    /// (a force of lambda newtons on the top beam).
+    /// The live load: "horizontal_weight" (lambda times each block's weight) or "top_horizontal" (lambda newtons on the top beam).
     #[getter]
     fn live(&self) -> &'static str {
         self.inner.live().as_str()
     }
 
+    /// Number of wall blocks (base and top beam not counted).
     #[getter]
     fn n_blocks(&self) -> usize {
         self.inner.n_wall()
     }
+    /// Number of interfaces (the joints between blocks, and with the base and the top beam).
     #[getter]
     fn n_interfaces(&self) -> usize {
         self.inner.interfaces().len()
     }
+    /// Index of the base (the fixed foundation) among the blocks; None without one.
     #[getter]
     fn base_index(&self) -> Option<usize> {
         self.inner.base()
     }
+    /// Index of the top beam among the blocks; None without one.
     #[getter]
     fn top_index(&self) -> Option<usize> {
         self.inner.top()
     }
-    /// The block the solvers follow when no control block is given: the top beam if any, else the
-    /// highest wall block at the right end.
+    /// The block the solvers follow when no control block is given: the top beam if any, else the highest wall block at the right end.
     #[getter]
     fn default_control_block(&self) -> usize {
         self.inner.default_control_block()
     }
+    /// (n_all, 4) rectangles of all blocks, wall blocks first, then base, then top beam.
     #[getter]
     fn rects<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         rects_to_py(py, self.inner.rects())
     }
+    /// (n_all,) weight of each block [N] (0 for base and top beam).
     #[getter]
     fn weights<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.weight().to_vec().into_pyarray(py)
     }
+    /// (m, 2) block indices (a, b) of each interface; the normal points from a to b.
     #[getter]
     fn interface_blocks<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
         let it = self.inner.interfaces();
@@ -108,6 +131,7 @@ impl PyModel {
             .unwrap()
             .into_pyarray(py)
     }
+    /// (m, 5): centroid x, y [m], normal nx, ny, length l [m].
     #[getter]
     fn interface_geometry<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let it = self.inner.interfaces();
@@ -119,6 +143,7 @@ impl PyModel {
             .unwrap()
             .into_pyarray(py)
     }
+    /// Family of each interface: "bed", "head", "base" or "top".
     #[getter]
     fn interface_family(&self) -> Vec<&'static str> {
         self.inner
@@ -128,10 +153,33 @@ impl PyModel {
             .collect()
     }
 
-    /// Static incremental analysis (see _core.pyi). Releases the GIL; Ctrl-C stops it within a
-    /// step and raises KeyboardInterrupt with what was computed (status "failed", error
-    /// "interrupted by the user") as its `results`.
-    /// Options left out (None) take the core's defaults (`StaticOptions::default()`).
+    /// Static incremental analysis (Newton with the consistent tangent).
+    ///
+    /// Options left out (None) take the core's defaults: steps 200, tolerance 1e-4,
+    /// max_iterations 50 (Newton iterations before a step is cut).
+    ///
+    /// control="load": raise lambda until collapse, following the equilibrium path in steps of
+    /// the live load's work; the collapse multiplier is the peak or the plateau of lambda, to
+    /// `tolerance` (relative). control="displacement": drive the horizontal displacement of
+    /// control_block (default: the top beam if any, else the highest block at the right end)
+    /// to max_displacement [m] in `steps` increments, through the peak and after it; without
+    /// max_displacement (None), from 2 mm on by as much again, `steps` increments each time,
+    /// until a peak or a plateau of lambda.
+    /// Returns Results with status "collapse" (with its evidence: a peak, a plateau with no
+    /// equilibrium just above, and on associative dry joints the limit-analysis multiplier),
+    /// "completed" (the requested displacement reached, lambda still rising), "stalled" (load
+    /// control stopped converging below the limit-analysis multiplier), "displacement_limit"
+    /// (the path left the small-displacement model, a tenth of the wall's size, with lambda
+    /// still rising) or "failed"; collapse_multiplier is NaN unless "collapse", and
+    /// last_equilibrium holds the largest lambda found in equilibrium. Never raises for a
+    /// solver failure (the reason is in Results.error).
+    /// Runs in a thread of its own, the GIL released. Ctrl-C raises KeyboardInterrupt within a
+    /// fraction of a second, with the partial Results as the exception's `results` attribute
+    /// (None when the run is inside one long sparse factorization, 10^5 blocks and more: it
+    /// then finishes that in the background and stops); an exception raised by `progress` is
+    /// raised the same way.
+    /// progress: optional callable(step, multiplier, displacement, fraction) called after each
+    /// converged step (fraction in [0, 1] under displacement control, NaN otherwise).
     #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, max_iterations=None, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_static(
@@ -161,11 +209,30 @@ impl PyModel {
         })
     }
 
-    /// Limit analysis: the collapse multiplier as a linear program (see _core.pyi). Releases the
-    /// GIL; Ctrl-C stops it between interior-point iterations and raises KeyboardInterrupt whose
-    /// `results` has status "failed" and error "interrupted by the user" (nothing of the
-    /// unfinished program is kept).
-    /// Options left out (None) take the core's defaults (`LimitOptions::default()`).
+    /// Limit analysis (the static theorem): the largest lambda for which interface forces inside
+    /// the joints' strength domains balance the dead loads plus lambda times the live load, as a
+    /// linear program solved by a primal-dual interior point method on the stiffness matrix's
+    /// sparsity pattern. Exact for dry associative joints (dilatancy = friction); for dilatancy
+    /// below friction the associative optimum is an upper bound (certificate["upper_bound"]) and
+    /// the multiplier is a non-associative estimate from a sequence of at most max_sequence
+    /// programs (0: the associative bound only). Mortar joints enter with their peak strengths.
+    ///
+    /// tolerance: the interior point stops when its scaled residuals and relative duality gap are
+    /// all below this (0 < tolerance < 0.01; default 1e-8). max_iterations: interior-point
+    /// iterations per program (default 200); max_sequence default 50.
+    /// Returns Results with method "limit" and status "collapse" (collapse_multiplier, the
+    /// mechanism's normalised block velocities in `mechanism`, the forces at collapse in
+    /// interface_forces, the crack pattern in interface_states), "no_equilibrium" (the dead loads
+    /// alone cannot be carried), "unbounded" (no mechanism within the range of multipliers) or
+    /// "failed" (the interior point did not converge); the reason is in Results.error, and
+    /// collapse_multiplier is NaN unless the status is "collapse". No load path: the curve is
+    /// empty, displacements are zeros and steps is 0; iterations counts interior-point iterations.
+    /// Releases the GIL; Ctrl-C stops it between iterations and raises KeyboardInterrupt, whose
+    /// `results` attribute is a Results with status "failed" and error "interrupted by the
+    /// user" (no multiplier, no certificate).
+    /// progress: optional callable(iteration, multiplier, nan, nan) called after each
+    /// interior-point iteration (iterations counted over all the programs; multiplier: the
+    /// current estimate). An exception raised by it stops the analysis and is raised again.
     #[pyo3(signature = (tolerance=None, max_iterations=None, max_sequence=None, progress=None))]
     fn solve_limit(
         &self,
@@ -206,8 +273,23 @@ impl PyModel {
         run.finish(py, res)
     }
 
-    /// Quasi-static analysis with the explicit solver (see _core.pyi).
-    /// Options left out (None) take the core's defaults (`ExplicitOptions::default()`).
+    /// Quasi-static analysis with the explicit (molecular dynamics) solver; the same Results
+    /// as solve_static, with method "dynamic" and `iterations` = time steps.
+    ///
+    /// Options left out (None) take the core's defaults: steps 200, max_displacement 0.002 m,
+    /// tolerance 1e-3, unbalanced_ratio 1e-5, damping "local" with coefficient 0.8, safety 0.8,
+    /// threads 0 (all cores).
+    ///
+    /// control="load": each load level is relaxed until |unbalanced| <= unbalanced_ratio *
+    /// |applied|; the collapse multiplier is bracketed to `tolerance`. control="displacement":
+    /// the control block is driven to max_displacement in `steps` stages, lambda following from
+    /// its equation. damping: "local" (Cundall, coefficient alpha in [0, 1)), "viscous"
+    /// (mass-proportional, coefficient c [1/s]) or "none". time_step [s]: None for the automatic
+    /// stable step (safety * the stability limit); a user step above the limit is an InputError.
+    /// threads: threads of the interface loop (0: all cores). Status and multipliers as in
+    /// solve_static (here the path always ends at max_displacement, default 2 mm). Releases the
+    /// GIL; Ctrl-C raises KeyboardInterrupt with the partial Results as its `results` attribute.
+    /// progress: as in solve_static, every few thousand steps.
     #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_dynamic(
@@ -245,8 +327,26 @@ impl PyModel {
         })
     }
 
-    /// Time history with the explicit solver (see _core.pyi).
-    /// Options left out (None) take the core's defaults (`DynamicOptions::default()`).
+    /// Time history with the explicit solver. Options left out (None) take the core's
+    /// defaults: safety 0.8, damping "none" (coefficient 0), live_multiplier 0, a record every
+    /// record_interval = 0.001 s, large_rotations True, threads 0 (all cores).
+    ///
+    /// Free motion from initial conditions
+    /// (initial_displacements / initial_velocities: (n_all, 3) arrays of u1 [m], u2 [m],
+    /// phi [rad] and their rates) and/or the ground's motion: base_acceleration (horizontal) and
+    /// vertical_acceleration (upwards), each (times [s], accelerations [m/s2]), linear between
+    /// samples and zero outside them; the blocks move in the frame of the base (displacements
+    /// relative to the ground). live_multiplier: lambda held constant. large_rotations: block
+    /// kinematics with finite rotations (needed for rocking); False uses the linearized
+    /// kinematics of the static solver. Impacts lose energy by the joints' restitution (joint
+    /// key "restitution", default 0.3: Housner's impact of a rocking block); the time step
+    /// is lowered for the contact dashpots this takes. rayleigh=(alpha [1/s], beta [s]): Rayleigh
+    /// damping alpha M + beta K (masonry_dem.rayleigh_damping from two modes), the beta K part as
+    /// dashpots at the closed interfaces; instead of damping / damping_coefficient. Records every record_interval seconds
+    /// or every record_every-th step (not both); Model.record_size gives the memory up front.
+    /// Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory
+    /// computed so far as its `results` attribute.
+    /// progress: optional callable(step, time [s], nan, fraction done).
     #[pyo3(signature = (duration, time_step=None, safety=None, damping=None, damping_coefficient=None, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=None, record_every=None, large_rotations=None, threads=None, progress=None, vertical_acceleration=None, record_interval=None, rayleigh=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate(
@@ -286,7 +386,8 @@ impl PyModel {
         })
     }
 
-    /// (records, bytes) a time history with these options would hold (see _core.pyi).
+    /// (records, bytes) that Model.simulate with these options would hold (its time step as
+    /// simulate chooses it); refuses what simulate refuses.
     #[pyo3(signature = (duration, time_step=None, record_every=None, record_interval=None))]
     fn record_size(&self, duration: f64, time_step: Option<f64>, record_every: Option<i64>, record_interval: Option<f64>) -> PyResult<(usize, f64)> {
         let opts = DynamicOptions { duration, time_step, record: recording(record_every, record_interval)?, ..DynamicOptions::default() };
@@ -294,8 +395,10 @@ impl PyModel {
     }
 
 
-    /// The stability limit of the explicit solver's time step [s]; with `time_history`, of a
-    /// time history (lowered for the contact dashpots of the joints' restitution).
+    /// The stability limit of the explicit solver's time step [s] (Gershgorin bound); with
+    /// time_history=True, that of Model.simulate: lowered for the contact dashpots of the
+    /// joints' restitution (the factor sqrt(1 + z^2) - z with z = 3 zeta, zeta the dashpot's
+    /// damping ratio).
     #[pyo3(signature = (time_history=false))]
     fn critical_time_step(&self, time_history: bool) -> f64 {
         if time_history {

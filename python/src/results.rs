@@ -2,7 +2,8 @@
 
 use crate::*;
 
-/// A time history of the explicit solver (see _core.pyi).
+/// A time history (Model.simulate). Energy balance at each record: initial kinetic + elastic
+/// energy + external_work = kinetic_energy + elastic_energy + dissipated + energy_error.
 #[pyclass(name = "TimeHistory", module = "masonry_dem._core")]
 pub(crate) struct PyTimeHistory {
     pub(crate) inner: TimeHistory,
@@ -19,31 +20,37 @@ pub(crate) fn history3<'py>(py: Python<'py>, v: &[[f64; 3]], n_blocks: usize) ->
 
 #[pymethods]
 impl PyTimeHistory {
+    /// How the run ended: "completed", "failed" or "interrupted".
     #[getter]
     fn status(&self) -> &'static str {
         self.inner.status.as_str()
     }
+    /// Why, when the status is "failed" or "interrupted" (None otherwise).
     #[getter]
     fn error(&self) -> Option<String> {
         self.inner.error.clone()
     }
+    /// The time step used [s].
     #[getter]
     fn time_step(&self) -> f64 {
         self.inner.time_step
     }
+    /// (k,) time of each record [s].
     #[getter]
     fn times<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.times.clone().into_pyarray(py)
     }
+    /// (k, n_all, 3): u1 [m], u2 [m], phi [rad], relative to the ground.
     #[getter]
     fn displacements<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
         history3(py, &self.inner.displacements, self.inner.n_blocks)
     }
+    /// (k, n_all, 3): du1/dt [m/s], du2/dt [m/s], dphi/dt [rad/s], relative to the ground.
     #[getter]
     fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
         history3(py, &self.inner.velocities, self.inner.n_blocks)
     }
-    /// (k, 2) the ground's acceleration (horizontal, vertical) at each record [m/s2].
+    /// (k, 2) the ground's (horizontal, vertical) acceleration [m/s2].
     #[getter]
     fn ground_acceleration<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
         let rows: Vec<Vec<f64>> = self.inner.ground_acceleration.iter().map(|g| g.to_vec()).collect();
@@ -52,22 +59,22 @@ impl PyTimeHistory {
         }
         Ok(numpy::PyArray2::from_vec2(py, &rows)?)
     }
-    /// (k,) the horizontal force of the wall on its base [N] (+x positive).
+    /// (k,) horizontal force of the wall on its base [N] (+x positive).
     #[getter]
     fn base_shear<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.base_shear.clone().into_pyarray(py)
     }
-    /// (k,) kinetic energy [J].
+    /// (k,) kinetic energy of the blocks [J].
     #[getter]
     fn kinetic_energy<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.kinetic_energy.clone().into_pyarray(py)
     }
-    /// (k,) elastic energy in the joints [J].
+    /// (k,) energy stored in the joints [J].
     #[getter]
     fn elastic_energy<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.elastic_energy.clone().into_pyarray(py)
     }
-    /// (k,) work of the external loads since t = 0 (weights, loads, the base's motion) [J].
+    /// (k,) work of the external loads since t = 0 (weights, loads, base motion) [J].
     #[getter]
     fn external_work<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.external_work.clone().into_pyarray(py)
@@ -77,17 +84,17 @@ impl PyTimeHistory {
     fn gravity_work<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.gravity_work.clone().into_pyarray(py)
     }
-    /// (k,) dissipated in the joints by friction and loss of strength [J].
+    /// (k,) dissipated by friction and loss of strength in the joints [J].
     #[getter]
     fn friction_dissipation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.friction_dissipation.clone().into_pyarray(py)
     }
-    /// (k,) dissipated by the damping of the motion (local, viscous, stiffness-proportional) [J].
+    /// (k,) dissipated by the damping of the motion (local, viscous, Rayleigh) [J].
     #[getter]
     fn damping_dissipation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.damping_dissipation.clone().into_pyarray(py)
     }
-    /// (k,) dissipated by the contact dashpots of impacts (joints' restitution) [J].
+    /// (k,) dissipated by impacts (the joints' restitution) [J].
     #[getter]
     fn impact_dissipation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.impact_dissipation.clone().into_pyarray(py)
@@ -97,15 +104,17 @@ impl PyTimeHistory {
     fn dissipated<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.dissipated.clone().into_pyarray(py)
     }
-    /// (k,) the balance's error: initial energy + external work - kinetic - elastic - dissipated [J].
+    /// (k,) the balance's error [J].
     #[getter]
     fn energy_error<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.energy_error.clone().into_pyarray(py)
     }
+    /// Time steps computed.
     #[getter]
     fn steps(&self) -> usize {
         self.inner.steps
     }
+    /// Wall-clock time of the run [s].
     #[getter]
     fn elapsed_s(&self) -> f64 {
         self.inner.elapsed_s
@@ -147,7 +156,9 @@ pub(crate) fn interrupted_limit(model: &Model, start: Instant) -> Results {
     }
 }
 
-/// Results of an analysis (see _core.pyi).
+/// The results of an analysis (Model.solve_static, solve_dynamic, solve_limit): the curve of the live load's
+/// multiplier lambda [-] against the control block's displacement [m], the displacements [m, rad] and the joints'
+/// forces [N, N m] and states at the end, and the collapse multiplier.
 #[pyclass(name = "Results", module = "masonry_dem._core")]
 pub(crate) struct PyResults {
     pub(crate) inner: Results,
@@ -155,50 +166,63 @@ pub(crate) struct PyResults {
 
 #[pymethods]
 impl PyResults {
+    /// The solver: "static", "dynamic" or "limit".
     #[getter]
     fn method(&self) -> &'static str {
         self.inner.method
     }
+    /// How the analysis ended: "collapse", "completed", "failed", "interrupted", "unbounded" or "no_equilibrium" (limit),
+    /// "stalled" or "displacement_limit" (static).
     #[getter]
     fn status(&self) -> &'static str {
         self.inner.status.as_str()
     }
+    /// Why, when the status is "failed", "no_equilibrium", "unbounded", "stalled" or "displacement_limit".
     #[getter]
     fn error(&self) -> Option<String> {
         self.inner.error.clone()
     }
+    /// Lambda at collapse, or the peak of the curve; NaN unless the status is "collapse".
     #[getter]
     fn collapse_multiplier(&self) -> f64 {
         self.inner.collapse_multiplier
     }
+    /// The largest lambda found in equilibrium (load control: the last step), whatever the status; NaN if none.
     #[getter]
     fn last_equilibrium(&self) -> f64 {
         self.inner.last_equilibrium
     }
+    /// (k,) lambda at each converged step, from 0 (empty for "limit").
     #[getter]
     fn curve_multiplier<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.curve_multiplier.clone().into_pyarray(py)
     }
+    /// (k,) horizontal displacement of the control point [m] (empty for "limit").
     #[getter]
     fn curve_displacement<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.curve_displacement.clone().into_pyarray(py)
     }
+    /// The block whose horizontal displacement the curve follows (Model.default_control_block unless given).
     #[getter]
     fn control_block(&self) -> usize {
         self.inner.control_block
     }
+    /// (n_all, 3): u1 [m], u2 [m], phi [rad] at the last converged step (zeros for "limit").
     #[getter]
     fn displacements<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         rows3(py, &self.inner.displacements)
     }
+    /// (n_all, 3): last increment (limit: the block velocities), scaled so that max |u| is 1.
     #[getter]
     fn mechanism<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         rows3(py, &self.inner.mechanism)
     }
+    /// (m, 3): N [N] (tension > 0), T [N], M [N m] (limit: at collapse).
     #[getter]
     fn interface_forces<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         rows3(py, &self.inner.interface_forces)
     }
+    /// (m,) bit flags: 1 open, 2 sliding, 4 rocking; 0 elastic (limit: of the mechanism).
     #[getter]
     fn interface_states<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
         self.inner
@@ -208,10 +232,12 @@ impl PyResults {
             .collect::<Vec<_>>()
             .into_pyarray(py)
     }
+    /// (m,) bool: the joint lost its cohesion and tensile strength.
     #[getter]
     fn broken<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<bool>> {
         self.inner.broken.clone().into_pyarray(py)
     }
+    /// Counts of the interfaces by state: {"elastic": n, "sliding": n, "rocking": n, "open": n}.
     #[getter]
     fn joint_states<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let c = self.inner.joint_states();
@@ -222,21 +248,24 @@ impl PyResults {
         d.set_item("open", c.open)?;
         Ok(d)
     }
+    /// Total equilibrium iterations (static), time steps (dynamic), interior-point iterations (limit).
     #[getter]
     fn iterations(&self) -> usize {
         self.inner.iterations
     }
+    /// Converged steps (0 for "limit").
     #[getter]
     fn steps(&self) -> usize {
         self.inner.steps
     }
+    /// Wall-clock time of the analysis [s].
     #[getter]
     fn elapsed_s(&self) -> f64 {
         self.inner.elapsed_s
     }
-    /// The limit analysis's certificate as a dict: a limit analysis's own, or that of the check
-    /// of a static load-control run on associative dry joints; None otherwise (and for an
-    /// interrupted limit analysis).
+    /// What a limit analysis certifies, as a dict (keys: multiplier, primal_residual, dual_residual, duality_gap,
+    /// iterations, upper_bound, sequence, sequence_converged, peak_strengths): a limit analysis's own, or that of the
+    /// check of a static load-control run on associative dry joints; None otherwise.
     #[getter]
     fn certificate<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         let Some(c) = self.inner.certificate else { return Ok(None) };

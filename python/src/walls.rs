@@ -2,8 +2,17 @@
 
 use crate::*;
 
-/// Blocks [x0, y0, x1, y1] (shape (n, 4), m) of a running-bond wall standing at y = 0 from x = 0,
-/// `courses` courses or `height` m high (exactly one of the two).
+/// Blocks [x0, y0, x1, y1] (shape (n, 4), m) of a running-bond wall standing at y = 0 from x = 0.
+///
+/// block_length, block_height: a whole block's size [m]; length: the wall's length [m] (required).
+/// Exactly one of courses (whole courses) and height (the wall's height [m]): with height, the whole
+/// courses that fit and, if more is left, a last course cut to the remainder; a remainder under 25%
+/// of block_height is refused, the message naming the nearest heights and block heights that fit.
+/// Courses alternate between starting with a half block ("half") and a whole block ("full");
+/// a block that would cross x = length is cut there. Openings [x0, y0, x1, y1] (in m) are cut out:
+/// a block partly inside one is cut at its edges into the parts outside it (straight jambs, sill
+/// and lintel; exactly the opening's area removed), an edge within 5% of a block's size of a joint
+/// being moved onto the joint so that no sliver of a block is made.
 #[pyfunction]
 #[pyo3(signature = (block_length, block_height, courses=None, length=None, first_course=None, openings=None, *, height=None))]
 #[allow(clippy::too_many_arguments)]
@@ -54,7 +63,8 @@ pub(crate) fn running_bond<'py>(
     Ok(rects_to_py(py, &blocks))
 }
 
-/// Blocks [x0, y0, x1, y1] (shape (n, 4), m) from courses listed bottom to top.
+/// Blocks [x0, y0, x1, y1] (shape (n, 4), m) from courses listed bottom to top; each entry is a
+/// length in units of block_length, a negative entry is a gap of that length.
 #[pyfunction]
 pub(crate) fn pattern<'py>(
     py: Python<'py>,
