@@ -300,9 +300,12 @@ pub fn critical_time_step(model: &Model) -> f64 {
 }
 
 pub mod contact;
+mod evidence;
 mod integrator;
 mod pass;
 mod quasi_static;
+#[cfg(feature = "bench-internals")]
+mod stepper;
 #[cfg(test)]
 mod tests;
 mod time_history;
@@ -310,7 +313,7 @@ mod time_history;
 use integrator::*;
 use pass::*;
 #[cfg(feature = "bench-internals")]
-pub use integrator::Stepper;
+pub use stepper::Stepper;
 pub(crate) use quasi_static::{relax_at_displacement, relax_dead_state};
 pub use quasi_static::{solve, solve_with};
 pub use time_history::{history_time_step_limit, record_count, record_size, simulate, simulate_with};

@@ -72,11 +72,10 @@ from .panels import (
     plot_cracks,
     plot_curve,
     plot_deformed,
-    plot_energy,
     plot_mechanism,
-    plot_response,
     plot_wall,
 )
+from .time_panels import plot_energy, plot_response
 
 __all__ = [
     "plot_wall",

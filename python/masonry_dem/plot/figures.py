@@ -18,7 +18,6 @@ from ..report import _plural, corner_motion
 from .panels import (
     DEFORMED_FRACTION,
     _wall_height,
-    plot_response,
     plot_wall,
     _draw_curve,
     _draw_curve_overlay,
@@ -29,9 +28,9 @@ from .panels import (
     plot_cracks,
     plot_curve,
     plot_deformed,
-    plot_energy,
     plot_mechanism,
 )
+from .time_panels import plot_energy, plot_response
 
 
 def plot_results(

@@ -1,0 +1,56 @@
+//! The explicit solver's collapse checked against limit analysis, whose multiplier is exact for
+//! dry associative joints.
+
+use super::*;
+
+/// How far above the limit analysis's multiplier, relative to it, a settled level may lie
+/// whatever the bracket's tolerance: a level counts as settled at an unbalanced ratio of 1e-5,
+/// and the limit analysis solves to 1e-8 (wall 1 at tolerance 1e-6 settles at 0.642889 against
+/// 0.642859, 4.6e-5 above).
+const SETTLED_ABOVE: f64 = 1e-4;
+
+/// Checks an explicit collapse of a wall of associative dry joints against limit analysis,
+/// whose multiplier is then exact (as the static solver does): under load control, a collapse
+/// more than [`COLLAPSE_EVIDENCE`](crate::static_solver::COLLAPSE_EVIDENCE) `tolerance` below it
+/// is `Stalled` (under displacement control the peak is the stages' sample of the curve, as low
+/// as they are coarse); one more than `tolerance` (at least [`SETTLED_ABOVE`]) above it is `Failed` (a level was judged settled that is
+/// not an equilibrium: the unbalanced forces of one small block can be too small against the
+/// wall's to be seen). The limit analysis's certificate is kept as the evidence.
+pub(super) fn check_collapse(model: &Model, opts: &ExplicitOptions, mut res: Results, monitor: &mut dyn FnMut(&Progress) -> bool) -> Result<Results, Error> {
+    let reversed = matches!(opts.control, Control::Displacement { max_displacement } if max_displacement < 0.0);
+    let flipped;
+    let model = if reversed {
+        flipped = model.with_live_reversed();
+        &flipped
+    } else {
+        model
+    };
+    let last = Progress { step: res.iterations, multiplier: res.last_equilibrium, displacement: f64::NAN, fraction: f64::NAN, poll: true, time: f64::NAN };
+    let mut polled = Instant::now();
+    let lp = crate::limit::limit_analysis_with(model, &crate::limit::LimitOptions::default(), &mut |_| {
+        if polled.elapsed().as_secs_f64() < 0.1 {
+            return true;
+        }
+        polled = Instant::now();
+        monitor(&last)
+    })?;
+    if lp.status != Status::Collapse {
+        return Ok(res);
+    }
+    let (exact, found) = (lp.collapse_multiplier, res.collapse_multiplier.abs());
+    let gap = (found - exact) / exact;
+    let message = if gap < -crate::static_solver::COLLAPSE_EVIDENCE * opts.tolerance && opts.control == Control::Load {
+        res.status = Status::Stalled;
+        format!("the explicit solver's collapse at lambda = {found:.6} is {:.2}% below the collapse multiplier of limit analysis, {exact:.6} (exact for these associative dry joints): not a collapse", -100.0 * gap)
+    } else if gap > opts.tolerance.max(SETTLED_ABOVE) {
+        res.status = Status::Failed;
+        format!("the explicit solver settled at lambda = {found:.6}, {:.2}% above the collapse multiplier of limit analysis, {exact:.6} (exact for these associative dry joints): a level it judged settled is not an equilibrium (a small block's unbalance is too small against the wall's forces to be seen)", 100.0 * gap)
+    } else {
+        res.certificate = lp.certificate;
+        return Ok(res);
+    };
+    res.error = Some(Error::Convergence(message).to_string());
+    res.collapse_multiplier = f64::NAN;
+    res.certificate = lp.certificate;
+    Ok(res)
+}

@@ -1,0 +1,68 @@
+//! [`Stepper`]: time steps of the integrator from outside the crate (benchmarks, profiling).
+
+use super::*;
+
+/// A bare time stepper over the integrator of [`simulate`], for benchmarks and profiling (not
+/// part of the supported API): the model under its dead loads plus `live_multiplier` times its
+/// live loads, from rest, with the automatic time step (safety 0.8). [`Stepper::run`] does
+/// `k` time steps and nothing else: no records, no energy, no checks.
+///
+/// ```
+/// use masonry_dem::explicit::{Damping, Stepper};
+/// use masonry_dem::geometry::Rect;
+/// use masonry_dem::model::{Model, ModelSpec};
+/// let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2)], ..ModelSpec::default() }).unwrap();
+/// let mut s = Stepper::new(&model, 0.0, Damping::Local(0.8), false, 1).unwrap();
+/// s.run(10);
+/// assert_eq!(s.n_interfaces(), 1);
+/// assert!(s.displacements()[1] < 0.0); // the block settles onto the base
+/// ```
+#[cfg(feature = "bench-internals")]
+pub struct Stepper<'a> {
+    pub(super) s: Integrator<'a>,
+    pub(super) f: Vec<f64>,
+}
+
+#[cfg(feature = "bench-internals")]
+impl<'a> Stepper<'a> {
+    /// The integrator of `model` (linearized kinematics unless `large_rotations`) on `threads`
+    /// threads (0: all cores).
+    pub fn new(model: &'a Model, live_multiplier: f64, damping: Damping, large_rotations: bool, threads: usize) -> Result<Self, Error> {
+        let mut s = Integrator::new(model, None, 0.8, damping, threads)?;
+        s.set_large(large_rotations);
+        let f: Vec<f64> = model.dead_load().iter().zip(model.live_load()).map(|(d, l)| d + live_multiplier * l).collect();
+        s.f_ext.copy_from_slice(&f);
+        s.interface_forces();
+        s.accelerations();
+        Ok(Stepper { s, f })
+    }
+
+    /// `k` time steps.
+    pub fn run(&mut self, k: usize) {
+        let f = &self.f;
+        let mut set_ext = |fe: &mut [f64], _: &[f64]| fe.copy_from_slice(f);
+        for _ in 0..k {
+            self.s.step(&mut set_ext, None);
+        }
+    }
+
+    /// Number of interfaces.
+    pub fn n_interfaces(&self) -> usize {
+        self.s.model.interfaces().len()
+    }
+
+    /// The time step \[s\].
+    pub fn time_step(&self) -> f64 {
+        self.s.dt
+    }
+
+    /// (u1, u2, phi) of every block, flat.
+    pub fn displacements(&self) -> &[f64] {
+        &self.s.u
+    }
+
+    /// The interface forces (N, T, M) of the last step.
+    pub fn interface_forces(&self) -> &[[f64; 3]] {
+        &self.s.forces
+    }
+}
