@@ -57,7 +57,7 @@ import os
 import signal
 import sys
 from pathlib import Path
-from typing import Any, Iterator, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Iterator, List, Optional, Sequence, Tuple
 
 from ._core import InputError, MasonryError
 from .case import (
@@ -150,16 +150,9 @@ def _simulate(args: Any) -> int:
                 vtk_prefix = vtk_prefix[: -len(ending)]
         targets.append(vtk_prefix + ".pvd")
     if args.gif:
-        from .plot.animation import ANIMATION_FORMATS
+        from .plot.animation import check_animation_format
 
-        suffix = Path(args.gif).suffix.lower()
-        if suffix not in ANIMATION_FORMATS:
-            raise InputError(f"--gif {args.gif}: expected a .gif (or .mp4) file name")
-        if suffix == ".mp4":
-            from matplotlib import animation
-
-            if not animation.writers.is_available("ffmpeg"):
-                raise InputError(f"--gif {args.gif}: an MP4 needs ffmpeg, which is not installed (write a .gif)")
+        check_animation_format(args.gif)
         targets.append(args.gif)
     _check_outputs(targets, inputs)
     model = case.build_model()
@@ -170,17 +163,10 @@ def _simulate(args: Any) -> int:
                                           record_interval=kwargs.get("record_interval"))
         print(f"recording {records:,} states of the {len(model.rects):,} blocks: {size / 2**20:.1f} MB",
               file=sys.stderr)
-    interrupted = False
     label = f"simulate {kwargs['duration']:.4g} s"
     with progress_bar(label, enabled=_show_progress(args.quiet), time_history=True) as bar:
-        try:
-            history = case.simulate(model, args.scale, args.duration, progress=bar or None)
-        except KeyboardInterrupt as exc:
-            history = getattr(exc, "results", None)
-            if history is None:
-                raise
-            interrupted = True
-    interrupted = interrupted or history.status == "interrupted"
+        history, interrupted = _interruptible(lambda: case.simulate(model, args.scale, args.duration,
+                                                                    progress=bar or None))
     title = case.title + (f" (ground motion x{motion.scale:g})" if motion.scale != 1.0 else "")
 
     def outputs() -> Iterator[Any]:
@@ -376,18 +362,8 @@ def _execute(
     targets, plot_file = _output_targets(json_path, plot_path, vtk_prefix, csv_path)
     _check_outputs(targets, inputs)
     model = case.build_model()
-    interrupted = False
-    try:
-        results = _solve(case, model, method, quiet)
-    except KeyboardInterrupt as exc:
-        # Ctrl-C: the solver stopped at once; keep what it computed (the result file and the curve),
-        # but draw nothing after the interrupt
-        results = getattr(exc, "results", None)
-        if results is None:
-            raise
-        interrupted = True
-    # a run stopped by the user: status "interrupted" (a core before it: "failed", and KeyboardInterrupt)
-    interrupted = interrupted or results.status == "interrupted"
+    # Ctrl-C: keep what the solver computed (the result file and the curve), but draw nothing after it
+    results, interrupted = _interruptible(lambda: _solve(case, model, method, quiet))
     live = case.live_load(model)
 
     def outputs() -> Iterator[Any]:
@@ -493,6 +469,20 @@ def _validate(directory: Optional[str], method: str, quiet: bool = False) -> int
         echo(f"cases of {folder} (the examples shipped with masonry-dem)")
     rows, _ = validate_folder(folder, method, solve=solve, echo=echo)
     return EXIT_OK if all(row.passed for row in rows) else EXIT_FAILURE
+
+
+def _interruptible(run: Callable[[], Any]) -> Tuple[Any, bool]:
+    """``run()``'s result and whether the user stopped it: Ctrl-C stops a solver at once, and its partial result
+    comes as the ``results`` of the KeyboardInterrupt (raised again when there is none); a result with status
+    "interrupted" was stopped too."""
+    try:
+        result = run()
+    except KeyboardInterrupt as exc:
+        result = getattr(exc, "results", None)
+        if result is None:
+            raise
+        return result, True
+    return result, result.status == "interrupted"
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:

@@ -317,8 +317,7 @@ impl Run<'_> {
         h.displacements.extend((0..nb).map(|i| [s.u[3 * i], s.u[3 * i + 1], s.u[3 * i + 2]]));
         h.velocities.extend((0..nb).map(|i| [s.v[3 * i], s.v[3 * i + 1], s.v[3 * i + 2]]));
         h.ground_acceleration.push(self.loads.ground(t));
-        let base = model.kinds().iter().enumerate().filter(|(_, k)| **k == crate::interface::BlockKind::Base);
-        h.base_shear.push(-base.map(|(i, _)| s.f_int[3 * i]).sum::<f64>());
+        h.base_shear.push(model.base().map_or(0.0, |i| -s.f_int[3 * i]));
         let (ke, ee) = (s.kinetic_energy(), s.elastic_energy());
         let gravity: f64 = (0..nb).map(|i| -model.weight()[i] * (s.u[3 * i + 1] - self.u0[3 * i + 1])).sum();
         // what the joints' forces took from the blocks, less what the dashpots dissipated and

@@ -85,6 +85,20 @@ def _frames(times: np.ndarray, fps: float, every: Optional[int]) -> np.ndarray:
     return frames
 
 
+def check_animation_format(path: Union[str, "os.PathLike[str]"]) -> None:
+    """Refuse, before any run, an animation file that cannot be written: a suffix other than those of
+    :data:`ANIMATION_FORMATS`, or an MP4 without the ``ffmpeg`` program (InputError)."""
+    from matplotlib import animation
+
+    suffix = Path(path).suffix.lower()
+    if suffix not in ANIMATION_FORMATS:
+        raise InputError(f"cannot write the animation {path}: unknown format {Path(path).suffix!r}: expected a .gif "
+                         "(or .mp4) file name")
+    if suffix == ".mp4" and not animation.writers.is_available("ffmpeg"):
+        raise InputError(f"cannot write the animation {path}: an MP4 needs ffmpeg, which is not installed "
+                         "(write a .gif instead, or install ffmpeg)")
+
+
 def write_animation(
     model: Any,
     history: Any,
@@ -131,18 +145,13 @@ def write_animation(
     from .panels import _wall_axes, _wall_limits
 
     target = Path(path)
-    suffix = target.suffix.lower()
-    if suffix not in ANIMATION_FORMATS:
-        raise InputError(f"cannot write the animation {path}: unknown format {target.suffix!r} (use .gif or .mp4)")
+    check_animation_format(target)
     if isinstance(fps, bool) or not (isinstance(fps, (int, float)) and math.isfinite(fps) and fps > 0):
         raise InputError(f"write_animation: fps must be a number > 0, got {fps!r}")
     if isinstance(scale, bool) or not (isinstance(scale, (int, float)) and math.isfinite(scale) and scale >= 0):
         raise InputError(f"write_animation: scale must be a number >= 0, got {scale!r}")
     if every is not None and (isinstance(every, bool) or not isinstance(every, int) or every < 1):
         raise InputError(f"write_animation: every must be an integer >= 1, got {every!r}")
-    if suffix == ".mp4" and not animation.writers.is_available("ffmpeg"):
-        raise InputError(f"cannot write the animation {path}: an MP4 needs ffmpeg, which is not installed "
-                         "(write a .gif instead, or install ffmpeg)")
     inputs = list(inputs)
     check_target(target, inputs)
 
@@ -200,7 +209,7 @@ def write_animation(
         ax_wall.set_title(f"{heading}t = {times[k]:.2f} s\n{note}", fontsize=9)
 
     writer: Any
-    if suffix == ".gif":
+    if target.suffix.lower() == ".gif":
         writer = animation.PillowWriter(fps=fps)
     else:
         writer = animation.FFMpegWriter(fps=fps, codec="h264", extra_args=["-pix_fmt", "yuv420p"])
