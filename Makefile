@@ -6,15 +6,16 @@ export VIRTUAL_ENV := $(abspath $(VENV))
 
 .PHONY: demo test develop rust-test py-test fuzz fuzz-short wheel-check docs bench clean
 
-# The package's dependencies are pyproject.toml's: `maturin develop` installs them with the package, and the
-# extras named here (studies and pandas for the README's commands; test too when a goal runs the tests).
+# The package's dependencies are pyproject.toml's: `maturin develop` installs them with the package and the
+# extras of the README's commands (studies and pandas). It is always run with these same extras and the same
+# environment, so that a build made by one goal serves every other; the extras the tests and the docs add are
+# installed by pip alone (their lists read from pyproject.toml), without touching the build.
 EXTRAS = studies,pandas
-ifneq ($(filter test py-test fuzz fuzz-short,$(MAKECMDGOALS)),)
-EXTRAS = studies,pandas,test
-endif
-ifneq ($(filter docs,$(MAKECMDGOALS)),)
-EXTRAS := $(EXTRAS),docs
-endif
+# Cargo's target directory (as maturin finds it) and the pyo3 configuration maturin writes there: the cargo
+# commands below pass it too (PYO3_CONFIG_FILE), so that checking the bindings (clippy) runs pyo3's build
+# script with maturin's inputs and leaves the extension's build fresh (else each rebuilds pyo3 and the bindings).
+TARGET_DIR := $(abspath $(or $(CARGO_TARGET_DIR),target))
+PYO3_ENV = PYO3_CONFIG_FILE="$$(ls -t $(TARGET_DIR)/maturin/pyo3-config-*.txt | head -n 1)"
 
 $(VENV)/.deps: pyproject.toml
 	@echo "setting up $(VENV) (pip and maturin; the packages masonry-dem needs come with the build)..."
@@ -24,36 +25,59 @@ $(VENV)/.deps: pyproject.toml
 	@touch $@
 
 # Release build of the extension, installed into .venv (python sources are linked, not copied) with its
-# dependencies and $(EXTRAS) (a minute or two of pip the first time). pip lists every satisfied requirement
-# while maturin installs the package: the log is kept in .venv/develop.log and shown only if the build fails.
-develop: $(VENV)/.deps
+# dependencies and $(EXTRAS) (a minute or two of pip the first time); run again only when a Rust source or
+# a manifest changed (the stamp $(VENV)/.develop). pip lists every satisfied requirement while maturin
+# installs the package: the log is kept in .venv/develop.log and shown only if the build fails.
+RUST_SOURCES := $(shell find src python/src -name '*.rs' 2>/dev/null) Cargo.toml Cargo.lock python/Cargo.toml
+$(VENV)/.develop: $(VENV)/.deps pyproject.toml $(wildcard $(RUST_SOURCES))
 	@echo "building the extension (release; a few minutes the first time) with the extras $(EXTRAS)..."
 	@$(VENV)/bin/maturin develop --release -q --extras $(EXTRAS) > $(VENV)/develop.log 2>&1 || { cat $(VENV)/develop.log; exit 1; }
+	@touch $@
+
+# The package's modules compiled once (an editable install is not compiled by pip, and with
+# PYTHONDONTWRITEBYTECODE set Python would compile them at every import: tens of milliseconds)
+$(VENV)/.pyc: $(VENV)/.develop $(shell find python/masonry_dem -name '*.py' 2>/dev/null)
+	@$(PY) -m compileall -q python/masonry_dem > /dev/null
+	@touch $@
+
+develop: $(VENV)/.develop $(VENV)/.pyc
+
+# An extra of pyproject.toml installed with pip alone: $(VENV)/.extra-test, $(VENV)/.extra-docs
+$(VENV)/.extra-%: $(VENV)/.deps pyproject.toml
+	@echo "installing the extra $* (pip)..."
+	@$(PY) -c "import sys; t = __import__('tomllib' if sys.version_info >= (3, 11) else 'tomli'); \
+		print('\n'.join(t.load(open('pyproject.toml', 'rb'))['project']['optional-dependencies'][sys.argv[1]]))" $* > $(VENV)/extra-$*.txt
+	@$(PY) -m pip install -q -r $(VENV)/extra-$*.txt
+	@touch $@
 
 demo: develop
 	$(VENV)/bin/masonry-dem demo --plot out/demo.png
 
-# clippy on every crate and target and the crate's docs, warnings as errors, then the Rust tests
-rust-test:
-	cargo clippy --release --workspace --all-targets -q -- -D warnings
-	RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -q -p masonry-dem
+# clippy on every crate and target and the crate's docs, warnings as errors, then the Rust tests. clippy and
+# doc check the dependencies once between them (one profile, one set of features: no code generation);
+# the tests reuse the release build of the extension's dependencies. After `develop`, whose pyo3
+# configuration clippy reads (see PYO3_ENV).
+rust-test: develop
+	$(PYO3_ENV) cargo clippy --release --workspace --all-targets --features masonry-dem/bench-internals -q -- -D warnings
+	RUSTDOCFLAGS="-D warnings" cargo doc --release --no-deps -q -p masonry-dem
 	cargo test --release
 
-py-test: develop
-	$(PY) -m pytest -q tests/python
+# pytest on every core (pytest-xdist; each test's files in its own temporary directory)
+py-test: develop $(VENV)/.extra-test
+	$(PY) -m pytest -q -n auto tests/python
 	$(MAKE) fuzz-short
 
 # Fuzzing of the case-file reader and model building (tests/fuzz/fuzz_case.py, atheris). The corpus grows
 # in out/fuzz-corpus (seeded with examples/); findings are written as out/fuzz/crash-* (or timeout-*, oom-*).
 FUZZ_TIME ?= 600
 FUZZ_FLAGS = -timeout=60 -rss_limit_mb=3072 -max_len=16384 -artifact_prefix=out/fuzz/
-fuzz: develop
+fuzz: develop $(VENV)/.extra-test
 	mkdir -p out/fuzz out/fuzz-corpus
 	$(PY) tests/fuzz/fuzz_case.py out/fuzz-corpus examples tests/fuzz/seeds $(FUZZ_FLAGS) -max_total_time=$(FUZZ_TIME) -print_final_stats=1
 
 # 20 seconds, part of `make test`: a fresh corpus from examples/ only, so the run does not depend on earlier ones.
 # The fuzzer's output goes to out/fuzz-short.log: its summary is printed, the end of the log if it finds something.
-fuzz-short: develop
+fuzz-short: develop $(VENV)/.extra-test
 	@rm -rf out/fuzz-short-corpus && mkdir -p out/fuzz out/fuzz-short-corpus
 	@echo "fuzzing the case-file reader and model building for 20 s (log: out/fuzz-short.log)..."
 	@$(PY) tests/fuzz/fuzz_case.py out/fuzz-short-corpus examples tests/fuzz/seeds $(FUZZ_FLAGS) -max_total_time=20 -print_final_stats=1 > out/fuzz-short.log 2>&1 \
@@ -91,12 +115,12 @@ wheel-check: $(VENV)/.deps
 		nbclient.NotebookClient(nb, timeout=600, kernel_name='python3').execute(); print('tutorial: every cell ran')"
 
 # The documentation site (mkdocs.yml: docs/*.md and the API reference from the docstrings) into out/site,
-# warnings as errors. The extra `docs` (mkdocs-material, mkdocstrings) comes with the build.
-docs: develop
+# warnings as errors. The extra `docs` (mkdocs-material, mkdocstrings) is installed by pip.
+docs: develop $(VENV)/.extra-docs
 	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/mkdocs build --strict -d out/site
 
 bench:
-	cargo bench
+	cargo bench --features bench-internals
 
 clean:
 	rm -rf $(VENV) target out
