@@ -76,33 +76,11 @@ pub(crate) fn return_map_inlined(law: &JointLaw, sec: &Section, e: [f64; 3], com
         d[2] * (e[2] - ep[2]),
     ];
     let scale = force_scale(&trial, sec);
-    let softening = law.is_softening();
     let (broken, faces) = faces_now(law, sec, committed, &trial, scale);
     let tol = kt_tolerance(scale, &faces);
     let elastic_tangent = if want_tangent { [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]] } else { [[0.0; 3]; 3] };
-    // Only the Coulomb flow (slip and its dilatancy) is history: an opening or a rocking gap
-    // closes again without resistance (no-tension contact), so the rocking faces' flow is not
-    // stored. Within a step the mapping, and so its tangent, is the same.
-    let finish = |force: [f64; 3], slip: [f64; 3], dk: [f64; 2], tangent: [[f64; 3]; 3]| -> Response {
-        let plastic = [ep[0] + slip[0], ep[1] + slip[1], ep[2] + slip[2]];
-        // the opening is recoverable, so dk[0] is the whole current plastic gap: the crack is
-        // measured by the largest gap reached; the slip is history, so dk[1] is an increment
-        let (opening, slip_acc) = (committed.opening.max(dk[0]), committed.slip + dk[1]);
-        let broken = if softening {
-            let (c, ft) = law.strengths(&JointState { plastic, broken: false, opening, slip: slip_acc });
-            c <= 1e-3 * law.cohesion && ft <= 1e-3 * law.tensile_strength
-        } else {
-            broken
-        };
-        Response {
-            force,
-            state: JointState { plastic, broken, opening, slip: slip_acc },
-            flags: flags(&faces, &force, sec, scale),
-            tangent,
-        }
-    };
     if (0..4).all(|j| faces.f(j, &trial) <= tol) {
-        return (finish(trial, [0.0; 3], [0.0; 2], elastic_tangent), 0);
+        return (respond(law, sec, committed, &faces, scale, broken, trial, [0.0; 3], [0.0; 2], elastic_tangent), 0);
     }
     // the values on the trial force and the products a_i . D m_j of every face, once: each
     // active set below picks its entries (the same numbers as computing them per set)
@@ -125,12 +103,12 @@ pub(crate) fn return_map_inlined(law: &JointLaw, sec: &Section, e: [f64; 3], com
     let warm = if warm.count_ones() == 3 && vertex { 0 } else { warm };
     // the warm set, then the active sets smallest first (the order above), each in its own copy of
     // `attempt` (the faces of a set known at compile time: no index lists, unrolled
-    // eliminations); one exit for all, so that `finish` is inlined once
+    // eliminations); one exit for all, so that `respond` is inlined once for them
     let problem = Trial { faces: &faces, prep, trial: &trial, f_trial: &f_trial, g_all, dm, tol };
     let accepted = active_set(&problem, warm, strict, apex_warm, warm_in);
     if let Some((a, mask)) = accepted {
         let tangent = if want_tangent { set_tangent(mask, &faces, &d, dm, g_all, &a, tol) } else { [[0.0; 3]; 3] };
-        return (finish(a.s, a.slip, a.dk, tangent), mask);
+        return (respond(law, sec, committed, &faces, scale, broken, a.s, a.slip, a.dk, tangent), mask);
     }
     // No active set satisfied the conditions (degenerate data): fall back on the apex, the one
     // point of the domain that every face reaches, carrying nothing beyond the cut-off.
@@ -139,7 +117,49 @@ pub(crate) fn return_map_inlined(law: &JointLaw, sec: &Section, e: [f64; 3], com
     } else {
         faces.b[2]
     };
-    (finish([n_apex, 0.0, 0.0], [0.0; 3], [0.0; 2], [[0.0; 3]; 3]), APEX)
+    (respond(law, sec, committed, &faces, scale, broken, [n_apex, 0.0, 0.0], [0.0; 3], [0.0; 2], [[0.0; 3]; 3]), APEX)
+}
+
+/// The response of a return (the force, the Coulomb flow `slip`, the plastic (opening, slip)
+/// increments `dk`, the tangent) from the committed history, on the step's `faces` (`broken`:
+/// whether the joint is broken within the step). A function, not a closure of
+/// [`return_map_inlined`], so that it can be inlined (a closure's three calls were not: an
+/// out-of-line call per interface and time step).
+///
+/// Only the Coulomb flow (slip and its dilatancy) is history: an opening or a rocking gap
+/// closes again without resistance (no-tension contact), so the rocking faces' flow is not
+/// stored. Within a step the mapping, and so its tangent, is the same.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn respond(
+    law: &JointLaw,
+    sec: &Section,
+    committed: &JointState,
+    faces: &Faces,
+    scale: f64,
+    broken: bool,
+    force: [f64; 3],
+    slip: [f64; 3],
+    dk: [f64; 2],
+    tangent: [[f64; 3]; 3],
+) -> Response {
+    let ep = committed.plastic;
+    let plastic = [ep[0] + slip[0], ep[1] + slip[1], ep[2] + slip[2]];
+    // the opening is recoverable, so dk[0] is the whole current plastic gap: the crack is
+    // measured by the largest gap reached; the slip is history, so dk[1] is an increment
+    let (opening, slip_acc) = (committed.opening.max(dk[0]), committed.slip + dk[1]);
+    let broken = if law.is_softening() {
+        let (c, ft) = law.strengths(&JointState { plastic, broken: false, opening, slip: slip_acc });
+        c <= 1e-3 * law.cohesion && ft <= 1e-3 * law.tensile_strength
+    } else {
+        broken
+    };
+    Response {
+        force,
+        state: JointState { plastic, broken, opening, slip: slip_acc },
+        flags: flags(faces, &force, sec, scale),
+        tangent,
+    }
 }
 
 /// The faces of the domain within this step, and whether the joint is broken: a brittle joint
