@@ -44,6 +44,8 @@ study file (docs/study-format.md), :func:`run_study` runs its analyses on a Dask
 one row each in a Parquet file, :func:`read_results` reads them back.
 """
 
+from typing import TYPE_CHECKING
+
 from ._core import (
     ConvergenceError,
     InputError,
@@ -54,49 +56,53 @@ from ._core import (
     __version__,
 )
 from ._checked import Model, pattern, running_bond
-from .case import Case, load_case, parse_case, result_dict, run_case, write_result_json
-from .export import write_curve_csv, write_vtk
-from .modal import Modes, modes, plot_modes, rayleigh_damping
-from .api import (
-    GroundMotion,
-    curve_columns,
-    dry_joint,
-    interface_columns,
-    interfaces_dataframe,
-    mortar_joint,
-    one_sine,
-    read_at2,
-    read_ground_motion,
-    ricker,
-    to_dataframe,
-    to_dict,
-    to_json,
-    parse_quantity,
-    m,
-    cm,
-    mm,
-    km,
-    s,
-    ms,
-    kg,
-    N,
-    kN,
-    MN,
-    Pa,
-    kPa,
-    MPa,
-    GPa,
-    N_per_m3,
-    kN_per_m3,
-    MN_per_m3,
-    N_per_mm3,
-    N_per_m,
-    N_per_mm,
-    J_per_m2,
-    kg_per_m3,
-    t_per_m3,
-    m_per_s2,
-)
+
+if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); imported on first use at run time
+    from .case import Case, load_case, parse_case, result_dict, run_case, write_result_json
+    from .export import write_curve_csv, write_vtk
+    from .modal import Modes, modes, plot_modes, rayleigh_damping
+    from .api import (
+        GroundMotion,
+        curve_columns,
+        dry_joint,
+        interface_columns,
+        interfaces_dataframe,
+        mortar_joint,
+        one_sine,
+        read_at2,
+        read_ground_motion,
+        ricker,
+        to_dataframe,
+        to_dict,
+        to_json,
+        parse_quantity,
+        m,
+        cm,
+        mm,
+        km,
+        s,
+        ms,
+        kg,
+        N,
+        kN,
+        MN,
+        Pa,
+        kPa,
+        MPa,
+        GPa,
+        N_per_m3,
+        kN_per_m3,
+        MN_per_m3,
+        N_per_mm3,
+        N_per_m,
+        N_per_mm,
+        J_per_m2,
+        kg_per_m3,
+        t_per_m3,
+        m_per_s2,
+    )
+    from .plot.animation import write_animation
+    from .study import load_study, read_results, run_study
 
 __all__ = [
     "Model",
@@ -170,19 +176,36 @@ __all__ = [
     "read_results",
 ]
 
-_STUDY_NAMES = ("load_study", "run_study", "read_results")
+# Where each name of __all__ not imported above lives: imported when first asked for, so that `import
+# masonry_dem` loads the core and the model alone (not numpy, and not matplotlib, meshio, Dask, pandas or
+# pyarrow, which the modules below import on their own first use).
+_LAZY = {
+    **dict.fromkeys(("Case", "load_case", "parse_case", "result_dict", "run_case", "write_result_json"), ".case"),
+    **dict.fromkeys(("write_curve_csv", "write_vtk"), ".export"),
+    **dict.fromkeys(("Modes", "modes", "plot_modes", "rayleigh_damping"), ".modal"),
+    "write_animation": ".plot.animation",
+    **dict.fromkeys(("load_study", "run_study", "read_results"), ".study"),
+}
 
 
 def __getattr__(name: str):  # type: ignore[no-untyped-def]
-    """The study functions and :mod:`masonry_dem.study` itself, and ``write_animation``
-    (:mod:`masonry_dem.plot`, matplotlib), imported when first asked for."""
-    if name == "write_animation":
-        from .plot.animation import write_animation
+    """The names of ``__all__`` not imported with the package (see ``_LAZY``; the rest of ``__all__``,
+    from :mod:`masonry_dem.api`) and the package's modules, imported when first asked for."""
+    import importlib
 
-        return write_animation
-    if name in _STUDY_NAMES or name == "study":
-        import importlib
-
-        study = importlib.import_module(".study", __name__)
-        return study if name == "study" else getattr(study, name)
+    if name in _LAZY or (name in __all__ and name not in globals()):
+        module = importlib.import_module(_LAZY.get(name, ".api"), __name__)
+        value = getattr(module, name)
+        globals()[name] = value
+        return value
+    if not name.startswith("_"):
+        try:
+            return importlib.import_module(f".{name}", __name__)
+        except ModuleNotFoundError as e:
+            if e.name != f"{__name__}.{name}":
+                raise
     raise AttributeError(f"module 'masonry_dem' has no attribute {name!r}")
+
+
+def __dir__() -> list:
+    return sorted(set(globals()) | set(__all__))
