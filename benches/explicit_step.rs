@@ -8,8 +8,9 @@
 //! Everything else is outside the timed region: the model, the integrator (thread pool, time
 //! step, work arrays) and 20 warm-up steps.
 //!
-//! `cargo bench --bench explicit_step`; one size or thread count: `cargo bench --bench
-//! explicit_step -- 100000_blocks/2_threads` (criterion's filter, a regular expression).
+//! `cargo bench --features bench-internals --bench explicit_step`; one size or thread count:
+//! `cargo bench --features bench-internals --bench explicit_step -- 100000_blocks/2_threads`
+//! (criterion's filter, a regular expression).
 //! `EXPLICIT_STEP_LARGE=1` benches the finite-rotation kinematics of time histories instead.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};

@@ -4,7 +4,8 @@
 //! (a symmetric tangent: sparse Cholesky), and one static increment (the dead-load state, from
 //! rest: Newton with factorizations, line search and joint evaluations).
 //!
-//! `cargo bench --bench static_scaling`; one size: `cargo bench --bench static_scaling -- 1e4`.
+//! `cargo bench --features bench-internals --bench static_scaling`; one size: `cargo bench --features
+//! bench-internals --bench static_scaling -- 1e4`.
 //! The whole analysis to collapse is timed by `benches/scaling.py` (one run per size).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
