@@ -55,12 +55,13 @@ demo: develop
 
 # clippy on every crate and target and the crate's docs, warnings as errors, then the Rust tests. clippy and
 # doc check the dependencies once between them (one profile, one set of features: no code generation);
-# the tests reuse the release build of the extension's dependencies. After `develop`, whose pyo3
+# the tests reuse the extension's release build of the core and its dependencies (the same features:
+# the bindings build the core with bench-internals, whose items' doctests run here too). After `develop`, whose pyo3
 # configuration clippy reads (see PYO3_ENV).
 rust-test: develop
 	$(PYO3_ENV) cargo clippy --release --workspace --all-targets --features masonry-dem/bench-internals -q -- -D warnings
 	RUSTDOCFLAGS="-D warnings" cargo doc --release --no-deps -q -p masonry-dem
-	cargo test --release
+	cargo test --release --features bench-internals
 
 # pytest on every core (pytest-xdist; each test's files in its own temporary directory)
 py-test: develop $(VENV)/.extra-test
