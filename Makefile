@@ -63,9 +63,10 @@ rust-test: develop
 	RUSTDOCFLAGS="-D warnings" cargo doc --release --no-deps -q -p masonry-dem
 	cargo test --release --features bench-internals
 
-# pytest on every core (pytest-xdist; each test's files in its own temporary directory)
+# pytest on every core (pytest-xdist; each test's files in its own temporary directory), an idle worker taking
+# tests queued on the other (the long ones would otherwise end the run on one core)
 py-test: develop $(VENV)/.extra-test
-	$(PY) -m pytest -q -n auto tests/python
+	$(PY) -m pytest -q -n auto --dist worksteal tests/python
 	$(MAKE) fuzz-short
 
 # Fuzzing of the case-file reader and model building (tests/fuzz/fuzz_case.py, atheris). The corpus grows
