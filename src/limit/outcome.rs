@@ -56,10 +56,9 @@ impl Program {
             ),
             Outcome::Infeasible => (
                 Status::NoEquilibrium,
-                Some(format!(
-                    "no equilibrium under the dead loads: no admissible interface forces balance them at any multiplier (the dual iterates grow along a ray; equilibrium residual {:.1e} of the loads)",
-                    sol.primal
-                )),
+                Some(
+                    "no equilibrium under the dead loads: no admissible interface forces balance them at any multiplier (the interior point ended on a dual ray, a certificate of it)".into(),
+                ),
             ),
             Outcome::NotConverged => (
                 Status::Failed,
