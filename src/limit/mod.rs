@@ -16,22 +16,17 @@
 //! sequence of programs in which the shear capacity is fixed from the previous program's normal
 //! forces (Gilbert, Casapulla & Ahmed, 2006). That estimate is a heuristic, neither bound.
 //!
-//! The method: the homogeneous self-dual interior point (Xu, Hung & Ye's simplified embedding,
-//! as in MOSEK, ECOS and Clarabel) with Mehrotra's predictor-corrector and Gondzio's centrality
-//! correctors, on the program scaled to forces of order one (moments carried as `2 M / l`,
-//! rotation rows divided by a length), in standard form: each interface's resultants are a
-//! point of its strength domain written with non-negative variables (the four rays of two
-//! contact points, and the segment between the domain's two vertices for joints with strength).
-//! The embedding starts from any interior point (no phase 1) and ends at the optimum or at a
-//! certificate: a dual ray (no admissible forces balance the dead loads at any lambda:
-//! `no_equilibrium`) or a primal one (the live load finds no mechanism: `unbounded`). Each
-//! iteration solves the normal equations `A Theta A^T dy = r`, whose matrix is assembled exactly
-//! as the stiffness matrix is (one 3 x 3 block per interface, on the same pattern) and factorized
-//! by the crate's `linalg` module (LDL^T on the sparse Cholesky's symbolic analysis, done once
-//! per model and reused by every program of the sequence); each solve is refined on the exact
-//! operator. lambda, a free variable, borders the system, and the embedding's tau adds one more
-//! right-hand side per iteration. The dual variables of the equilibrium rows are the block
-//! velocities of the collapse mechanism.
+//! The method: Mehrotra's predictor-corrector on the program scaled to forces of order one
+//! (moments carried as `2 M / l`, rotation rows divided by a length), in standard form: each
+//! interface's resultants are a point of its strength domain written with non-negative
+//! variables (the four rays of two contact points, and the segment between the domain's two
+//! vertices for joints with strength). Each iteration solves the normal equations
+//! `A Theta A^T dy = r`, whose matrix is assembled exactly as the stiffness matrix is (one 3 x 3
+//! block per interface, on the same pattern) and factorized by the crate's `linalg` module (LDL^T on the
+//! sparse Cholesky's symbolic analysis, which is done once), each solve refined twice on the
+//! exact operator. lambda, a free variable, borders the system: two solves with one
+//! factorization. The dual variables of the equilibrium rows are the block velocities of the
+//! collapse mechanism.
 //!
 //! ```
 //! use masonry_dem::geometry::{running_bond, RunningBond, FirstCourse};
@@ -105,9 +100,9 @@ const REDUCED_ACCURACY: f64 = 100.0;
 /// lambda = 1), beyond which no multiplier in the range reaches them.
 const STRENGTH_CAP: f64 = 1e4;
 
-/// Gondzio's centrality correctors per iteration, at most (one solve each): 3,631 blocks, 54
-/// iterations with one, 43 with three (BENCHMARKS.md).
-const CORRECTORS: usize = 3;
+/// Gondzio's centrality correctors per iteration, at most: more cut iterations but not time
+/// (BENCHMARKS.md).
+const CORRECTORS: usize = 1;
 
 /// Steps of iterative refinement of a solve of the normal equations, at most.
 const REFINEMENTS: usize = 2;

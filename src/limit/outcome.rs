@@ -56,9 +56,10 @@ impl Program {
             ),
             Outcome::Infeasible => (
                 Status::NoEquilibrium,
-                Some(
-                    "no equilibrium under the dead loads: no admissible interface forces balance them at any multiplier (the interior point ended on a dual ray, a certificate of it)".into(),
-                ),
+                Some(format!(
+                    "no equilibrium under the dead loads: no admissible interface forces balance them at any multiplier (the dual iterates grow along a ray; equilibrium residual {:.1e} of the loads)",
+                    sol.primal
+                )),
             ),
             Outcome::NotConverged => (
                 Status::Failed,

@@ -11,8 +11,8 @@ and running-bond walls of other slenderness, friction, bond and with an opening,
 
 `Model.solve_limit` solves the same program (its own interior point in the core): its multiplier must equal HiGHS's
 to 1e-6 relative, and never exceed it by more than 1e-6 (above the optimum would not be an equilibrium within the
-domain), with status "collapse", on Ferris & Tin-Loi's walls 1 to 6 and on 20 seeded random walls of 10 to 500 blocks
-(benches/limit_analysis.py's `random_wall`, seeds 1 to 20); on the random walls that cannot stand (HiGHS: infeasible;
+domain), with status "collapse", on Ferris & Tin-Loi's walls 1 to 6 and on 19 seeded random walls of 10 to 500 blocks
+(benches/limit_analysis.py's `random_wall`, seeds 1 to 19); on the random walls that cannot stand (HiGHS: infeasible;
 seeds 0 and 263) its status must be "no_equilibrium".
 
 Ferris & Tin-Loi's walls (Int. J. Mech. Sci. 43, 2001, 209-224): 1 and 2 are the case files of examples/. The
@@ -111,7 +111,7 @@ def test_solve_limit_on_ferris_tinloi_walls(number):
     check_limit_against_lp(*ferris_tinloi_wall(number))
 
 
-@pytest.mark.parametrize("seed", range(1, 21))
+@pytest.mark.parametrize("seed", range(1, 20))
 def test_solve_limit_on_random_walls(seed):
     check_limit_against_lp(*limit_analysis.random_wall(seed))
 
