@@ -80,3 +80,33 @@ fn the_mechanism_moves_with_the_live_load_and_rests_on_the_base() {
     assert_eq!(r.mechanism[base], [0.0; 3]);
     assert!(r.interface_states.iter().any(|&f| f != 0), "some joint opens, slides or rocks");
 }
+
+#[test]
+fn a_block_wedged_under_a_held_beam_is_unbounded() {
+    // sliding or rocking would lift the beam, held vertically: no mechanism at any lambda
+    use masonry_dem::model::{JointLaws, Model, ModelSpec, TopBeam};
+    let m = Model::new(ModelSpec {
+        blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175)],
+        gravity: 10.0,
+        joints: JointLaws::uniform(dry(0.65, 0.65, 1e10)),
+        top: Some(TopBeam { rotation_fixed: true, force: [0.0, -1000.0], vertical_held: true }),
+        ..ModelSpec::default()
+    })
+    .unwrap();
+    let r = limit(&m);
+    assert_eq!(r.status, Status::Unbounded, "{:?} {}", r.error, r.collapse_multiplier);
+    assert!(r.collapse_multiplier.is_nan());
+}
+
+#[test]
+fn an_overhang_either_way_has_no_equilibrium_before_the_iteration_limit() {
+    // no admissible forces balance the dead loads (pushing the upper block back would take
+    // a shear of twice its weight against friction 0.65), whichever side it overhangs: the
+    // interior point says so before its iteration limit
+    for x0 in [0.3, -0.5] {
+        let over = vec![Rect::new(0.0, 0.0, 0.4, 0.2), Rect::new(x0, 0.2, x0 + 0.6, 0.4)];
+        let r = limit(&blocks_model(over, dry(0.65, 0.65, 1e10)));
+        assert_eq!(r.status, Status::NoEquilibrium, "{x0}: {:?}", r.error);
+        assert!(r.certificate.unwrap().iterations < 100, "{x0}: stopped by the iteration limit");
+    }
+}
