@@ -41,6 +41,11 @@ pub enum Status {
     /// The caller stopped the run (Ctrl-C from Python, or a progress callback returning false):
     /// the curve holds the converged steps, `error` says so.
     Interrupted,
+    /// Limit analysis of joints with dilatancy below friction: `last_equilibrium` holds the
+    /// non-associative sequence's multiplier, an estimate that is neither bound (no collapse
+    /// multiplier); the certificate holds it, the associative upper bound and whether the
+    /// sequence converged, and `error` says so in a line.
+    Estimate,
 }
 
 impl Status {
@@ -65,6 +70,7 @@ impl Status {
             Status::Stalled => "stalled",
             Status::DisplacementLimit => "displacement_limit",
             Status::Interrupted => "interrupted",
+            Status::Estimate => "estimate",
         }
     }
 }
@@ -122,6 +128,10 @@ pub struct Results {
     pub steps: usize,
     /// Wall-clock time of the run \[s\].
     pub elapsed_s: f64,
+    /// Explicit load control ending in a collapse: the bracket on the collapse multiplier, the
+    /// highest level that settled (the collapse multiplier) and the lowest that ran away (None
+    /// otherwise).
+    pub bracket: Option<[f64; 2]>,
     /// The limit analysis's evidence: its own, or, for a static load-control analysis of a wall
     /// of associative dry joints, that of the limit analysis run as its check (None otherwise).
     pub certificate: Option<Certificate>,

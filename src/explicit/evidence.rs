@@ -37,7 +37,11 @@ pub(super) fn check_collapse(model: &Model, opts: &ExplicitOptions, mut res: Res
     if lp.status != Status::Collapse {
         return Ok(res);
     }
-    let (exact, found) = (lp.collapse_multiplier, res.collapse_multiplier.abs());
+    let exact = lp.collapse_multiplier;
+    if opts.control == Control::Load && res.collapse_multiplier > exact && (res.collapse_multiplier - exact) <= opts.tolerance.max(SETTLED_ABOVE) * exact {
+        below_exact(&mut res, exact);
+    }
+    let found = res.collapse_multiplier.abs();
     let gap = (found - exact) / exact;
     let message = if gap < -crate::static_solver::COLLAPSE_EVIDENCE * opts.tolerance && opts.control == Control::Load {
         res.status = Status::Stalled;
@@ -53,4 +57,25 @@ pub(super) fn check_collapse(model: &Model, opts: &ExplicitOptions, mut res: Res
     res.collapse_multiplier = f64::NAN;
     res.certificate = lp.certificate;
     Ok(res)
+}
+
+/// Load control whose highest settled levels lie above the exact multiplier `exact`, by less
+/// than a level's settling accuracy: those levels are no equilibrium (none exists above it),
+/// however small their unbalance. The curve ends at the highest level at or below `exact`, the
+/// collapse multiplier, and the bracket's upper end is the lowest level dropped (or the level
+/// that ran away, if lower); the displacements and forces stay those of the last level run.
+fn below_exact(res: &mut Results, exact: f64) {
+    let keep = res.curve_multiplier.iter().take_while(|&&l| l <= exact).count();
+    if keep == 0 || keep == res.curve_multiplier.len() {
+        return;
+    }
+    let dropped = res.curve_multiplier[keep];
+    res.curve_multiplier.truncate(keep);
+    res.curve_displacement.truncate(keep);
+    res.steps = keep;
+    let lower = res.curve_multiplier[keep - 1];
+    res.collapse_multiplier = lower;
+    res.last_equilibrium = lower;
+    let upper = res.bracket.map_or(dropped, |b| b[1].min(dropped));
+    res.bracket = Some([lower, upper]);
 }
