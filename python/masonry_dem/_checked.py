@@ -55,11 +55,24 @@ def _real_blocks(func: str, blocks: Any) -> None:
         raise InputError(f"{func}: no blocks: give at least one rectangle [x0, y0, x1, y1]")
 
 
+def _real_arrays(name: str, func: Callable[..., Any], args: Any, kwargs: Any) -> None:
+    """Refuse a NumPy array of booleans or complex numbers given where numbers belong (the core would take
+    True as 1 and drop an imaginary part), alone or in a tuple or list (a record's times and accelerations)."""
+    values = list(kwargs.items()) + [(None, a) for a in args]
+    for key, value in values:
+        parts = value if isinstance(value, (tuple, list)) else (value,)
+        for part in parts:
+            if isinstance(part, np.ndarray) and part.dtype.kind in "bc":
+                where = f"'{key}': " if key else ""
+                raise InputError(f"{name}: {where}expected real numbers, got an array of {part.dtype}")
+
+
 def input_errors(func: F, name: str) -> F:
     """``func`` with TypeError / OverflowError of its arguments raised as InputError naming ``name``."""
 
     @functools.wraps(func)
     def checked(*args: Any, **kwargs: Any) -> Any:
+        _real_arrays(name, func, args, kwargs)
         try:
             return func(*args, **kwargs)
         except RuntimeError as exc:

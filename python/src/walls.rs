@@ -79,6 +79,11 @@ pub(crate) fn pattern<'py>(
     rows: Vec<Vec<f64>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let blocks = guarded(|| geometry::pattern(block_length, block_height, &rows))?;
+    if blocks.is_empty() {
+        return Err(InputError::new_err(
+            "geometry.pattern.rows hold no block (every course is empty or a gap): no wall to build",
+        ));
+    }
     Ok(rects_to_py(py, &blocks))
 }
 

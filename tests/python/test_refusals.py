@@ -140,6 +140,16 @@ def test_blocks_of_booleans_complex_numbers_or_none_are_refused(blocks: Any) -> 
 def test_a_running_bond_with_no_block_is_refused() -> None:
     with pytest.raises(md.InputError, match="no block fits"):
         md.running_bond(0.4, 0.2, 3, length=1e-300)
+    with pytest.raises(md.InputError, match="hold no block"):
+        md.pattern(0.4, 0.2, [[]])
+
+
+@pytest.mark.parametrize("dtype", [bool, complex])
+def test_a_record_of_booleans_or_complex_numbers_is_refused(dtype: Any) -> None:
+    model = md.Model([[0.0, 0.0, 0.2, 0.6]], joints={"default": {"friction": 0.65}})
+    t = np.linspace(0.0, 0.05, 11)
+    with pytest.raises(md.InputError, match="'base_acceleration': expected real numbers"):
+        model.simulate(base_acceleration=(t, np.ones(11, dtype=dtype)), duration=0.05)
 
 
 def test_a_model_being_solved_says_busy() -> None:
