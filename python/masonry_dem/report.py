@@ -341,6 +341,12 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
     elif not collapse and math.isfinite(last):
         # no collapse shown: the largest multiplier at which the wall was found in equilibrium, for what it is
         lines.append(f"  last equilibrium:    {format_multiplier(last, live)} (not a collapse)")
+    bracket = getattr(results, "bracket", None)
+    if collapse and bracket is not None:
+        # explicit load control: the collapse multiplier is the bracket's lower end, the last level that settled
+        lines.append(f"  bracket:             {format_multiplier(float(bracket[0]), live)} .. "
+                     f"{format_multiplier(float(bracket[1]), live)} (the highest level that settled .. the lowest that "
+                     "did not)")
     if limit:
         lines.append(f"  joint states:        {joint_text}" + ("; of the collapse mechanism" if collapse else ""))
     else:
