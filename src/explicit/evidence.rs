@@ -79,3 +79,33 @@ fn below_exact(res: &mut Results, exact: f64) {
     let upper = res.bracket.map_or(dropped, |b| b[1].min(dropped));
     res.bracket = Some([lower, upper]);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Rect;
+    use crate::model::ModelSpec;
+
+    #[test]
+    fn levels_above_the_exact_multiplier_are_dropped() {
+        // a block of 0.2 x 0.6 m rocks at lambda = 1/3; its explicit curve, with the exact multiplier put
+        // between its last two levels: the last level is then no equilibrium
+        let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.2, 0.6)], ..ModelSpec::default() }).unwrap();
+        let mut res = super::super::solve(&model, &ExplicitOptions { threads: 1, ..ExplicitOptions::default() }).unwrap();
+        assert_eq!(res.status, Status::Collapse);
+        let n = res.curve_multiplier.len();
+        let [low, high] = res.bracket.unwrap();
+        assert_eq!(low, res.collapse_multiplier);
+        assert_eq!(low, res.curve_multiplier[n - 1]);
+        assert!(high > low);
+        let (below, last) = (res.curve_multiplier[n - 2], res.curve_multiplier[n - 1]);
+        let exact = 0.5 * (below + last);
+        below_exact(&mut res, exact);
+        assert_eq!(res.collapse_multiplier, below);
+        assert_eq!(res.last_equilibrium, below);
+        assert_eq!(res.curve_multiplier.len(), n - 1);
+        assert_eq!(res.curve_displacement.len(), n - 1);
+        assert_eq!(res.bracket, Some([below, last.min(high)]));
+        assert!(res.collapse_multiplier <= exact);
+    }
+}
