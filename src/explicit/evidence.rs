@@ -55,6 +55,8 @@ pub(super) fn check_collapse(model: &Model, opts: &ExplicitOptions, mut res: Res
     };
     res.error = Some(Error::Convergence(message).to_string());
     res.collapse_multiplier = f64::NAN;
+    // the bracket is one on a collapse, which this is not
+    res.bracket = None;
     res.certificate = lp.certificate;
     Ok(res)
 }
