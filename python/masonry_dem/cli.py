@@ -47,7 +47,8 @@ limit-analysis multiplier, or "displacement_limit": a path that left the small-d
 lambda still rising; the reason is printed, the JSON and plot are still written) or another error occurs (a
 limit analysis of joints with dilatancy below friction ends "estimate", exit status 0: its number is printed as
 an estimate, never as a collapse multiplier); 2 for bad input (an invalid case file, a missing
-file, bad arguments); 130 when interrupted (Ctrl-C stops a solver within a fraction of a second, status
+file, a FIFO or a device given as a file, bad arguments, an empty or folder output name, a file that cannot be
+read or a study folder that cannot be written, a model too large for the memory); 130 when interrupted (Ctrl-C stops a solver within a fraction of a second, status
 "interrupted"; ``run`` still prints and writes the result file and the CSV of what was computed, but draws
 no plot and writes no VTK; ``compare`` and ``validate`` start no further run and write nothing). Errors are one line on stderr, ``masonry-dem: error: ...``.
 """
