@@ -15,7 +15,10 @@ const SETTLED_ABOVE: f64 = 1e-4;
 /// is `Stalled` (under displacement control the peak is the stages' sample of the curve, as low
 /// as they are coarse); one more than `tolerance` (at least [`SETTLED_ABOVE`]) above it is `Failed` (a level was judged settled that is
 /// not an equilibrium: the unbalanced forces of one small block can be too small against the
-/// wall's to be seen). The limit analysis's certificate is kept as the evidence.
+/// wall's to be seen). One above it by less is no equilibrium either: the levels above the exact
+/// multiplier are dropped ([`below_exact`]) and the collapse is the highest level at or below it,
+/// `Stalled` only if more than [`SETTLED_ABOVE`] (at least the above) below it, the resolution of
+/// the levels' settling. The limit analysis's certificate is kept as the evidence.
 pub(super) fn check_collapse(model: &Model, opts: &ExplicitOptions, mut res: Results, monitor: &mut dyn FnMut(&Progress) -> bool) -> Result<Results, Error> {
     let reversed = matches!(opts.control, Control::Displacement { max_displacement } if max_displacement < 0.0);
     let flipped;
@@ -38,12 +41,15 @@ pub(super) fn check_collapse(model: &Model, opts: &ExplicitOptions, mut res: Res
         return Ok(res);
     }
     let exact = lp.collapse_multiplier;
+    // levels dropped as above the exact multiplier: the bracket is pinned no closer than a level's settling
+    let mut below = crate::static_solver::COLLAPSE_EVIDENCE * opts.tolerance;
     if opts.control == Control::Load && res.collapse_multiplier > exact && (res.collapse_multiplier - exact) <= opts.tolerance.max(SETTLED_ABOVE) * exact {
         below_exact(&mut res, exact);
+        below = below.max(SETTLED_ABOVE);
     }
     let found = res.collapse_multiplier.abs();
     let gap = (found - exact) / exact;
-    let message = if gap < -crate::static_solver::COLLAPSE_EVIDENCE * opts.tolerance && opts.control == Control::Load {
+    let message = if gap < -below && opts.control == Control::Load {
         res.status = Status::Stalled;
         format!("the explicit solver's collapse at lambda = {found:.6} is {:.2}% below the collapse multiplier of limit analysis, {exact:.6} (exact for these associative dry joints): not a collapse", -100.0 * gap)
     } else if gap > opts.tolerance.max(SETTLED_ABOVE) {
