@@ -43,9 +43,10 @@ pub(super) fn check_collapse(model: &Model, opts: &ExplicitOptions, mut res: Res
     let exact = lp.collapse_multiplier;
     // levels dropped as above the exact multiplier: the bracket is pinned no closer than a level's settling
     let mut below = crate::static_solver::COLLAPSE_EVIDENCE * opts.tolerance;
-    if opts.control == Control::Load && res.collapse_multiplier > exact && (res.collapse_multiplier - exact) <= opts.tolerance.max(SETTLED_ABOVE) * exact {
-        below_exact(&mut res, exact);
+    let above = opts.tolerance.max(SETTLED_ABOVE);
+    if opts.control == Control::Load && res.collapse_multiplier > exact && (res.collapse_multiplier - exact) <= above * exact {
         below = below.max(SETTLED_ABOVE);
+        below_exact(&mut res, exact, below);
     }
     let found = res.collapse_multiplier.abs();
     let gap = (found - exact) / exact;
@@ -71,10 +72,13 @@ pub(super) fn check_collapse(model: &Model, opts: &ExplicitOptions, mut res: Res
 /// than a level's settling accuracy: those levels are no equilibrium (none exists above it),
 /// however small their unbalance. The curve ends at the highest level at or below `exact`, the
 /// collapse multiplier, and the bracket's upper end is the lowest level dropped (or the level
-/// that ran away, if lower); the displacements and forces stay those of the last level run.
-fn below_exact(res: &mut Results, exact: f64) {
+/// that ran away, if lower); the displacements and forces stay those of the last level run. Only
+/// when that level lies within `resolution` (relative) of `exact`: a level far below (the load
+/// steps were coarse there) would make a collapse of a number the run did not pin, and the
+/// result is then left as it is (within the tolerance above `exact`, as the check accepts).
+fn below_exact(res: &mut Results, exact: f64, resolution: f64) {
     let keep = res.curve_multiplier.iter().take_while(|&&l| l <= exact).count();
-    if keep == 0 || keep == res.curve_multiplier.len() {
+    if keep == 0 || keep == res.curve_multiplier.len() || res.curve_multiplier[keep - 1] < exact * (1.0 - resolution) {
         return;
     }
     let dropped = res.curve_multiplier[keep];
@@ -108,7 +112,10 @@ mod tests {
         assert!(high > low);
         let (below, last) = (res.curve_multiplier[n - 2], res.curve_multiplier[n - 1]);
         let exact = 0.5 * (below + last);
-        below_exact(&mut res, exact);
+        let mut far = res.clone();
+        below_exact(&mut far, exact, 1e-12); // the level below lies farther than that: nothing changes
+        assert_eq!(far, res);
+        below_exact(&mut res, exact, 0.5);
         assert_eq!(res.collapse_multiplier, below);
         assert_eq!(res.last_equilibrium, below);
         assert_eq!(res.curve_multiplier.len(), n - 1);
