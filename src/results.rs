@@ -1,17 +1,26 @@
 //! What an analysis returns.
 //!
 //! ```
+//! use masonry_dem::joint::JointLaw;
 //! use masonry_dem::limit::{limit_analysis, LimitOptions};
 //! use masonry_dem::results::Status;
 //! use masonry_dem::geometry::Rect;
-//! use masonry_dem::model::{Model, ModelSpec};
-//! // one block of 0.4 x 0.2 m on the base
-//! let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2)], ..ModelSpec::default() }).unwrap();
+//! use masonry_dem::model::{JointLaws, Model, ModelSpec};
+//! // one block of 0.4 x 0.2 m on the base, its joint dry and associative
+//! let law = JointLaw { friction: 0.65, dilatancy: 0.65, ..JointLaw::default() };
+//! let blocks = vec![Rect::new(0.0, 0.0, 0.4, 0.2)];
+//! let model = Model::new(ModelSpec { blocks: blocks.clone(), joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
 //! let r = limit_analysis(&model, &LimitOptions::default()).unwrap();
 //! assert_eq!(r.status, Status::Collapse);
 //! assert_eq!(r.status.as_str(), "collapse");
 //! // the block slides at lambda = friction (0.65) before it rocks (at width / height = 2)
 //! assert!((r.collapse_multiplier - 0.65).abs() < 1e-6);
+//! // with dilatancy 0 the number is an estimate, not a collapse multiplier
+//! let law = JointLaw { friction: 0.65, dilatancy: 0.0, ..JointLaw::default() };
+//! let model = Model::new(ModelSpec { blocks, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
+//! let r = limit_analysis(&model, &LimitOptions::default()).unwrap();
+//! assert_eq!(r.status, Status::Estimate);
+//! assert!(r.collapse_multiplier.is_nan() && (r.last_equilibrium - 0.65).abs() < 1e-6);
 //! ```
 
 use crate::joint::{OPEN, ROCKING, SLIDING};
