@@ -111,6 +111,29 @@ pub(crate) fn check_path_options(steps: usize, tolerance: f64, control: Control)
     Ok(())
 }
 
+/// The largest `max_displacement` of displacement control, as a fraction of the wall's size
+/// ([`Model::size`]): the small-displacement model's range, where a path ends
+/// `DisplacementLimit`.
+pub const MAX_DISPLACEMENT_FRACTION: f64 = 0.1;
+
+/// Refuses a displacement control whose `max_displacement` lies beyond the small-displacement
+/// model's range, [`MAX_DISPLACEMENT_FRACTION`] of the wall's size: the model has no answer
+/// there (a curve driven that far is an artefact of small rotations, not a collapse).
+pub(crate) fn check_displacement_range(model: &Model, control: Control) -> Result<()> {
+    if let Control::Displacement { max_displacement } = control {
+        let limit = MAX_DISPLACEMENT_FRACTION * model.size();
+        if max_displacement.abs() > limit {
+            return Err(Error::input_at(
+                "analysis.max_displacement",
+                format!(
+                    "analysis.max_displacement = {max_displacement:e} m lies beyond the small-displacement model's range: at most a tenth of the wall's size, {limit:.4e} m"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The control block: `given`, or the model's default ([`Model::default_control_block`]),
 /// checked to exist.
 pub(crate) fn control_block(model: &Model, given: Option<usize>) -> Result<usize> {

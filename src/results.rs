@@ -1,17 +1,26 @@
 //! What an analysis returns.
 //!
 //! ```
+//! use masonry_dem::joint::JointLaw;
 //! use masonry_dem::limit::{limit_analysis, LimitOptions};
 //! use masonry_dem::results::Status;
 //! use masonry_dem::geometry::Rect;
-//! use masonry_dem::model::{Model, ModelSpec};
-//! // one block of 0.4 x 0.2 m on the base
-//! let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2)], ..ModelSpec::default() }).unwrap();
+//! use masonry_dem::model::{JointLaws, Model, ModelSpec};
+//! // one block of 0.4 x 0.2 m on the base, its joint dry and associative
+//! let law = JointLaw { friction: 0.65, dilatancy: 0.65, ..JointLaw::default() };
+//! let blocks = vec![Rect::new(0.0, 0.0, 0.4, 0.2)];
+//! let model = Model::new(ModelSpec { blocks: blocks.clone(), joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
 //! let r = limit_analysis(&model, &LimitOptions::default()).unwrap();
 //! assert_eq!(r.status, Status::Collapse);
 //! assert_eq!(r.status.as_str(), "collapse");
 //! // the block slides at lambda = friction (0.65) before it rocks (at width / height = 2)
 //! assert!((r.collapse_multiplier - 0.65).abs() < 1e-6);
+//! // with dilatancy 0 the number is an estimate, not a collapse multiplier
+//! let law = JointLaw { friction: 0.65, dilatancy: 0.0, ..JointLaw::default() };
+//! let model = Model::new(ModelSpec { blocks, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
+//! let r = limit_analysis(&model, &LimitOptions::default()).unwrap();
+//! assert_eq!(r.status, Status::Estimate);
+//! assert!(r.collapse_multiplier.is_nan() && (r.last_equilibrium - 0.65).abs() < 1e-6);
 //! ```
 
 use crate::joint::{OPEN, ROCKING, SLIDING};
@@ -41,6 +50,11 @@ pub enum Status {
     /// The caller stopped the run (Ctrl-C from Python, or a progress callback returning false):
     /// the curve holds the converged steps, `error` says so.
     Interrupted,
+    /// Limit analysis of joints with dilatancy below friction: `last_equilibrium` holds the
+    /// non-associative sequence's multiplier, an estimate that is neither bound (no collapse
+    /// multiplier); the certificate holds it, the associative upper bound and whether the
+    /// sequence converged, and `error` says so in a line.
+    Estimate,
 }
 
 impl Status {
@@ -65,6 +79,7 @@ impl Status {
             Status::Stalled => "stalled",
             Status::DisplacementLimit => "displacement_limit",
             Status::Interrupted => "interrupted",
+            Status::Estimate => "estimate",
         }
     }
 }
@@ -122,6 +137,10 @@ pub struct Results {
     pub steps: usize,
     /// Wall-clock time of the run \[s\].
     pub elapsed_s: f64,
+    /// Explicit load control ending in a collapse: the bracket on the collapse multiplier, the
+    /// highest level that settled (the collapse multiplier) and the lowest that ran away (None
+    /// otherwise).
+    pub bracket: Option<[f64; 2]>,
     /// The limit analysis's evidence: its own, or, for a static load-control analysis of a wall
     /// of associative dry joints, that of the limit analysis run as its check (None otherwise).
     pub certificate: Option<Certificate>,

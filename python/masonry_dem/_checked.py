@@ -16,6 +16,8 @@ import re
 import reprlib
 from typing import Any, Callable, TypeVar
 
+import numpy as np
+
 from . import _core
 from ._core import InputError
 
@@ -36,13 +38,51 @@ def _argument(exc: BaseException, func: Callable[..., Any], args: Any, kwargs: A
     return f"'{names[0]}'{shown}: "
 
 
+def _real_blocks(func: str, blocks: Any) -> None:
+    """Refuse block rectangles that are booleans or complex numbers (which the core would take as numbers),
+    or none."""
+    if blocks is None:
+        return
+    try:
+        array = np.asarray(blocks)
+    except (ValueError, TypeError):  # ragged rows: the core says which
+        return
+    if array.dtype.kind in "bc":  # numbers to Python, but not lengths
+        raise InputError(f"{func}: blocks must be real numbers [m], got an array of {array.dtype}")
+    if array.dtype == object and any(isinstance(x, (bool, np.bool_, complex, np.complexfloating)) for x in array.ravel()):
+        raise InputError(f"{func}: blocks must be real numbers [m], got booleans or complex numbers")
+    if array.size == 0:
+        raise InputError(f"{func}: no blocks: give at least one rectangle [x0, y0, x1, y1]")
+
+
+def _real_arrays(name: str, func: Callable[..., Any], args: Any, kwargs: Any) -> None:
+    """Refuse a NumPy array of booleans or complex numbers given where numbers belong (the core would take
+    True as 1 and drop an imaginary part), alone or in a tuple or list (a record's times and accelerations)."""
+    values = list(kwargs.items()) + [(None, a) for a in args]
+    for key, value in values:
+        parts = value if isinstance(value, (tuple, list)) else (value,)
+        for part in parts:
+            if isinstance(part, np.ndarray) and part.dtype.kind in "bc":
+                where = f"'{key}': " if key else ""
+                raise InputError(f"{name}: {where}expected real numbers, got an array of {part.dtype}")
+
+
 def input_errors(func: F, name: str) -> F:
     """``func`` with TypeError / OverflowError of its arguments raised as InputError naming ``name``."""
 
     @functools.wraps(func)
     def checked(*args: Any, **kwargs: Any) -> Any:
+        _real_arrays(name, func, args, kwargs)
         try:
             return func(*args, **kwargs)
+        except RuntimeError as exc:
+            # PyO3's refusal to change a model that another thread is solving (or to solve one being changed)
+            if not str(exc).startswith(("Already borrowed", "Already mutably borrowed")):
+                raise
+            raise InputError(
+                f"{name}: the model is busy: an analysis of it runs in another thread (a model is changed only "
+                "when no analysis of it runs; wait for it to end, or build another model)"
+            ) from None
         except (TypeError, OverflowError) as exc:
             if hasattr(exc, "results"):  # raised by the progress callback: the user's own exception
                 raise
@@ -61,6 +101,7 @@ class Model(_core.Model):
     __module__ = "masonry_dem"
 
     def __new__(cls, *args: Any, **kwargs: Any) -> "Model":
+        _real_blocks("Model", args[0] if args else kwargs.get("blocks"))
         return input_errors(_core.Model.__new__, "Model")(cls, *args, **kwargs)  # type: ignore[no-any-return]
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:  # built by __new__ (the core's constructor)

@@ -7,7 +7,7 @@ An argument left out (None) takes the core's default: the Rust `Default` of the 
 to, documented in docs/case-format.md under the matching key.
 """
 
-from typing import Callable, Literal, Optional, Sequence, TypedDict
+from typing import Callable, Literal, Optional, Sequence, Tuple, TypedDict
 
 import numpy as np
 import numpy.typing as npt
@@ -202,7 +202,10 @@ class Model:
         sparsity pattern. Exact for dry associative joints (dilatancy = friction); for dilatancy
         below friction the associative optimum is an upper bound (certificate["upper_bound"]) and
         the multiplier is a non-associative estimate from a sequence of at most max_sequence
-        programs (0: the associative bound only). Mortar joints enter with their peak strengths.
+        programs (0: the associative bound only), status "estimate": neither bound, converged or
+        not, its value in last_equilibrium and certificate["multiplier"], the bound in
+        certificate["upper_bound"], the convergence in certificate["sequence_converged"].
+        Mortar joints enter with their peak strengths.
 
         tolerance: the interior point stops when its scaled residuals and relative duality gap are
         all below this (0 < tolerance < 0.01; default 1e-8). max_iterations: interior-point
@@ -210,8 +213,9 @@ class Model:
         Returns Results with method "limit" and status "collapse" (collapse_multiplier, the
         mechanism's normalised block velocities in `mechanism`, the forces at collapse in
         interface_forces, the crack pattern in interface_states), "no_equilibrium" (the dead loads
-        alone cannot be carried), "unbounded" (no mechanism within the range of multipliers) or
-        "failed" (the interior point did not converge); the reason is in Results.error, and
+        alone cannot be carried), "unbounded" (no mechanism within the range of multipliers),
+        "estimate" (dilatancy below friction, see above) or "failed" (the interior point did not
+        converge); the reason is in Results.error, and
         collapse_multiplier is NaN unless the status is "collapse". No load path: the curve is
         empty, displacements are zeros and steps is 0; iterations counts interior-point iterations.
         Releases the GIL; Ctrl-C stops it between iterations and raises KeyboardInterrupt, whose
@@ -338,14 +342,19 @@ class Results:
     method: str
     """The solver: "static", "dynamic" or "limit"."""
     status: str
-    """How the analysis ended: "collapse", "completed", "failed", "interrupted", "unbounded" or "no_equilibrium" (limit),
-    "stalled" or "displacement_limit" (static)."""
+    """How the analysis ended: "collapse", "completed", "failed", "interrupted", "unbounded", "no_equilibrium" or
+    "estimate" (limit), "stalled" or "displacement_limit" (static)."""
     error: Optional[str]
-    """Why, when the status is "failed", "no_equilibrium", "unbounded", "stalled" or "displacement_limit"."""
+    """Why, when the status is "failed", "no_equilibrium", "unbounded", "stalled" or "displacement_limit"; what the
+    number is, with "estimate"."""
     collapse_multiplier: float
     """Lambda at collapse, or the peak of the curve; NaN unless the status is "collapse"."""
     last_equilibrium: float
-    """The largest lambda found in equilibrium (load control: the last step), whatever the status; NaN if none."""
+    """The largest lambda found in equilibrium (load control: the last step), whatever the status (the estimate, with
+    "estimate"); NaN if none."""
+    bracket: Optional[Tuple[float, float]]
+    """Explicit load control ending in a collapse: (highest level that settled, lowest that ran away), the collapse
+    multiplier being the first; None otherwise."""
     curve_multiplier: FloatArray
     """(k,) lambda at each converged step, from 0 (empty for "limit")."""
     curve_displacement: FloatArray

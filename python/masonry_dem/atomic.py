@@ -1,9 +1,12 @@
 """Atomic output files: every file masonry-dem writes goes through :func:`atomic_file` or :func:`atomic_path`.
 
-The content is written to a temporary file in the target's own folder (a hidden name
-``.NAME.PID.RANDOM.tmp``), flushed and ``fsync``-ed, then renamed over the target with :func:`os.replace`,
-so a reader (or a crash, a kill, a full disk) never leaves a truncated or empty target: it holds either
-its previous content or the new one. The temporary file is removed on any exception, Ctrl-C included.
+The content is written to a temporary file in the target's own folder (a short hidden name
+``.md-KEY.PID.RANDOM.tmp``, KEY a digest of the target's name, so that it fits wherever the target's name
+fits), flushed and ``fsync``-ed, then renamed over the target with :func:`os.replace`, so a reader (or a
+crash, a kill, a full disk) never leaves a truncated or empty target: it holds either its previous content
+or the new one. The temporary file is removed on any exception, Ctrl-C included; one left behind by a
+killed process is removed by the next write to the same target. An error of the writing names the target,
+not the temporary file.
 
 A target that exists and is not a regular file (a folder, a device such as ``/dev/null``, a FIFO, a
 socket) is refused with :class:`InputError` rather than replaced by a regular file, and so is a target
@@ -15,6 +18,8 @@ followed: the file it points to is replaced and the link kept. A new file gets t
 from __future__ import annotations
 
 import contextlib
+import errno
+import hashlib
 import os
 import stat
 import uuid
@@ -23,7 +28,7 @@ from typing import IO, Any, Callable, Iterable, Iterator, Optional, Union
 
 from ._core import InputError
 
-__all__ = ["check_target", "atomic_file", "atomic_path", "write_text"]
+__all__ = ["check_target", "check_writable", "atomic_file", "atomic_path", "write_text"]
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -66,6 +71,24 @@ def check_target(path: PathLike, inputs: Iterable[PathLike] = ()) -> Path:
     return target
 
 
+def check_writable(path: PathLike) -> None:
+    """Refuse (:class:`InputError`, one line naming ``path``) an output whose folder cannot be written: the
+    folder, or the nearest one that exists when it is to be created, is tried with a file created and
+    removed at once. Meant to run before a long analysis, so that its results are not lost at the end."""
+    folder = Path(os.path.abspath(os.fspath(path))).parent
+    while not folder.exists() and folder != folder.parent:
+        folder = folder.parent
+    if not folder.is_dir():
+        raise InputError(f"cannot write {path}: {folder} is not a folder")
+    probe = folder / f".md-probe.{os.getpid()}.{uuid.uuid4().hex[:8]}"
+    try:
+        fd = os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+    except OSError as exc:
+        raise InputError(f"cannot write {path}: the folder {folder} cannot be written ({exc.strerror or exc})") from None
+    os.close(fd)
+    _remove(str(probe))
+
+
 def _fsync_folder(folder: Path) -> None:
     """Make the rename durable (POSIX); silently nothing where folders cannot be opened."""
     if os.name != "posix":
@@ -82,18 +105,64 @@ def _fsync_folder(folder: Path) -> None:
         os.close(fd)
 
 
-def _new_temp(target: Path) -> "tuple[str, int]":
-    """Create (O_EXCL) an empty temporary file next to ``target``; return its name and an open fd."""
+def _key(target: Path) -> str:
+    """The part of the temporary names that says which target they are for: a digest of its name."""
+    return hashlib.sha256(target.name.encode("utf-8", "surrogateescape")).hexdigest()[:12]
+
+
+def _alive(pid: int) -> bool:
+    """Whether process ``pid`` runs (on this machine); True when that cannot be told."""
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OSError, OverflowError):
+        return True
+    return True
+
+
+def _remove_leftovers(folder: Path, target: Path) -> None:
+    """Remove the temporary files of earlier writes of ``target`` whose process has died (killed while
+    writing): never one of a process that still runs."""
+    prefix = f".md-{_key(target)}."
+    try:
+        names = [n for n in os.listdir(folder) if n.startswith(prefix)]
+    except OSError:
+        return
+    for name in names:
+        parts = name[len(prefix):].split(".")
+        if len(parts) >= 3 and parts[0].isdigit() and not _alive(int(parts[0])):
+            _remove(str(folder / name))
+
+
+def _named(exc: OSError, path: PathLike) -> OSError:
+    """``exc`` naming ``path`` (the target) instead of the temporary file."""
+    if exc.errno is None:
+        return exc
+    return type(exc)(exc.errno, exc.strerror or os.strerror(exc.errno), os.fspath(path))
+
+
+def _new_temp(target: Path, path: PathLike) -> "tuple[str, int]":
+    """Create (O_EXCL) an empty temporary file next to ``target``; return its name and an open fd. An error
+    names ``path``, the output asked for."""
     folder = target.parent if str(target.parent) else Path(".")
     suffix = target.suffix if len(target.suffix) <= 16 else ""
+    _remove_leftovers(folder, target)
     flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0) | getattr(os, "O_NOFOLLOW", 0)
     for _ in range(100):
-        tmp = str(folder / f".{target.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp{suffix}")
+        tmp = str(folder / f".md-{_key(target)}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp{suffix}")
         try:
             return tmp, os.open(tmp, flags, 0o666)
         except FileExistsError:
             continue
-    raise FileExistsError(f"cannot create a temporary file in {folder}")
+        except OSError as exc:
+            if exc.errno == errno.ENAMETOOLONG and suffix:
+                suffix = ""  # a long name whose suffix does not fit either: the temporary one goes without
+                continue
+            raise _named(exc, path) from None
+    raise FileExistsError(errno.EEXIST, "cannot create a temporary file", os.fspath(path))
 
 
 def _finish(tmp: str, target: Path) -> None:
@@ -134,7 +203,7 @@ def atomic_file(
     if mode not in ("w", "wb"):
         raise ValueError(f"atomic_file: mode must be 'w' or 'wb', not {mode!r}")
     target = check_target(path, inputs)
-    tmp, fd = _new_temp(target)
+    tmp, fd = _new_temp(target, path)
     try:
         try:
             if mode == "wb":
@@ -150,6 +219,11 @@ def atomic_file(
             os.fsync(f.fileno())
         check_target(path, inputs)  # nothing was put in its place meanwhile
         _finish(tmp, target)
+    except OSError as exc:
+        _remove(tmp)
+        if exc.filename in (tmp, None):
+            raise _named(exc, path) from None
+        raise
     except BaseException:
         _remove(tmp)
         raise
@@ -162,7 +236,7 @@ def atomic_path(
     may overwrite it, e.g. a library that only takes a file name), then fsync it and rename it onto
     ``path``; on an exception remove it. Returns ``path`` as a Path."""
     target = check_target(path, inputs)
-    tmp, fd = _new_temp(target)
+    tmp, fd = _new_temp(target, path)
     try:
         os.close(fd)
         write(tmp)
@@ -173,6 +247,11 @@ def atomic_path(
             os.close(fd)
         check_target(path, inputs)
         _finish(tmp, target)
+    except OSError as exc:
+        _remove(tmp)
+        if exc.filename in (tmp, None):
+            raise _named(exc, path) from None
+        raise
     except BaseException:
         _remove(tmp)
         raise

@@ -44,8 +44,11 @@ and ``--quiet`` is not given.
 Exit status: 0 on success; 1 when an analysis fails or gives no collapse multiplier (status "failed",
 "no_equilibrium" / "unbounded" of a limit analysis, "stalled": a static path that stopped below the
 limit-analysis multiplier, or "displacement_limit": a path that left the small-displacement model with
-lambda still rising; the reason is printed, the JSON and plot are still written) or another error occurs; 2 for bad input (an invalid case file, a missing
-file, bad arguments); 130 when interrupted (Ctrl-C stops a solver within a fraction of a second, status
+lambda still rising; the reason is printed, the JSON and plot are still written) or another error occurs (a
+limit analysis of joints with dilatancy below friction ends "estimate", exit status 0: its number is printed as
+an estimate, never as a collapse multiplier); 2 for bad input (an invalid case file, a missing
+file, a FIFO or a device given as a file, bad arguments, an empty or folder output name, a file that cannot be
+read or a study folder that cannot be written, a model too large for the memory); 130 when interrupted (Ctrl-C stops a solver within a fraction of a second, status
 "interrupted"; ``run`` still prints and writes the result file and the CSV of what was computed, but draws
 no plot and writes no VTK; ``compare`` and ``validate`` start no further run and write nothing). Errors are one line on stderr, ``masonry-dem: error: ...``.
 """
@@ -522,6 +525,12 @@ def _main(argv: Optional[Sequence[str]]) -> int:
         return _error(str(exc), EXIT_FAILURE)
     except KeyboardInterrupt:
         return _error("interrupted", EXIT_INTERRUPTED)
+    except MemoryError as exc:  # a model or a record too large for this machine's memory: said in one line
+        reason = " ".join(str(exc).split()) or "the analysis needs more memory than is available"
+        return _error(f"out of memory: {reason}", EXIT_INPUT)
+    except OSError as exc:  # a file that cannot be read or written: named, in one line
+        name = f"{exc.filename}: " if exc.filename else ""
+        return _error(f"{name}{exc.strerror or exc}", EXIT_INPUT)
 
 
 if __name__ == "__main__":

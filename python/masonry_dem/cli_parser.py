@@ -22,7 +22,7 @@ class _Parser(argparse.ArgumentParser):
     """argparse, with its errors on one line (the usage is for --help)."""
 
     def error(self, message: str) -> NoReturn:
-        self.exit(EXIT_INPUT, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+        self.exit(EXIT_INPUT, f"{PROG}: error: {message} (see {self.prog} --help)\n")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -118,9 +118,10 @@ def _add_compare(sub: Any) -> None:
             "agreement": {...}}.""",
     )
     compare.add_argument("case", metavar="CASE.toml", help="case file (TOML, format 1)")
-    compare.add_argument("--json", metavar="OUT.json", help="write both results and their agreement (JSON)")
+    compare.add_argument("--json", type=_output_file, metavar="OUT.json", help="write both results and their agreement (JSON)")
     compare.add_argument(
         "--plot",
+        type=_output_file,
         metavar="OUT.png",
         help="write a figure: the three walls with their crack patterns, and the load curves overlaid, the "
         "limit multiplier as a horizontal line (PNG)",
@@ -205,10 +206,10 @@ def _add_study(sub: Any) -> None:
                        "local cluster of --workers processes")
     study.add_argument("--workers", metavar="N", type=int, help="processes of the local cluster (default: one per "
                        "core); not with --scheduler")
-    study.add_argument("--out", metavar="OUT.parquet", help="the results (Parquet; default: out/STUDY.parquet)")
+    study.add_argument("--out", type=_output_file, metavar="OUT.parquet", help="the results (Parquet; default: out/STUDY.parquet)")
     study.add_argument("--resume", action="store_true", help="keep the rows already in OUT and compute the others")
-    study.add_argument("--csv", metavar="OUT.csv", help="also write the results as CSV")
-    study.add_argument("--plot", metavar="OUT.png", help="write the summary figure: the multiplier's histogram and "
+    study.add_argument("--csv", type=_output_file, metavar="OUT.csv", help="also write the results as CSV")
+    study.add_argument("--plot", type=_output_file, metavar="OUT.png", help="write the summary figure: the multiplier's histogram and "
                        "distribution, against each varied parameter, the weakest analyses' mechanisms (PNG)")
     _add_quiet(study)
 
@@ -255,23 +256,43 @@ def _add_simulate(sub: Any) -> None:
                           "vertical_scale)")
     simulate.add_argument("--duration", metavar="S", type=_duration, help="the length of the time history [s], "
                           "replacing [time_history] duration (default: the record's, or 3 periods of a pulse)")
-    simulate.add_argument("--json", metavar="OUT.json", help="write the summary, the peaks and the response at "
+    simulate.add_argument("--json", type=_output_file, metavar="OUT.json", help="write the summary, the peaks and the response at "
                           "each record (JSON)")
-    simulate.add_argument("--plot", metavar="OUT.png", help="write the response figure: rotation, drift, base "
+    simulate.add_argument("--plot", type=_output_file, metavar="OUT.png", help="write the response figure: rotation, drift, base "
                           "shear and ground acceleration against time, and the wall at the largest drift (PNG)")
-    simulate.add_argument("--csv", metavar="OUT.csv", help="write a row per record: time, displacement and "
+    simulate.add_argument("--csv", type=_output_file, metavar="OUT.csv", help="write a row per record: time, displacement and "
                           "rotation of the control block, largest translation, energies (CSV)")
-    simulate.add_argument("--vtk", metavar="PREFIX", help="write PREFIX-blocks-NNNN.vtu per record and PREFIX.pvd "
+    simulate.add_argument("--vtk", type=_output_prefix, metavar="PREFIX", help="write PREFIX-blocks-NNNN.vtu per record and PREFIX.pvd "
                           "(a time series for ParaView)")
-    simulate.add_argument("--gif", metavar="OUT.gif", help="write an animation of the blocks over time (GIF; "
+    simulate.add_argument("--gif", type=_output_file, metavar="OUT.gif", help="write an animation of the blocks over time (GIF; "
                           "an .mp4 name writes an MP4 where ffmpeg is installed)")
     _add_quiet(simulate)
 
 
+def _output_file(name: str) -> str:
+    """An output file name: not empty, not a folder (an existing one, or a name ending with a separator)."""
+    if name == "":
+        raise argparse.ArgumentTypeError("an empty file name")
+    if name.endswith(("/", os.sep)) or os.path.isdir(name):
+        raise argparse.ArgumentTypeError(f"{name} is a folder: give a file name")
+    return name
+
+
+def _output_prefix(name: str) -> str:
+    """An output prefix (PREFIX-blocks.vtu ...): not empty, not a folder (files inside a folder are named
+    FOLDER/NAME)."""
+    if name == "":
+        raise argparse.ArgumentTypeError("an empty prefix")
+    if name.endswith(("/", os.sep)) or os.path.isdir(name):
+        raise argparse.ArgumentTypeError(f"{name} is a folder: give a prefix such as {os.path.join(name, 'wall')}")
+    return name
+
+
 def _add_outputs(parser: argparse.ArgumentParser, plot_default: Optional[str]) -> None:
-    parser.add_argument("--json", metavar="OUT.json", help="write the results (JSON, format 1)")
+    parser.add_argument("--json", type=_output_file, metavar="OUT.json", help="write the results (JSON, format 1)")
     parser.add_argument(
         "--plot",
+        type=_output_file,
         metavar="OUT.png",
         default=plot_default,
         help="write a one-page report figure: crack pattern (joint states), collapse mechanism, deformed "
@@ -279,12 +300,13 @@ def _add_outputs(parser: argparse.ArgumentParser, plot_default: Optional[str]) -
     )
     parser.add_argument(
         "--vtk",
+        type=_output_prefix,
         metavar="PREFIX",
         help="write PREFIX-blocks.vtu (blocks: displacement, rotation, mechanism) and PREFIX-interfaces.vtu "
         "(interfaces: forces, states) for ParaView",
     )
     parser.add_argument(
-        "--csv", metavar="OUT.csv", help="write the load curve (CSV: multiplier,displacement_m)"
+        "--csv", type=_output_file, metavar="OUT.csv", help="write the load curve (CSV: multiplier,displacement_m)"
     )
     _add_quiet(parser)
 

@@ -37,7 +37,7 @@ from typing import Any, Dict, Iterable, List, Optional, Union
 
 import numpy as np
 
-from .case import ERROR_STATUSES, FORMAT, UNFINISHED_STATUSES, result_dict
+from .case import ERROR_STATUSES, FORMAT, NOTE_STATUSES, UNFINISHED_STATUSES, result_dict
 from .case.result_file import write_json
 from .report import OPEN, SLIDING, _plural, certificate_text, format_multiplier
 
@@ -66,6 +66,13 @@ def _ratio(num: float, den: float) -> Optional[float]:
     if not (math.isfinite(num) and math.isfinite(den)) or den == 0:
         return None
     return num / den
+
+
+def _multiplier_cell(results: Any, live: str) -> str:
+    """The collapse multiplier of a run, or with status "estimate" its estimate marked as one (``~``)."""
+    if str(results.status) == "estimate":
+        return "~" + format_multiplier(float(results.last_equilibrium), live) + " (estimate)"
+    return format_multiplier(float(results.collapse_multiplier), live)
 
 
 def _difference(static: Any, other: Any) -> Optional[float]:
@@ -184,7 +191,7 @@ def comparison_text(
     rows = [
         ("", *(name for name, _ in runs), ""),
         ("status:", *(str(r.status) for r in results), ""),
-        (f"{what}:", *(format_multiplier(float(r.collapse_multiplier), live) for r in results), difference),
+        (f"{what}:", *(_multiplier_cell(r, live) for r in results), difference),
         ("failed joints:", *failed, common),
         ("work:", *work, ""),
         ("elapsed:", *(_seconds(float(r.elapsed_s)) for r in results), ", ".join(r for r in ratios if r)),
@@ -203,7 +210,7 @@ def comparison_text(
     for name, res in runs:
         if res.status in UNFINISHED_STATUSES:
             lines.append(f"  {name} failed: {res.error or 'unknown reason'}")
-        elif res.status in ERROR_STATUSES:
+        elif res.status in ERROR_STATUSES or res.status in NOTE_STATUSES:
             lines.append(f"  {name}: {res.status}: {res.error or 'no reason given'}")
     if limit is not None:
         for k, text in enumerate(certificate_text(limit, live)):

@@ -43,6 +43,7 @@ import numpy as np
 
 from . import _core
 from ._core import InputError
+from ._files import read_bytes
 
 __all__ = [
     "G",
@@ -105,7 +106,10 @@ class GroundMotion:
         if len(times) < 2:
             raise InputError(f"{where}: a ground motion needs at least 2 samples, got {len(times)}")
         if not (np.all(np.isfinite(times)) and np.all(np.isfinite(acc))):
-            raise InputError(f"{where}: times and accelerations must be finite numbers")
+            raise InputError(
+                f"{where}: times and accelerations must be finite numbers (in m/s2: an acceleration beyond "
+                f"{np.finfo(np.float64).max:.3g} m/s2 is not)"
+            )
         steps = np.diff(times)
         if np.any(steps <= 0):
             k = int(np.argmax(steps <= 0))
@@ -121,7 +125,8 @@ class GroundMotion:
         """The same motion with every acceleration multiplied by ``factor`` (a finite number; the times
         unchanged); :attr:`scale` records the product of the factors."""
         f = _finite("scale", factor)
-        return replace(self, acceleration=self.acceleration * f, scale=self.scale * f)
+        with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused by the constructor
+            return replace(self, acceleration=self.acceleration * f, scale=self.scale * f)
 
     @property
     def peak(self) -> float:
@@ -193,11 +198,8 @@ def _finite(name: str, value: Any, positive: bool = False) -> float:
 
 def _lines(path: PathLike) -> List[str]:
     """The lines of a text file (UTF-8 or Latin-1, at most :data:`MAX_RECORD_BYTES`). OSError when it cannot be
-    read, InputError when it is too large."""
-    with open(path, "rb") as f:
-        data = f.read(MAX_RECORD_BYTES + 1)
-    if len(data) > MAX_RECORD_BYTES:
-        raise InputError(f"{os.fspath(path)}: larger than the limit of {MAX_RECORD_BYTES // 2**20} MiB for a record")
+    read, InputError when it is not a regular file (a FIFO, a device, a folder) or too large."""
+    data = read_bytes(path, MAX_RECORD_BYTES, "record")
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError:
@@ -278,9 +280,11 @@ def read_csv(
         values.append(a)
     if len(times) < 2:
         raise InputError(f"{where}: expected at least 2 rows of time and acceleration, found {len(times)}")
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused below, by name
+        acceleration = np.array(values) * factor
     return GroundMotion(
         np.array(times),
-        np.array(values) * factor,
+        acceleration,
         name=name if name is not None else Path(path).stem,
         source=where,
         units=note,
@@ -360,9 +364,11 @@ def read_at2(path: PathLike, g: float = G, name: Optional[str] = None) -> Ground
         raise InputError(f"{where}: line 4 gives NPTS = {npts}, but the file holds {len(values)} values")
     title = " ".join(lines[0].split())
     component = " ".join(lines[1].split())
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused below, by name
+        acceleration = np.array(values) * g
     return GroundMotion(
         np.arange(npts) * dt,
-        np.array(values) * g,
+        acceleration,
         name=name if name is not None else ", ".join(p for p in (title, component) if p) or Path(path).stem,
         source=where,
         units=f"g (x {g:g} m/s2)",

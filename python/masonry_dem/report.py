@@ -267,13 +267,14 @@ STATUS_NOTES = {
     "unbounded": "the live load finds no mechanism",
     "stalled": "the path stopped below the limit-analysis collapse multiplier",
     "displacement_limit": "the path left the small-displacement model with lambda still rising",
+    "estimate": "a non-associative estimate of limit analysis, neither bound: not a collapse multiplier",
 }
 
 
 def format_status(results: Any) -> str:
     """The status for people: ``collapse``, or ``no_equilibrium (<reason>)`` for the statuses that have a
-    reason (:data:`STATUS_NOTES`: failed, interrupted, no_equilibrium / unbounded of a limit analysis,
-    stalled, displacement_limit)."""
+    reason (:data:`STATUS_NOTES`: failed, interrupted, no_equilibrium / unbounded / estimate of a limit
+    analysis, stalled, displacement_limit)."""
     status = str(results.status)
     if status in STATUS_NOTES:
         reason = " ".join(str(results.error or STATUS_NOTES[status]).split())
@@ -335,9 +336,17 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
         + (" (peak horizontal force on the top beam)" if live == "top_horizontal" and collapse else ""),
     ]
     last = float(getattr(results, "last_equilibrium", math.nan))
-    if not collapse and math.isfinite(last):
+    if str(results.status) == "estimate" and math.isfinite(last):
+        lines.append(f"  estimate:            {format_multiplier(last, live)} (neither bound: not a collapse)")
+    elif not collapse and math.isfinite(last):
         # no collapse shown: the largest multiplier at which the wall was found in equilibrium, for what it is
         lines.append(f"  last equilibrium:    {format_multiplier(last, live)} (not a collapse)")
+    bracket = getattr(results, "bracket", None)
+    if collapse and bracket is not None:
+        # explicit load control: the collapse multiplier is the bracket's lower end, the last level that settled
+        lines.append(f"  bracket:             {format_multiplier(float(bracket[0]), live)} .. "
+                     f"{format_multiplier(float(bracket[1]), live)} (the highest level that settled .. the lowest that "
+                     "did not)")
     if limit:
         lines.append(f"  joint states:        {joint_text}" + ("; of the collapse mechanism" if collapse else ""))
     else:

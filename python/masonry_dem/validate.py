@@ -88,6 +88,8 @@ class ValidationRow:
         errors: {method: relative error} (NaN when the multiplier is not finite).
         failures: {method: reason} for the runs whose status is one of :data:`FAILED_STATUSES` ("failed",
             "interrupted", "stalled", or for limit analysis "no_equilibrium" or "unbounded").
+        estimates: {method: what the number is} for the runs whose status is "estimate" (a limit analysis of
+            joints with dilatancy below friction): their multiplier is its estimate, shown as ``~value``.
     """
 
     name: str
@@ -99,6 +101,7 @@ class ValidationRow:
     elapsed: Dict[str, float] = field(default_factory=dict)
     errors: Dict[str, float] = field(default_factory=dict)
     failures: Dict[str, str] = field(default_factory=dict)
+    estimates: Dict[str, str] = field(default_factory=dict)
 
     @property
     def error(self) -> float:
@@ -192,6 +195,10 @@ def validate_case(
             continue  # the reference does not apply to this method (shown as "-")
         results = solve(case, model, method)
         lam = float(results.collapse_multiplier)
+        if results.status == "estimate":
+            # a non-associative limit analysis: its number is compared, shown and counted as an estimate
+            lam = float(results.last_equilibrium)
+            row.estimates[method] = " ".join(str(results.error or "an estimate, neither bound").split())
         row.multipliers[method] = lam
         row.elapsed[method] = float(results.elapsed_s)
         row.errors[method] = _relative_error(lam, row.reference)
@@ -219,6 +226,12 @@ def _value(x: Optional[float], live: str) -> str:
     if x is None:
         return "-"
     return format_multiplier(x, live)
+
+
+def _cell(row: ValidationRow, method: str) -> str:
+    """A method's multiplier in the table: ``~value`` for an estimate, "-" when not run."""
+    text = _value(row.multipliers.get(method), row.live)
+    return "~" + text if method in row.estimates else text
 
 
 def _time(row: ValidationRow, methods: Sequence[str]) -> str:
@@ -258,9 +271,9 @@ def table_row(row: ValidationRow, names: Sequence[str], methods: Sequence[str]) 
     cells = [
         row.name,
         f"{_value(row.reference, row.live)} ±{_percent(row.tolerance)}",
-        _value(row.multipliers.get("static"), row.live),
-        _value(row.multipliers.get("dynamic"), row.live),
-        _value(row.multipliers.get("limit"), row.live),
+        _cell(row, "static"),
+        _cell(row, "dynamic"),
+        _cell(row, "limit"),
         _percent(row.error),
         _time(row, methods),
         row.verdict(),
@@ -276,6 +289,8 @@ def table_footer(rows: Sequence[ValidationRow], skipped: Sequence[Path]) -> str:
     for r in rows:
         for method, reason in r.failures.items():
             lines.append(f"  {r.name}: {method} failed: {' '.join(reason.split())}")
+        for method, note in r.estimates.items():
+            lines.append(f"  {r.name}: {COLUMN_NAMES.get(method, method)}: estimate: {note}")
     for path in skipped:
         lines.append(f"  skipped {path.name}: no [reference] table")
     return "\n".join(lines)

@@ -215,7 +215,10 @@ impl PyModel {
     /// sparsity pattern. Exact for dry associative joints (dilatancy = friction); for dilatancy
     /// below friction the associative optimum is an upper bound (certificate["upper_bound"]) and
     /// the multiplier is a non-associative estimate from a sequence of at most max_sequence
-    /// programs (0: the associative bound only). Mortar joints enter with their peak strengths.
+    /// programs (0: the associative bound only), status "estimate": neither bound, converged or
+    /// not, its value in last_equilibrium and certificate["multiplier"], the bound in
+    /// certificate["upper_bound"], the convergence in certificate["sequence_converged"].
+    /// Mortar joints enter with their peak strengths.
     ///
     /// tolerance: the interior point stops when its scaled residuals and relative duality gap are
     /// all below this (0 < tolerance < 0.01; default 1e-8). max_iterations: interior-point
@@ -223,8 +226,9 @@ impl PyModel {
     /// Returns Results with method "limit" and status "collapse" (collapse_multiplier, the
     /// mechanism's normalised block velocities in `mechanism`, the forces at collapse in
     /// interface_forces, the crack pattern in interface_states), "no_equilibrium" (the dead loads
-    /// alone cannot be carried), "unbounded" (no mechanism within the range of multipliers) or
-    /// "failed" (the interior point did not converge); the reason is in Results.error, and
+    /// alone cannot be carried), "unbounded" (no mechanism within the range of multipliers),
+    /// "estimate" (dilatancy below friction, see above) or "failed" (the interior point did not
+    /// converge); the reason is in Results.error, and
     /// collapse_multiplier is NaN unless the status is "collapse". No load path: the curve is
     /// empty, displacements are zeros and steps is 0; iterations counts interior-point iterations.
     /// Releases the GIL; Ctrl-C stops it between iterations and raises KeyboardInterrupt, whose

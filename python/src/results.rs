@@ -152,6 +152,7 @@ pub(crate) fn interrupted_limit(model: &Model, start: Instant) -> Results {
         iterations: 0,
         steps: 0,
         elapsed_s: start.elapsed().as_secs_f64(),
+        bracket: None,
         certificate: None,
     }
 }
@@ -171,13 +172,14 @@ impl PyResults {
     fn method(&self) -> &'static str {
         self.inner.method
     }
-    /// How the analysis ended: "collapse", "completed", "failed", "interrupted", "unbounded" or "no_equilibrium" (limit),
-    /// "stalled" or "displacement_limit" (static).
+    /// How the analysis ended: "collapse", "completed", "failed", "interrupted", "unbounded", "no_equilibrium" or
+    /// "estimate" (limit), "stalled" or "displacement_limit" (static).
     #[getter]
     fn status(&self) -> &'static str {
         self.inner.status.as_str()
     }
-    /// Why, when the status is "failed", "no_equilibrium", "unbounded", "stalled" or "displacement_limit".
+    /// Why, when the status is "failed", "no_equilibrium", "unbounded", "stalled" or "displacement_limit"; what the
+    /// number is, with "estimate".
     #[getter]
     fn error(&self) -> Option<String> {
         self.inner.error.clone()
@@ -187,10 +189,17 @@ impl PyResults {
     fn collapse_multiplier(&self) -> f64 {
         self.inner.collapse_multiplier
     }
-    /// The largest lambda found in equilibrium (load control: the last step), whatever the status; NaN if none.
+    /// The largest lambda found in equilibrium (load control: the last step), whatever the status (the estimate, with
+    /// "estimate"); NaN if none.
     #[getter]
     fn last_equilibrium(&self) -> f64 {
         self.inner.last_equilibrium
+    }
+    /// Explicit load control ending in a collapse: (highest level that settled, lowest that ran away), the collapse
+    /// multiplier being the first; None otherwise.
+    #[getter]
+    fn bracket(&self) -> Option<(f64, f64)> {
+        self.inner.bracket.map(|[a, b]| (a, b))
     }
     /// (k,) lambda at each converged step, from 0 (empty for "limit").
     #[getter]

@@ -60,6 +60,12 @@ pub(crate) fn running_bond<'py>(
         openings,
     };
     let blocks = guarded(|| geometry::running_bond(&p))?;
+    if blocks.is_empty() {
+        return Err(InputError::new_err(format!(
+            "geometry.running_bond: no block fits in a wall of length {length:e} m (block length {block_length:e} m, height {:?}): no wall to build",
+            p.height
+        )));
+    }
     Ok(rects_to_py(py, &blocks))
 }
 
@@ -73,6 +79,11 @@ pub(crate) fn pattern<'py>(
     rows: Vec<Vec<f64>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let blocks = guarded(|| geometry::pattern(block_length, block_height, &rows))?;
+    if blocks.is_empty() {
+        return Err(InputError::new_err(
+            "geometry.pattern.rows hold no block (every course is empty or a gap): no wall to build",
+        ));
+    }
     Ok(rects_to_py(py, &blocks))
 }
 

@@ -139,6 +139,7 @@ fn check_options(model: &Model, opts: &ExplicitOptions) -> Result<usize, Error> 
     if opts.max_steps_per_level == 0 {
         return Err(Error::input("max_steps_per_level must be at least 1"));
     }
+    crate::analysis::check_displacement_range(model, opts.control)?;
     model.check_supports()?;
     let control_block = crate::analysis::control_block(model, opts.control_block)?;
     let cd = 3 * control_block;
@@ -306,6 +307,8 @@ struct QuasiStatic<'a> {
     fl: Vec<f64>,
     curve_l: Vec<f64>,
     curve_u: Vec<f64>,
+    /// The lowest load level that ran away (NaN before one does): the bracket's upper end.
+    ran_away_at: f64,
     start: Instant,
 }
 
@@ -324,6 +327,7 @@ impl<'a> QuasiStatic<'a> {
             fl: model.live_load().to_vec(),
             curve_l: vec![],
             curve_u: vec![],
+            ran_away_at: f64::NAN,
             start,
         })
     }
@@ -448,6 +452,7 @@ impl<'a> QuasiStatic<'a> {
                 return ControlFlow::Break(End::interrupted(None));
             }
             Level::RanAway => {
+                self.ran_away_at = self.ran_away_at.min(l);
                 st.mechanism = Some(self.s.u.iter().zip(&st.saved.u).map(|(a, b)| a - b).collect::<Vec<f64>>());
                 st.saved.restore(&mut self.s);
                 st.dl *= 0.5;
@@ -560,6 +565,8 @@ impl<'a> QuasiStatic<'a> {
         // the largest lambda at which the wall settled; a collapse multiplier only with a collapse
         let last_equilibrium = crate::results::peak(&curve_l);
         let collapse_multiplier = if status == Status::Collapse { last_equilibrium } else { f64::NAN };
+        // load control: the highest level that settled and the lowest that ran away
+        let bracket = (status == Status::Collapse && self.ran_away_at.is_finite()).then_some([last_equilibrium, self.ran_away_at]);
         Results {
             method: "dynamic",
             status,
@@ -577,6 +584,7 @@ impl<'a> QuasiStatic<'a> {
             iterations: s.steps,
             steps: curve_l_len,
             elapsed_s: self.start.elapsed().as_secs_f64(),
+            bracket,
             certificate: None,
         }
     }

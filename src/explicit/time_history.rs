@@ -382,6 +382,11 @@ impl Run<'_> {
         if s.u.iter().any(|x| !x.is_finite()) {
             return ControlFlow::Break((Status::Failed, format!("non-finite displacement at t = {t:.6} s (step {n})")));
         }
+        if n % 16 == 0 || n == self.n_steps {
+            if let Some(why) = out_of_range(s, &self.u0) {
+                return ControlFlow::Break((Status::Failed, format!("the response left the model's range at t = {t:.6} s (step {n}): {why}; the wall has collapsed or the excitation lies beyond what the model represents")));
+            }
+        }
         if self.due(n) {
             self.record(t);
         }
@@ -394,4 +399,24 @@ impl Run<'_> {
         }
         ControlFlow::Continue(())
     }
+}
+
+/// Why the state of `s` lies beyond the model's range, if it does: a block translated (from
+/// its initial position `u0`) by more than the wall's size, or rotated by more than one radian
+/// (the small-rotation model) or a right angle (large rotations: the block lies on its side).
+fn out_of_range(s: &Integrator, u0: &[f64]) -> Option<String> {
+    let model = s.model;
+    let size = model.size();
+    let max_phi = if s.large { std::f64::consts::FRAC_PI_2 } else { 1.0 };
+    for i in 0..model.n_blocks() {
+        let moved = (s.u[3 * i] - u0[3 * i]).hypot(s.u[3 * i + 1] - u0[3 * i + 1]);
+        if moved > size {
+            return Some(format!("{} moved {moved:.3e} m, more than the wall's size ({size:.3e} m)", model.block_name(i)));
+        }
+        let phi = s.u[3 * i + 2] - u0[3 * i + 2];
+        if phi.abs() > max_phi {
+            return Some(format!("{} rotated {phi:.3e} rad, more than {max_phi:.4} rad", model.block_name(i)));
+        }
+    }
+    None
 }

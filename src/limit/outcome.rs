@@ -30,6 +30,7 @@ impl Program {
             iterations: cert.iterations,
             steps: 0,
             elapsed_s: start.elapsed().as_secs_f64(),
+            bracket: None,
             certificate: Some(cert),
         }
     }

@@ -166,13 +166,22 @@ impl Control {
     }
 
     /// `analysis.control`: "load", or "displacement" up to `max_displacement` \[m\] (left out:
-    /// [`DEFAULT_MAX_DISPLACEMENT`]); `None`: `default`.
+    /// `default`'s, else [`DEFAULT_MAX_DISPLACEMENT`]); `None`: `default`'s. A `max_displacement`
+    /// under load control is refused: it would be ignored.
     pub fn from_keys(control: Option<&str>, max_displacement: Option<f64>, default: Control) -> Result<Control> {
-        let Some(control) = control else { return Ok(default) };
-        match control {
-            "load" => Ok(Control::Load),
+        match control.unwrap_or(default.name()) {
+            "load" => match max_displacement {
+                Some(d) => Err(Error::input_at(
+                    "analysis.max_displacement",
+                    format!("analysis.max_displacement = {d} applies to displacement control only (analysis.control = \"displacement\"); this analysis is under load control"),
+                )),
+                None => Ok(Control::Load),
+            },
             "displacement" => Ok(Control::Displacement {
-                max_displacement: max_displacement.unwrap_or(DEFAULT_MAX_DISPLACEMENT),
+                max_displacement: max_displacement.unwrap_or(match default {
+                    Control::Displacement { max_displacement } => max_displacement,
+                    Control::Load => DEFAULT_MAX_DISPLACEMENT,
+                }),
             }),
             o => Err(not_one_of("analysis.control", &["load", "displacement"], o)),
         }

@@ -256,6 +256,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             iterations: self.iterations,
             steps: self.steps,
             elapsed_s: start.elapsed().as_secs_f64(),
+            bracket: None,
             certificate: None,
         }
     }

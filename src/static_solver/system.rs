@@ -109,6 +109,7 @@ impl<'a, 'm> Solver<'a, 'm> {
         monitor: Box<dyn FnMut(&Progress) -> bool + 'm>,
     ) -> Result<Self, Error> {
         opts.validate()?;
+        crate::analysis::check_displacement_range(model, opts.control)?;
         model.check_supports()?;
         let nb = model.n_blocks();
         let control_block = crate::analysis::control_block(model, opts.control_block)?;

@@ -9,8 +9,10 @@ table checks that both paths reach the user the same way.
 from __future__ import annotations
 
 import copy
+import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
@@ -289,10 +291,65 @@ def test_a_duplicate_key_is_named(text: str, name: str, line: int) -> None:
         md.parse_case(text)
 
 
-def test_a_case_file_beyond_the_size_limit_is_refused_unread() -> None:
-    # /dev/zero never ends: read whole, it took the machine's memory
-    with pytest.raises(md.InputError, match="larger than the limit"):
+def test_a_case_file_beyond_the_size_limit_is_refused_unread(tmp_path) -> None:
+    # /dev/zero never ends: read whole, it took the machine's memory; it is no file to read
+    with pytest.raises(md.InputError, match="a device, not a regular file"):
         md.load_case("/dev/zero")
+    # a file above the limit is refused from its size, before it is read (a sparse file: nothing written)
+    big = tmp_path / "big.toml"
+    with open(big, "wb") as f:
+        f.truncate(md.case.MAX_CASE_BYTES + 1)
+    start = time.monotonic()
+    with pytest.raises(md.InputError, match=r"big.toml: 16,777,217 bytes, larger than the limit of 16 MiB"):
+        md.load_case(big)
+    assert time.monotonic() - start < 1.0
+
+
+def _in_time(func, seconds=10.0):
+    """Run ``func`` in a thread; fail (rather than hang) if it has not returned within ``seconds``."""
+    import threading
+
+    out = {}
+
+    def run():
+        try:
+            out["value"] = func()
+        except BaseException as exc:  # noqa: BLE001 - handed to the test
+            out["error"] = exc
+
+    thread = threading.Thread(target=run, daemon=True)
+    thread.start()
+    thread.join(seconds)
+    assert not thread.is_alive(), f"{func} still runs after {seconds} s (a FIFO opened?)"
+    return out
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs")
+@pytest.mark.parametrize("reader", ["case", "csv", "at2", "study"])
+def test_a_fifo_is_refused_unopened(tmp_path, reader) -> None:
+    from masonry_dem import ground_motion
+
+    fifo = tmp_path / ("f.toml" if reader in ("case", "study") else f"f.{reader}")
+    os.mkfifo(fifo)
+    call = {
+        "case": lambda: md.load_case(fifo),
+        "csv": lambda: ground_motion.read_csv(fifo, units="g"),
+        "at2": lambda: ground_motion.read_at2(fifo),
+        "study": lambda: __import__("masonry_dem.study", fromlist=["load_study"]).load_study(fifo),
+    }[reader]
+    out = _in_time(call)
+    assert isinstance(out.get("error"), md.InputError), out
+    assert "it is a FIFO, not a regular file" in str(out["error"]) and str(fifo) in str(out["error"])
+
+
+def test_a_record_beyond_the_size_limit_is_refused_unread(tmp_path) -> None:
+    from masonry_dem import ground_motion
+
+    big = tmp_path / "big.csv"
+    with open(big, "wb") as f:
+        f.truncate(ground_motion.MAX_RECORD_BYTES + 1)
+    with pytest.raises(md.InputError, match="larger than the limit of 256 MiB for a record"):
+        ground_motion.read_csv(big, units="g")
 
 
 @pytest.mark.parametrize(

@@ -152,7 +152,7 @@ def test_compare(tmp_path: Path) -> None:
         "compare", str(EXAMPLES / "single-block-rocking.toml"), "--json", str(out), "--plot", str(png), cwd=tmp_path
     )
     data = json.loads(out.read_text())
-    limit_ok = data["limit"]["status"] == "collapse"
+    limit_ok = data["limit"]["status"] in ("collapse", "estimate")  # dilatancy 0 here: an estimate
     assert proc.returncode == (0 if limit_ok else 1), proc.stderr
     assert proc.stderr == "" or not limit_ok
     text = proc.stdout

@@ -87,16 +87,16 @@ def test_units_from_header_and_override(tmp_path: Path) -> None:
 def test_offset_drawing_keeps_its_coordinates_and_stands_on_the_base(tmp_path: Path) -> None:
     blocks = read_dxf(_drawing(tmp_path / "wall.dxf", offset=(5000.0, 2000.0)), layer="bricks")
     assert np.allclose(blocks, _sorted(WALL) + [5.0, 2.0, 5.0, 2.0], rtol=0, atol=1e-12)
-    results = md.Model(blocks, joints={"default": md.dry_joint(0.65)}).solve_limit()
-    reference = md.Model(WALL, joints={"default": md.dry_joint(0.65)}).solve_limit()
+    results = md.Model(blocks, joints={"default": md.dry_joint(0.65, dilatancy=0.65)}).solve_limit()
+    reference = md.Model(WALL, joints={"default": md.dry_joint(0.65, dilatancy=0.65)}).solve_limit()
     assert results.collapse_multiplier == pytest.approx(reference.collapse_multiplier, rel=1e-6)
 
 
 def test_model_from_drawing_runs_limit_analysis(tmp_path: Path) -> None:
     blocks = read_dxf(_drawing(tmp_path / "wall.dxf"), layer="bricks")
-    model = md.Model(blocks, thickness=0.1, joints={"default": md.dry_joint(0.65)})
+    model = md.Model(blocks, thickness=0.1, joints={"default": md.dry_joint(0.65, dilatancy=0.65)})
     results = model.solve_limit()
-    expected = md.Model(_sorted(WALL), thickness=0.1, joints={"default": md.dry_joint(0.65)}).solve_limit()
+    expected = md.Model(_sorted(WALL), thickness=0.1, joints={"default": md.dry_joint(0.65, dilatancy=0.65)}).solve_limit()
     assert results.collapse_multiplier == expected.collapse_multiplier
     assert 0 < results.collapse_multiplier < 1
 

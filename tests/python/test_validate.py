@@ -260,3 +260,15 @@ def test_script_example(tmp_path: Path) -> None:
     assert lam["explicit"] == pytest.approx(0.6429, rel=0.01)
     assert "difference" in out and "Jaccard" in out
     assert png.read_bytes().startswith(b"\x89PNG\r\n\x1a\n")
+
+
+def test_a_limit_estimate_is_compared_and_shown_as_one() -> None:
+    """Dilatancy 0: limit analysis gives an estimate, compared with the reference but shown as ~value, with a
+    line that says what it is (never as a collapse multiplier)."""
+    path = Path(__file__).resolve().parents[2] / "examples" / "single-block-rocking.toml"
+    case = md.load_case(path)
+    row = validate.validate_case(path, case, ("limit",))
+    assert "limit" in row.estimates and "neither a lower nor an upper bound" in row.estimates["limit"]
+    assert row.passed and row.multipliers["limit"] == pytest.approx(1 / 3, rel=1e-4)
+    assert "~0.3333" in validate.table_row(row, [row.name], ("limit",))
+    assert f"{row.name}: limit: estimate: " in validate.table_footer([row], [])

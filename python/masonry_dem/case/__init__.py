@@ -54,6 +54,7 @@ from .result_file import (
     ERROR_STATUSES as ERROR_STATUSES,
     FORMAT,
     JOINT_STATE_KEYS as JOINT_STATE_KEYS,
+    NOTE_STATUSES as NOTE_STATUSES,
     UNFINISHED_STATUSES as UNFINISHED_STATUSES,
     certificate_dict,
     result_dict,

@@ -14,6 +14,7 @@ from typing import Any, Callable, Dict, Mapping, Optional, Tuple, Union
 
 from .. import _core
 from .._core import InputError
+from .._files import read_bytes
 from .. import ground_motion as _gm
 from .mapping import (
     CORE_DEFAULTS,
@@ -80,8 +81,9 @@ LAW_UNITS = {
 #: The relative tolerance of a [reference] that gives none (a default of the case file, not of the core).
 DEFAULT_REFERENCE_TOLERANCE = 0.01
 
-#: The largest case file read [bytes]: a wall of 10^5 blocks listed one per line takes about 5 MB.
-MAX_CASE_BYTES = 64 * 2**20
+#: The largest case file read [bytes], refused from its size before it is read: a wall of 10^5 blocks listed one
+#: per line takes about 5 MB, which TOML parses in seconds (a larger wall: a generator, a pattern or a drawing).
+MAX_CASE_BYTES = 16 * 2**20
 
 
 def load_case(path: PathLike) -> Case:
@@ -125,12 +127,11 @@ def load_case(path: PathLike) -> Case:
 def read_text(path: PathLike, what: str = "case file") -> str:
     """The text of a TOML file (a case file, a study file): at most :data:`MAX_CASE_BYTES`, UTF-8, without
     a byte-order mark. Raises OSError when it cannot be read, InputError (starting with the file name) when
-    it is too large or not UTF-8."""
+    it is not a regular file (a FIFO, a device, a folder), too large (from its size, before reading) or not
+    UTF-8."""
     source = os.fspath(path)
-    with open(path, "rb") as f:
-        data = f.read(MAX_CASE_BYTES + 1)  # never more: /dev/zero or a huge file is refused, not read
-    if len(data) > MAX_CASE_BYTES:
-        raise InputError(f"{source}: larger than the limit of {MAX_CASE_BYTES // 2**20} MiB for a {what}")
+    # a FIFO, /dev/zero or a huge file is refused before it is opened, from its type and size
+    data = read_bytes(path, MAX_CASE_BYTES, what)
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:

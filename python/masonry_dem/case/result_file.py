@@ -36,6 +36,10 @@ ERROR_STATUSES = ("failed", "interrupted", "no_equilibrium", "unbounded", "stall
 #: The statuses of a run that did not end: the solver failed, or the user stopped it. Their reason
 #: (``Results.error``) says which, so the messages give it alone, without the status.
 UNFINISHED_STATUSES = ("failed", "interrupted")
+#: The statuses of a run that ended with a number that is not a collapse multiplier, and a line that says
+#: what it is (``Results.error``; a ``note`` key in the result file): "estimate", the non-associative limit
+#: analysis, whose value is ``last_equilibrium``.
+NOTE_STATUSES = ("estimate",)
 
 
 def json_float(x: Any) -> Optional[float]:
@@ -58,7 +62,10 @@ def result_dict(results: Any, model: Any, title: str) -> Dict[str, Any]:
     when the run was interrupted; so does a static load-control analysis of associative dry joints, whose
     collapse is checked against limit analysis (its certificate is the evidence). ``error`` is written with
     the statuses that have a reason: "failed", "interrupted", "no_equilibrium", "unbounded", "stalled" and
-    "displacement_limit". ``collapse_multiplier`` is null unless the status is "collapse";
+    "displacement_limit"; ``note`` with "estimate" (a limit analysis of joints with dilatancy below friction:
+    what the number in ``last_equilibrium`` is). ``bracket`` (explicit load control ending in a collapse):
+    the highest level that settled and the lowest that ran away. ``collapse_multiplier`` is null unless the
+    status is "collapse";
     ``last_equilibrium`` is the largest multiplier at which the wall was found in equilibrium (equal to
     ``collapse_multiplier`` on a collapse; null when none was found).
     """
@@ -83,6 +90,11 @@ def result_dict(results: Any, model: Any, title: str) -> Dict[str, Any]:
         out["certificate"] = certificate_dict(getattr(results, "certificate", None))
     if out["status"] in ERROR_STATUSES:
         out["error"] = str(results.error) if results.error else "unknown error"
+    if out["status"] in NOTE_STATUSES:
+        out["note"] = str(results.error or "")
+    bracket = getattr(results, "bracket", None)
+    if bracket is not None:
+        out["bracket"] = [json_float(bracket[0]), json_float(bracket[1])]
     return out
 
 

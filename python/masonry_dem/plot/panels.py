@@ -54,7 +54,10 @@ def _multiplier_label(live: str) -> Tuple[str, float]:
 
 
 def _lam_text(results: Any, live: str) -> str:
-    """The collapse multiplier of ``results`` with its symbol (:func:`masonry_dem.report.format_multiplier`)."""
+    """The collapse multiplier of ``results`` with its symbol (:func:`masonry_dem.report.format_multiplier`); a
+    limit analysis's estimate (status "estimate") marked as one, never as a collapse multiplier."""
+    if str(getattr(results, "status", "")) == "estimate":
+        return "~" + format_multiplier(float(results.last_equilibrium), live) + " (estimate, neither bound)"
     return format_multiplier(float(results.collapse_multiplier), live, symbol=True)
 
 
@@ -317,7 +320,8 @@ def plot_mechanism(ax: Any, model: Any, results: Any) -> bool:
     limit = _is_limit(results)
     if have:
         n_moving = int(np.sum(moving[: int(model.n_blocks)]))
-        what = "collapse velocities" if limit else "last increment"
+        what = ("estimated velocities" if str(results.status) == "estimate" else "collapse velocities") if limit \
+            else "last increment"
         text = (
             f"mechanism ({what}, exaggerated)\n{_plural(n_moving, 'moving block')}, "
             f"{_plural(len(segs), 'cracked joint')}"

@@ -112,8 +112,9 @@ def study_from_dict(
     base, inputs = _base_case(top, Path(base_dir))
     options = top.table("study", STUDY_KEYS)
     methods = _methods(options, base)
-    variations, texture = _vary(top, base)
-    samples = 1 if options is None else options.integer("samples", 1, minimum=1)
+    samples = 1 if options is None else options.integer("samples", 1, minimum=1, maximum=MAX_ANALYSES)
+    # the count of analyses is checked as the grid is read, before any value is tried on the base case
+    variations, texture = _vary(top, base, len(methods) * samples)
     study = Study(
         title=title,
         base=base,
@@ -175,25 +176,46 @@ def _methods(options: Optional[_Table], base: Any) -> Tuple[str, ...]:
     return tuple(names)
 
 
-def _vary(top: _Table, base: Any) -> Tuple[List[Variation], Optional[Texture]]:
-    """The [vary] tables: the variations (grid and random, in the file's order) and the texture."""
+def _check_size(table: _Table, size: int) -> None:
+    """Refuses a study of ``size`` analyses beyond :data:`MAX_ANALYSES`."""
+    if size > MAX_ANALYSES:
+        raise table.error(f"the study holds {size:,} analyses, more than the limit of {MAX_ANALYSES:,}")
+
+
+def _vary(top: _Table, base: Any, per_point: int = 1) -> Tuple[List[Variation], Optional[Texture]]:
+    """The [vary] tables: the variations (grid and random, in the file's order) and the texture. The
+    analyses (``per_point`` at each grid point: methods times samples) are counted as each grid is read,
+    and a study beyond :data:`MAX_ANALYSES` refused before any value is tried on the base case."""
     builder = callable(base)
     data = top.data.get("vary", {})
     allowed = list(data) if builder and isinstance(data, dict) else _parameter_names()
+    _check_size(top, per_point)
     vary = top.table("vary", allowed)
     if vary is None:
         return [], None
     variations: List[Variation] = []
+    read: List[Tuple[_Table, Variation]] = []
     texture = None
+    size = per_point
     for name in vary.data:
         if name == "texture" and not builder:
             texture = _texture(vary, base)
-        elif name in FAMILIES and not builder:
+            continue
+        if name in FAMILIES and not builder:
             family = vary.table(name, LAW_KEYS)
             assert family is not None
-            variations += [_variation(family, key, base, f"{name}.{key}") for key in family.data]
+            keys = [(family, key, f"{name}.{key}") for key in family.data]
         else:
-            variations.append(_variation(vary, name, base, name))
+            keys = [(vary, name, name)]
+        for parent, key, full in keys:
+            table, variation = _variation(parent, key, full, lambda count, size=size: _check_size(top, size * count))
+            size *= len(variation.values) if variation.values is not None else 1
+            _check_size(top, size)
+            read.append((table, variation))
+            variations.append(variation)
+    if not builder:
+        for table, variation in read:
+            _check_on_case(table, variation, base)
     for v in variations:
         if v.name == "direction" and builder:
             raise vary.key_error("direction", "a Model builder has no load direction (give a case to mirror)")
@@ -206,8 +228,10 @@ def _parameter_names() -> List[str]:
     return list(LAW_KEYS + FAMILIES + named)
 
 
-def _variation(parent: _Table, key: str, base: Any, name: str) -> Variation:
-    """One [vary.NAME] table: a grid (values, or start / stop / count) or a distribution."""
+def _variation(parent: _Table, key: str, name: str, check: Any = None) -> Tuple[_Table, Variation]:
+    """One [vary.NAME] table: a grid (values, or start / stop / count) or a distribution; with the table
+    (its values are tried on the base case afterwards, by :func:`_check_on_case`). ``check(count)`` is
+    called with a grid's count before its values are made."""
     table = parent.table(key, VARIATION_KEYS, required=True)
     assert table is not None
     kinds = [k for k in ("values", "start", "distribution") if k in table]
@@ -229,10 +253,8 @@ def _variation(parent: _Table, key: str, base: Any, name: str) -> Variation:
             raise table.key_error("distribution", "courses is an integer: give values")
         variation = Variation(name, **_distribution(table), **options)
     else:
-        variation = Variation(name, values=_grid_values(table, integer=name == "courses"), **options)
-    if not callable(base):
-        _check_on_case(table, variation, base)
-    return variation
+        variation = Variation(name, values=_grid_values(table, integer=name == "courses", check=check), **options)
+    return table, variation
 
 
 def _check_options(table: _Table, name: str) -> None:
@@ -259,7 +281,7 @@ def _directions(table: _Table) -> Tuple[str, ...]:
     return tuple(values)
 
 
-def _grid_values(table: _Table, integer: bool) -> Tuple[Any, ...]:
+def _grid_values(table: _Table, integer: bool, check: Any = None) -> Tuple[Any, ...]:
     """values = [...], or start, stop and count (count values evenly spaced, both ends included)."""
     if "values" in table:
         items = table.array("values")
@@ -277,7 +299,9 @@ def _grid_values(table: _Table, integer: bool) -> Tuple[Any, ...]:
     if integer:
         raise table.key_error("start", "courses is an integer: give values")
     start, stop = table.number("start"), table.number("stop")
-    count = table.integer("count", minimum=2)
+    count = table.integer("count", minimum=2, maximum=MAX_ANALYSES)
+    if check is not None:
+        check(count)
     return tuple(start + (stop - start) * i / (count - 1) for i in range(count))
 
 

@@ -22,7 +22,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from .._core import InputError
-from ..atomic import atomic_path, check_target
+from ..atomic import atomic_path, check_target, check_writable
 from .model import Study
 from .worker import OUTCOME_COLUMNS
 
@@ -72,7 +72,23 @@ def _tables(path: Path) -> List[Tuple[Path, pa.Table]]:
     folder = parts_folder(path)
     if folder.is_dir():
         files += sorted(p for p in folder.glob("part-*.parquet") if p.is_file())
-    return [(f, pq.read_table(f)) for f in files]
+    return [(f, _read(f)) for f in files]
+
+
+def _read(file: Path) -> pa.Table:
+    """The table of Parquet file ``file``; InputError naming it when it is damaged or not Parquet (nothing
+    is changed: every file stays as it is, with the rows that can still be read)."""
+    try:
+        return pq.read_table(file)
+    except (pa.ArrowException, OSError, ValueError) as exc:
+        if isinstance(exc, OSError) and not isinstance(exc, pa.ArrowException) and exc.errno is not None:
+            raise  # it cannot be read at all (permissions): the OSError names it
+        reason = " ".join(str(exc).split())[:200]
+        raise InputError(
+            f"{file}: not a Parquet file that can be read (damaged, or not written by masonry-dem: {reason}); "
+            f"nothing was changed: move it away to start again, or give another results file (--out)"
+        ) from None
+
 
 
 def _joined(tables: Sequence[pa.Table], target: Optional[pa.Schema] = None) -> pd.DataFrame:
@@ -115,6 +131,7 @@ class ResultStore:
         self.finished: Set[int] = set()
         for target in [p for p in (path, csv) if p is not None]:
             check_target(target, study.inputs)
+            check_writable(target)
         if self.path is not None:
             self._open(resume)
 
@@ -128,7 +145,15 @@ class ResultStore:
             )
         fingerprint = self.study.fingerprint()
         for file, table in found:
-            meta = study_metadata(table.schema) or {}
+            try:
+                meta = study_metadata(table.schema) or {}
+            except (ValueError, TypeError):  # metadata that is not the study's JSON
+                meta = {}
+            if not meta:
+                raise InputError(
+                    f"{file} is not the results file of a masonry-dem study (its Parquet schema has no study "
+                    f"description): nothing is resumed and it is left as it is; give another results file (--out)"
+                )
             if meta.get("fingerprint") != fingerprint:
                 raise InputError(
                     f"{file} holds the results of another study ({meta.get('title', 'untitled')!r}, fingerprint "

@@ -2,7 +2,8 @@
 :func:`summary_figure`: the distribution of the collapse multiplier (histogram and empirical distribution
 function), the multiplier against each varied parameter, and the mechanisms of the weakest analyses.
 
-Only rows with status "collapse" have a multiplier: the others are counted, never plotted as collapses.
+Only rows with status "collapse" have a multiplier: the others are counted, never plotted as collapses (the
+estimates of a non-associative limit analysis, status "estimate", are summarised apart, as estimates).
 The weakest analyses' mechanisms are not in the rows: they are computed again here, from the study, one
 analysis each (the same case data, the same numbers).
 """
@@ -71,8 +72,13 @@ def summary_text(frame: pd.DataFrame, study: Study) -> str:
         first = frame[frame["status"].isin(FAILED_STATUSES)].iloc[0]
         lines.append(f"  failed:              {failed:,}; the first, row {first['row']}: {first['error']}")
     for method in study.methods:
-        values = collapses(frame[frame["method"] == method])["collapse_multiplier"].to_numpy()
+        rows = frame[frame["method"] == method]
+        values = collapses(rows)["collapse_multiplier"].to_numpy()
         lines.append(f"  {method + ':':<21}{_statistics(values, live)}")
+        estimates = rows[rows["status"] == "estimate"]["last_equilibrium"].to_numpy(dtype=float)
+        if len(estimates):  # non-associative limit analysis: its numbers apart, as what they are
+            lines.append(f"  {method + ' estimates:':<21}{_statistics(estimates, live, 'estimate')} "
+                         "(non-associative: neither bound, not collapses)")
     for _, row in weakest(frame).iterrows():
         values = _values_text(row, study)
         shown = format_multiplier(row["collapse_multiplier"], live)
@@ -81,10 +87,10 @@ def summary_text(frame: pd.DataFrame, study: Study) -> str:
     return "\n".join(lines)
 
 
-def _statistics(values: np.ndarray, live: str) -> str:
-    """The collapse multipliers' minimum, quantiles, mean and maximum, in one line."""
+def _statistics(values: np.ndarray, live: str, what: str = "collapse") -> str:
+    """The collapse multipliers' (or estimates') minimum, quantiles, mean and maximum, in one line."""
     if len(values) == 0:
-        return "no collapse"
+        return f"no {what}"
 
     def shown(x: float) -> str:
         return format_multiplier(float(x), live)

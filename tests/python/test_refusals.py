@@ -1,0 +1,320 @@
+"""Hostile inputs, refused by name or labelled for what they give: each ends in one line on the command line
+(exit status 2), never a traceback, never a hang, never a confident wrong number. Cheap: one block, short
+records; a FIFO is guarded by a timeout."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+import warnings
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+import masonry_dem as md
+from masonry_dem import atomic, cli
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+ROCKING = EXAMPLES / "single-block-rocking.toml"
+
+BLOCK_CASE = """format = 1
+[geometry]
+blocks = [[0.0, 0.0, 0.2, 0.6]]
+[joints]
+friction = 0.65
+"""
+
+
+def masonry_dem(*args: str, cwd: Path, timeout: float = 120) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-m", "masonry_dem", *args], cwd=cwd, capture_output=True, text=True, timeout=timeout
+    )
+
+
+def one_error_line(proc: subprocess.CompletedProcess, status: int = 2) -> str:
+    assert proc.returncode == status, (proc.stdout, proc.stderr)
+    assert "Traceback" not in proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("masonry-dem: error: "), proc.stderr
+    return lines[0]
+
+
+def simulate_case(folder: Path, record: str) -> Path:
+    case = folder / "th.toml"
+    case.write_text(BLOCK_CASE + f'[ground_motion]\nfile = "{record}"\nunits = "g"\n[time_history]\nduration = 0.05\n')
+    return case
+
+
+# --------------------------------------------------------------------------------------------------
+# Files that are not files, or too large
+# --------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs")
+@pytest.mark.parametrize("command", ["run", "simulate"])
+def test_a_fifo_record_is_refused_not_waited_for(tmp_path: Path, command: str) -> None:
+    os.mkfifo(tmp_path / "rec.csv")
+    case = simulate_case(tmp_path, "rec.csv")
+    line = one_error_line(masonry_dem(command, str(case), cwd=tmp_path, timeout=60))
+    assert "rec.csv: it is a FIFO, not a regular file" in line
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs")
+def test_a_fifo_case_file_is_refused_not_waited_for(tmp_path: Path) -> None:
+    os.mkfifo(tmp_path / "c.toml")
+    line = one_error_line(masonry_dem("run", str(tmp_path / "c.toml"), cwd=tmp_path, timeout=60))
+    assert "it is a FIFO, not a regular file" in line
+
+
+def test_an_overflowing_record_is_refused_without_a_warning(tmp_path: Path) -> None:
+    (tmp_path / "rec.csv").write_text("0.0,0.0\n0.01,1e308\n0.02,0.0\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # numpy's overflow warning would be an error here
+        with pytest.raises(md.InputError, match="must be finite numbers"):
+            md.ground_motion.read_csv(tmp_path / "rec.csv", units="g")
+    proc = masonry_dem("simulate", str(simulate_case(tmp_path, "rec.csv")), cwd=tmp_path)
+    assert "must be finite numbers" in one_error_line(proc)
+    assert "Warning" not in proc.stderr
+
+
+# --------------------------------------------------------------------------------------------------
+# Beyond the model's range
+# --------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("max_displacement", [1e10, 1e20, -5.0])
+@pytest.mark.parametrize("solver", ["solve_static", "solve_dynamic"])
+def test_displacement_control_beyond_the_small_displacement_range_is_refused(max_displacement: float, solver: str) -> None:
+    model = md.Model([[0.0, 0.0, 0.2, 0.6]], joints={"default": {"friction": 0.65}})
+    with pytest.raises(md.InputError, match=r"beyond the small-displacement model's range: at most a tenth of the wall's size"):
+        getattr(model, solver)(control="displacement", max_displacement=max_displacement)
+
+
+def test_displacement_control_beyond_the_range_on_the_command_line(tmp_path: Path) -> None:
+    case = tmp_path / "c.toml"
+    case.write_text(BLOCK_CASE + '[analysis]\ncontrol = "displacement"\nmax_displacement = 1e10\n')
+    assert "a tenth of the wall's size" in one_error_line(masonry_dem("run", str(case), cwd=tmp_path))
+
+
+@pytest.mark.parametrize("solver", ["solve_static", "solve_dynamic"])
+def test_max_displacement_under_load_control_is_refused(solver: str) -> None:
+    model = md.Model([[0.0, 0.0, 0.2, 0.6]], joints={"default": {"friction": 0.65}})
+    with pytest.raises(md.InputError, match="applies to displacement control only"):
+        getattr(model, solver)(max_displacement=-1.0)
+    with pytest.raises(md.InputError, match="applies to displacement control only"):
+        getattr(model, solver)(control="load", max_displacement=0.001)
+
+
+@pytest.mark.parametrize("peak_g", [1e30, 1e6])
+def test_a_time_history_beyond_the_model_range_fails_with_the_reason(peak_g: float) -> None:
+    model = md.Model([[0.0, 0.0, 0.2, 0.6]], joints={"default": {"friction": 0.65}})
+    t = np.linspace(0.0, 0.05, 51)
+    h = model.simulate(base_acceleration=(t, peak_g * 9.81 * np.sin(60.0 * t)), duration=0.05)
+    assert h.status == "failed", h.status
+    assert "left the model's range" in h.error and "block 0" in h.error
+
+
+def test_a_moderate_time_history_still_completes() -> None:
+    model = md.Model([[0.0, 0.0, 0.2, 0.6]], joints={"default": {"friction": 0.65}})
+    t = np.linspace(0.0, 0.05, 51)
+    assert model.simulate(base_acceleration=(t, 0.05 * 9.81 * np.sin(60.0 * t)), duration=0.05).status == "completed"
+
+
+# --------------------------------------------------------------------------------------------------
+# The Python API
+# --------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("blocks", [np.ones((1, 4), dtype=bool), np.array([[0.0, 0.0, 0.2 + 0j, 0.6]]), np.zeros((0, 4))])
+def test_blocks_of_booleans_complex_numbers_or_none_are_refused(blocks: Any) -> None:
+    with pytest.raises(md.InputError, match="Model: "):
+        md.Model(blocks)
+
+
+def test_a_running_bond_with_no_block_is_refused() -> None:
+    with pytest.raises(md.InputError, match="no block fits"):
+        md.running_bond(0.4, 0.2, 3, length=1e-300)
+    with pytest.raises(md.InputError, match="hold no block"):
+        md.pattern(0.4, 0.2, [[]])
+
+
+@pytest.mark.parametrize("dtype", [bool, complex])
+def test_a_record_of_booleans_or_complex_numbers_is_refused(dtype: Any) -> None:
+    model = md.Model([[0.0, 0.0, 0.2, 0.6]], joints={"default": {"friction": 0.65}})
+    t = np.linspace(0.0, 0.05, 11)
+    with pytest.raises(md.InputError, match="'base_acceleration': expected real numbers"):
+        model.simulate(base_acceleration=(t, np.ones(11, dtype=dtype)), duration=0.05)
+
+
+def test_a_model_being_solved_says_busy() -> None:
+    model = md.Model([[0.0, 0.0, 0.2, 0.6]], joints={"default": {"friction": 0.65}})
+    seen = []
+
+    def progress(*_: Any) -> None:
+        if not seen:
+            try:
+                model.fix(0, 0)
+            except Exception as exc:  # noqa: BLE001 - recorded for the test
+                seen.append(exc)
+
+    model.solve_static(progress=progress)
+    assert seen and isinstance(seen[0], md.InputError), seen
+    assert "busy" in str(seen[0]) and "Already borrowed" not in str(seen[0])
+    model.fix(0, 0)  # once the analysis is over, the model can be changed
+
+
+# --------------------------------------------------------------------------------------------------
+# Output paths
+# --------------------------------------------------------------------------------------------------
+
+
+def test_a_long_legal_output_name_is_written(tmp_path: Path) -> None:
+    name = "x" * 245 + ".json"  # 250 characters: legal, and its temporary file fits too
+    proc = masonry_dem("run", str(ROCKING), "--json", name, "-q", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads((tmp_path / name).read_text())["status"] == "collapse"
+    assert [p.name for p in tmp_path.iterdir()] == [name]
+
+
+@pytest.mark.parametrize("args", [["--json", ""], ["--plot", ""], ["--vtk", "out/"], ["--plot", "."], ["--csv", "out/"]])
+def test_empty_or_folder_output_names_are_refused(tmp_path: Path, args: Any) -> None:
+    (tmp_path / "out").mkdir()
+    line = one_error_line(masonry_dem("run", str(ROCKING), *args, cwd=tmp_path))
+    assert "empty" in line or "folder" in line
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"] and not any((tmp_path / "out").iterdir())
+
+
+def test_a_write_error_names_the_output_not_the_temporary_file(tmp_path: Path, monkeypatch: Any) -> None:
+    real_open = os.open
+
+    def refuse_temporaries(path: Any, *args: Any, **kwargs: Any) -> int:
+        if ".tmp" in os.fspath(path):
+            raise PermissionError(13, "Permission denied", os.fspath(path))
+        return real_open(path, *args, **kwargs)
+
+    monkeypatch.setattr(atomic.os, "open", refuse_temporaries)
+    with pytest.raises(PermissionError) as info:
+        atomic.write_text(tmp_path / "x.json", "{}")
+    assert info.value.filename == str(tmp_path / "x.json")
+    assert ".tmp" not in str(info.value)
+
+
+def test_the_leftover_of_a_killed_write_is_removed_by_the_next(tmp_path: Path) -> None:
+    target = tmp_path / "x.json"
+    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True)
+    dead_pid = int(dead.stdout)
+    key = atomic._key(target)
+    left = tmp_path / f".md-{key}.{dead_pid}.0123abcd.tmp.json"  # as a write killed mid-way leaves it
+    alive = tmp_path / f".md-{key}.{os.getppid()}.0123abcd.tmp.json"  # a write still running: kept
+    left.write_text("{")
+    alive.write_text("{")
+    atomic.write_text(target, "{}")
+    assert target.read_text() == "{}"
+    assert not left.exists() and alive.exists()
+
+
+def test_an_unwritable_study_folder_is_refused_before_the_cluster() -> None:
+    from masonry_dem.study import study_from_dict
+    from masonry_dem.study.store import ResultStore
+
+    study = study_from_dict({"format": 1, "case": str(ROCKING), "study": {"methods": ["limit"]}})
+    try:  # /sys cannot be written, even by root (a folder made read-only with chmod can be, by root)
+        atomic.check_writable("/sys/x.parquet")
+    except md.InputError:
+        pass
+    else:
+        pytest.skip("no folder that cannot be written here")
+    with pytest.raises(md.InputError, match=r"cannot write /sys/x.parquet: the folder /sys cannot be written"):
+        ResultStore(study, "/sys/x.parquet")
+
+
+# --------------------------------------------------------------------------------------------------
+# Studies
+# --------------------------------------------------------------------------------------------------
+
+
+def test_a_study_of_a_billion_analyses_is_refused_at_once() -> None:
+    from masonry_dem.study import parse_study
+
+    grids = "".join(f"[vary.{k}]\nstart = 0.3\nstop = 0.6\ncount = 1000\n" for k in ("friction", "cohesion", "density"))
+    text = f'format = 1\ncase = "{ROCKING}"\n' + grids.replace("[vary.density]\nstart = 0.3\nstop = 0.6",
+                                                                 "[vary.density]\nstart = 1000.0\nstop = 2000.0")
+    start = time.monotonic()
+    with pytest.raises(md.InputError, match=r"1,000,000,000 analyses, more than the limit of 10,000,000"):
+        parse_study(text, source="s.toml")
+    assert time.monotonic() - start < 2.0
+
+
+@pytest.mark.parametrize("count", ["20000000", "1000000000"])
+def test_a_grid_count_beyond_the_limit_is_refused_before_it_is_built(count: str) -> None:
+    from masonry_dem.study import parse_study
+
+    text = f'format = 1\ncase = "{ROCKING}"\n[vary.friction]\nstart = 0.3\nstop = 0.6\ncount = {count}\n'
+    start = time.monotonic()
+    with pytest.raises(md.InputError, match=r"count: must be <= 10000000|more than the limit of 10,000,000"):
+        parse_study(text, source="s.toml")
+    assert time.monotonic() - start < 2.0
+
+
+@pytest.mark.parametrize("content", [b"PAR1 damaged \x00\x01", b"not parquet at all"])
+def test_resume_on_a_damaged_results_file_names_it_and_keeps_it(tmp_path: Path, content: bytes) -> None:
+    from masonry_dem.study import study_from_dict
+    from masonry_dem.study.store import ResultStore
+
+    study = study_from_dict({"format": 1, "case": str(ROCKING), "study": {"methods": ["limit"]}})
+    out = tmp_path / "s.parquet"
+    out.write_bytes(content)
+    with pytest.raises(md.InputError, match=r"s.parquet: not a Parquet file that can be read .* nothing was changed"):
+        ResultStore(study, out, resume=True)
+    assert out.read_bytes() == content
+    study_file = tmp_path / "s.toml"
+    study_file.write_text(f'format = 1\ncase = "{ROCKING}"\n[study]\nmethods = ["limit"]\n')
+    proc = masonry_dem("study", str(study_file), "--out", str(out), "--resume", "-q", cwd=tmp_path)
+    assert "not a Parquet file that can be read" in one_error_line(proc)
+    assert out.read_bytes() == content
+
+
+def test_resume_on_a_foreign_parquet_file_says_so(tmp_path: Path) -> None:
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from masonry_dem.study import study_from_dict
+    from masonry_dem.study.store import ResultStore
+
+    out = tmp_path / "s.parquet"
+    pq.write_table(pa.table({"a": [1, 2]}), out)
+    study = study_from_dict({"format": 1, "case": str(ROCKING), "study": {"methods": ["limit"]}})
+    with pytest.raises(md.InputError, match="is not the results file of a masonry-dem study"):
+        ResultStore(study, out, resume=True)
+    assert pq.read_table(out).num_rows == 2
+
+
+# --------------------------------------------------------------------------------------------------
+# The command line's last resorts
+# --------------------------------------------------------------------------------------------------
+
+
+def test_out_of_memory_is_one_line(monkeypatch: Any, capsys: Any) -> None:
+    def no_memory(*_: Any, **__: Any) -> Any:
+        raise MemoryError("cannot allocate 64.0 GB for the model")
+
+    monkeypatch.setattr(cli, "load_case", no_memory)
+    assert cli.main(["run", str(ROCKING)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == ["masonry-dem: error: out of memory: cannot allocate 64.0 GB for the model"]
+
+
+def test_a_limit_estimate_is_written_as_one(tmp_path: Path) -> None:
+    proc = masonry_dem("run", str(ROCKING), "--method", "limit", "--json", "r.json", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads((tmp_path / "r.json").read_text())
+    assert data["status"] == "estimate" and data["collapse_multiplier"] is None
+    assert math.isclose(data["last_equilibrium"], 1 / 3, rel_tol=1e-4)
+    assert "neither a lower nor an upper bound" in data["note"]
+    assert "estimate" in proc.stdout and "collapse multiplier: none" in proc.stdout
