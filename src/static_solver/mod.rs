@@ -111,6 +111,10 @@ const STALL_ITERATIONS: usize = 8;
 /// Fixed-multiplier attempts of [`Solver::check_collapse`] to reach the exact collapse.
 const REACH_ATTEMPTS: usize = 20;
 
+/// The first rise of [`Solver::check_collapse`]'s attempts, as a fraction of the distance to
+/// the exact value.
+const REACH_FIRST: f64 = 0.25;
+
 /// A load-control path is still rising when the last step's slope would raise lambda by more
 /// than this many tolerances over as much work again (the plateau test uses one).
 const RISING: f64 = 10.0;
@@ -195,6 +199,7 @@ type Slots = Vec<[u32; 36]>;
 /// the (dof, slot) of each entry of the live load's column (lambda's, in place of the control dof).
 type DispSystem = (SparseLu, Slots, Vec<(usize, u32)>);
 
+mod continuation;
 mod displacement_control;
 mod load_control;
 mod newton;
