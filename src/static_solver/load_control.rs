@@ -348,7 +348,8 @@ impl<'a, 'm> Solver<'a, 'm> {
             time: f64::NAN,
         };
         let (interrupted, monitor) = (&mut self.interrupted, &mut self.monitor);
-        crate::limit::limit_analysis_with(model, &crate::limit::LimitOptions::default(), &mut |_| {
+        let opts = crate::limit::LimitOptions { tolerance: EVIDENCE_TOLERANCE, ..Default::default() };
+        crate::limit::limit_analysis_with(model, &opts, &mut |_| {
             if *interrupted {
                 return false;
             }
