@@ -270,13 +270,14 @@ impl<'a, 'm> Solver<'a, 'm> {
     }
 
     /// Checks a load-control collapse of a wall of associative dry joints against limit
-    /// analysis, whose multiplier is then exact. A path that stopped converging more than
-    /// [`COLLAPSE_EVIDENCE`] `tolerance` below it goes on: Newton at fixed multipliers up to it
-    /// from the last converged state, each rise halved until it converges, then from the dead
+    /// analysis, whose multiplier is then exact. A load-control path that stopped converging
+    /// more than half of [`COLLAPSE_EVIDENCE`] `tolerance` below it goes on ([`Solver::reach`]):
+    /// Newton, or the pseudo-transient continuation where Newton cycles, at fixed multipliers up
+    /// to it from the last converged state, in rises sized by the distance, then from the dead
     /// state (the equilibrium at a fixed lambda depends on the path: soft joints creep up to
     /// their plateau beyond the small-displacement limit on the path and stand within it at a
-    /// fixed lambda). Reaching the band below the exact value is the collapse; otherwise the status is `Stalled`, with both
-    /// numbers. The limit analysis's result is returned as the evidence.
+    /// fixed lambda). Reaching [`COLLAPSE_EVIDENCE`] `tolerance` below the exact value is the
+    /// collapse; otherwise the status is `Stalled`, with both numbers. The limit analysis's result is returned as the evidence.
     pub(super) fn check_collapse(&mut self, outcome: Outcome) -> Result<(Outcome, Option<Results>), Error> {
         // a wall pushed towards -x (displacement control, negative max_displacement) is the
         // program of the reversed live load; its multipliers are negative on the curve
