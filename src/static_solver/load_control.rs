@@ -270,13 +270,14 @@ impl<'a, 'm> Solver<'a, 'm> {
     }
 
     /// Checks a load-control collapse of a wall of associative dry joints against limit
-    /// analysis, whose multiplier is then exact. A path that stopped converging more than
-    /// [`COLLAPSE_EVIDENCE`] `tolerance` below it goes on: Newton at fixed multipliers up to it
-    /// from the last converged state, each rise halved until it converges, then from the dead
+    /// analysis, whose multiplier is then exact. A load-control path that stopped converging
+    /// more than half of [`COLLAPSE_EVIDENCE`] `tolerance` below it goes on ([`Solver::reach`]):
+    /// Newton, or the pseudo-transient continuation where Newton cycles, at fixed multipliers up
+    /// to it from the last converged state, in rises sized by the distance, then from the dead
     /// state (the equilibrium at a fixed lambda depends on the path: soft joints creep up to
     /// their plateau beyond the small-displacement limit on the path and stand within it at a
-    /// fixed lambda). Reaching the band below the exact value is the collapse; otherwise the status is `Stalled`, with both
-    /// numbers. The limit analysis's result is returned as the evidence.
+    /// fixed lambda). Reaching [`COLLAPSE_EVIDENCE`] `tolerance` below the exact value is the
+    /// collapse; otherwise the status is `Stalled`, with both numbers. The limit analysis's result is returned as the evidence.
     pub(super) fn check_collapse(&mut self, outcome: Outcome) -> Result<(Outcome, Option<Results>), Error> {
         // a wall pushed towards -x (displacement control, negative max_displacement) is the
         // program of the reversed live load; its multipliers are negative on the curve
@@ -298,7 +299,13 @@ impl<'a, 'm> Solver<'a, 'm> {
             Control::Load => self.curve_l.last().copied().unwrap_or(f64::NAN),
             Control::Displacement { .. } => crate::results::peak(&self.curve_l).abs(),
         };
-        if found >= band {
+        // load control goes on towards the exact value from half the band below it (the claim
+        // stays the band: a path that cannot go on from inside it is still a collapse)
+        let near = match self.opts.control {
+            Control::Load => exact * (1.0 - 0.5 * COLLAPSE_EVIDENCE * self.opts.tolerance),
+            Control::Displacement { .. } => band,
+        };
+        if found >= near {
             return Ok(((Status::Collapse, None), Some(lp)));
         }
         if let Control::Displacement { .. } = self.opts.control {
@@ -313,8 +320,8 @@ impl<'a, 'm> Solver<'a, 'm> {
             return Ok(((Status::Stalled, Some(Error::Convergence(msg))), Some(lp)));
         }
         // go on towards the exact value at fixed multipliers
-        let target = exact * (1.0 - 0.5 * COLLAPSE_EVIDENCE * self.opts.tolerance);
-        let reached = self.reach(found, target, band, exact)?;
+        let target = exact * (1.0 - 0.25 * COLLAPSE_EVIDENCE * self.opts.tolerance);
+        let reached = self.reach(found, target, near, exact)?.max(found);
         self.evaluate();
         if reached >= band {
             return Ok(((Status::Collapse, None), Some(lp)));
@@ -342,7 +349,8 @@ impl<'a, 'm> Solver<'a, 'm> {
             time: f64::NAN,
         };
         let (interrupted, monitor) = (&mut self.interrupted, &mut self.monitor);
-        crate::limit::limit_analysis_with(model, &crate::limit::LimitOptions::default(), &mut |_| {
+        let opts = crate::limit::LimitOptions { tolerance: EVIDENCE_TOLERANCE, ..Default::default() };
+        crate::limit::limit_analysis_with(model, &opts, &mut |_| {
             if *interrupted {
                 return false;
             }
@@ -356,8 +364,10 @@ impl<'a, 'm> Solver<'a, 'm> {
         })
     }
 
-    /// Newton at fixed multipliers towards `target` (just under `exact`): from the last
-    /// converged state at `found`, each rise halved until it converges; then from the dead
+    /// Newton, and where it does not converge the pseudo-transient continuation, at fixed
+    /// multipliers towards `target` (just under `exact`): from the last converged state at
+    /// `found`, in rises sized by the distance to the target, each halved until it converges;
+    /// then from the dead
     /// state, at the target and halfway down to `band`. The largest lambda reached in
     /// equilibrium (committed, the mechanism the last jump); below `band`, the state is back at
     /// the last converged one.
@@ -366,14 +376,19 @@ impl<'a, 'm> Solver<'a, 'm> {
         let mut conv = self.snap();
         conv.lambda = found;
         let mut reached = found;
+        // rises sized by the distance to the exact value: a quarter of it first, then twice
+        // the last one that converged (the continuation's cost grows with the jump)
+        let mut rise = REACH_FIRST * (target - found);
         for _ in 0..REACH_ATTEMPTS {
             if reached >= band || target - conv.lambda <= floor {
                 break;
             }
+            rise = rise.min(target - conv.lambda);
             let previous = conv.u.clone();
-            if !self.above(&conv, target - conv.lambda, floor)? {
+            if !self.above_relaxed(&conv, rise, floor)? {
                 break;
             }
+            rise = 2.0 * (self.lambda - conv.lambda);
             self.mechanism = Some(self.u.iter().zip(&previous).map(|(a, b)| a - b).collect());
             self.commit(f64::NAN)?;
             conv = self.snap();
@@ -407,6 +422,29 @@ impl<'a, 'm> Solver<'a, 'm> {
         self.u.copy_from_slice(&s.u);
         self.committed.copy_from_slice(&s.committed);
         self.lambda = s.lambda;
+    }
+
+    /// As [`Solver::above`], with the pseudo-transient continuation ([`Solver::relax`]) at
+    /// each lambda where Newton does not converge.
+    fn above_relaxed(&mut self, from: &Saved, rise: f64, floor: f64) -> Result<bool, Error> {
+        let mut dl = rise;
+        while dl > floor {
+            self.restore(from);
+            self.lambda = from.lambda + dl;
+            match self.newton_load() {
+                Ok(_) => return Ok(true),
+                Err(Error::Interrupted) => return Err(Error::Interrupted),
+                Err(_) => {}
+            }
+            self.restore(from);
+            self.lambda = from.lambda + dl;
+            if self.relax()? {
+                return Ok(true);
+            }
+            dl *= 0.5;
+        }
+        self.restore(from);
+        Ok(false)
     }
 
     /// Newton at a fixed lambda above the state `from`, by `rise`, halved until it converges

@@ -17,9 +17,14 @@
 //!
 //! - **A collapse is checked** on walls of associative dry joints, where limit analysis gives the
 //!   exact multiplier ([`exact_by_limit_analysis`]): a load-control path that stops converging
-//!   more than [`COLLAPSE_EVIDENCE`] `tolerance` below it goes on at fixed multipliers, and is
-//!   reported `Stalled`, not `Collapse`, if it cannot reach it (a displacement-control path that
-//!   peaks below it: at once). The limit analysis's certificate and mechanism come with the
+//!   more than half of [`COLLAPSE_EVIDENCE`] `tolerance` below it goes on at fixed multipliers,
+//!   in rises sized by the distance to it, each by Newton and, where Newton cycles, by
+//!   **pseudo-transient continuation** (`(K_T + D / dtau) du = r`, `D` the tangent's diagonal,
+//!   `dtau` grown by switched evolution relaxation; on these walls each step lowers the convex
+//!   potential energy, so it cannot cycle). It is reported `Stalled`, not `Collapse`, with both
+//!   numbers, if it cannot come within [`COLLAPSE_EVIDENCE`] `tolerance` (a displacement-control
+//!   path that peaks below it: at once). The multiplier is always the path's own converged
+//!   equilibrium, never the limit analysis's; its certificate and mechanism come with the
 //!   result.
 //! - **Other ends are not a collapse**: a path that leaves the small-displacement model with
 //!   lambda still rising ends `DisplacementLimit`, one that passes 1e3 times the load scale
@@ -29,9 +34,9 @@
 //! Joint histories are committed only at converged steps, so a failed step leaves no trace.
 //!
 //! Here: the options, the entry points and the results. The solver's state and its systems are
-//! in `system`, Newton's iterations and the dead state in `newton`, the two path-following
-//! strategies in `load_control` (with the check against limit analysis) and
-//! `displacement_control`.
+//! in `system`, Newton's iterations and the dead state in `newton`, the pseudo-transient
+//! continuation in `continuation`, the two path-following strategies in `load_control` (with
+//! the check against limit analysis) and `displacement_control`.
 //!
 //! ```
 //! use masonry_dem::static_solver::{solve, Control, StaticOptions};
@@ -111,6 +116,10 @@ const STALL_ITERATIONS: usize = 8;
 /// Fixed-multiplier attempts of [`Solver::check_collapse`] to reach the exact collapse.
 const REACH_ATTEMPTS: usize = 20;
 
+/// The first rise of [`Solver::check_collapse`]'s attempts, as a fraction of the distance to
+/// the exact value.
+const REACH_FIRST: f64 = 0.25;
+
 /// A load-control path is still rising when the last step's slope would raise lambda by more
 /// than this many tolerances over as much work again (the plateau test uses one).
 const RISING: f64 = 10.0;
@@ -179,6 +188,11 @@ pub fn exact_by_limit_analysis(model: &Model) -> bool {
 /// exact value at the default 1e-4).
 pub const COLLAPSE_EVIDENCE: f64 = 10.0;
 
+/// The interior point's tolerance for the evidence of a static collapse: the band it decides
+/// is `COLLAPSE_EVIDENCE * tolerance` (1e-3 at the defaults), so 1e-6 is ample, and the
+/// interior point stops a few iterations before its default 1e-8.
+pub(crate) const EVIDENCE_TOLERANCE: f64 = 1e-6;
+
 /// Outcome of a run: status, and the reason when it failed.
 type Outcome = (Status, Option<Error>);
 
@@ -195,6 +209,7 @@ type Slots = Vec<[u32; 36]>;
 /// the (dof, slot) of each entry of the live load's column (lambda's, in place of the control dof).
 type DispSystem = (SparseLu, Slots, Vec<(usize, u32)>);
 
+mod continuation;
 mod displacement_control;
 mod load_control;
 mod newton;

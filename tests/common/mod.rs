@@ -52,3 +52,37 @@ pub fn assert_close(got: f64, want: f64, rel: f64, what: &str) {
         100.0 * rel
     );
 }
+
+/// The blocks of examples/lact3-tilting-wall.toml (its lines `  [x0, y0, x1, y1],`): a dry
+/// wall with two openings and a lintel, friction tan 26 deg, g = 9.81.
+pub fn lact3_blocks() -> Vec<Rect> {
+    include_str!("../../examples/lact3-tilting-wall.toml")
+        .lines()
+        .filter(|l| l.starts_with("  ["))
+        .map(|l| {
+            let v: Vec<f64> = l
+                .trim()
+                .trim_matches(|c| c == '[' || c == ']' || c == ',')
+                .split(',')
+                .map(|s| s.trim().parse().unwrap())
+                .collect();
+            Rect::new(v[0], v[1], v[2], v[3])
+        })
+        .collect()
+}
+
+/// Ferris & Tin-Loi's wall 5 (61 blocks, two windows one block wide), course by course as in
+/// tests/python/test_limit_analysis.py, on a fixed base, g = 10.
+pub fn ferris_wall5_blocks() -> Vec<Rect> {
+    let (e, u) = (vec![0.5, 1.0, 1.0, 0.5], vec![1.0; 3]);
+    let (we, wu) = (vec![0.5, 0.5, -1.0, 0.5, 0.5], vec![1.0, -1.0, 1.0]);
+    let window = [&wu, &we, &wu, &we, &wu];
+    let mut rows: Vec<Vec<f64>> = vec![];
+    for part in 0..3 {
+        rows.extend([e.clone(), u.clone(), e.clone()]);
+        if part < 2 {
+            rows.extend(window.iter().map(|r| (*r).clone()));
+        }
+    }
+    masonry_dem::geometry::pattern(0.4, 0.175, &rows).unwrap()
+}
