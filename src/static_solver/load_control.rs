@@ -349,8 +349,7 @@ impl<'a, 'm> Solver<'a, 'm> {
             time: f64::NAN,
         };
         let (interrupted, monitor) = (&mut self.interrupted, &mut self.monitor);
-        let opts = crate::limit::LimitOptions { tolerance: EVIDENCE_TOLERANCE, ..Default::default() };
-        crate::limit::limit_analysis_with(model, &opts, &mut |_| {
+        crate::limit::limit_analysis_with(model, &crate::limit::LimitOptions::default(), &mut |_| {
             if *interrupted {
                 return false;
             }

@@ -188,11 +188,6 @@ pub fn exact_by_limit_analysis(model: &Model) -> bool {
 /// exact value at the default 1e-4).
 pub const COLLAPSE_EVIDENCE: f64 = 10.0;
 
-/// The interior point's tolerance for the evidence of a static collapse: the band it decides
-/// is `COLLAPSE_EVIDENCE * tolerance` (1e-3 at the defaults), so 1e-6 is ample, and the
-/// interior point stops a few iterations before its default 1e-8.
-pub(crate) const EVIDENCE_TOLERANCE: f64 = 1e-6;
-
 /// Outcome of a run: status, and the reason when it failed.
 type Outcome = (Status, Option<Error>);
 
