@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import time
@@ -219,19 +220,24 @@ def test_the_leftover_of_a_killed_write_is_removed_by_the_next(tmp_path: Path) -
     assert not left.exists() and alive.exists()
 
 
-def test_an_unwritable_study_folder_is_refused_before_the_cluster() -> None:
+def test_an_unwritable_study_folder_is_refused_before_the_cluster(tmp_path, monkeypatch) -> None:
     from masonry_dem.study import study_from_dict
     from masonry_dem.study.store import ResultStore
 
     study = study_from_dict({"format": 1, "case": str(ROCKING), "study": {"methods": ["limit"]}})
-    try:  # /sys cannot be written, even by root (a folder made read-only with chmod can be, by root)
-        atomic.check_writable("/sys/x.parquet")
-    except md.InputError:
-        pass
-    else:
-        pytest.skip("no folder that cannot be written here")
-    with pytest.raises(md.InputError, match=r"cannot write /sys/x.parquet: the folder /sys cannot be written"):
-        ResultStore(study, "/sys/x.parquet")
+    # a folder that refuses new files, on any machine and for any user (root writes into a folder made
+    # read-only with chmod): creating a file there fails as the operating system says it would
+    real_open = os.open
+
+    def refusing_open(path, flags, *args, **kwargs):
+        if os.path.dirname(os.fspath(path)) == str(tmp_path) and flags & os.O_CREAT:
+            raise PermissionError(13, "Permission denied", os.fspath(path))
+        return real_open(path, flags, *args, **kwargs)
+
+    monkeypatch.setattr(atomic.os, "open", refusing_open)
+    out = tmp_path / "x.parquet"
+    with pytest.raises(md.InputError, match=rf"cannot write {re.escape(str(out))}: the folder {re.escape(str(tmp_path))} cannot be written"):
+        ResultStore(study, str(out))
 
 
 # --------------------------------------------------------------------------------------------------
