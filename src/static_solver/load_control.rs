@@ -426,6 +426,19 @@ impl<'a, 'm> Solver<'a, 'm> {
     /// As [`Solver::above`], with the pseudo-transient continuation ([`Solver::relax`]) at
     /// each lambda where Newton does not converge.
     fn above_relaxed(&mut self, from: &Saved, rise: f64, floor: f64) -> Result<bool, Error> {
+        self.rise_from(from, rise, floor, true)
+    }
+
+    /// Newton at a fixed lambda above the state `from`, by `rise`, halved until it converges
+    /// or is within `floor`. True if it converged (`u`, `lambda` and `trial` hold the result);
+    /// false with `from` restored.
+    pub(super) fn above(&mut self, from: &Saved, rise: f64, floor: f64) -> Result<bool, Error> {
+        self.rise_from(from, rise, floor, false)
+    }
+
+    /// The rise of [`Solver::above`], with the continuation after each Newton that fails if
+    /// `relax`.
+    fn rise_from(&mut self, from: &Saved, rise: f64, floor: f64, relax: bool) -> Result<bool, Error> {
         let mut dl = rise;
         while dl > floor {
             self.restore(from);
@@ -435,30 +448,14 @@ impl<'a, 'm> Solver<'a, 'm> {
                 Err(Error::Interrupted) => return Err(Error::Interrupted),
                 Err(_) => {}
             }
-            self.restore(from);
-            self.lambda = from.lambda + dl;
-            if self.relax()? {
-                return Ok(true);
+            if relax {
+                self.restore(from);
+                self.lambda = from.lambda + dl;
+                if self.relax()? {
+                    return Ok(true);
+                }
             }
             dl *= 0.5;
-        }
-        self.restore(from);
-        Ok(false)
-    }
-
-    /// Newton at a fixed lambda above the state `from`, by `rise`, halved until it converges
-    /// or is within `floor`. True if it converged (`u`, `lambda` and `trial` hold the result);
-    /// false with `from` restored.
-    pub(super) fn above(&mut self, from: &Saved, rise: f64, floor: f64) -> Result<bool, Error> {
-        let mut dl = rise;
-        while dl > floor {
-            self.restore(from);
-            self.lambda = from.lambda + dl;
-            match self.newton_load() {
-                Ok(_) => return Ok(true),
-                Err(Error::Interrupted) => return Err(Error::Interrupted),
-                Err(_) => dl *= 0.5,
-            }
         }
         self.restore(from);
         Ok(false)
