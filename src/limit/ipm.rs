@@ -17,8 +17,8 @@ pub(super) fn max_step(v: &[f64], dv: &[f64]) -> f64 {
     v.iter().zip(dv).fold(1.0, |a, (&x, &d)| if d < 0.0 { a.min(-x / d) } else { a })
 }
 
-/// The interior point's iterate. Variables: five per interface (the last, theta, bounded by
-/// 1) and lambda (free); `t`, `v`: theta's upper bounds' slacks and multipliers.
+/// The interior point's iterate. Variables: `nv` per element (in the plane the last, theta,
+/// bounded by 1) and lambda (free); `t`, `v`: the upper bounds' slacks and multipliers.
 pub(super) struct Iterate {
     pub(super) x: Vec<f64>,
     pub(super) lam: f64,
@@ -151,24 +151,19 @@ impl Ipm {
     }
 }
 
-impl Program {
-    /// The variable bounded by `t[i]`: interface i's theta.
-    #[inline]
-    pub(super) fn bounded(&self, i: usize) -> usize {
-        NV * i + 4
-    }
-
+impl Lp {
     /// `A x + lam (-f_live)` (equilibrium of the variables) into `out`.
     pub(super) fn apply(&self, x: &[f64], lam: f64, out: &mut [f64]) {
         for (o, f) in out.iter_mut().zip(&self.f_live) {
             *o = -f * lam;
         }
+        let (rows, nv) = (self.rows, self.nv);
         for k in 0..self.m {
-            let a = &self.acols[k];
-            let xk = &x[NV * k..NV * k + NV];
-            for (r, &d) in self.dofs[k].iter().enumerate() {
+            let xk = &x[nv * k..nv * k + nv];
+            for (r, &d) in self.dofs[rows * k..rows * k + rows].iter().enumerate() {
                 if d != NO_EQ {
-                    out[d as usize] += (0..NV).map(|j| a[r][j] * xk[j]).sum::<f64>();
+                    let a = &self.acols[(rows * k + r) * nv..(rows * k + r + 1) * nv];
+                    out[d as usize] += a.iter().zip(xk).map(|(a, x)| a * x).sum::<f64>();
                 }
             }
         }
@@ -176,16 +171,15 @@ impl Program {
 
     /// `A^T y` into `out` (lambda's row, `-f_live . y`, left out).
     pub(super) fn apply_t(&self, y: &[f64], out: &mut [f64]) {
+        let (rows, nv) = (self.rows, self.nv);
         for k in 0..self.m {
-            let a = &self.acols[k];
-            let o = &mut out[NV * k..NV * k + NV];
+            let o = &mut out[nv * k..nv * k + nv];
             o.fill(0.0);
-            for (r, &d) in self.dofs[k].iter().enumerate() {
+            for (r, &d) in self.dofs[rows * k..rows * k + rows].iter().enumerate() {
                 if d != NO_EQ {
                     let yv = y[d as usize];
-                    for j in 0..NV {
-                        o[j] += a[r][j] * yv;
-                    }
+                    let a = &self.acols[(rows * k + r) * nv..(rows * k + r + 1) * nv];
+                    o.iter_mut().zip(a).for_each(|(o, a)| *o += a * yv);
                 }
             }
         }
@@ -208,19 +202,17 @@ impl Program {
     }
 
     /// The interior point at its start: the right-hand side `b = f_dead - sum P V` (the cost is
-    /// -lambda, lambda free with its own column -f_live); the rays of least norm that balance
-    /// the dead loads at lambda = 0 (one solve with Theta = 1), shifted inside the positive
-    /// orthant, theta = 1/2 and each product x s, t v = 1; and the work arrays.
+    /// -lambda, lambda free with its own column -f_live); the variables of least norm that
+    /// balance the dead loads at lambda = 0 (one solve with Theta = 1), shifted inside the
+    /// positive orthant, the bounded ones 1/2, and each product x s, t v = 1; and the work
+    /// arrays.
     fn start(&mut self) -> Ipm {
-        let (m, n) = (self.m, self.n);
-        let nx = NV * m;
+        let (n, nbd) = (self.n, self.n_bounded());
+        let nx = self.nv * self.m;
         let mut b = self.f_dead.clone();
-        for k in 0..m {
-            let (_, pv) = self.columns(k);
-            for (r, &d) in self.dofs[k].iter().enumerate() {
-                if d != NO_EQ {
-                    b[d as usize] -= pv[r];
-                }
+        for (&d, &pv) in self.dofs.iter().zip(&self.pv) {
+            if d != NO_EQ {
+                b[d as usize] -= pv;
             }
         }
         let b_norm = norm_inf(&b);
@@ -234,13 +226,13 @@ impl Program {
         } else {
             x.fill(1.0);
         }
-        for k in 0..m {
-            x[NV * k + 4] = 0.5;
+        for i in 0..nbd {
+            x[self.bounded_var(i)] = 0.5;
         }
         let p = Iterate {
             s: x.iter().map(|x| 1.0 / x).collect(),
-            v: vec![2.0; m],
-            t: vec![0.5; m],
+            v: vec![2.0; nbd],
+            t: vec![0.5; nbd],
             x,
             lam: 0.0,
             y: vec![0.0; n],
@@ -249,13 +241,13 @@ impl Program {
             b,
             b_norm,
             p,
-            res: Residuals { rb: vec![0.0; n], rc: vec![0.0; nx], ru: vec![0.0; m], rl: 0.0 },
+            res: Residuals { rb: vec![0.0; n], rc: vec![0.0; nx], ru: vec![0.0; nbd], rl: 0.0 },
             theta: vec![0.0; nx],
             u: vec![0.0; n],
             aty: vec![0.0; nx],
             best: f64::INFINITY,
             since_best: 0,
-            ncomp: (nx + m) as f64,
+            ncomp: (nx + nbd) as f64,
         }
     }
 
@@ -272,7 +264,12 @@ impl Program {
     ) -> ControlFlow<Result<Solution>> {
         let q = self.measure(ipm);
         let lam = q.lam;
-        if !monitor(&LimitProgress { program, iteration: iter, multiplier: lam * self.force / self.live, residual: q.worst }) {
+        if !monitor(&LimitProgress {
+            program,
+            iteration: iter,
+            multiplier: lam * self.force / self.live,
+            residual: q.worst,
+        }) {
             return ControlFlow::Break(Err(Error::Interrupted));
         }
         // the dual iterates running away along a ray while equilibrium stays violated: the
@@ -305,8 +302,8 @@ impl Program {
         for ((rc, a), s) in res.rc.iter_mut().zip(&ipm.aty).zip(&p.s) {
             *rc = -a - s;
         }
-        for i in 0..self.m {
-            let j = self.bounded(i);
+        for i in 0..self.n_bounded() {
+            let j = self.bounded_var(i);
             res.rc[j] += p.v[i];
             res.ru[i] = 1.0 - p.x[j] - p.t[i];
         }
@@ -345,8 +342,8 @@ impl Program {
         for ((th, s), x) in theta.iter_mut().zip(&p.s).zip(&p.x) {
             *th = s / x;
         }
-        for i in 0..self.m {
-            theta[self.bounded(i)] += p.v[i] / p.t[i];
+        for i in 0..self.n_bounded() {
+            theta[self.bounded_var(i)] += p.v[i] / p.t[i];
         }
         theta.iter_mut().for_each(|t| *t = 1.0 / *t);
         self.assemble(theta);
@@ -373,7 +370,7 @@ impl Program {
     /// complementarity targets and `sigma mu`; None if a solve fails.
     fn predictor_corrector(&mut self, ipm: &Ipm, mu: f64, fu: f64) -> Option<(Direction, Vec<f64>, Vec<f64>, f64)> {
         let (p, res, theta, u) = (&ipm.p, &ipm.res, &ipm.theta, &ipm.u);
-        let (m, nx) = (self.m, theta.len());
+        let (m, nx) = (self.n_bounded(), theta.len());
         // predictor
         let rxs: Vec<f64> = p.x.iter().zip(&p.s).map(|(x, s)| -x * s).collect();
         let rtv: Vec<f64> = p.t.iter().zip(&p.v).map(|(t, v)| -t * v).collect();
@@ -395,9 +392,17 @@ impl Program {
     /// `rtv`): aim a longer step at products within [0.1, 10] of `target`, where the
     /// predictor-corrector's step left them outside; kept while they lengthen the step (one
     /// solve each, against a factorization per iteration), at most [`CORRECTORS`].
-    fn centrality_correctors(&mut self, ipm: &Ipm, d: Direction, rxs: Vec<f64>, rtv: Vec<f64>, target: f64, fu: f64) -> Direction {
+    fn centrality_correctors(
+        &mut self,
+        ipm: &Ipm,
+        d: Direction,
+        rxs: Vec<f64>,
+        rtv: Vec<f64>,
+        target: f64,
+        fu: f64,
+    ) -> Direction {
         let (p, res, theta, u) = (&ipm.p, &ipm.res, &ipm.theta, &ipm.u);
-        let (m, nx) = (self.m, theta.len());
+        let (m, nx) = (self.n_bounded(), theta.len());
         let (mut d, mut rxs, mut rtv) = (d, rxs, rtv);
         for _ in 0..CORRECTORS {
             let (ap, ad) = p.max_steps(&d);
@@ -409,8 +414,10 @@ impl Program {
                 let c = v.clamp(0.1 * target, 10.0 * target) - v;
                 c.max(-10.0 * target)
             };
-            let rxs2: Vec<f64> = (0..nx).map(|i| rxs[i] + fix((p.x[i] + ap_t * d.dx[i]) * (p.s[i] + ad_t * d.ds[i]))).collect();
-            let rtv2: Vec<f64> = (0..m).map(|i| rtv[i] + fix((p.t[i] + ap_t * d.dt[i]) * (p.v[i] + ad_t * d.dv[i]))).collect();
+            let rxs2: Vec<f64> =
+                (0..nx).map(|i| rxs[i] + fix((p.x[i] + ap_t * d.dx[i]) * (p.s[i] + ad_t * d.ds[i]))).collect();
+            let rtv2: Vec<f64> =
+                (0..m).map(|i| rtv[i] + fix((p.t[i] + ap_t * d.dt[i]) * (p.v[i] + ad_t * d.dv[i]))).collect();
             let Some(d2) = self.direction(p, res, &rxs2, &rtv2, theta, u, fu) else {
                 break;
             };
@@ -427,26 +434,29 @@ impl Program {
 
     /// Assembles `sum_k A_k Theta_k A_k^T` (lambda's column left out).
     pub(super) fn assemble(&mut self, theta: &[f64]) {
+        let (rows, nv) = (self.rows, self.nv);
         self.normal.values_mut().fill(0.0);
+        let mut ai = vec![0.0; nv];
         for k in 0..self.m {
-            let a = &self.acols[k];
-            let th = &theta[NV * k..NV * k + NV];
-            let slots = self.slots[k];
+            let a = &self.acols[rows * nv * k..rows * nv * (k + 1)];
+            let th = &theta[nv * k..nv * k + nv];
+            let slots = &self.slots[rows * rows * k..rows * rows * (k + 1)];
             let vals = self.normal.values_mut();
-            for i in 0..6 {
-                if slots[6 * i + i] == u32::MAX {
+            for i in 0..rows {
+                if slots[rows * i + i] == u32::MAX {
                     continue;
                 }
-                let ai: [f64; NV] = std::array::from_fn(|j| a[i][j] * th[j]);
-                for j in i..6 {
-                    let s = slots[6 * i + j];
+                let a_i = &a[nv * i..nv * i + nv];
+                ai.iter_mut().zip(a_i.iter().zip(th)).for_each(|(o, (a, t))| *o = a * t);
+                for j in i..rows {
+                    let s = slots[rows * i + j];
                     if s == u32::MAX {
                         continue;
                     }
-                    let v: f64 = (0..NV).map(|q| ai[q] * a[j][q]).sum();
+                    let v: f64 = ai.iter().zip(&a[nv * j..nv * j + nv]).map(|(p, q)| p * q).sum();
                     vals[s as usize] += v;
                     if j != i {
-                        vals[slots[6 * j + i] as usize] += v;
+                        vals[slots[rows * j + i] as usize] += v;
                     }
                 }
             }
@@ -496,11 +506,11 @@ impl Program {
         u: &[f64],
         fu: f64,
     ) -> Option<Direction> {
-        let m = self.m;
+        let m = self.n_bounded();
         let nx = theta.len();
         let mut xi: Vec<f64> = (0..nx).map(|i| res.rc[i] - rxs[i] / p.x[i]).collect();
         for i in 0..m {
-            xi[self.bounded(i)] += (rtv[i] - p.v[i] * res.ru[i]) / p.t[i];
+            xi[self.bounded_var(i)] += (rtv[i] - p.v[i] * res.ru[i]) / p.t[i];
         }
         let txi: Vec<f64> = theta.iter().zip(&xi).map(|(t, x)| t * x).collect();
         let mut q = vec![0.0; self.n];
@@ -518,7 +528,7 @@ impl Program {
             dx[i] = theta[i] * (dx[i] - xi[i]);
         }
         let ds: Vec<f64> = (0..nx).map(|i| (rxs[i] - p.s[i] * dx[i]) / p.x[i]).collect();
-        let dt: Vec<f64> = (0..m).map(|i| res.ru[i] - dx[self.bounded(i)]).collect();
+        let dt: Vec<f64> = (0..m).map(|i| res.ru[i] - dx[self.bounded_var(i)]).collect();
         let dv: Vec<f64> = (0..m).map(|i| (rtv[i] - p.v[i] * dt[i]) / p.t[i]).collect();
         let ok = dx.iter().chain(&dy).chain(&ds).chain(&dv).all(|v| v.is_finite()) && dlam.is_finite();
         ok.then_some(Direction { dx, ds, dt, dv, dy, dlam })

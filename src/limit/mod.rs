@@ -129,8 +129,8 @@ pub fn limit_analysis_with(
     validate(opts)?;
     model.check_supports()?;
     let start = Instant::now();
-    let mut lp = Program::new(model)?;
-    let assoc = lp.solve(opts, 0, monitor)?;
+    let mut plane = Plane::new(model)?;
+    let assoc = plane.lp.solve(opts, 0, monitor)?;
     let mut iterations = assoc.iterations;
     let non_assoc = (0..model.interfaces().len()).any(|k| {
         let l = model.law(k);
@@ -149,20 +149,20 @@ pub fn limit_analysis_with(
     };
     let mut sol = assoc;
     if sol.outcome == Outcome::Optimal && non_assoc && opts.max_sequence > 0 {
-        cert.upper_bound = lp.lambda_of(&sol);
+        cert.upper_bound = plane.lp.lambda_of(&sol);
         let mut prev = cert.upper_bound;
         for program in 1..=opts.max_sequence {
             // the normal forces of the last program fix each joint's shear capacity
-            let normals: Vec<f64> = lp.resultants(&sol.x).iter().map(|s| s[0]).collect();
-            lp.fix_shear_capacity(&normals);
-            let next = lp.solve(opts, program, monitor)?;
+            let normals: Vec<f64> = plane.resultants(&sol.x).iter().map(|s| s[0]).collect();
+            plane.fix_shear_capacity(&normals);
+            let next = plane.lp.solve(opts, program, monitor)?;
             iterations += next.iterations;
             cert.sequence = program;
             if next.outcome != Outcome::Optimal {
                 sol = next;
                 break;
             }
-            let lam = lp.lambda_of(&next);
+            let lam = plane.lp.lambda_of(&next);
             sol = next;
             if (lam - prev).abs() <= opts.sequence_tolerance * prev.abs().max(1e-12) {
                 cert.sequence_converged = true;
@@ -175,7 +175,7 @@ pub fn limit_analysis_with(
         cert.duality_gap = sol.gap;
     }
     cert.iterations = iterations;
-    let mut res = lp.results(model, &sol, cert, start);
+    let mut res = plane.results(model, &sol, cert, start);
     if let Some(c) = res.certificate.as_mut() {
         c.multiplier = res.collapse_multiplier;
     }
@@ -264,7 +264,9 @@ struct Solution {
 
 mod ipm;
 mod outcome;
+mod plane;
 mod program;
 
 use ipm::*;
+use plane::*;
 use program::*;

@@ -3,13 +3,13 @@
 
 use super::*;
 
-impl Program {
+impl Plane {
     /// The results of a solution: the multiplier, the forces at collapse, the mechanism from
     /// the duals and the joints it moves.
     pub(super) fn results(&self, model: &Model, sol: &Solution, cert: Certificate, start: Instant) -> Results {
         let nb = model.n_blocks();
-        let lam = self.lambda_of(sol);
-        let (status, error) = self.status(sol, lam);
+        let lam = self.lp.lambda_of(sol);
+        let (status, error) = self.lp.status(sol, lam);
         let collapse = status == Status::Collapse;
         let v = if collapse { self.mechanism(model, sol) } else { vec![0.0; 3 * nb] };
         let (forces, flags) = self.interface_forces(model, sol, &v, collapse);
@@ -26,7 +26,7 @@ impl Program {
             mechanism: (0..nb).map(|i| [v[3 * i], v[3 * i + 1], v[3 * i + 2]]).collect(),
             interface_forces: forces,
             interface_states: flags,
-            broken: vec![false; self.m],
+            broken: vec![false; self.lp.m],
             iterations: cert.iterations,
             steps: 0,
             elapsed_s: start.elapsed().as_secs_f64(),
@@ -35,6 +35,37 @@ impl Program {
         }
     }
 
+    /// The collapse mechanism: block velocities from the duals of the equilibrium rows (scaled
+    /// rows: one length for the rotations), oriented so that the live load does positive work,
+    /// largest block translation 1.
+    fn mechanism(&self, model: &Model, sol: &Solution) -> Vec<f64> {
+        let nb = model.n_blocks();
+        let mut v = self.lp.velocities(sol, 3);
+        let big = (0..nb).map(|i| v[3 * i].hypot(v[3 * i + 1])).fold(0.0, f64::max);
+        let work = dot(&v, model.live_load());
+        let scale = if big > 0.0 { work.signum() / big } else { 0.0 };
+        v.iter_mut().for_each(|x| *x *= scale);
+        v
+    }
+
+    /// Each interface's forces (N, T, M) in the solution, in their own units, and with a
+    /// `collapse`, the joint states the mechanism `v` gives it (else none).
+    fn interface_forces(&self, model: &Model, sol: &Solution, v: &[f64], collapse: bool) -> (Vec<[f64; 3]>, Vec<u8>) {
+        let sigma = self.resultants(&sol.x);
+        let its = model.interfaces();
+        let mut forces = Vec::with_capacity(self.lp.m);
+        let mut flags = Vec::with_capacity(self.lp.m);
+        for (k, it) in its.iter().enumerate() {
+            let s = sigma[k];
+            let f = self.lp.force;
+            forces.push([s[0] * f, s[1] * f, s[2] * f * 0.5 * it.l]);
+            flags.push(if collapse { mechanism_flags(it, v, self.slope[k]) } else { 0 });
+        }
+        (forces, flags)
+    }
+}
+
+impl Lp {
     /// The status of a solution of multiplier `lam` (in its own units), and the error that
     /// says why when it is not a collapse.
     fn status(&self, sol: &Solution, lam: f64) -> (Status, Option<String>) {
@@ -70,40 +101,6 @@ impl Program {
                 )),
             ),
         }
-    }
-
-    /// The collapse mechanism: block velocities from the duals of the equilibrium rows (scaled
-    /// rows: one length for the rotations), oriented so that the live load does positive work,
-    /// largest block translation 1.
-    fn mechanism(&self, model: &Model, sol: &Solution) -> Vec<f64> {
-        let nb = model.n_blocks();
-        let mut v = vec![0.0; 3 * nb];
-        for (dof, e) in self.eq.iter().enumerate() {
-            if let Some(e) = e {
-                let s = if dof % 3 == 2 { 1.0 / self.length } else { 1.0 };
-                v[dof] = sol.y[*e] * s;
-            }
-        }
-        let big = (0..nb).map(|i| v[3 * i].hypot(v[3 * i + 1])).fold(0.0, f64::max);
-        let work = dot(&v, model.live_load());
-        let scale = if big > 0.0 { work.signum() / big } else { 0.0 };
-        v.iter_mut().for_each(|x| *x *= scale);
-        v
-    }
-
-    /// Each interface's forces (N, T, M) in the solution, in their own units, and with a
-    /// `collapse`, the joint states the mechanism `v` gives it (else none).
-    fn interface_forces(&self, model: &Model, sol: &Solution, v: &[f64], collapse: bool) -> (Vec<[f64; 3]>, Vec<u8>) {
-        let sigma = self.resultants(&sol.x);
-        let its = model.interfaces();
-        let mut forces = Vec::with_capacity(self.m);
-        let mut flags = Vec::with_capacity(self.m);
-        for (k, it) in its.iter().enumerate() {
-            let s = sigma[k];
-            forces.push([s[0] * self.force, s[1] * self.force, s[2] * self.force * 0.5 * it.l]);
-            flags.push(if collapse { mechanism_flags(it, v, self.slope[k]) } else { 0 });
-        }
-        (forces, flags)
     }
 }
 

@@ -1,209 +1,102 @@
-//! The linear program of a wall: each interface's resultants as a vertex, four rays and a
-//! bounded segment of its strength domain, the equilibrium rows, and the resultants of a solution.
+//! The linear program in the form the interior point solves, the same in both dimensions:
+//! maximise lambda subject to `sum_k (P_k + A_k x_k) = f_dead + lambda f_live` over the free
+//! dofs, `x >= 0`, and in the plane one variable of each interface also bounded by 1.
+//!
+//! Each interface (an element of the program) contributes a block `A_k` of `rows` equations
+//! (the dofs of its two blocks) by `nv` variables, and a constant `P_k` (the contribution of a
+//! vertex of its strength domain). How the variables describe the strength domain is the
+//! dimension's business ([`super::plane`], [`super::space`]); the interior point sees only
+//! these blocks. The normal matrix `sum_k A_k Theta_k A_k^T` has the pattern of the stiffness
+//! matrix: one `rows x rows` block per interface, analysed once.
 
 use super::*;
 
-/// The linear program of a model, scaled, in standard form: each interface's resultants are
-/// `s = V + sum_j rho_j R_j + theta dV` with `rho >= 0`, `0 <= theta <= 1`: the strength
-/// domain's recession cone has four rays `R_j = (-1, +-a, +-1)` (in (N, T, 2M/l); a: the Coulomb
-/// slope; the rays of two contact points at the interface's ends), and its vertices are the
-/// two ends `V`, `V + dV` of one segment (equal for joints without strength).
-pub(super) struct Program {
+/// A dof held by a support: no equation.
+pub(super) const NO_EQ: u32 = u32::MAX;
+
+/// The program, scaled to forces of order one.
+pub(super) struct Lp {
+    /// Elements (interfaces) and equations.
     pub(super) m: usize,
     pub(super) n: usize,
-    /// equation of each dof, or None for a support
+    /// Equations per element (the dofs of its two blocks) and variables per element.
+    pub(super) rows: usize,
+    pub(super) nv: usize,
+    /// The element's variable that is also bounded above by 1, if any.
+    pub(super) bounded: Option<usize>,
+    /// The equation of each dof, or None for a support.
     pub(super) eq: Vec<Option<usize>>,
-    /// per interface: the 6 equations of its dofs (NO_EQ: a support)
-    pub(super) dofs: Vec<[u32; 6]>,
-    /// per interface: its 6 x 3 block of the equilibrium matrix, scaled (columns N, T, 2M/l)
-    pub(super) cols: Vec<[[f64; 3]; 6]>,
-    /// per interface: its 6 x 5 block of the standard form's equilibrium matrix (`columns`),
-    /// kept while the faces do not change: the interior point's products read it many times
-    pub(super) acols: Vec<[[f64; NV]; 6]>,
-    /// the value slots of each interface's 6 x 6 block in the normal matrix
-    pub(super) slots: Vec<[u32; 36]>,
-    /// the faces' right-hand sides of each interface over the force scale: Coulomb (c A, or
-    /// the capacity fixed in the non-associative sequence) and tension (ft A); the Coulomb slope
-    pub(super) hc: Vec<f64>,
-    pub(super) ht: Vec<f64>,
-    pub(super) slope: Vec<f64>,
-    /// the strength domain's own (c A over the force scale, mu, tan(psi)) of each interface
-    pub(super) coulomb: Vec<(f64, f64, f64)>,
+    /// Per element: the equations of its dofs ([`NO_EQ`] for a support), `rows` each.
+    pub(super) dofs: Vec<u32>,
+    /// Per element: `A_k`, `rows x nv` row-major.
+    pub(super) acols: Vec<f64>,
+    /// Per element: `P_k`, `rows` each.
+    pub(super) pv: Vec<f64>,
+    /// Per element: the value slot of each entry of its `rows x rows` block in the normal
+    /// matrix (`u32::MAX` for a support's row or column).
+    pub(super) slots: Vec<u32>,
     pub(super) f_dead: Vec<f64>,
     pub(super) f_live: Vec<f64>,
-    /// scales: forces, lengths (rotation rows), the live load
+    /// Scales: forces, lengths (rotation rows are divided by it), the live load.
     pub(super) force: f64,
     pub(super) length: f64,
     pub(super) live: f64,
     pub(super) normal: SparseLu,
 }
 
-pub(super) const NO_EQ: u32 = u32::MAX;
-
-/// Variables per interface: four rays and the position on the vertices' segment.
-pub(super) const NV: usize = 5;
-
-/// The vertex `V`, the segment `dV` and the four rays of a domain
-/// `a N +- T <= hc`, `N +- 2M/l <= ht` (scaled).
-pub(super) fn generators(a: f64, hc: f64, ht: f64) -> [[f64; 3]; 6] {
-    let (v, dv) = if a * ht <= hc {
-        // the cut-off N = ht meets the Coulomb faces at T = +-(hc - a ht)
-        let t = hc - a * ht;
-        ([ht, -t, 0.0], [0.0, 2.0 * t, 0.0])
-    } else {
-        // the Coulomb faces meet at N = hc / a below the cut-off, M within the rocking faces
-        let nc = hc / a;
-        ([nc, 0.0, -(ht - nc)], [0.0, 0.0, 2.0 * (ht - nc)])
-    };
-    [v, dv, [-1.0, a, 1.0], [-1.0, -a, 1.0], [-1.0, a, -1.0], [-1.0, -a, -1.0]]
-}
-
-/// The equation of each dof of `model` (None for a support: a fixed dof or one held after the
-/// dead loads), numbered in dof order, and the number of equations.
-fn equations(model: &Model) -> (Vec<Option<usize>>, usize) {
-    let mut support = model.fixed().to_vec();
-    for &d in model.held_after_dead() {
-        support[d] = true;
-    }
-    let mut eq = vec![None; 3 * model.n_blocks()];
-    let mut n = 0;
-    for (d, e) in eq.iter_mut().enumerate() {
-        if !support[d] {
-            *e = Some(n);
-            n += 1;
-        }
-    }
-    (eq, n)
-}
-
-/// The program's scales: forces (the largest dead force, else the largest live one, else 1),
-/// lengths (the mean interface length, else 1) and the live load (its largest force or
-/// moment, else 1).
-fn scales(model: &Model) -> (f64, f64, f64) {
-    let nb = model.n_blocks();
-    let its = model.interfaces();
-    let m = its.len();
-    let (fd, fl) = (model.dead_load(), model.live_load());
-    let trans = |v: &[f64]| (0..nb).flat_map(|i| [v[3 * i].abs(), v[3 * i + 1].abs()]).fold(0.0, f64::max);
-    let live_max = trans(fl).max((0..nb).map(|i| fl[3 * i + 2].abs()).fold(0.0, f64::max));
-    let mut force = trans(fd);
-    if force <= 0.0 {
-        force = if live_max > 0.0 { live_max } else { 1.0 };
-    }
-    let length = its.iter().map(|it| it.l).sum::<f64>() / m.max(1) as f64;
-    let length = if length > 0.0 { length } else { 1.0 };
-    let live = if live_max > 0.0 { live_max } else { 1.0 };
-    (force, length, live)
-}
-
-/// The scale of dof `d`'s equation: rotation rows are divided by the length scale.
-fn row_scale(d: usize, length: f64) -> f64 {
-    if d % 3 == 2 {
-        1.0 / length
-    } else {
-        1.0
-    }
-}
-
-/// Per interface of `model`: the equations of its 6 dofs ([`NO_EQ`] for a support) and its
-/// 6 x 3 block of the equilibrium matrix, scaled (columns N, T, 2M/l).
-fn equilibrium_columns(model: &Model, eq: &[Option<usize>], length: f64) -> (Vec<[u32; 6]>, Vec<[[f64; 3]; 6]>) {
-    let its = model.interfaces();
-    let m = its.len();
-    let (mut dofs, mut cols) = (Vec::with_capacity(m), Vec::with_capacity(m));
-    for it in its {
-        let gd = it.dofs();
-        let mut d6 = [NO_EQ; 6];
-        let mut c6 = [[0.0; 3]; 6];
-        for r in 0..6 {
-            d6[r] = eq[gd[r]].map_or(NO_EQ, |e| e as u32);
-            let s = row_scale(gd[r], length);
-            c6[r] = [it.b_mat[0][r] * s, it.b_mat[1][r] * s, it.b_mat[2][r] * s * 0.5 * it.l];
-        }
-        dofs.push(d6);
-        cols.push(c6);
-    }
-    (dofs, cols)
-}
-
-/// Per interface, over the force scale: the Coulomb faces' right-hand side (c A), the tension
-/// cut-off's (ft A), and the strength domain's own (c A, mu, tan(psi)).
-struct Strengths {
-    hc: Vec<f64>,
-    ht: Vec<f64>,
-    coulomb: Vec<(f64, f64, f64)>,
-}
-
-/// The [`Strengths`] of the interfaces of `model` at their peak, over the force scale `force`.
-fn strengths(model: &Model, force: f64) -> Strengths {
-    let m = model.interfaces().len();
-    let (mut hc, mut ht, mut coulomb) = (Vec::with_capacity(m), Vec::with_capacity(m), Vec::with_capacity(m));
-    for (k, section) in model.sections().iter().enumerate().take(m) {
-        let law = model.law(k);
-        let (c, ft) = law.strengths(&JointState::default());
-        let a = section.area;
-        hc.push(c * a / force);
-        ht.push(ft * a / force);
-        coulomb.push((c * a / force, law.friction, law.dilatancy));
-    }
-    Strengths { hc, ht, coulomb }
-}
-
-/// The normal matrix's pattern on `n` equations (each interface's 6 x 6 block among the
-/// equations of its dofs, analysed once) and the value slot of each entry of each block
-/// (`u32::MAX` for a support's row or column).
-fn normal_pattern(n: usize, dofs: &[[u32; 6]]) -> Result<(SparseLu, Vec<[u32; 36]>)> {
-    let mut entries = Vec::with_capacity(36 * dofs.len());
-    for d6 in dofs {
-        for &r in d6.iter().filter(|&&r| r != NO_EQ) {
-            for &c in d6.iter().filter(|&&c| c != NO_EQ) {
-                entries.push((r as usize, c as usize));
-            }
-        }
-    }
-    let normal = SparseLu::new(n, entries)?;
-    let slots = dofs
-        .iter()
-        .map(|d6| {
-            let mut s = [u32::MAX; 36];
-            for (i, &r) in d6.iter().enumerate() {
-                for (j, &c) in d6.iter().enumerate() {
-                    if r != NO_EQ && c != NO_EQ {
-                        s[6 * i + j] = normal.slot(r as usize, c as usize).expect("in the pattern") as u32;
-                    }
-                }
-            }
-            s
+impl Lp {
+    /// The program's frame: `eq` (the equation of each dof), each element's dofs' equations
+    /// (`rows` each), `nv` variables per element, the loads (scaled, one per equation) and the
+    /// scales; the normal matrix's pattern analysed once. The blocks `A_k`, `P_k` start at
+    /// zero: the dimension fills them.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn new(
+        eq: Vec<Option<usize>>,
+        n: usize,
+        rows: usize,
+        nv: usize,
+        bounded: Option<usize>,
+        dofs: Vec<u32>,
+        f_dead: Vec<f64>,
+        f_live: Vec<f64>,
+        (force, length, live): (f64, f64, f64),
+    ) -> Result<Lp> {
+        let m = dofs.len() / rows;
+        let (normal, slots) = normal_pattern(n, rows, &dofs)?;
+        Ok(Lp {
+            m,
+            n,
+            rows,
+            nv,
+            bounded,
+            eq,
+            dofs,
+            acols: vec![0.0; m * rows * nv],
+            pv: vec![0.0; m * rows],
+            slots,
+            f_dead,
+            f_live,
+            force,
+            length,
+            live,
+            normal,
         })
-        .collect();
-    Ok((normal, slots))
-}
+    }
 
-impl Program {
-    /// The program of `model`: its equations (one per free dof), scaled, each interface's
-    /// columns and strengths, and the normal matrix's pattern with each interface's slots in it.
-    pub(super) fn new(model: &Model) -> Result<Self> {
-        let nb = model.n_blocks();
-        let (eq, n) = equations(model);
-        let m = model.interfaces().len();
-        let (force, length, live) = scales(model);
-        let (dofs, cols) = equilibrium_columns(model, &eq, length);
-        let Strengths { mut hc, mut ht, mut coulomb } = strengths(model, force);
-        let (fd, fl) = (model.dead_load(), model.live_load());
-        // strengths beyond STRENGTH_CAP times the total load cannot be reached within lambda's
-        // range: they are capped there (a glued joint), which keeps the program well scaled
-        let total = (0..3 * nb).filter(|&d| eq[d].is_some()).map(|d| (fd[d] / force).abs() + (fl[d] / live).abs()).sum::<f64>();
-        let cap = STRENGTH_CAP * total.max(1.0);
-        hc.iter_mut().chain(ht.iter_mut()).for_each(|h| *h = h.min(cap));
-        coulomb.iter_mut().for_each(|c| c.0 = c.0.min(cap));
-        let free = |d: &usize| eq[*d].is_some();
-        let f_dead = (0..3 * nb).filter(free).map(|d| fd[d] * row_scale(d, length) / force).collect();
-        let f_live = (0..3 * nb).filter(free).map(|d| fl[d] * row_scale(d, length) / live).collect();
-        let (normal, slots) = normal_pattern(n, &dofs)?;
-        let slope = coulomb.iter().map(|c| c.1).collect();
-        let mut lp = Program { m, n, eq, dofs, cols, acols: vec![], slots, hc, ht, slope, coulomb, f_dead, f_live, force, length, live, normal };
-        lp.acols = (0..m).map(|k| lp.columns(k).0).collect();
-        Ok(lp)
+    /// Variables bounded by 1: one per element, or none.
+    #[inline]
+    pub(super) fn n_bounded(&self) -> usize {
+        if self.bounded.is_some() {
+            self.m
+        } else {
+            0
+        }
+    }
+
+    /// The variable bounded by `t[i]`: element i's bounded one.
+    #[inline]
+    pub(super) fn bounded_var(&self, i: usize) -> usize {
+        self.nv * i + self.bounded.unwrap_or(0)
     }
 
     /// lambda in its own units from a scaled solution.
@@ -211,47 +104,49 @@ impl Program {
         s.lambda * self.force / self.live
     }
 
-    /// Fixes the Coulomb faces' capacity from normal forces (scaled), for the non-associative
-    /// sequence: `|T| + tan(psi) N <= c A - (mu - tan(psi)) N_prev`.
-    pub(super) fn fix_shear_capacity(&mut self, normals: &[f64]) {
-        for (k, &(ca, mu, tp)) in self.coulomb.iter().enumerate() {
-            self.hc[k] = (ca - (mu - tp) * normals[k]).max(0.0);
-            self.slope[k] = tp;
-        }
-        self.acols = (0..self.m).map(|k| self.columns(k).0).collect();
-    }
-
-    /// The columns of interface k in the scaled equilibrium matrix (6 rows x 5 variables), and
-    /// its vertex's contribution `P V` (6 rows).
-    #[inline]
-    pub(super) fn columns(&self, k: usize) -> ([[f64; NV]; 6], [f64; 6]) {
-        let g = generators(self.slope[k], self.hc[k], self.ht[k]);
-        let c6 = &self.cols[k];
-        let mut a = [[0.0; NV]; 6];
-        let mut pv = [0.0; 6];
-        for r in 0..6 {
-            let c = c6[r];
-            let p = |v: [f64; 3]| c[0] * v[0] + c[1] * v[1] + c[2] * v[2];
-            pv[r] = p(g[0]);
-            a[r] = [p(g[2]), p(g[3]), p(g[4]), p(g[5]), p(g[1])];
-        }
-        (a, pv)
-    }
-
-    /// The interfaces' resultants (scaled) of the variables.
-    pub(super) fn resultants(&self, x: &[f64]) -> Vec<[f64; 3]> {
-        (0..self.m)
-            .map(|k| {
-                let g = generators(self.slope[k], self.hc[k], self.ht[k]);
-                let xk = &x[NV * k..NV * k + NV];
-                let mut s = g[0];
-                for (j, gj) in [g[2], g[3], g[4], g[5], g[1]].iter().enumerate() {
-                    for i in 0..3 {
-                        s[i] += xk[j] * gj[i];
-                    }
-                }
-                s
-            })
+    /// The block velocities (`dofs_per_block` per block, in dof order) of the duals of the
+    /// equilibrium rows, rotations unscaled: the mechanism before its normalization.
+    pub(super) fn velocities(&self, sol: &Solution, dofs_per_block: usize) -> Vec<f64> {
+        let half = dofs_per_block / 2;
+        let rot = |dof: usize| {
+            if dofs_per_block == 3 {
+                dof % 3 == 2
+            } else {
+                dof % dofs_per_block >= half
+            }
+        };
+        self.eq
+            .iter()
+            .enumerate()
+            .map(|(dof, e)| e.map_or(0.0, |e| sol.y[e] * if rot(dof) { 1.0 / self.length } else { 1.0 }))
             .collect()
     }
+}
+
+/// The normal matrix's pattern on `n` equations (each element's `rows x rows` block among the
+/// equations of its dofs, analysed once) and the value slot of each entry of each block
+/// (`u32::MAX` for a support's row or column).
+fn normal_pattern(n: usize, rows: usize, dofs: &[u32]) -> Result<(SparseLu, Vec<u32>)> {
+    let mut entries = Vec::with_capacity(rows * dofs.len());
+    for d in dofs.chunks_exact(rows) {
+        for &r in d.iter().filter(|&&r| r != NO_EQ) {
+            for &c in d.iter().filter(|&&c| c != NO_EQ) {
+                entries.push((r as usize, c as usize));
+            }
+        }
+    }
+    let normal = SparseLu::new(n, entries)?;
+    let mut slots = Vec::with_capacity(rows * dofs.len());
+    for d in dofs.chunks_exact(rows) {
+        for &r in d {
+            for &c in d {
+                slots.push(if r != NO_EQ && c != NO_EQ {
+                    normal.slot(r as usize, c as usize).expect("in the pattern") as u32
+                } else {
+                    u32::MAX
+                });
+            }
+        }
+    }
+    Ok((normal, slots))
 }
