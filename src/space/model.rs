@@ -1,0 +1,325 @@
+//! [`Model3`]: the 3D model built from a [`ModelSpec3`]: the checks of the input, the base and
+//! the top beam, the contacts, masses, supports and loads.
+
+use super::{detect, Box3, Contact, LiveLoad3, ModelSpec3};
+use crate::error::{non_negative, positive, Error, Result};
+use crate::geometry::MAX_BLOCKS;
+use crate::interface::{BlockKind, Family};
+use crate::joint::JointLaw;
+use crate::model::JointLaws;
+
+/// A wall of rigid boxes joined by contacts, with its base, top beam, supports and loads.
+/// Stateless: solvers read it.
+///
+/// Dof: 6 per block, `6 i + k` for (ux, uy, uz, rx, ry, rz) of block `i`, small rotations about
+/// axes through its centroid; forces are (Fx, Fy, Fz, Mx, My, Mz) about the centroid.
+#[derive(Debug, Clone)]
+pub struct Model3 {
+    boxes: Vec<Box3>,
+    kinds: Vec<BlockKind>,
+    n_wall: usize,
+    base: Option<usize>,
+    top: Option<usize>,
+    gravity: f64,
+    live: LiveLoad3,
+    laws: JointLaws,
+    centroids: Vec<[f64; 3]>,
+    mass: Vec<f64>,
+    inertia: Vec<[f64; 3]>,
+    contacts: Vec<Contact>,
+    fixed: Vec<bool>,
+    f_dead: Vec<f64>,
+    f_live: Vec<f64>,
+}
+
+impl Model3 {
+    /// Builds and checks a model; the error names the field or block at fault (two overlapping
+    /// blocks are both named).
+    pub fn new(spec: &ModelSpec3) -> Result<Model3> {
+        Model3::new_with(spec, &mut || true)
+    }
+
+    /// [`Model3::new`], calling `poll` every few thousand blocks of the search for contacts:
+    /// `false` stops it with [`Error::Interrupted`].
+    pub fn new_with(spec: &ModelSpec3, poll: &mut dyn FnMut() -> bool) -> Result<Model3> {
+        check_spec(spec)?;
+        let (boxes, kinds, base, top) = frame(spec);
+        let n_wall = spec.blocks.len();
+        let name = |i: usize| block_name(i, n_wall, base, top, &boxes);
+        let contacts = detect(&boxes, &kinds, name, poll)?;
+        check_touched(&contacts, boxes.len(), n_wall, top, name)?;
+        let mass: Vec<f64> = boxes.iter().map(|b| spec.density * b.volume()).collect();
+        let inertia: Vec<[f64; 3]> = boxes
+            .iter()
+            .zip(&mass)
+            .map(|(b, m)| {
+                let [x, y, z] = b.size().map(|s| s * s);
+                [m * (y + z) / 12.0, m * (x + z) / 12.0, m * (x + y) / 12.0]
+            })
+            .collect();
+        for (i, (&m, j)) in mass.iter().zip(&inertia).enumerate() {
+            if !(m.is_finite() && m > 0.0 && j.iter().all(|&v| v.is_finite() && v > 0.0)) {
+                return Err(Error::input(format!(
+                    "{}: its mass ({m:e} kg) or rotary inertia ({:e}, {:e}, {:e} kg m2) is zero or not finite: check density and the block's size",
+                    name(i), j[0], j[1], j[2]
+                )));
+            }
+            if !(m * spec.gravity).is_finite() {
+                return Err(Error::input(format!(
+                    "{}: its weight (mass {m:e} kg times gravity = {} m/s2) is not finite",
+                    name(i),
+                    spec.gravity
+                )));
+            }
+        }
+        let nb = boxes.len();
+        let centroids = boxes.iter().map(Box3::centroid).collect();
+        let mut model = Model3 {
+            boxes,
+            kinds,
+            n_wall,
+            base,
+            top,
+            gravity: spec.gravity,
+            live: spec.live,
+            laws: spec.joints,
+            centroids,
+            mass,
+            inertia,
+            contacts,
+            fixed: vec![false; 6 * nb],
+            f_dead: vec![0.0; 6 * nb],
+            f_live: vec![0.0; 6 * nb],
+        };
+        model.supports_and_loads();
+        Ok(model)
+    }
+
+    /// The base's fixed dofs, the weights of the wall and the top beam, and the live load on
+    /// the wall blocks.
+    fn supports_and_loads(&mut self) {
+        if let Some(b) = self.base {
+            self.fixed[6 * b..6 * b + 6].fill(true);
+        }
+        let free = (0..self.n_wall).chain(self.top);
+        for i in free {
+            self.f_dead[6 * i + 2] = -self.mass[i] * self.gravity;
+        }
+        if let LiveLoad3::HorizontalWeight { direction } = self.live {
+            let (c, s) = cos_sin_deg(direction);
+            for i in 0..self.n_wall {
+                let w = self.mass[i] * self.gravity;
+                self.f_live[6 * i] = w * c;
+                self.f_live[6 * i + 1] = w * s;
+            }
+        }
+    }
+
+    /// Number of blocks, the base and the top beam included.
+    pub fn n_blocks(&self) -> usize {
+        self.boxes.len()
+    }
+    /// Number of wall blocks (the user's, first: `0..n_wall`).
+    pub fn n_wall(&self) -> usize {
+        self.n_wall
+    }
+    /// Every block's box: wall blocks, then the base, then the top beam.
+    pub fn boxes(&self) -> &[Box3] {
+        &self.boxes
+    }
+    /// What each block is (wall, base, top beam).
+    pub fn kinds(&self) -> &[BlockKind] {
+        &self.kinds
+    }
+    /// The index of the base, if any.
+    pub fn base(&self) -> Option<usize> {
+        self.base
+    }
+    /// The index of the top beam, if any.
+    pub fn top(&self) -> Option<usize> {
+        self.top
+    }
+    /// A label for messages: "block 7 [x0, y0, z0, x1, y1, z1]", "the base" or "the top beam".
+    pub fn block_name(&self, i: usize) -> String {
+        block_name(i, self.n_wall, self.base, self.top, &self.boxes)
+    }
+    /// Each block's centroid \[m\] (where its dofs are and its moments are taken).
+    pub fn centroids(&self) -> &[[f64; 3]] {
+        &self.centroids
+    }
+    /// Mass of each block \[kg\] (the base's too, though it is fixed).
+    pub fn mass(&self) -> &[f64] {
+        &self.mass
+    }
+    /// Each block's principal moments of inertia about its centroid, about x, y and z
+    /// (`m (b^2 + c^2) / 12`, ... for sides a, b, c) \[kg m2\].
+    pub fn inertia(&self) -> &[[f64; 3]] {
+        &self.inertia
+    }
+    /// The contacts, sorted by their blocks (a, b).
+    pub fn contacts(&self) -> &[Contact] {
+        &self.contacts
+    }
+    /// The joint law of contact `k` (its family's).
+    pub fn law(&self, k: usize) -> &JointLaw {
+        self.laws.of(self.contacts[k].family)
+    }
+    /// The joint laws of the families.
+    pub fn laws(&self) -> &JointLaws {
+        &self.laws
+    }
+    /// Fixed dof flags, 6 per block (ux, uy, uz, rx, ry, rz): the base's all true.
+    pub fn fixed(&self) -> &[bool] {
+        &self.fixed
+    }
+    /// Dead loads, 6 per block (Fx, Fy, Fz \[N\], Mx, My, Mz \[N m\] about the centroid): the weight
+    /// `-m g` along z on the wall blocks and the top beam (none on the base). No moments: the
+    /// weight acts at the centroid.
+    pub fn dead_load(&self) -> &[f64] {
+        &self.f_dead
+    }
+    /// The live load for lambda = 1, 6 per block as [`Model3::dead_load`]: for
+    /// [`LiveLoad3::HorizontalWeight`], `m g (cos d, sin d, 0)` on each wall block (none on the
+    /// base or the top beam, as in 2D), no moments; all zero for [`LiveLoad3::None`].
+    pub fn live_load(&self) -> &[f64] {
+        &self.f_live
+    }
+    /// The size of the model \[m\]: the largest side of the box around every block (base and
+    /// top beam included).
+    pub fn size(&self) -> f64 {
+        let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+        for b in &self.boxes {
+            for k in 0..3 {
+                lo[k] = lo[k].min(b.min[k]);
+                hi[k] = hi[k].max(b.max[k]);
+            }
+        }
+        (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
+    }
+    /// Acceleration of gravity \[m/s2\].
+    pub fn gravity(&self) -> f64 {
+        self.gravity
+    }
+    /// The live load.
+    pub fn live(&self) -> LiveLoad3 {
+        self.live
+    }
+    /// The indices of the contacts of block `i` (a linear scan: for tests and reports, not for
+    /// solvers' inner loops).
+    pub fn contacts_of(&self, i: usize) -> Vec<usize> {
+        (0..self.contacts.len()).filter(|&k| self.contacts[k].a == i || self.contacts[k].b == i).collect()
+    }
+}
+
+/// cos and sin of `deg` degrees, exact at multiples of 90 (a load at 90 deg has no x part).
+fn cos_sin_deg(deg: f64) -> (f64, f64) {
+    let r = deg.rem_euclid(360.0);
+    match r {
+        0.0 => (1.0, 0.0),
+        90.0 => (0.0, 1.0),
+        180.0 => (-1.0, 0.0),
+        270.0 => (0.0, -1.0),
+        _ => {
+            let (s, c) = r.to_radians().sin_cos();
+            (c, s)
+        }
+    }
+}
+
+/// The checks of the spec's numbers, blocks and laws, each alone, before anything is built.
+fn check_spec(spec: &ModelSpec3) -> Result<()> {
+    positive("density", spec.density)?;
+    non_negative("gravity", spec.gravity)?;
+    if let Some(h) = spec.top {
+        positive("top", h)?;
+    }
+    if spec.blocks.is_empty() {
+        return Err(Error::input("blocks: the wall has no blocks"));
+    }
+    if spec.blocks.len() > MAX_BLOCKS {
+        return Err(crate::geometry::too_many_blocks("blocks", spec.blocks.len() as f64));
+    }
+    crate::error::check_memory(
+        &format!("a model of {} blocks", spec.blocks.len()),
+        spec.blocks.len() as f64 * crate::error::MODEL_BYTES_PER_BLOCK,
+    )?;
+    for (i, b) in spec.blocks.iter().enumerate() {
+        b.validate(&format!("block {i}"))?;
+    }
+    spec.joints.default.validate("joints")?;
+    let j = &spec.joints;
+    for (f, law) in [(Family::Bed, j.bed), (Family::Head, j.head), (Family::Base, j.base), (Family::Top, j.top)] {
+        if let Some(l) = law {
+            l.validate(&format!("joints.{}", f.name()))?;
+        }
+    }
+    if let LiveLoad3::HorizontalWeight { direction } = spec.live {
+        if !direction.is_finite() {
+            return Err(Error::input_at("live.direction", format!("live.direction must be finite, got {direction}")));
+        }
+        if spec.gravity == 0.0 {
+            return Err(Error::input_at(
+                "live",
+                "the horizontal-weight live load needs gravity > 0 (it is lambda times the weights)",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The wall's boxes with the base under them and the top beam over them (each over the box
+/// around the wall in plan; the base as deep as the tallest block, as in 2D).
+fn frame(spec: &ModelSpec3) -> (Vec<Box3>, Vec<BlockKind>, Option<usize>, Option<usize>) {
+    let (mut lo, mut hi, mut hmax) = ([f64::MAX; 3], [f64::MIN; 3], 0.0f64);
+    for b in &spec.blocks {
+        for k in 0..3 {
+            lo[k] = lo[k].min(b.min[k]);
+            hi[k] = hi[k].max(b.max[k]);
+        }
+        hmax = hmax.max(b.max[2] - b.min[2]);
+    }
+    let mut boxes = spec.blocks.clone();
+    let mut kinds = vec![BlockKind::Wall; boxes.len()];
+    let base = spec.base.then(|| {
+        boxes.push(Box3::new(lo[0], lo[1], lo[2] - hmax, hi[0], hi[1], lo[2]));
+        kinds.push(BlockKind::Base);
+        boxes.len() - 1
+    });
+    let top = spec.top.map(|h| {
+        boxes.push(Box3::new(lo[0], lo[1], hi[2], hi[0], hi[1], hi[2] + h));
+        kinds.push(BlockKind::Top);
+        boxes.len() - 1
+    });
+    (boxes, kinds, base, top)
+}
+
+/// Refuses a wall block, or the top beam, that no contact reaches.
+fn check_touched(
+    contacts: &[Contact],
+    nb: usize,
+    n_wall: usize,
+    top: Option<usize>,
+    name: impl Fn(usize) -> String,
+) -> Result<()> {
+    let mut touched = vec![false; nb];
+    for c in contacts {
+        touched[c.a] = true;
+        touched[c.b] = true;
+    }
+    if let Some(i) = (0..n_wall).chain(top).find(|&i| !touched[i]) {
+        return Err(Error::input(format!("{} touches no other block", name(i))));
+    }
+    Ok(())
+}
+
+fn block_name(i: usize, n_wall: usize, base: Option<usize>, top: Option<usize>, boxes: &[Box3]) -> String {
+    if Some(i) == base {
+        "the base".into()
+    } else if Some(i) == top {
+        "the top beam".into()
+    } else if i < n_wall {
+        format!("block {i} {}", boxes[i].label())
+    } else {
+        format!("block {i}")
+    }
+}
