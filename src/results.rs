@@ -99,8 +99,14 @@ pub struct JointStateCounts {
 }
 
 /// Results of an analysis. Block arrays cover all blocks (wall, base, top beam).
+///
+/// `V` is what a block and an interface carry: `[f64; 3]` in the plane (the default), `[f64; 6]`
+/// in 3D, where a block's entries are (ux, uy, uz \[m\], rx, ry, rz \[rad\]) (small rotations
+/// about its centroid) and an interface's are the force and moment (about the contact's
+/// centroid) that block b exerts on block a in the contact's axes (n, t1, t2):
+/// (N, T1, T2 \[N\], M_n, M_t1, M_t2 \[N m\]), N > 0 in tension.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Results {
+pub struct Results<V = [f64; 3]> {
     /// "static" or "dynamic".
     pub method: &'static str,
     /// How the run ended.
@@ -121,12 +127,12 @@ pub struct Results {
     /// The block whose horizontal displacement makes the curve.
     pub control_block: usize,
     /// (u1 \[m\], u2 \[m\], phi \[rad\]) of every block at the last converged step.
-    pub displacements: Vec<[f64; 3]>,
+    pub displacements: Vec<V>,
     /// The collapse mechanism (the last increment), scaled so that the largest block
     /// translation is 1.
-    pub mechanism: Vec<[f64; 3]>,
+    pub mechanism: Vec<V>,
     /// (N \[N\], T \[N\], M [N m]) of every interface at the last converged step; N > 0 in tension.
-    pub interface_forces: Vec<[f64; 3]>,
+    pub interface_forces: Vec<V>,
     /// OPEN | SLIDING | ROCKING bits of every interface (0: elastic).
     pub interface_states: Vec<u8>,
     /// Interfaces that have lost their cohesion and tensile strength.
@@ -173,7 +179,7 @@ pub struct Certificate {
     pub peak_strengths: bool,
 }
 
-impl Results {
+impl<V> Results<V> {
     /// Interface counts by state.
     pub fn joint_states(&self) -> JointStateCounts {
         let mut c = JointStateCounts::default();

@@ -193,7 +193,7 @@ pub fn limit_analysis_with(
 /// domain of its last shear capacities); `collapse_multiplier` is NaN, as for every status but
 /// a collapse; `error` says what the number is, with the certificate's upper bound and
 /// convergence.
-fn mark_estimate(res: &mut Results) {
+fn mark_estimate<V>(res: &mut Results<V>) {
     let lam = res.collapse_multiplier;
     let Some(c) = res.certificate else { return };
     let how = if c.sequence == 0 {
@@ -266,7 +266,9 @@ mod ipm;
 mod outcome;
 mod plane;
 mod program;
+mod space;
 
 use ipm::*;
 use plane::*;
 use program::*;
+pub use space::{limit_analysis_3d, limit_analysis_3d_with};

@@ -68,7 +68,7 @@ impl Plane {
 impl Lp {
     /// The status of a solution of multiplier `lam` (in its own units), and the error that
     /// says why when it is not a collapse.
-    fn status(&self, sol: &Solution, lam: f64) -> (Status, Option<String>) {
+    pub(super) fn status(&self, sol: &Solution, lam: f64) -> (Status, Option<String>) {
         // lambda below zero beyond the program's precision: the dead state is not admissible
         let negative = lam < -1e-7 * (self.force / self.live);
         match sol.outcome {

@@ -7,24 +7,12 @@ use masonry_dem::model::{JointLaws, Model, ModelSpec};
 
 /// Dry joints with friction mu and dilatancy psi (tan), stiffness k (N/m3) normal and shear.
 pub fn dry(mu: f64, psi: f64, k: f64) -> JointLaw {
-    JointLaw {
-        normal_stiffness: k,
-        shear_stiffness: k,
-        friction: mu,
-        dilatancy: psi,
-        ..JointLaw::default()
-    }
+    JointLaw { normal_stiffness: k, shear_stiffness: k, friction: mu, dilatancy: psi, ..JointLaw::default() }
 }
 
 /// Blocks listed explicitly, on a fixed base, g = 10, density 1000, thickness 1.
 pub fn blocks_model(blocks: Vec<Rect>, law: JointLaw) -> Model {
-    Model::new(ModelSpec {
-        blocks,
-        gravity: 10.0,
-        joints: JointLaws::uniform(law),
-        ..ModelSpec::default()
-    })
-    .unwrap()
+    Model::new(ModelSpec { blocks, gravity: 10.0, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap()
 }
 
 /// Ferris & Tin-Loi wall with `courses` courses (6: wall 1, 10: wall 2).
@@ -45,12 +33,7 @@ pub fn ferris(courses: usize, law: JointLaw) -> Model {
 /// |got - want| <= rel * |want|, with a message.
 pub fn assert_close(got: f64, want: f64, rel: f64, what: &str) {
     let err = (got - want).abs() / want.abs();
-    assert!(
-        err <= rel,
-        "{what}: got {got:.6}, reference {want:.6}, error {:.3}% > {:.3}%",
-        100.0 * err,
-        100.0 * rel
-    );
+    assert!(err <= rel, "{what}: got {got:.6}, reference {want:.6}, error {:.3}% > {:.3}%", 100.0 * err, 100.0 * rel);
 }
 
 /// The blocks of examples/lact3-tilting-wall.toml (its lines `  [x0, y0, x1, y1],`): a dry

@@ -1,0 +1,378 @@
+//! The linear program of a model in 3D, in the point-contact form (Livesley; Portioli et al.):
+//! each corner of a contact polygon carries a force in a friction pyramid, and torsion and
+//! biaxial bending come out of the corners' positions.
+//!
+//! The pyramid is inscribed in Coulomb's cone `|T| <= mu N` with [`SIDES`] generators
+//! `n + mu (cos a_j t1 + sin a_j t2)`, `a_j = a_0 + 2 pi j / SIDES`, each with its variable
+//! `rho_j >= 0`: it is safe (a lower bound of the cone's strength), exact along its
+//! generators, and `cos(pi / SIDES)` of the cone midway between two of them (0.924 for eight
+//! sides). On horizontal joints one generator lies along the live load's direction in plan
+//! (a_0 is the load's angle in the joint's axes): sliding along the load is then exact at
+//! any angle, and so are the axes x and y when the load is along one of them. On vertical
+//! joints the generators start along the joint's horizontal tangent (a_0 = 0): in-plane
+//! sliding, horizontal or vertical, is exact.
+//!
+//! Dry joints only (no cohesion, no tensile strength): a point's domain is then the pyramid
+//! alone, a cone of generators with no vertex to carry.
+
+use super::*;
+use crate::space::{Contact, LiveLoad3, Model3};
+
+/// Sides of the friction pyramid.
+pub(super) const SIDES: usize = 8;
+
+/// Corners of a contact polygon (boxes touch along rectangles).
+const CORNERS: usize = 4;
+
+/// Variables per contact: a pyramid's generators at each corner.
+const NV3: usize = CORNERS * SIDES;
+
+/// Equations per contact: the six dofs of each of its two blocks.
+const ROWS3: usize = 12;
+
+/// The program of a model in 3D: the generic [`Lp`] and each contact's generators (unit
+/// normal plus mu times a tangent direction, in global axes), for the resultants.
+pub(super) struct Space {
+    pub(super) lp: Lp,
+    /// per contact and corner, the pyramid's generators (global axes)
+    generators: Vec<[[f64; 3]; SIDES]>,
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// The first generator's angle in the contact's axes: along the live load's direction in plan
+/// on a horizontal joint (`align`), else along t1.
+fn first_angle(c: &Contact, live: LiveLoad3, align: bool) -> f64 {
+    match live {
+        LiveLoad3::HorizontalWeight { direction } if align && c.n[2].abs() > 0.5 => {
+            let d = direction.to_radians();
+            let dir = [d.cos(), d.sin(), 0.0];
+            dot3(dir, c.t2).atan2(dot3(dir, c.t1))
+        }
+        _ => 0.0,
+    }
+}
+
+/// The pyramid's generators of a contact of friction `mu` whose first lies at `a0` in its axes.
+fn pyramid(c: &Contact, mu: f64, a0: f64) -> [[f64; 3]; SIDES] {
+    std::array::from_fn(|j| {
+        let a = a0 + 2.0 * std::f64::consts::PI * j as f64 / SIDES as f64;
+        let (s, co) = a.sin_cos();
+        std::array::from_fn(|i| c.n[i] + mu * (co * c.t1[i] + s * c.t2[i]))
+    })
+}
+
+impl Space {
+    /// The program of `model`; `align`: the pyramids of horizontal joints turned to the live
+    /// load's direction (always, but for the measurement of what the pyramid loses).
+    pub(super) fn new(model: &Model3, align: bool) -> Result<Space> {
+        let nb = model.n_blocks();
+        let contacts = model.contacts();
+        for (k, c) in contacts.iter().enumerate() {
+            let law = model.law(k);
+            if law.cohesion > 0.0 || law.tensile_strength > 0.0 {
+                return Err(Error::input(format!(
+                    "limit analysis in 3D takes dry joints (cohesion and tensile_strength 0); the {} joints have cohesion {} Pa and tensile_strength {} Pa",
+                    c.family.name(),
+                    law.cohesion,
+                    law.tensile_strength
+                )));
+            }
+            if c.corners.len() != CORNERS {
+                return Err(Error::input(format!(
+                    "limit analysis in 3D takes contact polygons of {CORNERS} corners; the contact of {} and {} has {}",
+                    model.block_name(c.a),
+                    model.block_name(c.b),
+                    c.corners.len()
+                )));
+            }
+        }
+        // equations: one per free dof
+        let fixed = model.fixed();
+        let mut eq = vec![None; 6 * nb];
+        let mut n = 0;
+        for (d, e) in eq.iter_mut().enumerate() {
+            if !fixed[d] {
+                *e = Some(n);
+                n += 1;
+            }
+        }
+        let (fd, fl) = (model.dead_load(), model.live_load());
+        let trans = |v: &[f64]| (0..nb).flat_map(|i| (0..3).map(move |r| v[6 * i + r].abs())).fold(0.0, f64::max);
+        let live_max = trans(fl);
+        let mut force = trans(fd);
+        if force <= 0.0 {
+            force = if live_max > 0.0 { live_max } else { 1.0 };
+        }
+        let m = contacts.len();
+        let length = contacts.iter().map(|c| c.area.sqrt()).sum::<f64>() / m.max(1) as f64;
+        let length = if length > 0.0 { length } else { 1.0 };
+        let live = if live_max > 0.0 { live_max } else { 1.0 };
+        let row = |d: usize| if d % 6 >= 3 { 1.0 / length } else { 1.0 };
+        let free = |d: &usize| eq[*d].is_some();
+        let f_dead = (0..6 * nb).filter(free).map(|d| fd[d] * row(d) / force).collect();
+        let f_live = (0..6 * nb).filter(free).map(|d| fl[d] * row(d) / live).collect();
+        let mut dofs = Vec::with_capacity(ROWS3 * m);
+        for c in contacts {
+            for blk in [c.a, c.b] {
+                for r in 0..6 {
+                    dofs.push(eq[6 * blk + r].map_or(NO_EQ, |e| e as u32));
+                }
+            }
+        }
+        let mut lp = Lp::new(eq, n, ROWS3, NV3, None, dofs, f_dead, f_live, (force, length, live))?;
+        let centroids = model.centroids();
+        let mut generators = Vec::with_capacity(CORNERS * m);
+        for (k, c) in contacts.iter().enumerate() {
+            let g = pyramid(c, model.law(k).friction, first_angle(c, model.live(), align));
+            for (q, &p) in c.corners.iter().enumerate() {
+                for (j, gj) in g.iter().enumerate() {
+                    // A x is the interfaces' share of the loads: minus the force on b (and its
+                    // moment about b's centroid), plus the same on a
+                    let (ma, mb) = (cross(sub(p, centroids[c.a]), *gj), cross(sub(p, centroids[c.b]), *gj));
+                    let col =
+                        [gj[0], gj[1], gj[2], ma[0], ma[1], ma[2], -gj[0], -gj[1], -gj[2], -mb[0], -mb[1], -mb[2]];
+                    for (r, v) in col.iter().enumerate() {
+                        let s = if r % 6 >= 3 { 1.0 / length } else { 1.0 };
+                        lp.acols[(ROWS3 * k + r) * NV3 + SIDES * q + j] = v * s;
+                    }
+                }
+                generators.push(g);
+            }
+        }
+        Ok(Space { lp, generators })
+    }
+
+    /// Each contact's resultants in their own units: the force and moment (about the contact's
+    /// centroid) that block b exerts on block a, in the contact's axes (n, t1, t2):
+    /// (N, T1, T2, M_n, M_t1, M_t2), N > 0 in tension as in the plane.
+    fn resultants(&self, model: &Model3, x: &[f64]) -> Vec<[f64; 6]> {
+        let f = self.lp.force;
+        model
+            .contacts()
+            .iter()
+            .enumerate()
+            .map(|(k, c)| {
+                let (mut force, mut moment) = ([0.0; 3], [0.0; 3]);
+                for (q, &p) in c.corners.iter().enumerate() {
+                    let g = &self.generators[CORNERS * k + q];
+                    let mut fp = [0.0; 3];
+                    for (j, gj) in g.iter().enumerate() {
+                        let r = x[NV3 * k + SIDES * q + j] * f;
+                        (0..3).for_each(|i| fp[i] -= r * gj[i]);
+                    }
+                    let mp = cross(sub(p, c.centroid), fp);
+                    (0..3).for_each(|i| {
+                        force[i] += fp[i];
+                        moment[i] += mp[i];
+                    });
+                }
+                let axes = [c.n, c.t1, c.t2];
+                let mut s = [0.0; 6];
+                for (a, ax) in axes.iter().enumerate() {
+                    s[a] = dot3(force, *ax);
+                    s[3 + a] = dot3(moment, *ax);
+                }
+                s
+            })
+            .collect()
+    }
+
+    /// The collapse mechanism: block velocities (vx, vy, vz, wx, wy, wz) from the duals, oriented
+    /// so that the live load does positive work, largest block translation 1.
+    fn mechanism(&self, model: &Model3, sol: &Solution) -> Vec<f64> {
+        let nb = model.n_blocks();
+        let mut v = self.lp.velocities(sol, 6);
+        let big = (0..nb)
+            .map(|i| dot3([v[6 * i], v[6 * i + 1], v[6 * i + 2]], [v[6 * i], v[6 * i + 1], v[6 * i + 2]]).sqrt())
+            .fold(0.0, f64::max);
+        let work = dot(&v, model.live_load());
+        let scale = if big > 0.0 { work.signum() / big } else { 0.0 };
+        v.iter_mut().for_each(|x| *x *= scale);
+        v
+    }
+
+    /// The results of a solution: the multiplier, the forces at collapse, the mechanism from
+    /// the duals and the joints it moves.
+    pub(super) fn results(
+        &self,
+        model: &Model3,
+        sol: &Solution,
+        cert: Certificate,
+        start: Instant,
+    ) -> Results<[f64; 6]> {
+        let nb = model.n_blocks();
+        let lam = self.lp.lambda_of(sol);
+        let (status, error) = self.lp.status(sol, lam);
+        let collapse = status == Status::Collapse;
+        let v = if collapse { self.mechanism(model, sol) } else { vec![0.0; 6 * nb] };
+        let flags = model
+            .contacts()
+            .iter()
+            .enumerate()
+            .map(|(k, c)| if collapse { space_flags(c, model.centroids(), &v, model.law(k).dilatancy) } else { 0 })
+            .collect();
+        let block = |v: &[f64], i: usize| -> [f64; 6] { std::array::from_fn(|r| v[6 * i + r]) };
+        Results {
+            method: "limit",
+            status,
+            error,
+            collapse_multiplier: if collapse { lam } else { f64::NAN },
+            last_equilibrium: if collapse { lam } else { f64::NAN },
+            curve_multiplier: vec![],
+            curve_displacement: vec![],
+            control_block: control_block(model),
+            displacements: vec![[0.0; 6]; nb],
+            mechanism: (0..nb).map(|i| block(&v, i)).collect(),
+            interface_forces: self.resultants(model, &sol.x),
+            interface_states: flags,
+            broken: vec![false; self.lp.m],
+            iterations: cert.iterations,
+            steps: 0,
+            elapsed_s: start.elapsed().as_secs_f64(),
+            bracket: None,
+            certificate: Some(cert),
+        }
+    }
+}
+
+/// The block whose displacement a curve would follow: the wall's highest (the first of equals).
+pub(crate) fn control_block(model: &Model3) -> usize {
+    let c = model.centroids();
+    (0..model.n_wall()).fold(0, |best, i| if c[i][2] > c[best][2] { i } else { best })
+}
+
+/// The joint states that a mechanism's velocities `v` (largest block translation 1) give a
+/// contact: open where every corner separates beyond the dilatancy of its slip, rocking where
+/// some corners separate and others do not, sliding where a corner slips; motions below 1e-6
+/// are rest.
+fn space_flags(c: &Contact, centroids: &[[f64; 3]], v: &[f64], dilatancy: f64) -> u8 {
+    let tol = 1e-6;
+    let at = |i: usize, p: [f64; 3]| {
+        let w = cross([v[6 * i + 3], v[6 * i + 4], v[6 * i + 5]], sub(p, centroids[i]));
+        [v[6 * i] + w[0], v[6 * i + 1] + w[1], v[6 * i + 2] + w[2]]
+    };
+    let (mut open, mut closed, mut slip) = (0, 0, false);
+    for &p in &c.corners {
+        let d = sub(at(c.b, p), at(c.a, p));
+        let dn = dot3(d, c.n);
+        let dt = dot3(d, c.t1).hypot(dot3(d, c.t2));
+        if dt > tol {
+            slip = true;
+        }
+        if dn - dilatancy * dt > tol {
+            open += 1;
+        } else {
+            closed += 1;
+        }
+    }
+    if closed == 0 {
+        return OPEN;
+    }
+    let mut f = 0;
+    if slip {
+        f |= SLIDING;
+    }
+    if open > 0 {
+        f |= ROCKING;
+    }
+    f
+}
+
+/// Runs a limit analysis of a model in 3D, calling `monitor` after each interior-point
+/// iteration (return `false` to stop: the result is then an `Err(Error::Interrupted)`).
+///
+/// Joints with dilatancy below friction give the associative program's optimum as an upper
+/// bound, with the status `Estimate` (the non-associative sequence is the plane's alone).
+pub fn limit_analysis_3d_with(
+    model: &Model3,
+    opts: &LimitOptions,
+    monitor: &mut dyn FnMut(&LimitProgress) -> bool,
+) -> Result<Results<[f64; 6]>> {
+    limit_analysis_3d_aligned(model, opts, true, monitor)
+}
+
+/// Runs a limit analysis of a model in 3D (see [`limit_analysis_3d_with`]).
+pub fn limit_analysis_3d(model: &Model3, opts: &LimitOptions) -> Result<Results<[f64; 6]>> {
+    limit_analysis_3d_with(model, opts, &mut |_| true)
+}
+
+/// The analysis with the horizontal joints' pyramids turned to the load or not.
+pub(super) fn limit_analysis_3d_aligned(
+    model: &Model3,
+    opts: &LimitOptions,
+    align: bool,
+    monitor: &mut dyn FnMut(&LimitProgress) -> bool,
+) -> Result<Results<[f64; 6]>> {
+    validate(opts)?;
+    let start = Instant::now();
+    let mut space = Space::new(model, align)?;
+    let sol = space.lp.solve(opts, 0, monitor)?;
+    let non_assoc = (0..model.contacts().len()).any(|k| {
+        let l = model.law(k);
+        l.dilatancy < l.friction
+    });
+    let cert = Certificate {
+        multiplier: f64::NAN,
+        primal_residual: sol.primal,
+        dual_residual: sol.dual,
+        duality_gap: sol.gap,
+        iterations: sol.iterations,
+        upper_bound: if non_assoc { space.lp.lambda_of(&sol) } else { f64::NAN },
+        sequence: 0,
+        sequence_converged: false,
+        peak_strengths: false,
+    };
+    let mut res = space.results(model, &sol, cert, start);
+    if let Some(c) = res.certificate.as_mut() {
+        c.multiplier = res.collapse_multiplier;
+    }
+    if non_assoc && res.status == Status::Collapse {
+        mark_estimate(&mut res);
+    }
+    Ok(res)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::joint::JointLaw;
+    use crate::model::JointLaws;
+    use crate::space::{Box3, ModelSpec3};
+
+    /// A squat box of friction 0.3 pushed at `phi` in plan: its sliding multiplier with the
+    /// pyramids turned to the load or not.
+    fn sliding(phi: f64, align: bool) -> f64 {
+        let law = JointLaw { friction: 0.3, dilatancy: 0.3, ..JointLaw::default() };
+        let model = Model3::new(&ModelSpec3 {
+            blocks: vec![Box3::new(0.0, 0.0, 0.0, 1.0, 1.2, 0.5)],
+            joints: JointLaws::uniform(law),
+            live: LiveLoad3::HorizontalWeight { direction: phi },
+            ..ModelSpec3::default()
+        })
+        .unwrap();
+        let r = limit_analysis_3d_aligned(&model, &LimitOptions::default(), align, &mut |_| true).unwrap();
+        r.collapse_multiplier
+    }
+
+    #[test]
+    fn the_pyramid_loses_cos_22_5_deg_midway_between_generators_unless_turned_to_the_load() {
+        // Coulomb's cone: 0.3 in every direction. The inscribed pyramid of eight sides along the
+        // axes gives 0.3 cos(22.5 deg) = 0.2772 at 22.5 deg; turned to the load, 0.3.
+        let cone = 0.3;
+        let loss = (22.5_f64).to_radians().cos();
+        assert!((sliding(22.5, false) - cone * loss).abs() <= 1e-6 * cone, "{}", sliding(22.5, false));
+        assert!((sliding(22.5, true) - cone).abs() <= 1e-6 * cone);
+        assert!((sliding(45.0, false) - cone).abs() <= 1e-6 * cone);
+    }
+}
