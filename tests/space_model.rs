@@ -1,0 +1,230 @@
+//! The 3D model on generated walls: the generators' counts and volumes, the bond of the
+//! corners, the contacts against the 2D detection of the same wall, the loads' totals and the
+//! openings.
+
+use masonry_dem::geometry::{running_bond, FirstCourse, RunningBond, MIN_PART};
+use masonry_dem::interface::Family;
+use masonry_dem::model::{Model, ModelSpec};
+use masonry_dem::space::{corner, cut_openings, running_bond_3d, u_wall, Box3, LiveLoad3, Model3, ModelSpec3};
+use masonry_dem::Error;
+
+fn volume(blocks: &[Box3]) -> f64 {
+    blocks.iter().map(Box3::volume).sum()
+}
+
+fn close(a: f64, b: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * a.abs().max(b.abs())
+}
+
+fn input_message<T: std::fmt::Debug>(r: Result<T, Error>) -> (Option<String>, String) {
+    match r {
+        Err(Error::Input { key, reason }) => (key, reason),
+        other => panic!("expected an input error, got {other:?}"),
+    }
+}
+
+#[test]
+fn running_bond_counts_and_volume() {
+    // 4 m of 0.4 m blocks, 10 courses of 0.2 m: half-block starts give 11 + 10 blocks a pair of
+    // courses, whole-block starts 10 + 11
+    for (offset, first) in [(0.2, 11), (0.0, 10)] {
+        let blocks = running_bond_3d(4.0, 2.0, 0.1, 0.4, 0.2, offset).unwrap();
+        assert_eq!(blocks.len(), 105);
+        let lowest = blocks.iter().filter(|b| b.min[2] == 0.0).count();
+        assert_eq!(lowest, first);
+        assert!(close(volume(&blocks), 4.0 * 2.0 * 0.1, 1e-14));
+    }
+    // lengths and heights off the module: end blocks and a last course cut to fit, no sliver
+    for (length, height) in [(4.1, 2.1), (4.01, 2.0), (3.3, 0.35)] {
+        for offset in [0.0, 0.2, 0.1] {
+            let blocks = running_bond_3d(length, height, 0.25, 0.4, 0.2, offset).unwrap();
+            assert!(close(volume(&blocks), length * height * 0.25, 1e-13), "{length} x {height}, offset {offset}");
+            let shortest = blocks.iter().map(|b| b.size()[0]).fold(f64::MAX, f64::min);
+            assert!(shortest >= MIN_PART * 0.4, "a sliver of {shortest} m");
+            let model = Model3::new(&ModelSpec3 { blocks, ..ModelSpec3::default() }).unwrap();
+            assert!(model.n_blocks() > 0);
+        }
+    }
+    let (key, msg) = input_message(running_bond_3d(4.0, 2.0, 0.1, 0.4, 0.2, 0.4));
+    assert_eq!(key.as_deref(), Some("running_bond_3d.first_course_offset"), "{msg}");
+    let (key, _) = input_message(running_bond_3d(-4.0, 2.0, 0.1, 0.4, 0.2, 0.0));
+    assert_eq!(key.as_deref(), Some("running_bond_3d.length"));
+    let (_, msg) = input_message(running_bond_3d(4.0, 2.02, 0.1, 0.4, 0.2, 0.0));
+    assert!(msg.starts_with("running_bond_3d.height = 2.02 m"), "{msg}");
+}
+
+/// A leaf of the 3D generator has the contacts of the 2D wall it extrudes: the same pairs, of
+/// the same families, each rectangle the 2D segment times the thickness.
+#[test]
+fn a_leaf_has_the_contacts_of_its_2d_wall() {
+    let (length, courses, t) = (3.2, 8, 0.3);
+    let rects = running_bond(&RunningBond {
+        block_length: 0.4,
+        block_height: 0.175,
+        courses,
+        height: None,
+        length,
+        first_course: FirstCourse::Half,
+        openings: vec![],
+    })
+    .unwrap();
+    let flat = Model::new(ModelSpec { blocks: rects.clone(), thickness: t, ..ModelSpec::default() }).unwrap();
+    let blocks = running_bond_3d(length, courses as f64 * 0.175, t, 0.4, 0.175, 0.2).unwrap();
+    assert_eq!(blocks.len(), rects.len());
+    for (b, r) in blocks.iter().zip(&rects) {
+        assert!((b.min[0] - r.x0).abs() < 1e-12 && (b.max[2] - r.y1).abs() < 1e-12);
+    }
+    let solid = Model3::new(&ModelSpec3 { blocks, ..ModelSpec3::default() }).unwrap();
+    assert_eq!(solid.contacts().len(), flat.interfaces().len());
+    for (c, it) in solid.contacts().iter().zip(flat.interfaces()) {
+        assert_eq!((c.a, c.b, c.family), (it.a, it.b, it.family));
+        assert!(close(c.area, it.l * t, 1e-12));
+        assert!((c.centroid[0] - it.c[0]).abs() < 1e-12 && (c.centroid[2] - it.c[1]).abs() < 1e-12);
+        assert!((c.centroid[1] - 0.5 * t).abs() < 1e-12);
+        assert_eq!([c.n[0], c.n[2]], it.n);
+    }
+}
+
+/// Whether `b` is a block of the facade (y in [0, t]) rather than of a return wall.
+fn on_facade(b: &Box3, t: f64) -> bool {
+    b.min[1].abs() < 1e-12 && (b.max[1] - t).abs() < 1e-12
+}
+
+#[test]
+fn u_wall_volume_and_bonded_corners() {
+    let (f, h, r, t, l, bh) = (3.0, 1.6, 1.5, 0.2, 0.4, 0.2);
+    let blocks = u_wall(f, h, r, t, l, bh).unwrap();
+    assert!(close(volume(&blocks), (f + 2.0 * (r - t)) * t * h, 1e-13));
+    let n_wall = blocks.len();
+    let model = Model3::new(&ModelSpec3 { blocks: blocks.clone(), top: Some(0.2), ..ModelSpec3::default() }).unwrap();
+    let courses = (h / bh).round() as usize;
+    for k in 0..courses {
+        let z = (k as f64 + 0.5) * bh;
+        for x in [0.5 * t, f - 0.5 * t] {
+            // the block over this corner in course k
+            let c = (0..n_wall)
+                .find(|&i| {
+                    let b = &blocks[i];
+                    b.min[0] < x && x < b.max[0] && b.min[1] < 0.5 * t && 0.5 * t < b.max[1] && b.min[2] < z && z < b.max[2]
+                })
+                .unwrap_or_else(|| panic!("no block over the corner x = {x} in course {k}"));
+            // the facade's in the even courses, the return's in the odd ones, past the corner
+            assert_eq!(on_facade(&blocks[c], t), k % 2 == 0, "course {k}, x = {x}: {:?}", blocks[c]);
+            assert!(blocks[c].size()[0].max(blocks[c].size()[1]) > t + MIN_PART * l);
+            // bed joints with blocks of both walls below and above (base and top beam aside)
+            for below in [true, false] {
+                if (below && k == 0) || (!below && k + 1 == courses) {
+                    continue;
+                }
+                let others: Vec<usize> = model
+                    .contacts_of(c)
+                    .into_iter()
+                    .map(|j| &model.contacts()[j])
+                    .filter(|ct| ct.family == Family::Bed && (ct.b == c) == below)
+                    .map(|ct| if ct.a == c { ct.b } else { ct.a })
+                    .collect();
+                let facade = others.iter().filter(|&&o| on_facade(&blocks[o], t)).count();
+                assert!(facade >= 1 && others.len() > facade, "course {k}, x = {x}, below {below}: {others:?}");
+            }
+        }
+    }
+    // each wall block touches; the top beam carries the highest course, the base the lowest
+    let base = model.contacts().iter().filter(|c| c.family == Family::Base).count();
+    let lowest = blocks.iter().filter(|b| b.min[2] == 0.0).count();
+    assert_eq!(base, lowest);
+    let top = model.contacts().iter().filter(|c| c.family == Family::Top).count();
+    assert_eq!(top, blocks.iter().filter(|b| (b.max[2] - h).abs() < 1e-12).count());
+    let (key, _) = input_message(u_wall(f, h, r, 0.4, l, bh));
+    assert_eq!(key.as_deref(), Some("u_wall.thickness"));
+    let (key, _) = input_message(u_wall(f, h, 0.2, t, l, bh));
+    assert_eq!(key.as_deref(), Some("u_wall.returns"));
+}
+
+#[test]
+fn corner_is_one_return_of_the_u() {
+    let (f, h, r, t, l, bh) = (2.0, 1.0, 1.2, 0.15, 0.4, 0.2);
+    let l_blocks = corner(f, h, r, t, l, bh).unwrap();
+    assert!(close(volume(&l_blocks), (f + r - t) * t * h, 1e-13));
+    assert!(l_blocks.iter().all(|b| b.max[0] <= f && b.min[0] >= 0.0));
+    assert!(l_blocks.iter().all(|b| !(b.min[0] > t && b.min[1] > 0.0)), "nothing but the facade and the return at x = 0");
+    let model = Model3::new(&ModelSpec3 { blocks: l_blocks, ..ModelSpec3::default() }).unwrap();
+    assert!(model.contacts().iter().any(|c| c.family == Family::Head && c.n == [0.0, 1.0, 0.0]));
+}
+
+#[test]
+fn dead_load_is_the_weight_and_live_load_its_direction() {
+    let blocks = u_wall(2.4, 1.2, 1.2, 0.2, 0.4, 0.2).unwrap();
+    let (rho, g, beam) = (1800.0, 9.81, 0.3);
+    let spec = ModelSpec3 {
+        blocks: blocks.clone(),
+        density: rho,
+        gravity: g,
+        top: Some(beam),
+        live: LiveLoad3::HorizontalWeight { direction: 90.0 },
+        ..ModelSpec3::default()
+    };
+    let m = Model3::new(&spec).unwrap();
+    let wall = rho * g * volume(&blocks);
+    let beam_weight = rho * g * 2.4 * 1.2 * beam;
+    let total = |f: &[f64], k: usize| -> f64 { f.iter().skip(k).step_by(6).sum() };
+    let dead = m.dead_load();
+    assert!(close(total(dead, 2), -(wall + beam_weight), 1e-12));
+    for k in [0, 1, 3, 4, 5] {
+        assert_eq!(total(dead, k), 0.0);
+    }
+    let live = m.live_load();
+    assert_eq!(total(live, 0), 0.0);
+    assert!(close(total(live, 1), wall, 1e-12), "the top beam takes no live load, as in 2D");
+    for k in 2..6 {
+        assert_eq!(total(live, k), 0.0);
+    }
+    let none = Model3::new(&ModelSpec3 { live: LiveLoad3::None, ..spec }).unwrap();
+    assert!(none.live_load().iter().all(|&f| f == 0.0));
+}
+
+#[test]
+fn openings_remove_exactly_their_volume() {
+    // a window and a door whose edges fall inside blocks, away from their edges
+    let (w, h, t) = (4.0, 2.4, 0.1);
+    let wall = running_bond_3d(w, h, t, 0.4, 0.2, 0.2).unwrap();
+    let openings = [[1.1, 0.9, 2.3, 1.7], [2.9, 0.0, 3.5, 1.9]];
+    let cut = cut_openings(wall.clone(), &openings).unwrap();
+    let removed: f64 = openings.iter().map(|o| (o[2] - o[0]) * (o[3] - o[1]) * t).sum();
+    assert!(close(volume(&cut), w * h * t - removed, 1e-13));
+    for b in &cut {
+        for o in &openings {
+            let inside = b.min[0] < o[2] && o[0] < b.max[0] && b.min[2] < o[3] && o[1] < b.max[2];
+            assert!(!inside, "{b:?} in the opening {o:?}");
+        }
+    }
+    Model3::new(&ModelSpec3 { blocks: cut, ..ModelSpec3::default() }).unwrap();
+    // an edge 4 mm from a joint (less than 5% of the block) is snapped onto it: no sliver
+    let cut = cut_openings(wall.clone(), &[[1.204, 0.8, 2.0, 1.6]]).unwrap();
+    // (snapped in the odd courses, whose joint is at 1.2 m, cut at 1.204 m in the even ones)
+    assert!(close(volume(&cut), w * h * t - (2.0 * 0.796 + 2.0 * 0.8) * 0.2 * t, 1e-13));
+    assert!(cut.iter().all(|b| b.size()[0] >= 0.02 - 1e-12));
+    // the facade of a U: the returns keep their blocks; an opening over a corner is refused
+    let (f, r, tu) = (3.0, 1.2, 0.2);
+    let u = u_wall(f, 1.6, r, tu, 0.4, 0.2).unwrap();
+    let cut = cut_openings(u.clone(), &[[1.1, 0.5, 1.9, 1.3]]).unwrap();
+    assert!(close(volume(&cut), volume(&u) - 0.8 * 0.8 * tu, 1e-13));
+    let (key, msg) = input_message(cut_openings(u, &[[0.1, 0.5, 0.9, 1.3]]));
+    assert_eq!(key.as_deref(), Some("openings"));
+    assert!(msg.contains("clear of the corners"), "{msg}");
+    let (_, msg) = input_message(cut_openings(wall, &[[1.0, 0.5, 0.9, 1.3]]));
+    assert!(msg.starts_with("openings[0]"), "{msg}");
+}
+
+/// The model of a wall of 10^5 blocks, its contacts found (0.28 s measured in release):
+/// `cargo test --release --test space_model -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn detection_of_a_hundred_thousand_blocks() {
+    let blocks = running_bond_3d(100.0, 80.0, 0.2, 0.4, 0.2, 0.2).unwrap();
+    let n = blocks.len();
+    let start = std::time::Instant::now();
+    let model = Model3::new(&ModelSpec3 { blocks, ..ModelSpec3::default() }).unwrap();
+    let took = start.elapsed().as_secs_f64();
+    println!("{n} blocks, {} contacts: {took:.3} s", model.contacts().len());
+    assert!(took < 1.0);
+}
