@@ -214,17 +214,3 @@ fn openings_remove_exactly_their_volume() {
     let (_, msg) = input_message(cut_openings(wall, &[[1.0, 0.5, 0.9, 1.3]]));
     assert!(msg.starts_with("openings[0]"), "{msg}");
 }
-
-/// The model of a wall of 10^5 blocks, its contacts found (0.28 s measured in release):
-/// `cargo test --release --test space_model -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn detection_of_a_hundred_thousand_blocks() {
-    let blocks = running_bond_3d(100.0, 80.0, 0.2, 0.4, 0.2, 0.2).unwrap();
-    let n = blocks.len();
-    let start = std::time::Instant::now();
-    let model = Model3::new(&ModelSpec3 { blocks, ..ModelSpec3::default() }).unwrap();
-    let took = start.elapsed().as_secs_f64();
-    println!("{n} blocks, {} contacts: {took:.3} s", model.contacts().len());
-    assert!(took < 1.0);
-}

@@ -169,7 +169,7 @@ pub struct ModelSpec3 {
 
 impl Default for ModelSpec3 {
     /// No blocks, 2000 kg/m3, a base, no top beam, the default joint law, g = 9.81 m/s2, the
-    /// horizontal-weight load towards +y (out of a facade along x).
+    /// horizontal-weight load towards +x (`direction` 0, as in the case file).
     fn default() -> Self {
         ModelSpec3 {
             blocks: vec![],
@@ -178,7 +178,7 @@ impl Default for ModelSpec3 {
             top: None,
             joints: JointLaws::default(),
             gravity: 9.81,
-            live: LiveLoad3::HorizontalWeight { direction: 90.0 },
+            live: LiveLoad3::HorizontalWeight { direction: 0.0 },
         }
     }
 }
