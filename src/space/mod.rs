@@ -136,9 +136,9 @@ pub struct Contact {
 pub enum LiveLoad3 {
     /// No live load (dead loads only).
     None,
-    /// A horizontal force lambda * W_i on every wall block (not the base nor the top beam, as in
-    /// 2D), `direction` \[deg\] in plan from +x towards +y: 0 pushes towards +x, 90 towards +y
-    /// (out of the plane of a facade along x).
+    /// A horizontal force lambda * W_i on every block that weighs (the wall's and the top
+    /// beam's; the top beam weighs in 3D, unlike the plane's), `direction` \[deg\] in plan from
+    /// +x towards +y: 0 pushes towards +x, 90 towards +y (out of the plane of a facade along x).
     HorizontalWeight {
         /// The force's direction in plan \[deg\], from +x towards +y.
         direction: f64,

@@ -96,7 +96,7 @@ impl Model3 {
     }
 
     /// The base's fixed dofs, the weights of the wall and the top beam, and the live load on
-    /// the wall blocks.
+    /// the same blocks (the beam weighs in 3D: its weight is loaded like the wall's).
     fn supports_and_loads(&mut self) {
         if let Some(b) = self.base {
             self.fixed[6 * b..6 * b + 6].fill(true);
@@ -107,7 +107,7 @@ impl Model3 {
         }
         if let LiveLoad3::HorizontalWeight { direction } = self.live {
             let (c, s) = cos_sin_deg(direction);
-            for i in 0..self.n_wall {
+            for i in (0..self.n_wall).chain(self.top) {
                 let w = self.mass[i] * self.gravity;
                 self.f_live[6 * i] = w * c;
                 self.f_live[6 * i + 1] = w * s;
@@ -179,8 +179,8 @@ impl Model3 {
         &self.f_dead
     }
     /// The live load for lambda = 1, 6 per block as [`Model3::dead_load`]: for
-    /// [`LiveLoad3::HorizontalWeight`], `m g (cos d, sin d, 0)` on each wall block (none on the
-    /// base or the top beam, as in 2D), no moments; all zero for [`LiveLoad3::None`].
+    /// [`LiveLoad3::HorizontalWeight`], `m g (cos d, sin d, 0)` on each block that weighs (the
+    /// wall's and the top beam; none on the base), no moments; all zero for [`LiveLoad3::None`].
     pub fn live_load(&self) -> &[f64] {
         &self.f_live
     }

@@ -125,7 +125,7 @@ fn overlapping_blocks_are_refused_by_name() {
 #[test]
 fn base_and_top_beam_frame_the_wall() {
     let blocks = vec![Box3::new(0.0, 0.0, 0.0, 0.4, 0.1, 0.2), Box3::new(0.4, 0.0, 0.0, 0.8, 0.1, 0.3)];
-    let spec = ModelSpec3 { blocks, top: Some(0.1), ..ModelSpec3::default() };
+    let spec = ModelSpec3 { blocks, top: Some(0.1), live: LiveLoad3::HorizontalWeight { direction: 90.0 }, ..ModelSpec3::default() };
     let m = Model3::new(&spec).unwrap();
     assert_eq!((m.n_wall(), m.n_blocks(), m.base(), m.top()), (2, 4, Some(2), Some(3)));
     assert_eq!(m.boxes()[2], Box3::new(0.0, 0.0, -0.3, 0.8, 0.1, 0.0)); // as deep as the tallest block
@@ -139,11 +139,12 @@ fn base_and_top_beam_frame_the_wall() {
     assert_eq!(fam, [(0, 1, Head), (1, 3, Top), (2, 0, Base), (2, 1, Base)]);
     assert_eq!(&m.fixed()[12..18], &[true; 6]);
     assert!(m.fixed()[..12].iter().chain(&m.fixed()[18..]).all(|f| !f));
-    // the beam weighs, the base does not; the live load is on the wall blocks only
+    // the beam weighs, the base does not; the live load is on what weighs
     let w_top = m.mass()[3] * 9.81;
     assert!((m.dead_load()[6 * 3 + 2] + w_top).abs() < 1e-9);
     assert_eq!(m.dead_load()[6 * 2 + 2], 0.0);
-    assert_eq!(&m.live_load()[12..], &[0.0; 12]);
+    assert_eq!(&m.live_load()[12..18], &[0.0; 6]);
+    assert!((m.live_load()[6 * 3 + 1] - w_top).abs() < 1e-9);
     assert!((m.live_load()[1] - m.mass()[0] * 9.81).abs() < 1e-9 && m.live_load()[0] == 0.0);
     assert!((m.size() - 0.8).abs() < 1e-15);
     assert_eq!(m.law(0), &m.laws().default);
