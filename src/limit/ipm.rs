@@ -19,6 +19,7 @@ pub(super) fn max_step(v: &[f64], dv: &[f64]) -> f64 {
 
 /// The interior point's iterate. Variables: `nv` per element (in the plane the last, theta,
 /// bounded by 1) and lambda (free); `t`, `v`: the upper bounds' slacks and multipliers.
+#[derive(Clone)]
 pub(super) struct Iterate {
     pub(super) x: Vec<f64>,
     pub(super) lam: f64,
@@ -73,6 +74,7 @@ impl Iterate {
 /// An iterate's distance from the optimum: the mean complementarity product, lambda (scaled),
 /// the scaled primal and dual residuals, the dual objective, the relative duality gap, and the
 /// worst of the residuals and the gap.
+#[derive(Clone, Copy)]
 struct Measures {
     mu: f64,
     lam: f64,
@@ -97,25 +99,31 @@ struct Ipm {
     aty: Vec<f64>,
     best: f64,
     since_best: usize,
+    /// the best iterate within [`REDUCED_ACCURACY`] times the tolerance so far, measured, and
+    /// its iteration: what the iterations give if rounding spoils those after it
+    near: Option<(Iterate, Measures, usize)>,
     ncomp: f64,
 }
 
 impl Ipm {
-    /// Whether the iterations end at this iterate, measured by `q`, and how: lambda beyond its
-    /// range, the tolerance met, a dual ray proving infeasibility, or a stall (near the
-    /// tolerance the solution stands; far from it, or at the last iteration, it is `failed`).
-    fn verdict(&mut self, opts: &LimitOptions, q: &Measures, failed: Outcome, iter: usize) -> Option<Outcome> {
+    /// Whether the iterations end at this iterate, measured by `q`, and with which solution:
+    /// lambda beyond its range, the tolerance met, a dual ray proving infeasibility, or a stall.
+    /// Stalled, rounding bounds the residuals above the tolerance: the best iterate within
+    /// [`REDUCED_ACCURACY`] times it stands (its certificate says how close it is), even where
+    /// the iterations after it grew worse; a long stall or the last iteration with none such
+    /// is a failure.
+    fn verdict(&mut self, opts: &LimitOptions, q: &Measures, failed: Outcome, iter: usize) -> Option<Solution> {
         let range = LAMBDA_RANGE;
         if q.lam > range * range || (q.lam > range && q.primal <= opts.tolerance) {
-            return Some(Outcome::Unbounded);
+            return Some(self.solution(Outcome::Unbounded, q, iter));
         }
         if q.worst <= opts.tolerance {
-            return Some(Outcome::Optimal);
+            return Some(self.solution(Outcome::Optimal, q, iter));
         }
         // a dual point of objective above the range bounds lambda below -range: no
         // multiplier in the range balances the dead loads
         if q.dual <= 1e-8 && q.dobj > range {
-            return Some(Outcome::Infeasible);
+            return Some(self.solution(Outcome::Infeasible, q, iter));
         }
         if q.worst < 0.5 * self.best {
             self.best = q.worst;
@@ -123,31 +131,40 @@ impl Ipm {
         } else {
             self.since_best += 1;
         }
-        // stalled: rounding bounds the residuals above the tolerance. Within
-        // REDUCED_ACCURACY times it the solution stands (its certificate says how close it
-        // is); a long stall or the last iteration far from it is a failure
         let near = q.worst <= REDUCED_ACCURACY * opts.tolerance;
-        if near && self.since_best >= 5 {
-            return Some(Outcome::Optimal);
+        if near && self.near.as_ref().map_or(true, |n| q.worst < n.1.worst) {
+            self.near = Some((self.p.clone(), *q, iter));
         }
-        if iter == opts.max_iterations || self.since_best >= 30 || !q.worst.is_finite() {
-            return Some(if near { Outcome::Optimal } else { failed });
+        // stalled near the tolerance, or gone astray since an iterate near it
+        let last = iter == opts.max_iterations || self.since_best >= 30 || !q.worst.is_finite();
+        if self.near.is_some() && ((near && self.since_best >= 5) || self.since_best >= 15 || last) {
+            return self.near_solution();
         }
-        None
+        last.then(|| self.solution(failed, q, iter))
+    }
+
+    /// The best iterate near the tolerance as an optimal solution, if there is one.
+    fn near_solution(&self) -> Option<Solution> {
+        self.near.as_ref().map(|(p, q, iter)| solution_of(p, Outcome::Optimal, q, *iter))
     }
 
     /// The solution at the iterate, measured by `q`, after `iter` iterations.
     fn solution(&self, outcome: Outcome, q: &Measures, iter: usize) -> Solution {
-        Solution {
-            outcome,
-            x: self.p.x.clone(),
-            lambda: q.lam,
-            y: self.p.y.clone(),
-            primal: q.primal,
-            dual: q.dual,
-            gap: q.gap,
-            iterations: iter,
-        }
+        solution_of(&self.p, outcome, q, iter)
+    }
+}
+
+/// The solution at iterate `p`, measured by `q`, after `iter` iterations.
+fn solution_of(p: &Iterate, outcome: Outcome, q: &Measures, iter: usize) -> Solution {
+    Solution {
+        outcome,
+        x: p.x.clone(),
+        lambda: q.lam,
+        y: p.y.clone(),
+        primal: q.primal,
+        dual: q.dual,
+        gap: q.gap,
+        iterations: iter,
     }
 }
 
@@ -156,6 +173,9 @@ impl Lp {
     pub(super) fn apply(&self, x: &[f64], lam: f64, out: &mut [f64]) {
         for (o, f) in out.iter_mut().zip(&self.f_live) {
             *o = -f * lam;
+        }
+        if let Some(cf) = &self.corners {
+            return self.apply_corners(cf, x, out);
         }
         let (rows, nv) = (self.rows, self.nv);
         for k in 0..self.m {
@@ -171,6 +191,9 @@ impl Lp {
 
     /// `A^T y` into `out` (lambda's row, `-f_live . y`, left out).
     pub(super) fn apply_t(&self, y: &[f64], out: &mut [f64]) {
+        if let Some(cf) = &self.corners {
+            return self.apply_t_corners(cf, y, out);
+        }
         let (rows, nv) = (self.rows, self.nv);
         for k in 0..self.m {
             let o = &mut out[nv * k..nv * k + nv];
@@ -247,6 +270,7 @@ impl Lp {
             aty: vec![0.0; nx],
             best: f64::INFINITY,
             since_best: 0,
+            near: None,
             ncomp: (nx + nbd) as f64,
         }
     }
@@ -282,11 +306,11 @@ impl Lp {
         } else {
             Outcome::NotConverged
         };
-        if let Some(outcome) = ipm.verdict(opts, &q, failed, iter) {
-            return ControlFlow::Break(Ok(ipm.solution(outcome, &q, iter)));
+        if let Some(solution) = ipm.verdict(opts, &q, failed, iter) {
+            return ControlFlow::Break(Ok(solution));
         }
         if self.newton_step(ipm, q.mu).is_none() {
-            return ControlFlow::Break(Ok(ipm.solution(failed, &q, iter)));
+            return ControlFlow::Break(Ok(ipm.near_solution().unwrap_or_else(|| ipm.solution(failed, &q, iter))));
         }
         ControlFlow::Continue(())
     }
@@ -434,6 +458,11 @@ impl Lp {
 
     /// Assembles `sum_k A_k Theta_k A_k^T` (lambda's column left out).
     pub(super) fn assemble(&mut self, theta: &[f64]) {
+        if let Some(cf) = self.corners.take() {
+            self.assemble_corners(&cf, theta);
+            self.corners = Some(cf);
+            return;
+        }
         let (rows, nv) = (self.rows, self.nv);
         self.normal.values_mut().fill(0.0);
         let mut ai = vec![0.0; nv];

@@ -156,6 +156,7 @@ impl Plane {
         let lp = Lp::new(eq, n, 6, NV, Some(NV - 1), flat, f_dead, f_live, (force, length, live))?;
         let slope = coulomb.iter().map(|c| c.1).collect();
         let mut plane = Plane { lp, cols, hc, ht, slope, coulomb };
+        plane.lp.acols = vec![0.0; plane.lp.m * 6 * NV];
         plane.fill();
         Ok(plane)
     }
@@ -165,8 +166,8 @@ impl Plane {
     fn fill(&mut self) {
         for k in 0..self.lp.m {
             let (a, pv) = self.columns(k);
-            for r in 0..6 {
-                self.lp.acols[(6 * k + r) * NV..(6 * k + r + 1) * NV].copy_from_slice(&a[r]);
+            for (r, row) in a.iter().enumerate() {
+                self.lp.acols[(6 * k + r) * NV..(6 * k + r + 1) * NV].copy_from_slice(row);
             }
             self.lp.pv[6 * k..6 * k + 6].copy_from_slice(&pv);
         }

@@ -28,8 +28,11 @@ pub(super) struct Lp {
     pub(super) eq: Vec<Option<usize>>,
     /// Per element: the equations of its dofs ([`NO_EQ`] for a support), `rows` each.
     pub(super) dofs: Vec<u32>,
-    /// Per element: `A_k`, `rows x nv` row-major.
+    /// Per element: `A_k`, `rows x nv` row-major (empty when the program is in [`Corners`]
+    /// form).
     pub(super) acols: Vec<f64>,
+    /// The blocks `A_k` in factored form, where they are forces at contact points (3D).
+    pub(super) corners: Option<Corners>,
     /// Per element: `P_k`, `rows` each.
     pub(super) pv: Vec<f64>,
     /// Per element: the value slot of each entry of its `rows x rows` block in the normal
@@ -48,7 +51,7 @@ impl Lp {
     /// The program's frame: `eq` (the equation of each dof), each element's dofs' equations
     /// (`rows` each), `nv` variables per element, the loads (scaled, one per equation) and the
     /// scales; the normal matrix's pattern analysed once. The blocks `A_k`, `P_k` start at
-    /// zero: the dimension fills them.
+    /// zero (`P_k`) or empty (`A_k`): the dimension sets them.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn new(
         eq: Vec<Option<usize>>,
@@ -71,7 +74,8 @@ impl Lp {
             bounded,
             eq,
             dofs,
-            acols: vec![0.0; m * rows * nv],
+            acols: vec![],
+            corners: None,
             pv: vec![0.0; m * rows],
             slots,
             f_dead,
@@ -120,6 +124,131 @@ impl Lp {
             .enumerate()
             .map(|(dof, e)| e.map_or(0.0, |e| sol.y[e] * if rot(dof) { 1.0 / self.length } else { 1.0 }))
             .collect()
+    }
+}
+
+/// The blocks of a program whose variables are the weights of generators of forces at the
+/// corners of contacts between two rigid bodies (3D: six equations per body, forces then
+/// moments), stored factored: `A_k = C_k G_k`, with `G_k` each corner's generators (the same at
+/// every corner of a contact) and `C_k` what a force at a corner does to the two bodies (minus
+/// it and its moment on b, plus on a). Per contact 48 numbers where `A_k` has 384: the interior
+/// point's products stream memory, and on a wall of a few thousand blocks they took a third of
+/// its time in the dense form.
+pub(super) struct Corners {
+    /// Corners per contact and generators per corner.
+    pub(super) corners: usize,
+    pub(super) sides: usize,
+    /// Per contact, its generators (3 each, global axes).
+    pub(super) gens: Vec<[f64; 3]>,
+    /// Per contact and corner, the corner's position from a's centroid then from b's, over the
+    /// length scale (the moment rows are scaled by it).
+    pub(super) arms: Vec<[[f64; 3]; 2]>,
+}
+
+impl Corners {
+    /// Variables of element k, corner q, start at `nv k + sides q`.
+    #[inline]
+    fn var(&self, nv: usize, k: usize, q: usize) -> usize {
+        nv * k + self.sides * q
+    }
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+impl Lp {
+    /// `out[dofs] += A_k x_k` for a program in corner form.
+    pub(super) fn apply_corners(&self, cf: &Corners, x: &[f64], out: &mut [f64]) {
+        for k in 0..self.m {
+            let d = &self.dofs[12 * k..12 * k + 12];
+            let g = &cf.gens[cf.sides * k..cf.sides * (k + 1)];
+            for q in 0..cf.corners {
+                let xq = &x[cf.var(self.nv, k, q)..cf.var(self.nv, k, q) + cf.sides];
+                let mut f = [0.0; 3];
+                for (gj, xj) in g.iter().zip(xq) {
+                    (0..3).for_each(|i| f[i] += xj * gj[i]);
+                }
+                let [ra, rb] = cf.arms[cf.corners * k + q];
+                let (ma, mb) = (cross(ra, f), cross(rb, f));
+                let rows = [f[0], f[1], f[2], ma[0], ma[1], ma[2], -f[0], -f[1], -f[2], -mb[0], -mb[1], -mb[2]];
+                for (&e, v) in d.iter().zip(rows) {
+                    if e != NO_EQ {
+                        out[e as usize] += v;
+                    }
+                }
+            }
+        }
+    }
+
+    /// `A^T y` for a program in corner form: each generator's dot product with the velocity
+    /// jump at its corner.
+    pub(super) fn apply_t_corners(&self, cf: &Corners, y: &[f64], out: &mut [f64]) {
+        for k in 0..self.m {
+            let d = &self.dofs[12 * k..12 * k + 12];
+            let yv: [f64; 12] = std::array::from_fn(|r| if d[r] == NO_EQ { 0.0 } else { y[d[r] as usize] });
+            let g = &cf.gens[cf.sides * k..cf.sides * (k + 1)];
+            for q in 0..cf.corners {
+                let [ra, rb] = cf.arms[cf.corners * k + q];
+                // (r x g) . w = g . (w x r)
+                let (wa, wb) = (cross([yv[3], yv[4], yv[5]], ra), cross([yv[9], yv[10], yv[11]], rb));
+                let jump: [f64; 3] = std::array::from_fn(|i| yv[i] + wa[i] - yv[6 + i] - wb[i]);
+                let o = cf.var(self.nv, k, q);
+                for (j, gj) in g.iter().enumerate() {
+                    out[o + j] = gj[0] * jump[0] + gj[1] * jump[1] + gj[2] * jump[2];
+                }
+            }
+        }
+    }
+
+    /// `sum_k A_k Theta_k A_k^T` for a program in corner form: per corner, the 3 x 3
+    /// `G Theta G^T` carried to the 12 rows of the two bodies.
+    pub(super) fn assemble_corners(&mut self, cf: &Corners, theta: &[f64]) {
+        let vals = self.normal.values_mut();
+        vals.fill(0.0);
+        for k in 0..self.m {
+            let slots = &self.slots[144 * k..144 * (k + 1)];
+            let g = &cf.gens[cf.sides * k..cf.sides * (k + 1)];
+            let mut block = [[0.0; 12]; 12];
+            for q in 0..cf.corners {
+                let th = &theta[cf.var(self.nv, k, q)..cf.var(self.nv, k, q) + cf.sides];
+                let mut mq = [[0.0; 3]; 3];
+                for (gj, t) in g.iter().zip(th) {
+                    for i in 0..3 {
+                        for l in 0..3 {
+                            mq[i][l] += t * gj[i] * gj[l];
+                        }
+                    }
+                }
+                // C_q: the 12 x 3 map of a corner force to the rows; column c is C_q e_c
+                let [ra, rb] = cf.arms[cf.corners * k + q];
+                let cols: [[f64; 12]; 3] = std::array::from_fn(|c| {
+                    let mut e = [0.0; 3];
+                    e[c] = 1.0;
+                    let (ma, mb) = (cross(ra, e), cross(rb, e));
+                    [e[0], e[1], e[2], ma[0], ma[1], ma[2], -e[0], -e[1], -e[2], -mb[0], -mb[1], -mb[2]]
+                });
+                // (C M)(r, l) = sum_c C(r, c) M(c, l)
+                let cm: [[f64; 3]; 12] =
+                    std::array::from_fn(|r| std::array::from_fn(|l| (0..3).map(|c| cols[c][r] * mq[c][l]).sum()));
+                for (r, cmr) in cm.iter().enumerate() {
+                    for s in r..12 {
+                        block[r][s] += cmr[0] * cols[0][s] + cmr[1] * cols[1][s] + cmr[2] * cols[2][s];
+                    }
+                }
+            }
+            for r in 0..12 {
+                for s in r..12 {
+                    let slot = slots[12 * r + s];
+                    if slot != u32::MAX {
+                        vals[slot as usize] += block[r][s];
+                        if s != r {
+                            vals[slots[12 * s + r] as usize] += block[r][s];
+                        }
+                    }
+                }
+            }
+        }
     }
 }
 

@@ -34,7 +34,7 @@ const ROWS3: usize = 12;
 /// normal plus mu times a tangent direction, in global axes), for the resultants.
 pub(super) struct Space {
     pub(super) lp: Lp,
-    /// per contact and corner, the pyramid's generators (global axes)
+    /// per contact, the pyramid's generators (global axes), the same at its corners
     generators: Vec<[[f64; 3]; SIDES]>,
 }
 
@@ -132,24 +132,19 @@ impl Space {
         }
         let mut lp = Lp::new(eq, n, ROWS3, NV3, None, dofs, f_dead, f_live, (force, length, live))?;
         let centroids = model.centroids();
-        let mut generators = Vec::with_capacity(CORNERS * m);
+        let mut generators = Vec::with_capacity(m);
+        let mut gens = Vec::with_capacity(SIDES * m);
+        let mut arms = Vec::with_capacity(CORNERS * m);
         for (k, c) in contacts.iter().enumerate() {
             let g = pyramid(c, model.law(k).friction, first_angle(c, model.live(), align));
-            for (q, &p) in c.corners.iter().enumerate() {
-                for (j, gj) in g.iter().enumerate() {
-                    // A x is the interfaces' share of the loads: minus the force on b (and its
-                    // moment about b's centroid), plus the same on a
-                    let (ma, mb) = (cross(sub(p, centroids[c.a]), *gj), cross(sub(p, centroids[c.b]), *gj));
-                    let col =
-                        [gj[0], gj[1], gj[2], ma[0], ma[1], ma[2], -gj[0], -gj[1], -gj[2], -mb[0], -mb[1], -mb[2]];
-                    for (r, v) in col.iter().enumerate() {
-                        let s = if r % 6 >= 3 { 1.0 / length } else { 1.0 };
-                        lp.acols[(ROWS3 * k + r) * NV3 + SIDES * q + j] = v * s;
-                    }
-                }
-                generators.push(g);
+            gens.extend_from_slice(&g);
+            for &p in &c.corners {
+                let arm = |i: usize| sub(p, centroids[i]).map(|v| v / length);
+                arms.push([arm(c.a), arm(c.b)]);
             }
+            generators.push(g);
         }
+        lp.corners = Some(Corners { corners: CORNERS, sides: SIDES, gens, arms });
         Ok(Space { lp, generators })
     }
 
@@ -165,7 +160,7 @@ impl Space {
             .map(|(k, c)| {
                 let (mut force, mut moment) = ([0.0; 3], [0.0; 3]);
                 for (q, &p) in c.corners.iter().enumerate() {
-                    let g = &self.generators[CORNERS * k + q];
+                    let g = &self.generators[k];
                     let mut fp = [0.0; 3];
                     for (j, gj) in g.iter().enumerate() {
                         let r = x[NV3 * k + SIDES * q + j] * f;
