@@ -366,3 +366,12 @@ def test_import_stays_light() -> None:
             "print(sorted(m for m in ('matplotlib', 'meshio', 'mpl_toolkits') if m in sys.modules))")
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert proc.returncode == 0 and proc.stdout.strip() == "[]", proc.stderr
+
+
+def test_a_study_of_a_3d_case_is_refused(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
+    pytest.importorskip("dask")
+    study = tmp_path / "study.toml"
+    study.write_text(f"format = 1\ncase = {json.dumps(str(LEAF))}\n")
+    assert cli.main(["study", str(study), "--out", str(tmp_path / "rows.parquet")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("masonry-dem: error: ") and "case: is a 3D wall: a study runs walls in the plane" in err
