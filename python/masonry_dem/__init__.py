@@ -1,4 +1,5 @@
-"""masonry-dem: nonlinear in-plane analysis of masonry walls of rigid blocks with Mohr-Coulomb joints.
+"""masonry-dem: nonlinear in-plane analysis of masonry walls of rigid blocks with Mohr-Coulomb joints, and limit
+analysis of 3D walls of boxes.
 
 SI units throughout (m, N, Pa, kg, s). The compiled core (Rust) provides the wall generators, the
 :class:`Model` and the solvers; this package adds case files, result files, plots and the command line:
@@ -14,6 +15,12 @@ Two solvers share one model: ``Model.solve_static`` (incremental, Newton) and ``
 analysis on the same model (the collapse multiplier as a linear program, with ``Results.certificate``).
 Case files choose one with [analysis] method ("static", "dynamic", "limit"); :mod:`masonry_dem.compare`
 sets their results side by side.
+
+Two dimensions: a wall in the plane is a :class:`Model` (rectangles [x0, y0, x1, y1]); a 3D wall of boxes
+[x0, y0, z0, x1, y1, z1], z up, is a :class:`Model3D` (:mod:`masonry_dem.space`: the generators ``running_bond_3d``,
+``u_wall``, ``corner_wall``; plots and VTK in 3D), analysed by limit analysis (``Model3D.solve_limit``) with the live
+load in any direction in plan. Both give the same :class:`Results` (``Results.dimension``: 2 or 3); a case file
+whose [geometry] gives boxes is 3D.
 
 Plots (:mod:`masonry_dem.plot`, matplotlib, imported on first use): panels ``plot_wall``,
 ``plot_deformed``, ``plot_cracks``, ``plot_mechanism``, ``plot_curve``, the one-page ``report_figure``,
@@ -102,14 +109,19 @@ if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); impo
         m_per_s2,
     )
     from .plot.animation import write_animation
+    from .space import Model3D, corner_wall, running_bond_3d, u_wall
     from .study import load_study, read_results, run_study
 
 __all__ = [
     "Model",
+    "Model3D",
     "Results",
     "TimeHistory",
     "running_bond",
     "pattern",
+    "running_bond_3d",
+    "u_wall",
+    "corner_wall",
     "MasonryError",
     "InputError",
     "ConvergenceError",
@@ -184,6 +196,7 @@ _LAZY = {
     **dict.fromkeys(("write_curve_csv", "write_vtk"), ".export"),
     **dict.fromkeys(("Modes", "modes", "plot_modes", "rayleigh_damping"), ".modal"),
     "write_animation": ".plot.animation",
+    **dict.fromkeys(("Model3D", "running_bond_3d", "u_wall", "corner_wall"), ".space"),
     **dict.fromkeys(("load_study", "run_study", "read_results"), ".study"),
 }
 

@@ -7,7 +7,7 @@ An argument left out (None) takes the core's default: the Rust `Default` of the 
 to, documented in docs/case-format.md under the matching key.
 """
 
-from typing import Callable, Literal, Optional, Sequence, Tuple, TypedDict
+from typing import Callable, Literal, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -18,6 +18,7 @@ IntArray = npt.NDArray[np.int64]
 __version__: str
 JOINT_LAW_KEYS: list[str]  # the keys of a joint-law dict (and of [joints] tables)
 DEFAULTS: dict[str, object]  # the core's defaults of Model's and the solvers' arguments that Python shows
+DEFAULTS_3D: dict[str, object]  # the core's defaults of Model3D's arguments that Python shows
 
 from .errors import ConvergenceError as ConvergenceError
 from .errors import InputError as InputError
@@ -49,6 +50,62 @@ def running_bond(
 def pattern(block_length: float, block_height: float, rows: Sequence[Sequence[float]]) -> FloatArray:
     """Blocks [x0, y0, x1, y1] (shape (n, 4), m) from courses listed bottom to top; each entry is a
     length in units of block_length, a negative entry is a gap of that length."""
+
+def running_bond_3d(
+    length: float,
+    height: float,
+    thickness: float,
+    block_length: float,
+    block_height: float,
+    first_course: Optional[Union[Literal["half", "full"], float]] = None,
+    openings: Optional[Sequence[Sequence[float]]] = None,
+) -> FloatArray:
+    """Boxes [x0, y0, z0, x1, y1, z1] (shape (n, 6), m) of a single leaf in running bond: along x from x = 0 to
+    length, y from 0 to thickness, z from 0 to height [m], of blocks block_length x thickness x block_height [m].
+
+    first_course: how the lowest course starts at x = 0: "half" (the default: with a half block), "full" (with a
+    whole block) or an offset [m] in [0, block_length) by which its joints are shifted to the left; each course above
+    is shifted by half a block more. A height that is not a whole number of courses gets a last course cut to fit
+    (one under 25% of block_height is refused, as in running_bond). A joint that would fall closer than 5% of a block
+    to a course's end is left out (the end block is longer by as much). openings: [x0, z0, x1, z1] [m], holes through
+    the leaf, cut as cut_openings_3d cuts them."""
+
+def u_wall(
+    facade: float,
+    height: float,
+    returns: float,
+    thickness: float,
+    block_length: float,
+    block_height: float,
+    openings: Optional[Sequence[Sequence[float]]] = None,
+) -> FloatArray:
+    """Boxes [x0, y0, z0, x1, y1, z1] (shape (n, 6), m) of a U of three walls one block thick: a facade along x (x in
+    [0, facade], y in [0, thickness]) and two return walls along +y at its ends, returns long from the facade's outer
+    face, height high [m]; blocks block_length x thickness x block_height [m].
+
+    The corners are bonded: in the even courses the facade's end blocks run over the corners, in the odd ones the
+    returns' do; within each wall the courses are in running bond. block_length must exceed thickness by 5% of a
+    block. openings: [x0, z0, x1, z1] [m], holes through the facade, clear of the corners (cut_openings_3d)."""
+
+def corner_wall(
+    facade: float,
+    height: float,
+    returns: float,
+    thickness: float,
+    block_length: float,
+    block_height: float,
+    openings: Optional[Sequence[Sequence[float]]] = None,
+) -> FloatArray:
+    """Boxes [x0, y0, z0, x1, y1, z1] (shape (n, 6), m) of an L of two walls one block thick: a facade along x (x in
+    [0, facade], y in [0, thickness]) and one return wall along +y at x = 0, returns long from the facade's outer
+    face, height high [m], the corner bonded as in u_wall; the facade's far end is free. openings: [x0, z0, x1, z1]
+    [m], holes through the facade, clear of the corner (cut_openings_3d)."""
+
+def cut_openings_3d(boxes: npt.ArrayLike, openings: Sequence[Sequence[float]]) -> FloatArray:
+    """`boxes` [x0, y0, z0, x1, y1, z1] (m) with `openings` [x0, z0, x1, z1] (m) cut through the facade (the blocks of
+    the smallest y) over its depth: a block partly inside an opening becomes its parts outside it (straight jambs,
+    sill and lintel), no part thinner than 5% of the block being made; an opening that reaches a block deeper than
+    the facade (a return wall's block over a corner) is refused."""
 
 class Model:
     """A wall of rigid blocks joined by zero-thickness Mohr-Coulomb interfaces.
@@ -90,6 +147,9 @@ class Model:
         """The live load: "horizontal_weight" (lambda times each block's weight) or "top_horizontal" (lambda newtons on the top beam)."""
     def fix(self, block: int, dof: Literal[0, 1, 2], value: float = 0.0) -> None:
         """Fix dof (0: u1 [m], 1: u2 [m], 2: phi [rad]) of a block at a prescribed value."""
+    @property
+    def dimension(self) -> Literal[2]:
+        """2: a wall in the plane (Model3D's is 3)."""
     @property
     def n_blocks(self) -> int:
         """Number of wall blocks (base and top beam not counted)."""
@@ -278,6 +338,118 @@ class Model:
         joints' restitution (the factor sqrt(1 + z^2) - z with z = 3 zeta, zeta the dashpot's
         damping ratio)."""
 
+class Model3D:
+    """A wall of rigid axis-aligned boxes in 3D, z up, joined by dry Mohr-Coulomb contacts (limit analysis).
+
+    boxes: (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] in m (running_bond_3d, u_wall, corner_wall).
+    density [kg/m3] of the blocks and the top beam (default 2000).
+    base: True (the default) puts a fixed rigid foundation under the wall's footprint (the box around the blocks in
+        plan, as deep as the tallest block); the lowest blocks stand on it.
+    top: None (the default: no top beam) or the height [m] of a rigid top beam of the blocks' density over the box
+        around the blocks in plan, resting on the highest blocks, free to move; it weighs and takes the live load.
+    joints: as Model's, {family: law} with family in "default", "bed", "head", "base", "top"; limit analysis in 3D
+        takes dry joints (cohesion and tensile_strength 0) and reads friction and dilatancy.
+    gravity [m/s2], along -z (default 9.81); live: "horizontal_weight" (the default: lambda * W_i on every block
+        that weighs, horizontal) or "none"; direction: the live load's direction in plan [deg], from +x towards +y
+        (default 0: towards +x; 90 pushes a facade along x out of its plane, towards +y).
+    Block indices: the boxes in the order given, then the base, then the top beam.
+    Raises InputError naming the key or block on bad input (two overlapping boxes are both named)."""
+
+    def __init__(
+        self,
+        boxes: npt.ArrayLike,
+        density: Optional[float] = None,
+        base: Optional[bool] = None,
+        top: Optional[float] = None,  # None: no top beam; else its height [m]
+        joints: Optional[dict[str, dict[str, float]]] = None,
+        gravity: Optional[float] = None,
+        live: Optional[Literal["horizontal_weight", "none"]] = None,
+        direction: Optional[float] = None,
+    ) -> None: ...
+    @property
+    def dimension(self) -> Literal[3]:
+        """3: a wall of boxes in 3D (Model's is 2)."""
+    @property
+    def live(self) -> Literal["horizontal_weight", "none"]:
+        """The live load: "horizontal_weight" (lambda times each block's weight, horizontal, along direction) or "none"."""
+    @property
+    def direction(self) -> Optional[float]:
+        """The live load's direction in plan [deg], from +x towards +y; None without a live load."""
+    @property
+    def gravity(self) -> float:
+        """Acceleration of gravity [m/s2], along -z."""
+    @property
+    def n_blocks(self) -> int:
+        """Number of wall blocks (base and top beam not counted), as Model.n_blocks."""
+    @property
+    def n_interfaces(self) -> int:
+        """Number of interfaces (the contacts between blocks, and with the base and the top beam)."""
+    @property
+    def base_index(self) -> Optional[int]:
+        """Index of the base (the fixed foundation) among the blocks; None without one."""
+    @property
+    def top_index(self) -> Optional[int]:
+        """Index of the top beam among the blocks; None without one."""
+    @property
+    def boxes(self) -> FloatArray:
+        """(n_all, 6) boxes [x0, y0, z0, x1, y1, z1] of all blocks [m], wall blocks first, then base, then top beam."""
+    @property
+    def centroids(self) -> FloatArray:
+        """(n_all, 3) centroid of each block [m] (where its dofs are and its moments are taken)."""
+    @property
+    def mass(self) -> FloatArray:
+        """(n_all,) mass of each block [kg] (the base's too, though it is fixed)."""
+    @property
+    def weights(self) -> FloatArray:
+        """(n_all,) weight of each block [N] (the wall's and the top beam's; 0 for the base)."""
+    @property
+    def interface_blocks(self) -> IntArray:
+        """(m, 2) block indices (a, b) of each interface; the normal points from a to b."""
+    @property
+    def interface_normals(self) -> FloatArray:
+        """(m, 3) unit normal of each interface, from block a into block b (+x, +y or +z)."""
+    @property
+    def interface_t1(self) -> FloatArray:
+        """(m, 3) first unit tangent t1 of each interface: +x on a horizontal one, the horizontal tangent on a vertical one."""
+    @property
+    def interface_t2(self) -> FloatArray:
+        """(m, 3) second unit tangent t2 = normal x t1 of each interface (+y on a horizontal one, +z on a vertical one)."""
+    @property
+    def interface_centroids(self) -> FloatArray:
+        """(m, 3) centroid of each interface [m]."""
+    @property
+    def interface_corners(self) -> FloatArray:
+        """(m, 4, 3) corners of each interface's rectangle [m], counter-clockwise seen from the tip of its normal."""
+    @property
+    def interface_areas(self) -> FloatArray:
+        """(m,) area of each interface [m2]."""
+    @property
+    def interface_family(self) -> list[str]:
+        """Family of each interface: "bed", "head", "base" or "top"."""
+    def solve_limit(
+        self,
+        tolerance: Optional[float] = None,
+        max_iterations: Optional[int] = None,
+        progress: Optional[Callable[[int, float, float, float], None]] = None,
+    ) -> "Results":
+        """Limit analysis in 3D (the static theorem): the largest lambda for which contact forces inside the joints'
+        strength domains balance the dead loads plus lambda times the live load, a linear program solved by the
+        interior point of Model.solve_limit. Each corner of a contact carries a force in a friction pyramid of eight
+        sides inscribed in Coulomb's cone (turned to the live load on horizontal joints: sliding along the load is
+        exact); torsion and biaxial bending come from the corners' positions. Dry joints only: cohesion or
+        tensile_strength is refused (InputError), and so is a wall that nothing holds (no base, or blocks that no
+        chain of contacts joins to it). Exact for dry associative joints (dilatancy = friction), status
+        "collapse"; for dilatancy below friction the associative optimum, an upper bound, with status "estimate".
+
+        tolerance: the interior point's stopping tolerance (0 < tolerance < 0.01; default 1e-8); max_iterations:
+        interior-point iterations (default 200). Returns Results with dimension 3, method "limit": the mechanism's
+        block velocities (vx, vy, vz, wx, wy, wz; largest block translation 1) in `mechanism`, the contact forces at
+        collapse (N, T1, T2, M_n, M_t1, M_t2) in interface_forces, the crack pattern in interface_states; statuses as
+        Model.solve_limit. Releases the GIL; Ctrl-C stops it between iterations and raises KeyboardInterrupt, whose
+        `results` attribute is a Results with status "interrupted" (no multiplier, no certificate).
+        progress: optional callable(iteration, multiplier, nan, nan) called after each interior-point iteration; an
+        exception raised by it stops the analysis and is raised again."""
+
 class TimeHistory:
     """A time history (Model.simulate). Energy balance at each record: initial kinetic + elastic
     energy + external_work = kinetic_energy + elastic_energy + dissipated + energy_error."""
@@ -335,10 +507,14 @@ class _Certificate(TypedDict):
     peak_strengths: bool  # some joint has cohesion or tensile strength, taken at its peak (no softening)
 
 class Results:
-    """The results of an analysis (Model.solve_static, solve_dynamic, solve_limit): the curve of the live load's
-    multiplier lambda [-] against the control block's displacement [m], the displacements [m, rad] and the joints'
-    forces [N, N m] and states at the end, and the collapse multiplier."""
+    """The results of an analysis (Model.solve_static, solve_dynamic, solve_limit, Model3D.solve_limit): the curve of
+    the live load's multiplier lambda [-] against the control block's displacement [m], the displacements [m, rad]
+    and the joints' forces [N, N m] and states at the end, and the collapse multiplier. One class for both
+    dimensions: the block and interface arrays have 3 columns in the plane (dimension 2) and 6 in 3D (dimension 3)."""
 
+    dimension: Literal[2, 3]
+    """2 for a wall in the plane (Model), 3 for a wall of boxes (Model3D): the block and interface arrays have 3 or
+    6 columns."""
     method: str
     """The solver: "static", "dynamic" or "limit"."""
     status: str
@@ -360,13 +536,18 @@ class Results:
     curve_displacement: FloatArray
     """(k,) horizontal displacement of the control point [m] (empty for "limit")."""
     control_block: int
-    """The block whose horizontal displacement the curve follows (Model.default_control_block unless given)."""
+    """The block whose horizontal displacement the curve follows (Model.default_control_block unless given; in 3D the
+    highest wall block)."""
     displacements: FloatArray
-    """(n_all, 3): u1 [m], u2 [m], phi [rad] at the last converged step (zeros for "limit")."""
+    """(n_all, 3): u1 [m], u2 [m], phi [rad] at the last converged step (zeros for "limit"); in 3D (n_all, 6): ux, uy,
+    uz [m], rx, ry, rz [rad] (small rotations about the block's centroid)."""
     mechanism: FloatArray
-    """(n_all, 3): last increment (limit: the block velocities), scaled so that max |u| is 1."""
+    """(n_all, 3): last increment (limit: the block velocities), scaled so that max |u| is 1; in 3D (n_all, 6): the
+    velocities (vx, vy, vz, wx, wy, wz) of the collapse mechanism, its largest block translation 1."""
     interface_forces: FloatArray
-    """(m, 3): N [N] (tension > 0), T [N], M [N m] (limit: at collapse)."""
+    """(m, 3): N [N] (tension > 0), T [N], M [N m] (limit: at collapse); in 3D (m, 6): N, T1, T2 [N], M_n, M_t1,
+    M_t2 [N m], the force and moment (about the contact's centroid) of block b on block a in the contact's axes
+    (normal, t1, t2), N > 0 in tension."""
     interface_states: IntArray
     """(m,) bit flags: 1 open, 2 sliding, 4 rocking; 0 elastic (limit: of the mechanism)."""
     broken: npt.NDArray[np.bool_]

@@ -89,6 +89,7 @@ __all__ = [
     "m_per_s2",
     "CURVE_COLUMNS",
     "INTERFACE_COLUMNS",
+    "INTERFACE_COLUMNS_3D",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -99,6 +100,12 @@ CURVE_COLUMNS = ("multiplier", "displacement_m")
 #: Columns of :func:`interfaces_dataframe`.
 INTERFACE_COLUMNS = (
     "a", "b", "family", "x", "y", "nx", "ny", "length_m", "N_N", "T_N", "M_Nm", "state", "broken",
+)
+#: Columns of :func:`interfaces_dataframe` of a 3D wall (:class:`masonry_dem.Model3D`): the centroid, the normal and
+#: the area of each contact, its force and moment in the contact's axes (normal, t1, t2).
+INTERFACE_COLUMNS_3D = (
+    "a", "b", "family", "x", "y", "z", "nx", "ny", "nz", "area_m2", "N_N", "T1_N", "T2_N", "Mn_Nm", "Mt1_Nm",
+    "Mt2_Nm", "state", "broken",
 )
 
 
@@ -211,9 +218,17 @@ def _floats(a: Any) -> List[Any]:
     return [_floats(row) if arr.ndim > 1 else _float(row) for row in arr]
 
 
+def _dimension(obj: Any) -> int:
+    """2 for a wall in the plane (Model and its Results), 3 for a wall of boxes (Model3D and its Results)."""
+    return int(getattr(obj, "dimension", 2))
+
+
 def _check_model(func: str, results: Any, model: Any) -> None:
-    """InputError when ``model`` does not match ``results`` (numbers of blocks and interfaces)."""
-    n_all = len(np.asarray(model.rects))
+    """InputError when ``model`` does not match ``results`` (dimension, numbers of blocks and interfaces)."""
+    if _dimension(model) != _dimension(results):
+        raise InputError(f"{func}: model does not match results: a {_dimension(model)}D model and "
+                         f"{_dimension(results)}D results")
+    n_all = len(np.asarray(model.boxes if _dimension(model) == 3 else model.rects))
     m = int(model.n_interfaces)
     disp = np.asarray(results.displacements)
     forces = np.asarray(results.interface_forces)
@@ -237,11 +252,19 @@ def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dic
     (counts, as in the result file), base_index, top_index, block_rects ((n_all, 4) [x0, y0, x1, y1] m),
     weights [N], interface_blocks ((m, 2) a, b), interface_geometry ((m, 5) x, y [m], nx, ny, l [m]),
     interface_family. Non-finite numbers become None.
+
+    The results of a 3D wall (``Results.dimension`` 3, a :class:`masonry_dem.Model3D`) have the same keys with
+    ``"dimension": 3``: displacements and mechanism (n_all, 6) ux, uy, uz [m], rx, ry, rz [rad] (the mechanism's
+    velocities), interface_forces (m, 6) N, T1, T2 [N], M_n, M_t1, M_t2 [N m] in the contact's axes; with ``model``
+    block_boxes ((n_all, 6) [x0, y0, z0, x1, y1, z1] m) instead of block_rects, and interface_centroids ((m, 3) [m]),
+    interface_normals ((m, 3)) and interface_areas ((m,) [m2]) instead of interface_geometry.
     """
     states = getattr(results, "joint_states", None) or {}
     out: Dict[str, Any] = {}
     if title is not None:
         out["title"] = str(title)
+    if _dimension(results) == 3:
+        out["dimension"] = 3
     out.update({
         "method": str(results.method),
         "status": str(results.status),
@@ -264,7 +287,22 @@ def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dic
         "elapsed_s": _float(results.elapsed_s),
         "certificate": certificate_dict(getattr(results, "certificate", None)),
     })
-    if model is not None:
+    if model is not None and _dimension(model) == 3:
+        _check_model("to_dict", results, model)
+        out.update({
+            "blocks": int(model.n_blocks),
+            "interfaces": int(model.n_interfaces),
+            "base_index": None if model.base_index is None else int(model.base_index),
+            "top_index": None if model.top_index is None else int(model.top_index),
+            "block_boxes": _floats(model.boxes),
+            "weights": _floats(model.weights),
+            "interface_blocks": [[int(a), int(b)] for a, b in np.asarray(model.interface_blocks).reshape(-1, 2)],
+            "interface_centroids": _floats(np.asarray(model.interface_centroids).reshape(-1, 3)),
+            "interface_normals": _floats(np.asarray(model.interface_normals).reshape(-1, 3)),
+            "interface_areas": _floats(model.interface_areas),
+            "interface_family": [str(s) for s in model.interface_family],
+        })
+    elif model is not None:
         _check_model("to_dict", results, model)
         out.update({
             "blocks": int(model.n_blocks),
@@ -314,9 +352,30 @@ def curve_columns(results: Any) -> Dict[str, np.ndarray]:
 def interface_columns(results: Any, model: Any) -> Dict[str, np.ndarray]:
     """One entry per interface: a, b (block indices; the normal points from a to b), family, x, y
     (centroid [m]), nx, ny (normal), length_m [m], N_N (normal force [N], tension > 0), T_N (shear force
-    [N]), M_Nm (moment [N m]), state (bit flags: 1 open, 2 sliding, 4 rocking; 0 elastic), broken."""
+    [N]), M_Nm (moment [N m]), state (bit flags: 1 open, 2 sliding, 4 rocking; 0 elastic), broken.
+
+    Of a 3D wall (:class:`masonry_dem.Model3D`), the columns of :data:`INTERFACE_COLUMNS_3D`: a, b, family, x, y, z
+    (centroid [m]), nx, ny, nz (normal), area_m2 [m2], N_N, T1_N, T2_N [N] and Mn_Nm, Mt1_Nm, Mt2_Nm [N m] (the
+    force and moment of block b on block a in the contact's axes: normal, t1, t2; tension > 0), state, broken."""
     _check_model("interface_columns", results, model)
     m = int(model.n_interfaces)
+    if _dimension(model) == 3:
+        ab = np.asarray(model.interface_blocks, dtype=np.int64).reshape(m, 2)
+        centre = np.asarray(model.interface_centroids, dtype=float).reshape(m, 3)
+        normal = np.asarray(model.interface_normals, dtype=float).reshape(m, 3)
+        forces = np.asarray(results.interface_forces, dtype=float).reshape(m, 6)
+        names = ("N_N", "T1_N", "T2_N", "Mn_Nm", "Mt1_Nm", "Mt2_Nm")
+        return {
+            "a": ab[:, 0].copy(),
+            "b": ab[:, 1].copy(),
+            "family": np.asarray([str(s) for s in model.interface_family], dtype=object),
+            **{k: centre[:, i].copy() for i, k in enumerate(("x", "y", "z"))},
+            **{k: normal[:, i].copy() for i, k in enumerate(("nx", "ny", "nz"))},
+            "area_m2": np.asarray(model.interface_areas, dtype=float).reshape(m).copy(),
+            **{k: forces[:, i].copy() for i, k in enumerate(names)},
+            "state": np.asarray(results.interface_states, dtype=np.int64).copy(),
+            "broken": np.asarray(results.broken, dtype=bool).copy(),
+        }
     ab = np.asarray(model.interface_blocks, dtype=np.int64).reshape(m, 2)
     geo = np.asarray(model.interface_geometry, dtype=float).reshape(m, 5)
     forces = np.asarray(results.interface_forces, dtype=float).reshape(m, 3)
@@ -362,4 +421,5 @@ def interfaces_dataframe(results: Any, model: Any) -> Any:
 
     Raises ImportError (naming pandas) when pandas is not installed."""
     pd = _pandas("interfaces_dataframe", "interface_columns")
-    return pd.DataFrame(interface_columns(results, model), columns=list(INTERFACE_COLUMNS))
+    columns = INTERFACE_COLUMNS_3D if _dimension(model) == 3 else INTERFACE_COLUMNS
+    return pd.DataFrame(interface_columns(results, model), columns=list(columns))

@@ -27,6 +27,10 @@ The comparison file::
                    "elapsed_ratio_limit": limit elapsed_s / static elapsed_s}}
 
 Numbers that cannot be computed (a NaN multiplier, a zero time) are null.
+
+A 3D wall (a :class:`masonry_dem.Model3D`) takes limit analysis only in this version: its comparison is that one
+run (:func:`limit_only_text`, :func:`limit_only_dict`: ``{"format": 1, "title", "dimension": 3, "limit": <result
+file>, "note": "..."}``), the static and explicit solvers named as not run.
 """
 
 from __future__ import annotations
@@ -49,7 +53,14 @@ __all__ = [
     "write_comparison_json",
     "comparison_text",
     "format_difference",
+    "LIMIT_ONLY_NOTE",
+    "limit_only_dict",
+    "limit_only_text",
 ]
+
+#: What the comparison of a 3D wall says about the methods not run.
+LIMIT_ONLY_NOTE = ("the 3D model takes limit analysis in this version: the static and explicit (dynamic) solvers are "
+                   "not run")
 
 #: The state bits of a failed interface: open or sliding.
 FAILED = OPEN | SLIDING
@@ -215,4 +226,33 @@ def comparison_text(
     if limit is not None:
         for k, text in enumerate(certificate_text(limit, live)):
             lines.append(f"  {'limit certificate:' if k == 0 else '':<19}{text}")
+    return "\n".join(lines)
+
+
+def limit_only_dict(limit: Any, model: Any, title: str) -> Dict[str, Any]:
+    """The comparison file of a 3D wall: its limit analysis alone (:data:`LIMIT_ONLY_NOTE`)."""
+    return {"format": FORMAT, "title": title, "dimension": 3, "limit": result_dict(limit, model, title),
+            "note": LIMIT_ONLY_NOTE}
+
+
+def limit_only_text(limit: Any, model: Any, title: str, live: str = "horizontal_weight") -> str:
+    """What ``masonry-dem compare`` prints for a 3D wall: its limit analysis (status, collapse multiplier, failed
+    joints, work, time, certificate) and a line saying that the other methods are not run."""
+    lines = [
+        f"{title}: limit analysis (3D)",
+        f"  {_plural(int(model.n_blocks), 'block')}, {_plural(int(model.n_interfaces), 'interface')}; "
+        "failed joints are open or sliding in the collapse mechanism",
+        f"  status:              {limit.status}",
+        f"  collapse multiplier: {_multiplier_cell(limit, live)}",
+        f"  failed joints:       {len(failed_interfaces(limit))}",
+        f"  work:                {int(limit.iterations):,} interior-point iterations",
+        f"  elapsed:             {_seconds(float(limit.elapsed_s))}",
+        f"  static, dynamic:     not run ({LIMIT_ONLY_NOTE.split(':')[0]})",
+    ]
+    if limit.status in UNFINISHED_STATUSES:
+        lines.append(f"  limit failed: {limit.error or 'unknown reason'}")
+    elif limit.status in ERROR_STATUSES or limit.status in NOTE_STATUSES:
+        lines.append(f"  limit: {limit.status}: {limit.error or 'no reason given'}")
+    for k, text in enumerate(certificate_text(limit, live)):
+        lines.append(f"  {'limit certificate:' if k == 0 else '':<21}{text}")
     return "\n".join(lines)

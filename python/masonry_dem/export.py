@@ -176,7 +176,8 @@ def write_vtk(
     time history, a time series instead: ``PATH_PREFIX-blocks-NNNN.vtu`` per record and ``PATH_PREFIX.pvd``.
 
     Args:
-        model: the :class:`masonry_dem.Model` analysed.
+        model: the :class:`masonry_dem.Model` analysed; a :class:`masonry_dem.Model3D` writes its blocks as
+            hexahedra and its contacts as quads (:func:`masonry_dem.space.export.write_vtk`).
         results: its :class:`masonry_dem.Results` (the last converged step), or a
             :class:`masonry_dem.TimeHistory` (``Model.simulate``): then one blocks file per recorded time
             (:func:`history_block_mesh`: displacements relative to the ground, from the undeformed wall,
@@ -194,6 +195,10 @@ def write_vtk(
     for ending in (".vtu", ".pvd"):
         if prefix.endswith(ending):
             prefix = prefix[: -len(ending)]
+    if int(getattr(model, "dimension", 2)) == 3:  # a wall of boxes: hexahedra and contact quads
+        from .space.export import write_vtk as write_vtk_3d
+
+        return write_vtk_3d(model, results, prefix, inputs=inputs)
     if is_time_history(results):
         return _write_vtk_series(model, results, prefix, list(inputs))
     blocks_path, faces_path = Path(prefix + "-blocks.vtu"), Path(prefix + "-interfaces.vtu")

@@ -316,7 +316,13 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
 
     A limit analysis (method "limit") has no load path: its joint states are those of the collapse
     mechanism, and a ``certificate`` line (or lines) replaces the count of steps. A static run checked
-    against limit analysis (associative dry joints) gets a ``checked against`` line with the exact value."""
+    against limit analysis (associative dry joints) gets a ``checked against`` line with the exact value. A 3D wall
+    (a :class:`masonry_dem.Model3D`) gets a line with the live load's direction in plan, and its mechanism is
+    described in 3D (:func:`masonry_dem.space.report.describe_mechanism`)."""
+    describe = describe_mechanism
+    three_d = int(getattr(model, "dimension", 2)) == 3
+    if three_d:
+        from .space.report import describe_mechanism as describe, direction_text
     states: Dict[str, int] = dict(results.joint_states)
     joint_text = ", ".join(f"{int(states.get(k, 0))} {k}" for k in ("elastic", "sliding", "rocking", "open"))
     # an interface that slides and rocks at once counts in both (the result file's convention): say how many,
@@ -331,6 +337,13 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
         f"  blocks:              {model.n_blocks}",
         f"  interfaces:          {model.n_interfaces}",
         f"  method:              {results.method}" + (" (limit analysis)" if limit else ""),
+    ]
+    if three_d:
+        direction = getattr(model, "direction", None)
+        load = f"λ times each block's weight, horizontal, towards {direction_text(direction)}" if direction is not None \
+            else "none"
+        lines.append(f"  live load:           {load}")
+    lines += [
         f"  status:              {format_status(results)}",
         f"  collapse multiplier: {format_multiplier(float(results.collapse_multiplier), live)}"
         + (" (peak horizontal force on the top beam)" if live == "top_horizontal" and collapse else ""),
@@ -352,7 +365,7 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
     else:
         lines.append(f"  joint states:        {joint_text}; at the last equilibrium")
     # a mechanism is a claim of collapse too: none without one
-    lines.append(f"  mechanism:           {describe_mechanism(model, results) if collapse else 'none (no collapse)'}")
+    lines.append(f"  mechanism:           {describe(model, results) if collapse else 'none (no collapse)'}")
     if limit:
         for k, text in enumerate(certificate_text(results, live)):
             lines.append(f"  {'certificate:' if k == 0 else '':<21}{text}")

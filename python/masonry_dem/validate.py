@@ -90,6 +90,7 @@ class ValidationRow:
             "interrupted", "stalled", or for limit analysis "no_equilibrium" or "unbounded").
         estimates: {method: what the number is} for the runs whose status is "estimate" (a limit analysis of
             joints with dilatancy below friction): their multiplier is its estimate, shown as ``~value``.
+        methods: the methods the reference applies to (its [reference] methods).
     """
 
     name: str
@@ -102,6 +103,7 @@ class ValidationRow:
     errors: Dict[str, float] = field(default_factory=dict)
     failures: Dict[str, str] = field(default_factory=dict)
     estimates: Dict[str, str] = field(default_factory=dict)
+    methods: Tuple[str, ...] = METHODS
 
     @property
     def error(self) -> float:
@@ -116,10 +118,20 @@ class ValidationRow:
         """True when every method ran without failure and within the tolerance."""
         return bool(self.errors) and not self.failures and math.isfinite(self.error) and self.error <= self.tolerance
 
+    @property
+    def ran(self) -> bool:
+        """Whether some method was run: a case whose reference applies to none of the methods asked for (a 3D
+        case, whose reference is limit analysis's, under ``--method static``) is not run, neither passed nor
+        failed."""
+        return bool(self.errors) or bool(self.failures)
+
     def verdict(self) -> str:
-        """ "pass", or "FAIL" with the reason (a failed run, or outside the tolerance)."""
+        """ "pass", "not run" (no method asked for applies to its reference), or "FAIL" with the reason (a failed
+        run, or outside the tolerance)."""
         if self.passed:
             return "pass"
+        if not self.ran:
+            return "not run"
         if self.failures:
             return "FAIL (" + "; ".join(f"{m} failed" for m in self.failures) + ")"
         if not math.isfinite(self.error):
@@ -189,6 +201,7 @@ def validate_case(
         reference=float(ref["collapse_multiplier"]),
         tolerance=float(ref["tolerance"]),
         live=case.live_load(model),
+        methods=tuple(ref.get("methods", METHODS)),
     )
     for method in methods:
         if method not in ref.get("methods", METHODS):
@@ -284,13 +297,16 @@ def table_row(row: ValidationRow, names: Sequence[str], methods: Sequence[str]) 
 def table_footer(rows: Sequence[ValidationRow], skipped: Sequence[Path]) -> str:
     """The closing lines: how many passed, the failures' reasons, the skipped files."""
     passed = sum(r.passed for r in rows)
+    idle = [r for r in rows if not r.ran]
     lines = [f"{len(rows)} case{'s' if len(rows) != 1 else ''} with a reference: {passed} passed, "
-             f"{len(rows) - passed} failed"]
+             f"{len(rows) - passed - len(idle)} failed" + (f", {len(idle)} not run" if idle else "")]
     for r in rows:
         for method, reason in r.failures.items():
             lines.append(f"  {r.name}: {method} failed: {' '.join(reason.split())}")
         for method, note in r.estimates.items():
             lines.append(f"  {r.name}: {COLUMN_NAMES.get(method, method)}: estimate: {note}")
+    for r in idle:
+        lines.append(f"  {r.name}: not run: its reference applies to {', '.join(r.methods)} only")
     for path in skipped:
         lines.append(f"  skipped {path.name}: no [reference] table")
     return "\n".join(lines)

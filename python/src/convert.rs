@@ -1,5 +1,5 @@
-//! Conversions between Python values and the core's: rectangles, rows of three numbers, counts,
-//! damping and joint laws, each error naming the argument or key.
+//! Conversions between Python values and the core's: rectangles, boxes, rows of three or six
+//! numbers, counts, damping and joint laws, each error naming the argument or key.
 
 use crate::*;
 
@@ -49,9 +49,10 @@ pub(crate) fn rects_to_py<'py>(py: Python<'py>, rects: &[Rect]) -> Bound<'py, Py
         .into_pyarray(py)
 }
 
-pub(crate) fn rows3<'py>(py: Python<'py>, v: &[[f64; 3]]) -> Bound<'py, PyArray2<f64>> {
+/// Rows of `W` numbers as an (n, W) array: a block's or an interface's (3 in the plane, 6 in 3D).
+pub(crate) fn rows_of<'py, const W: usize>(py: Python<'py>, v: &[[f64; W]]) -> Bound<'py, PyArray2<f64>> {
     let flat: Vec<f64> = v.iter().flatten().copied().collect();
-    Array2::from_shape_vec((v.len(), 3), flat)
+    Array2::from_shape_vec((v.len(), W), flat)
         .unwrap()
         .into_pyarray(py)
 }

@@ -3,7 +3,8 @@
 //! as KeyboardInterrupt with the partial results, panics caught.
 //!
 //! Here: the exceptions and the module. `convert` turns Python values into the core's, `walls`
-//! binds the wall generators, `model` the Model and its analyses, `results` what they return,
+//! binds the wall generators, `model` the Model and its analyses, `space` the 3D Model3D with its
+//! generators and limit analysis, `results` what they return (one Results for both dimensions),
 //! `run` runs an analysis in a thread of its own while Ctrl-C is watched.
 
 use masonry_dem::error::Error;
@@ -90,12 +91,14 @@ mod model;
 mod results;
 mod run;
 mod modal;
+mod space;
 
 use convert::*;
 use walls::*;
 use model::*;
 use results::*;
 use run::*;
+use space::*;
 
 /// The core's defaults of the arguments Python shows when they are left out (the Rust
 /// `Default`s: `ModelSpec`, `TopBeam`'s constants, `StaticOptions`, `ExplicitOptions`): Python
@@ -120,12 +123,31 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     Ok(d)
 }
 
+/// The core's defaults of the arguments of `Model3D` (`ModelSpec3::default()`) that Python shows.
+fn defaults_3d(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let spec = masonry_dem::space::ModelSpec3::default();
+    let d = PyDict::new(py);
+    d.set_item("density", spec.density)?;
+    d.set_item("base", spec.base)?;
+    d.set_item("top", py.None())?;
+    d.set_item("joints", py.None())?;
+    d.set_item("gravity", spec.gravity)?;
+    let (live, direction) = match spec.live {
+        masonry_dem::space::LiveLoad3::HorizontalWeight { direction } => ("horizontal_weight", Some(direction)),
+        masonry_dem::space::LiveLoad3::None => ("none", None),
+    };
+    d.set_item("live", live)?;
+    d.set_item("direction", direction)?;
+    Ok(d)
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("JOINT_LAW_KEYS", JointLaw::KEYS.to_vec())?;
     m.add("DEFAULTS", defaults(py)?)?;
+    m.add("DEFAULTS_3D", defaults_3d(py)?)?;
     let errors = py.import("masonry_dem.errors")?;
     for name in ["MasonryError", "InputError", "ConvergenceError", "MechanismError"] {
         m.add(name, errors.getattr(name)?)?;
@@ -133,7 +155,12 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(running_bond, m)?)?;
     m.add_function(wrap_pyfunction!(pattern, m)?)?;
     m.add_function(wrap_pyfunction!(cut_openings, m)?)?;
+    m.add_function(wrap_pyfunction!(running_bond_3d, m)?)?;
+    m.add_function(wrap_pyfunction!(u_wall, m)?)?;
+    m.add_function(wrap_pyfunction!(corner_wall, m)?)?;
+    m.add_function(wrap_pyfunction!(cut_openings_3d, m)?)?;
     m.add_class::<PyModel>()?;
+    m.add_class::<PyModel3D>()?;
     m.add_class::<PyResults>()?;
     m.add_class::<PyTimeHistory>()?;
     modal::register(m)?;

@@ -87,6 +87,11 @@ impl PyModel {
         self.inner.live().as_str()
     }
 
+    /// 2: a wall in the plane (Model3D's is 3).
+    #[getter]
+    fn dimension(&self) -> usize {
+        2
+    }
     /// Number of wall blocks (base and top beam not counted).
     #[getter]
     fn n_blocks(&self) -> usize {
@@ -205,7 +210,7 @@ impl PyModel {
             ..defaults
         };
         analyse(py, &self.inner, progress, move |model, monitor| {
-            static_solver::solve_with(model, &opts, monitor).map(|inner| PyResults { inner })
+            static_solver::solve_with(model, &opts, monitor).map(PyResults::from)
         })
     }
 
@@ -253,28 +258,9 @@ impl PyModel {
             max_sequence: max_sequence.map_or(Ok(defaults.max_sequence), |v| count("max_sequence", v, 0))?,
             ..defaults
         };
-        let model = Arc::clone(&self.inner);
-        let run = Run::new(progress);
-        let start = Instant::now();
-        let res = run.execute(py, move |run| {
-            guarded(|| {
-                // the callback's step counts the interior-point iterations over all the programs
-                let mut count = 0usize;
-                let mut monitor = |p: &limit::LimitProgress| {
-                    count += 1;
-                    run.report(count, p.multiplier, f64::NAN, f64::NAN, false)
-                };
-                match limit::limit_analysis_with(&model, &opts, &mut monitor) {
-                    // stopped by Ctrl-C or by the callback: an unfinished program certifies
-                    // nothing, so the partial result holds no multiplier (attached to the
-                    // exception that stopped it)
-                    Err(Error::Interrupted) => Ok(interrupted_limit(&model, start)),
-                    r => r,
-                }
-                .map(|inner| PyResults { inner })
-            })
-        })?;
-        run.finish(py, res)
+        limit_run(py, &self.inner, progress, move |model, monitor| {
+            limit::limit_analysis_with(model, &opts, monitor)
+        }, |model, start| interrupted_limit(model.n_blocks(), model.interfaces().len(), model.default_control_block(), [0.0; 3], start))
     }
 
     /// Quasi-static analysis with the explicit (molecular dynamics) solver; the same Results
@@ -327,7 +313,7 @@ impl PyModel {
             ..defaults
         };
         analyse(py, &self.inner, progress, move |model, monitor| {
-            explicit::solve_with(model, &opts, monitor).map(|inner| PyResults { inner })
+            explicit::solve_with(model, &opts, monitor).map(PyResults::from)
         })
     }
 

@@ -131,10 +131,9 @@ impl PyTimeHistory {
 }
 
 /// The Results of a limit analysis stopped before its end: status "interrupted", no multiplier, no
-/// mechanism, no certificate (as the other solvers report an interrupted run).
-pub(crate) fn interrupted_limit(model: &Model, start: Instant) -> Results {
-    let nb = model.n_blocks();
-    let m = model.interfaces().len();
+/// mechanism, no certificate (as the other solvers report an interrupted run). `zero` is a block's
+/// or an interface's row of zeros ([f64; 3] in the plane, [f64; 6] in 3D).
+pub(crate) fn interrupted_limit<V: Copy>(blocks: usize, interfaces: usize, control_block: usize, zero: V, start: Instant) -> Results<V> {
     Results {
         method: "limit",
         status: Status::Interrupted,
@@ -143,12 +142,12 @@ pub(crate) fn interrupted_limit(model: &Model, start: Instant) -> Results {
         last_equilibrium: f64::NAN,
         curve_multiplier: vec![],
         curve_displacement: vec![],
-        control_block: model.default_control_block(),
-        displacements: vec![[0.0; 3]; nb],
-        mechanism: vec![[0.0; 3]; nb],
-        interface_forces: vec![[0.0; 3]; m],
-        interface_states: vec![0; m],
-        broken: vec![false; m],
+        control_block,
+        displacements: vec![zero; blocks],
+        mechanism: vec![zero; blocks],
+        interface_forces: vec![zero; interfaces],
+        interface_states: vec![0; interfaces],
+        broken: vec![false; interfaces],
         iterations: 0,
         steps: 0,
         elapsed_s: start.elapsed().as_secs_f64(),
@@ -157,99 +156,139 @@ pub(crate) fn interrupted_limit(model: &Model, start: Instant) -> Results {
     }
 }
 
-/// The results of an analysis (Model.solve_static, solve_dynamic, solve_limit): the curve of the live load's
-/// multiplier lambda [-] against the control block's displacement [m], the displacements [m, rad] and the joints'
-/// forces [N, N m] and states at the end, and the collapse multiplier.
+/// The core's results of either dimension: a wall in the plane carries [f64; 3] per block and
+/// interface, a wall of boxes [f64; 6].
+pub(crate) enum Dimensioned {
+    Plane(Results),
+    Space(Results<[f64; 6]>),
+}
+
+impl From<Results> for PyResults {
+    fn from(r: Results) -> Self {
+        PyResults { inner: Dimensioned::Plane(r) }
+    }
+}
+
+impl From<Results<[f64; 6]>> for PyResults {
+    fn from(r: Results<[f64; 6]>) -> Self {
+        PyResults { inner: Dimensioned::Space(r) }
+    }
+}
+
+/// `$body` evaluated on the core's Results `$r` of either dimension (its fields that do not depend
+/// on the dimension).
+macro_rules! either {
+    ($self:ident, $r:ident => $body:expr) => {
+        match &$self.inner {
+            Dimensioned::Plane($r) => $body,
+            Dimensioned::Space($r) => $body,
+        }
+    };
+}
+
+/// The results of an analysis (Model.solve_static, solve_dynamic, solve_limit, Model3D.solve_limit): the curve of
+/// the live load's multiplier lambda [-] against the control block's displacement [m], the displacements [m, rad]
+/// and the joints' forces [N, N m] and states at the end, and the collapse multiplier. One class for both
+/// dimensions: the block and interface arrays have 3 columns in the plane (dimension 2) and 6 in 3D (dimension 3).
 #[pyclass(name = "Results", module = "masonry_dem._core")]
 pub(crate) struct PyResults {
-    pub(crate) inner: Results,
+    pub(crate) inner: Dimensioned,
 }
 
 #[pymethods]
 impl PyResults {
+    /// 2 for a wall in the plane (Model), 3 for a wall of boxes (Model3D): the block and interface arrays have 3 or
+    /// 6 columns.
+    #[getter]
+    fn dimension(&self) -> usize {
+        match self.inner {
+            Dimensioned::Plane(_) => 2,
+            Dimensioned::Space(_) => 3,
+        }
+    }
     /// The solver: "static", "dynamic" or "limit".
     #[getter]
     fn method(&self) -> &'static str {
-        self.inner.method
+        either!(self, r => r.method)
     }
     /// How the analysis ended: "collapse", "completed", "failed", "interrupted", "unbounded", "no_equilibrium" or
     /// "estimate" (limit), "stalled" or "displacement_limit" (static).
     #[getter]
     fn status(&self) -> &'static str {
-        self.inner.status.as_str()
+        either!(self, r => r.status.as_str())
     }
     /// Why, when the status is "failed", "no_equilibrium", "unbounded", "stalled" or "displacement_limit"; what the
     /// number is, with "estimate".
     #[getter]
     fn error(&self) -> Option<String> {
-        self.inner.error.clone()
+        either!(self, r => r.error.clone())
     }
     /// Lambda at collapse, or the peak of the curve; NaN unless the status is "collapse".
     #[getter]
     fn collapse_multiplier(&self) -> f64 {
-        self.inner.collapse_multiplier
+        either!(self, r => r.collapse_multiplier)
     }
     /// The largest lambda found in equilibrium (load control: the last step), whatever the status (the estimate, with
     /// "estimate"); NaN if none.
     #[getter]
     fn last_equilibrium(&self) -> f64 {
-        self.inner.last_equilibrium
+        either!(self, r => r.last_equilibrium)
     }
     /// Explicit load control ending in a collapse: (highest level that settled, lowest that ran away), the collapse
     /// multiplier being the first; None otherwise.
     #[getter]
     fn bracket(&self) -> Option<(f64, f64)> {
-        self.inner.bracket.map(|[a, b]| (a, b))
+        either!(self, r => r.bracket.map(|[a, b]| (a, b)))
     }
     /// (k,) lambda at each converged step, from 0 (empty for "limit").
     #[getter]
     fn curve_multiplier<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.inner.curve_multiplier.clone().into_pyarray(py)
+        either!(self, r => r.curve_multiplier.clone().into_pyarray(py))
     }
     /// (k,) horizontal displacement of the control point [m] (empty for "limit").
     #[getter]
     fn curve_displacement<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.inner.curve_displacement.clone().into_pyarray(py)
+        either!(self, r => r.curve_displacement.clone().into_pyarray(py))
     }
-    /// The block whose horizontal displacement the curve follows (Model.default_control_block unless given).
+    /// The block whose horizontal displacement the curve follows (Model.default_control_block unless given; in 3D the
+    /// highest wall block).
     #[getter]
     fn control_block(&self) -> usize {
-        self.inner.control_block
+        either!(self, r => r.control_block)
     }
-    /// (n_all, 3): u1 [m], u2 [m], phi [rad] at the last converged step (zeros for "limit").
+    /// (n_all, 3): u1 [m], u2 [m], phi [rad] at the last converged step (zeros for "limit"); in 3D (n_all, 6): ux, uy,
+    /// uz [m], rx, ry, rz [rad] (small rotations about the block's centroid).
     #[getter]
     fn displacements<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        rows3(py, &self.inner.displacements)
+        either!(self, r => rows_of(py, &r.displacements))
     }
-    /// (n_all, 3): last increment (limit: the block velocities), scaled so that max |u| is 1.
+    /// (n_all, 3): last increment (limit: the block velocities), scaled so that max |u| is 1; in 3D (n_all, 6): the
+    /// velocities (vx, vy, vz, wx, wy, wz) of the collapse mechanism, its largest block translation 1.
     #[getter]
     fn mechanism<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        rows3(py, &self.inner.mechanism)
+        either!(self, r => rows_of(py, &r.mechanism))
     }
-    /// (m, 3): N [N] (tension > 0), T [N], M [N m] (limit: at collapse).
+    /// (m, 3): N [N] (tension > 0), T [N], M [N m] (limit: at collapse); in 3D (m, 6): N, T1, T2 [N], M_n, M_t1,
+    /// M_t2 [N m], the force and moment (about the contact's centroid) of block b on block a in the contact's axes
+    /// (normal, t1, t2), N > 0 in tension.
     #[getter]
     fn interface_forces<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        rows3(py, &self.inner.interface_forces)
+        either!(self, r => rows_of(py, &r.interface_forces))
     }
     /// (m,) bit flags: 1 open, 2 sliding, 4 rocking; 0 elastic (limit: of the mechanism).
     #[getter]
     fn interface_states<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
-        self.inner
-            .interface_states
-            .iter()
-            .map(|&s| s as i64)
-            .collect::<Vec<_>>()
-            .into_pyarray(py)
+        either!(self, r => r.interface_states.iter().map(|&s| s as i64).collect::<Vec<_>>().into_pyarray(py))
     }
     /// (m,) bool: the joint lost its cohesion and tensile strength.
     #[getter]
     fn broken<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<bool>> {
-        self.inner.broken.clone().into_pyarray(py)
+        either!(self, r => r.broken.clone().into_pyarray(py))
     }
     /// Counts of the interfaces by state: {"elastic": n, "sliding": n, "rocking": n, "open": n}.
     #[getter]
     fn joint_states<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let c = self.inner.joint_states();
+        let c = either!(self, r => r.joint_states());
         let d = PyDict::new(py);
         d.set_item("elastic", c.elastic)?;
         d.set_item("sliding", c.sliding)?;
@@ -260,24 +299,24 @@ impl PyResults {
     /// Total equilibrium iterations (static), time steps (dynamic), interior-point iterations (limit).
     #[getter]
     fn iterations(&self) -> usize {
-        self.inner.iterations
+        either!(self, r => r.iterations)
     }
     /// Converged steps (0 for "limit").
     #[getter]
     fn steps(&self) -> usize {
-        self.inner.steps
+        either!(self, r => r.steps)
     }
     /// Wall-clock time of the analysis [s].
     #[getter]
     fn elapsed_s(&self) -> f64 {
-        self.inner.elapsed_s
+        either!(self, r => r.elapsed_s)
     }
     /// What a limit analysis certifies, as a dict (keys: multiplier, primal_residual, dual_residual, duality_gap,
     /// iterations, upper_bound, sequence, sequence_converged, peak_strengths): a limit analysis's own, or that of the
     /// check of a static load-control run on associative dry joints; None otherwise.
     #[getter]
     fn certificate<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
-        let Some(c) = self.inner.certificate else { return Ok(None) };
+        let Some(c) = either!(self, r => r.certificate) else { return Ok(None) };
         let d = PyDict::new(py);
         d.set_item("multiplier", if c.multiplier.is_nan() { None } else { Some(c.multiplier) })?;
         d.set_item("primal_residual", c.primal_residual)?;
@@ -291,12 +330,16 @@ impl PyResults {
         Ok(Some(d))
     }
     fn __repr__(&self) -> String {
-        format!(
-            "Results(method={:?}, status={:?}, collapse_multiplier={:.6}, steps={})",
-            self.inner.method,
-            self.inner.status.as_str(),
-            self.inner.collapse_multiplier,
-            self.inner.steps
-        )
+        let dim = match self.inner {
+            Dimensioned::Plane(_) => "",
+            Dimensioned::Space(_) => ", dimension=3",
+        };
+        either!(self, r => format!(
+            "Results(method={:?}, status={:?}, collapse_multiplier={:.6}, steps={}{dim})",
+            r.method,
+            r.status.as_str(),
+            r.collapse_multiplier,
+            r.steps
+        ))
     }
 }

@@ -122,13 +122,14 @@ impl Run {
 
 /// Runs an incremental analysis of `model` (`work`, given the model and the monitor) in a thread
 /// of its own ([`Run`]), its progress reported to the user's `progress` callback.
-pub(crate) fn analyse<T>(
+pub(crate) fn analyse<M, T>(
     py: Python<'_>,
-    model: &Arc<Model>,
+    model: &Arc<M>,
     progress: Option<Py<PyAny>>,
-    work: impl FnOnce(&Model, &mut dyn FnMut(&masonry_dem::analysis::Progress) -> bool) -> Result<T, Error> + Send + 'static,
+    work: impl FnOnce(&M, &mut dyn FnMut(&masonry_dem::analysis::Progress) -> bool) -> Result<T, Error> + Send + 'static,
 ) -> PyResult<Py<T>>
 where
+    M: Send + Sync + 'static,
     T: pyo3::PyClass + Into<pyo3::PyClassInitializer<T>> + Send + 'static,
 {
     let model = Arc::clone(model);
@@ -137,6 +138,43 @@ where
         guarded(|| {
             let mut monitor = |p: &masonry_dem::analysis::Progress| run.report(p.step, if p.time.is_nan() { p.multiplier } else { p.time }, p.displacement, p.fraction, p.poll);
             work(&model, &mut monitor)
+        })
+    })?;
+    run.finish(py, res)
+}
+
+/// Runs a limit analysis of `model` (of either dimension: `work`, given the model and the monitor)
+/// in a thread of its own ([`Run`]): the user's `progress` callback is called after each
+/// interior-point iteration, the iterations counted over all the programs. Stopped by Ctrl-C or by
+/// the callback, an unfinished program certifies nothing: the partial result, `interrupted(model,
+/// start)`, holds no multiplier (attached to the exception that stopped it).
+pub(crate) fn limit_run<M, V>(
+    py: Python<'_>,
+    model: &Arc<M>,
+    progress: Option<Py<PyAny>>,
+    work: impl FnOnce(&M, &mut dyn FnMut(&limit::LimitProgress) -> bool) -> Result<Results<V>, Error> + Send + 'static,
+    interrupted: fn(&M, Instant) -> Results<V>,
+) -> PyResult<Py<PyResults>>
+where
+    M: Send + Sync + 'static,
+    V: Send + 'static,
+    PyResults: From<Results<V>>,
+{
+    let model = Arc::clone(model);
+    let run = Run::new(progress);
+    let start = Instant::now();
+    let res = run.execute(py, move |run| {
+        guarded(|| {
+            let mut count = 0usize;
+            let mut monitor = |p: &limit::LimitProgress| {
+                count += 1;
+                run.report(count, p.multiplier, f64::NAN, f64::NAN, false)
+            };
+            match work(&model, &mut monitor) {
+                Err(Error::Interrupted) => Ok(interrupted(&model, start)),
+                r => r,
+            }
+            .map(PyResults::from)
         })
     })?;
     run.finish(py, res)

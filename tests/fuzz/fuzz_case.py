@@ -4,7 +4,8 @@ Each input is either read as the text of a case file (raw mode: the fuzzer mutat
 the examples) or, when its first byte is 0, turned into a structured case (every key of docs/case-format.md, each given a value drawn
 from a list of troublemakers: NaN, infinities, zero, negative and huge numbers, 400-digit integers,
 strings, booleans, arrays, tables). The case is loaded with :func:`masonry_dem.parse_case`; if it loads,
-its model is built and, for a wall of at most MAX_SOLVE_BLOCKS blocks, a one-step static analysis is run.
+its model is built and, for a wall of at most MAX_SOLVE_BLOCKS blocks, a one-step static analysis is run (a 3D
+wall of boxes: its limit analysis).
 
 The only acceptable outcomes are success and a :class:`masonry_dem.MasonryError` (InputError and the
 solvers' errors) whose message is one non-empty line starting with the case's name. Anything else is a
@@ -48,17 +49,19 @@ STRINGS = ["", "half", "full", "fixed", "none", "free", "static", "dynamic", "lo
            "horizontal_weight", "top_horizontal", "local", "viscous", "\u00e9", "1.0", "nan"]
 KEYS: Dict[str, List[str]] = {
     "": ["format", "title", "geometry", "base", "top", "joints", "loads", "analysis", "reference", "extra"],
-    "geometry": ["thickness", "density", "running_bond", "pattern", "blocks"],
+    "geometry": ["thickness", "density", "running_bond", "pattern", "blocks", "boxes", "leaf", "u_wall"],
     "geometry.running_bond": ["block_length", "block_height", "courses", "height", "length", "first_course", "openings"],
     "geometry.pattern": ["block_length", "block_height", "rows"],
+    "geometry.leaf": ["length", "height", "thickness", "block_length", "block_height", "first_course", "openings"],
+    "geometry.u_wall": ["facade", "height", "returns", "thickness", "block_length", "block_height", "openings"],
     "base": ["kind"],
-    "top": ["rotation", "force"],
+    "top": ["rotation", "force", "height"],
     "joints": list(case_module.LAW_KEYS) + list(case_module.FAMILIES),
-    "loads": ["gravity", "live"],
+    "loads": ["gravity", "live", "direction"],
     "analysis": list(case_module.ANALYSIS_KEYS + case_module.DYNAMIC_KEYS),
     "reference": list(case_module.REFERENCE_KEYS),
 }
-SUBTABLES = {"geometry": ["running_bond", "pattern"], "joints": list(case_module.FAMILIES)}
+SUBTABLES = {"geometry": ["running_bond", "pattern", "leaf", "u_wall"], "joints": list(case_module.FAMILIES)}
 
 
 def toml_value(v: Any) -> str:
@@ -158,6 +161,16 @@ def estimated_blocks(text: str) -> float:
             return float(rb["length"]) / float(rb["block_length"]) * float(rb["courses"])
         if "pattern" in geo:
             return float(sum(len(r) for r in geo["pattern"]["rows"]))
+        if "leaf" in geo:  # a 3D leaf
+            leaf = geo["leaf"]
+            return (float(leaf["length"]) / float(leaf["block_length"]) + 2) * float(leaf["height"]) / float(leaf["block_height"])
+        for name in ("u_wall", "corner"):  # a 3D facade with its returns
+            if name in geo:
+                w = geo[name]
+                run = float(w["facade"]) + 2 * float(w["returns"])
+                return (run / float(w["block_length"]) + 6) * float(w["height"]) / float(w["block_height"])
+        if "boxes" in geo:
+            return float(len(geo["boxes"]))
         return float(len(geo["blocks"]))
     except Exception:  # not a case the loader would accept anyway: let the loader say so
         return 0.0
@@ -193,7 +206,10 @@ def test_one_input(data: bytes) -> None:
     try:
         case = case_module.parse_case(text, source=SOURCE)
         model = case.build_model()
-        if model.n_blocks <= MAX_SOLVE_BLOCKS and ordinary_blocks(model):
+        if case.dimension == 3:  # a 3D wall: its one method, limit analysis
+            if model.n_blocks <= MAX_SOLVE_BLOCKS:
+                case.solve(model)
+        elif model.n_blocks <= MAX_SOLVE_BLOCKS and ordinary_blocks(model):
             case.analysis_kwargs["steps"] = 1
             case.solve(model, "static")
     except masonry_dem.MasonryError as exc:

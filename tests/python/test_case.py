@@ -74,12 +74,17 @@ def test_examples_load() -> None:
     for f in files:
         case = load_case(f)
         assert case.title
+        text = f.read_text()
+        assert "Reference" in text and "docs/references.md" in text, f.name
+        if case.dimension == 3:  # a 3D wall: limit analysis, boxes (tests/python/test_space.py)
+            assert case.method == "limit"
+            boxes = case.model_kwargs["boxes"]
+            assert boxes.ndim == 2 and boxes.shape[1] == 6 and len(boxes) >= 1
+            continue
         assert case.method == "static"
         blocks = case.model_kwargs["blocks"]
         assert blocks.ndim == 2 and blocks.shape[1] == 4 and len(blocks) >= 1
         # every example states its reference answer and where it comes from, and lists the optional keys
-        text = f.read_text()
-        assert "Reference" in text and "docs/references.md" in text, f.name
         for key in ("tolerance", "damping", "damping_coefficient", "time_step", "unbalanced_ratio", "threads"):
             assert f"# {key} = " in text, (f.name, key)
 
@@ -260,7 +265,7 @@ def test_unknown_key_suggests(tmp_path: Path) -> None:
     message = input_error(tmp_path, MINIMAL + "[joints.bed]\nfrictoin = 0.6\n")
     assert message.endswith("unknown key 'frictoin' in [joints.bed] (did you mean 'friction'?)")
     message = input_error(tmp_path, MINIMAL + "[loads]\nzzz = 1\n")
-    assert "(allowed: gravity, live)" in message
+    assert "(allowed: gravity, live, direction)" in message
 
 
 # --------------------------------------------------------------------------------------------------

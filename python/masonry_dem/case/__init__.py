@@ -13,6 +13,10 @@ The keys are a public contract, described in ``docs/case-format.md``; this packa
   (``Model.solve_limit``). Its parameters are :class:`ModelParameters` and :class:`AnalysisParameters`;
   a key the file leaves out is left to the core's default.
 * :func:`result_dict` / :func:`write_result_json` produce the result file (:mod:`.result_file`).
+* A case whose [geometry] gives boxes (``boxes``, ``[geometry.leaf]``, ``[geometry.u_wall]``,
+  ``[geometry.corner]``) is a 3D wall: its model is a :class:`masonry_dem.Model3D`
+  (:class:`masonry_dem.space.case.ModelParameters3D`), analysed by limit analysis only in this version;
+  ``Case.dimension`` is 3.
 * A case with a [ground_motion] (a record file, read with the case, or a pulse) and a [time_history] runs its
   time history with :meth:`Case.simulate` (``masonry-dem simulate``): :class:`GroundMotionParameters`,
   :class:`TimeHistoryParameters`.
@@ -38,6 +42,7 @@ from .reader import (
     DYNAMIC_KEYS as DYNAMIC_KEYS,
     FAMILIES as FAMILIES,
     GEOMETRY_KINDS as GEOMETRY_KINDS,
+    GEOMETRY_KINDS_3D as GEOMETRY_KINDS_3D,
     GROUND_MOTION_KEYS as GROUND_MOTION_KEYS,
     LAW_KEYS as LAW_KEYS,
     MAX_CASE_BYTES as MAX_CASE_BYTES,

@@ -16,7 +16,7 @@ from __future__ import annotations
 import copy
 from dataclasses import dataclass, field, fields, replace
 from types import MappingProxyType
-from typing import Any, Callable, Dict, Iterator, List, Mapping, MutableMapping, Optional, Sequence
+from typing import TYPE_CHECKING, Any, Callable, ClassVar, Dict, Iterator, List, Mapping, MutableMapping, Optional, Sequence, Union
 
 import numpy as np
 
@@ -43,6 +43,9 @@ SOLVER_OPTIONS = {"static": INCREMENTAL_OPTIONS, "dynamic": INCREMENTAL_OPTIONS 
 CORE_DEFAULTS: Mapping[str, Any] = MappingProxyType(dict(_core.DEFAULTS))
 
 Progress = Callable[[int, float, float, float], None]
+
+if TYPE_CHECKING:
+    from ..space.case import ModelParameters3D
 
 #: The length of a time history under a built-in pulse when [time_history] gives no ``duration``, in periods
 #: of the pulse.
@@ -73,6 +76,8 @@ class ModelParameters:
     default law everywhere): thickness [m], density [kg/m3], base, top_rotation, top_force [N], joints,
     gravity [m/s2], live, top_vertical.
     """
+
+    dimension: ClassVar[int] = 2
 
     blocks: np.ndarray
     thickness: Optional[float] = None
@@ -180,8 +185,10 @@ class _Arguments(MutableMapping):  # type: ignore[type-arg]
     default (:data:`CORE_DEFAULTS`) when it does not. Setting a key sets that parameter on the case (a new
     frozen object), deleting one leaves it out."""
 
-    def __init__(self, case: "Case", attribute: str, names: Sequence[str], shown: Sequence[str] = ()) -> None:
+    def __init__(self, case: "Case", attribute: str, names: Sequence[str], shown: Sequence[str] = (),
+                 defaults: Mapping[str, Any] = CORE_DEFAULTS) -> None:
         self._case, self._attribute, self._names, self._shown = case, attribute, tuple(names), tuple(shown)
+        self._defaults = defaults
 
     def _values(self) -> Dict[str, Any]:
         parameters = getattr(self._case, self._attribute)
@@ -189,7 +196,7 @@ class _Arguments(MutableMapping):  # type: ignore[type-arg]
         for name in self._names:
             value = getattr(parameters, name)
             if value is None and name in self._shown:
-                value = copy.deepcopy(CORE_DEFAULTS[name])
+                value = copy.deepcopy(self._defaults[name])
             if value is not None or name in self._shown:
                 out[name] = value
         return out
@@ -236,7 +243,8 @@ class Case:
 
     Attributes:
         title: the case title.
-        model: the wall, the arguments of :class:`masonry_dem.Model` (:class:`ModelParameters`).
+        model: the wall, the arguments of :class:`masonry_dem.Model` (:class:`ModelParameters`), or of a 3D wall
+            those of :class:`masonry_dem.Model3D` (:class:`masonry_dem.space.case.ModelParameters3D`).
         analysis: the options of the incremental solvers, :meth:`masonry_dem.Model.solve_static` and
             :meth:`masonry_dem.Model.solve_dynamic` (:class:`AnalysisParameters`); limit analysis
             (:meth:`masonry_dem.Model.solve_limit`) ignores them.
@@ -255,7 +263,7 @@ class Case:
     """
 
     title: str
-    model: ModelParameters
+    model: Union[ModelParameters, "ModelParameters3D"]
     analysis: AnalysisParameters = field(default_factory=AnalysisParameters)
     method: str = "static"
     source: str = "<case>"
@@ -264,11 +272,21 @@ class Case:
     time_history: TimeHistoryParameters = field(default_factory=TimeHistoryParameters)
 
     @property
+    def dimension(self) -> int:
+        """2 for a wall in the plane, 3 for a wall of boxes (its model a :class:`masonry_dem.Model3D`)."""
+        return int(self.model.dimension)
+
+    @property
     def model_kwargs(self) -> MutableMapping[str, Any]:
         """The keyword arguments of :class:`masonry_dem.Model` as a dict: blocks, thickness, density, base,
         top_rotation, top_force, joints, gravity, live, top_vertical (the core's default for those the case
-        leaves out). Setting a key sets that parameter of the case."""
-        names = [f.name for f in fields(ModelParameters)]
+        leaves out); of a 3D wall, those of :class:`masonry_dem.Model3D` (boxes, density, base, top, joints,
+        gravity, live, direction). Setting a key sets that parameter of the case."""
+        names = [f.name for f in fields(self.model)]
+        if self.dimension == 3:
+            from ..space.case import CORE_DEFAULTS_3D
+
+            return _Arguments(self, "model", names, shown=names, defaults=CORE_DEFAULTS_3D)
         return _Arguments(self, "model", names, shown=names)
 
     @property
@@ -290,9 +308,12 @@ class Case:
         live = getattr(model, "live", None)
         return str(live if live is not None else self.model_kwargs["live"])
 
-    def build_model(self) -> "_core.Model":
-        """Build the model; errors of the core are re-raised with the file name in front."""
+    def build_model(self) -> Any:
+        """Build the model (a :class:`masonry_dem.Model`, or a :class:`masonry_dem.Model3D` of a 3D wall); errors of
+        the core are re-raised with the file name in front."""
         try:
+            if self.dimension == 3:
+                return _core.Model3D(**self.model.arguments())
             return _core.Model(**self.model.arguments())
         except MasonryError as exc:
             raise _in_file(exc, self.source) from exc
@@ -301,12 +322,17 @@ class Case:
         """The method to use, ``method`` ("static" | "dynamic" | "limit") overriding the case's.
 
         Raises:
-            masonry_dem.InputError: an unknown method.
+            masonry_dem.InputError: an unknown method, or a method other than "limit" for a 3D wall.
         """
         method = self.method if method is None else method
         if method not in METHODS:
             expected = ", ".join(_quote(m) for m in METHODS)
             raise InputError(f"{self.source}: method: expected one of {expected}, got {_quote(method)}")
+        if self.dimension == 3 and method != "limit":
+            from ..space.case import LIMIT_ONLY
+
+            raise InputError(f"{self.source}: method {_quote(method)}: {LIMIT_ONLY} (method \"limit\"; this case is "
+                             "3D)", "analysis.method")
         return method
 
     def solver_kwargs(self, method: Optional[str] = None) -> Dict[str, Any]:
@@ -342,7 +368,10 @@ class Case:
         kwargs = self.analysis.arguments(method)
         if progress is not None:
             kwargs["progress"] = progress
-        solver = {"static": model.solve_static, "dynamic": model.solve_dynamic, "limit": model.solve_limit}[method]
+        if self.dimension == 3:
+            solver = model.solve_limit  # the only method of a 3D wall (check_method refuses the others)
+        else:
+            solver = {"static": model.solve_static, "dynamic": model.solve_dynamic, "limit": model.solve_limit}[method]
         try:
             return solver(**kwargs)
         except MasonryError as exc:
@@ -368,6 +397,10 @@ class Case:
             masonry_dem.InputError: the case has no [ground_motion], or ``scale`` / ``duration`` is not a
                 finite number (duration > 0), or Rayleigh damping without ``model``.
         """
+        if self.dimension == 3:
+            from ..space.case import LIMIT_ONLY
+
+            raise InputError(f"{self.source}: a time history is refused: {LIMIT_ONLY} (this case is 3D)")
         if self.ground_motion is None:
             raise InputError(f"{self.source}: no [ground_motion] table: a time history needs a ground motion "
                              "(a record file or a pulse)", "ground_motion")

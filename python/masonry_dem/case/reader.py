@@ -46,6 +46,8 @@ TOP_KEYS = (
 LAW_KEYS = tuple(_core.JOINT_LAW_KEYS)
 FAMILIES = ("bed", "head", "base", "top")
 GEOMETRY_KINDS = ("running_bond", "pattern", "blocks", "dxf")
+# The [geometry] forms of a 3D wall (masonry_dem.space.case): any of them makes the case 3D
+GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner")
 # Keys of [geometry] besides its kinds: the wall's, and the options of a drawing (dxf)
 DXF_KEYS = ("dxf_layer", "dxf_units")
 RUNNING_BOND_KEYS = ("block_length", "block_height", "courses", "height", "length", "first_course", "openings")
@@ -205,6 +207,10 @@ def case_from_dict(
     top = _Table(data, "", source, TOP_KEYS)
     title = _title(top, default_title)
     kind, geometry, wall = _geometry(top, base_dir)
+    if kind in GEOMETRY_KINDS_3D:  # a wall of boxes: its tables read by masonry_dem.space.case
+        from ..space.case import case_from_tables
+
+        return case_from_tables(top, title, kind, geometry, wall["density"])  # type: ignore[no-any-return]
     wall.update(base=_base(top), **_top_beam(top))
     wall.update(joints=_joints(top), **_loads(top, beam=wall["top_rotation"] is not None))
     method, analysis = _analysis(top)
@@ -242,24 +248,31 @@ def _geometry(top: _Table, base_dir: Optional[PathLike]) -> Tuple[str, Dict[str,
     """[geometry]: its kind, the arguments of the core's generator of that kind, and the wall's thickness
     and density (None when left out). A drawing (dxf) is read here, relative to ``base_dir``, and becomes
     a block list (kind "blocks")."""
-    geo = top.table("geometry", ("thickness", "density") + GEOMETRY_KINDS + DXF_KEYS, required=True)
+    every = GEOMETRY_KINDS + GEOMETRY_KINDS_3D
+    geo = top.table("geometry", ("thickness", "density") + every + DXF_KEYS, required=True)
     assert geo is not None
-    wall = {
-        "thickness": geo.number("thickness", None, _positive, unit="length"),
-        "density": geo.number("density", None, _positive, unit="density"),
-    }
-    given = [k for k in GEOMETRY_KINDS if k in geo]
-    kinds = ", ".join(GEOMETRY_KINDS)
+    given = [k for k in every if k in geo]
     if not given:
-        raise geo.error(f"[geometry] needs exactly one of {kinds}; none is given")
+        raise geo.error(f"[geometry] needs exactly one of {', '.join(GEOMETRY_KINDS)}; none is given (a 3D wall: "
+                        f"one of {', '.join(GEOMETRY_KINDS_3D)})")
     if len(given) > 1:
-        count = {2: "both", 3: "all three", 4: "all four"}[len(given)]
+        # the forms of a wall in the plane, or with a 3D one given, all of them
+        kinds = ", ".join(GEOMETRY_KINDS if all(k in GEOMETRY_KINDS for k in given) else every)
+        count = {3: "all three", 4: "all four"}.get(len(given), ", ".join(given))
         named = f"{' and '.join(given)} are both given" if len(given) == 2 else f"{count} are given"
         raise geo.error(f"[geometry] needs exactly one of {kinds}; {named}")
     kind = given[0]
     for key in DXF_KEYS:
         if key in geo and kind != "dxf":
             raise geo.key_error(key, f"applies to a drawing (dxf), not to {kind}")
+    if kind in GEOMETRY_KINDS_3D:
+        from ..space.case import read_geometry
+
+        return kind, read_geometry(geo, kind), {"density": geo.number("density", None, _positive, unit="density")}
+    wall = {
+        "thickness": geo.number("thickness", None, _positive, unit="length"),
+        "density": geo.number("density", None, _positive, unit="density"),
+    }
     if kind == "dxf":
         return "blocks", _drawing(geo, base_dir), wall
     read = {"running_bond": _running_bond, "pattern": _pattern, "blocks": _block_list}[kind]
@@ -344,9 +357,12 @@ def _base(top: _Table) -> Optional[bool]:
 def _top_beam(top: _Table) -> Dict[str, Any]:
     """[top]: the top beam's rotation (None: no beam; "fixed" when the table leaves it out), vertical
     restraint and dead force (None: left out)."""
-    table = top.table("top", ("rotation", "force", "vertical"))
+    table = top.table("top", ("rotation", "force", "vertical", "height"))
     beam: Dict[str, Any] = dict(top_rotation=None, top_vertical=None, top_force=None)
     if table is not None:
+        if "height" in table:
+            raise table.key_error("height", "is the height of a 3D wall's top beam ([geometry] boxes, leaf, u_wall or "
+                                            "corner); the top beam of a wall in the plane has none")
         beam["top_rotation"] = table.string("rotation", "fixed", ("fixed", "free"))
         beam["top_vertical"] = table.string("vertical", None, ("free", "held"))
         force = table.array("force", required=False)
@@ -383,22 +399,28 @@ def _law(table: _Table) -> Dict[str, float]:
 
 def _loads(top: _Table, beam: bool) -> Dict[str, Any]:
     """[loads]: gravity and the live load (None: left out); ``beam``: whether the case has a top beam."""
-    table = top.table("loads", ("gravity", "live"))
+    table = top.table("loads", ("gravity", "live", "direction"))
     if table is None:
         return dict(gravity=None, live=None)
     gravity = table.number("gravity", None, _non_negative, unit="acceleration")
     live = table.string("live", None, ("horizontal_weight", "top_horizontal"))
+    direction = table.number("direction", None)
+    if direction is not None and direction != 0:
+        raise table.key_error("direction", f"got {direction:g}: a wall in the plane is pushed along +x (direction 0); "
+                                           "a direction in plan applies to a 3D wall ([geometry] boxes, leaf, u_wall "
+                                           "or corner)")
     if live == "top_horizontal" and not beam:
         raise table.key_error("live", '"top_horizontal" pushes the top beam: add a [top] table')
     return dict(gravity=gravity, live=live)
 
 
-def _analysis(top: _Table) -> Tuple[str, AnalysisParameters]:
-    """[analysis]: the method ("static" when left out) and the solvers' options given."""
+def _analysis(top: _Table, default_method: str = "static") -> Tuple[str, AnalysisParameters]:
+    """[analysis]: the method (``default_method`` when left out: "static"; a 3D wall's, "limit") and the
+    solvers' options given."""
     table = top.table("analysis", ANALYSIS_KEYS + DYNAMIC_KEYS)
     if table is None:
-        return "static", AnalysisParameters()
-    method = table.string("method", "static", METHODS)
+        return default_method, AnalysisParameters()
+    method = table.string("method", default_method, METHODS)
     control = table.string("control", None, ("load", "displacement"))
     table.string("control_point", None, ("top",))
     options = dict(
@@ -427,14 +449,14 @@ def _dynamic_options(table: _Table) -> Dict[str, Any]:
     )
 
 
-def _reference(table: Optional[_Table]) -> Optional[Dict[str, Any]]:
+def _reference(table: Optional[_Table], default_methods: Tuple[str, ...] = METHODS) -> Optional[Dict[str, Any]]:
     """The [reference] table, checked: collapse_multiplier (required), tolerance, source, and methods (the
-    methods the reference applies to; all by default)."""
+    methods the reference applies to; ``default_methods`` by default: all, or a 3D wall's, limit analysis)."""
     if table is None:
         return None
     methods = table.array("methods", required=False)
     if methods is None:
-        methods = list(METHODS)
+        methods = list(default_methods)
     for i, m in enumerate(methods):
         if m not in METHODS:
             options = ", ".join(_quote(c) for c in METHODS)

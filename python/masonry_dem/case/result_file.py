@@ -67,12 +67,15 @@ def result_dict(results: Any, model: Any, title: str) -> Dict[str, Any]:
     the highest level that settled and the lowest that ran away. ``collapse_multiplier`` is null unless the
     status is "collapse";
     ``last_equilibrium`` is the largest multiplier at which the wall was found in equilibrium (equal to
-    ``collapse_multiplier`` on a collapse; null when none was found).
+    ``collapse_multiplier`` on a collapse; null when none was found). The results of a 3D wall (a
+    :class:`masonry_dem.Model3D`, ``Results.dimension`` 3) get ``"dimension": 3`` after the title; a wall in the
+    plane's file has no such key.
     """
     states = getattr(results, "joint_states", None) or {}
-    out: Dict[str, Any] = {
-        "format": FORMAT,
-        "title": title,
+    out: Dict[str, Any] = {"format": FORMAT, "title": title}
+    if int(getattr(results, "dimension", 2)) == 3:
+        out["dimension"] = 3  # a wall of boxes (left out for a wall in the plane: a file without it is 2D)
+    out.update({
         "method": str(results.method),
         "status": str(results.status),
         "blocks": int(model.n_blocks),
@@ -85,7 +88,7 @@ def result_dict(results: Any, model: Any, title: str) -> Dict[str, Any]:
         },
         "joint_states": {key: int(states.get(key, 0)) for key in JOINT_STATE_KEYS},
         "elapsed_s": json_float(results.elapsed_s),
-    }
+    })
     if out["method"] == "limit" or getattr(results, "certificate", None) is not None:
         out["certificate"] = certificate_dict(getattr(results, "certificate", None))
     if out["status"] in ERROR_STATUSES:

@@ -144,7 +144,8 @@ def report_figure(
     dpi: int = 150,
 ) -> Figure:
     """A one-page report: the crack pattern, the collapse mechanism, the deformed shape and the load curve;
-    of a time history, its response (:func:`history_figure`).
+    of a time history, its response (:func:`history_figure`); of a 3D wall (a :class:`masonry_dem.Model3D`), its
+    collapse mechanism in 3D (:func:`masonry_dem.space.plot.mechanism_figure`).
 
     Args:
         model: the :class:`masonry_dem.Model` analysed.
@@ -160,6 +161,10 @@ def report_figure(
     """
     if is_time_history(results):
         return history_figure(model, results, title=title, path=path, dpi=dpi)
+    if int(getattr(model, "dimension", 2)) == 3:  # a wall of boxes: its mechanism in 3D
+        from ..space.plot import mechanism_figure
+
+        return mechanism_figure(model, results, title=title, path=path, dpi=dpi)
     aspect = _aspect(model)
     if aspect > 1.1:
         # a wide wall: two rows, the crack pattern and the mechanism above, the deformed shape and the curve

@@ -143,17 +143,25 @@ def _base_case(top: _Table, base_dir: Path) -> Tuple[Any, Tuple[str, ...]]:
         path = base_dir / value
         try:
             text = read_text(path)
-            parse_case(text, source=str(path), default_title=path.stem)  # every check of a case file
+            case = parse_case(text, source=str(path), default_title=path.stem)  # every check of a case file
             data = tomllib.loads(text)
         except OSError as exc:
             raise top.key_error("case", f"cannot read {path}: {exc.strerror or exc}") from None
+        _in_the_plane(top, case)
         return data, (str(path),)
     if not isinstance(value, dict):
         raise top.key_error("case", f"expected a case file's path or a [case] table, {_got(value)}")
     data = dict(value)
     data.setdefault("format", STUDY_FORMAT)
-    case_from_dict(data, source=f"{top.source}: [case]", default_title="case")
+    _in_the_plane(top, case_from_dict(data, source=f"{top.source}: [case]", default_title="case"))
     return data, ()
+
+
+def _in_the_plane(top: Any, case: Any) -> None:
+    """Refuse a 3D base case: a study varies and runs walls in the plane in this version."""
+    if case.dimension == 3:
+        raise top.key_error("case", "is a 3D wall: a study runs walls in the plane in this version (the 3D model "
+                                    "takes one limit analysis at a time: masonry-dem run)")
 
 
 def _methods(options: Optional[_Table], base: Any) -> Tuple[str, ...]:

@@ -1,0 +1,70 @@
+"""3D walls: walls of rigid axis-aligned boxes (z up) joined by dry Mohr-Coulomb contacts, analysed by limit analysis
+(the out-of-plane collapse of a leaf, a facade with its return walls). The package's 2D side is a wall in the plane
+(:class:`masonry_dem.Model`); this one is its counterpart in space, with the same joint laws, the same
+:class:`masonry_dem.Results` (``dimension`` 3: arrays of 6 columns where the plane has 3) and the same case files,
+command line and result file.
+
+* :class:`Model3D` (``masonry_dem.Model3D``): the model, from an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] [m];
+  ``Model3D.solve_limit()`` is its limit analysis.
+* Generators, each returning an (n, 6) array of boxes [m]: :func:`running_bond_3d` (a single leaf in running bond),
+  :func:`u_wall` (a facade with two bonded return walls), :func:`corner_wall` (with one), :func:`cut_openings`
+  (openings [x0, z0, x1, z1] through a facade).
+* :mod:`.case`: the case files' 3D tables (``[geometry] boxes``, ``[geometry.leaf]``, ``[geometry.u_wall]``,
+  ``[geometry.corner]``, ``[top] height``, ``[loads] direction``; docs/case-format.md, "3D walls").
+* :mod:`.plot` (matplotlib's mplot3d, imported on first use): :func:`plot_mechanism_3d`, :func:`mechanism_figure`.
+* :mod:`.export` (meshio, on first use): :func:`write_vtk` (the blocks as hexahedra, the contacts as quads).
+* :mod:`.report`: :func:`describe_mechanism`, the one-line description of a 3D mechanism.
+
+In this version a 3D wall takes limit analysis only: the static and explicit solvers and time histories are those
+of the plane.
+
+>>> import masonry_dem as md
+>>> boxes = md.running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175)   # a 2 m x 1.05 m x 0.1 m leaf
+>>> model = md.Model3D(boxes, joints={"default": md.dry_joint(0.7, dilatancy=0.7)}, direction=90)
+>>> round(model.solve_limit().collapse_multiplier, 6)         # overturning out of plane: t / H
+0.095238
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from .model import Model3D, corner_wall, cut_openings, running_bond_3d, u_wall
+
+if TYPE_CHECKING:
+    from .export import write_vtk
+    from .plot import mechanism_figure, plot_mechanism_3d
+    from .report import describe_mechanism
+
+__all__ = [
+    "Model3D",
+    "running_bond_3d",
+    "u_wall",
+    "corner_wall",
+    "cut_openings",
+    "plot_mechanism_3d",
+    "mechanism_figure",
+    "write_vtk",
+    "describe_mechanism",
+]
+
+# Where the names of __all__ not imported above live: imported when first asked for (matplotlib and meshio load
+# only when a plot or a VTK file is made)
+_LAZY = {
+    "plot_mechanism_3d": ".plot",
+    "mechanism_figure": ".plot",
+    "write_vtk": ".export",
+    "describe_mechanism": ".report",
+}
+
+
+def __getattr__(name: str):  # type: ignore[no-untyped-def]
+    import importlib
+
+    if name in _LAZY:
+        value = getattr(importlib.import_module(_LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    if name in ("case", "export", "model", "plot", "report"):
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module 'masonry_dem.space' has no attribute {name!r}")

@@ -1,0 +1,267 @@
+"""Case files of 3D walls (docs/case-format.md, "3D walls"): the [geometry] forms that make a case 3D (``boxes``
+and the tables ``leaf``, ``u_wall``, ``corner``), the 3D keys of the other tables ([top] height, [loads] direction),
+the refusals of what the 3D model does not take in this version (methods other than limit analysis, time
+histories, mortar joints, the 2D keys that have no meaning there), and :class:`ModelParameters3D`, the arguments
+of :class:`masonry_dem.Model3D` that a :class:`masonry_dem.case.Case` of a 3D wall holds.
+
+:mod:`masonry_dem.case.reader` reads every case file and hands a 3D one to :func:`case_from_tables` once its
+[geometry] is read; the keys the two dimensions share (``density``, [base], [joints], [loads] gravity and live,
+[analysis], [reference]) are read there, with the same meaning.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, fields
+from types import MappingProxyType
+from typing import Any, ClassVar, Dict, List, Mapping, Optional
+
+import numpy as np
+
+from .. import _core
+from .._core import InputError, MasonryError
+from ..case.table import _got, _positive, _quote, _Table
+
+__all__ = [
+    "GEOMETRY_KINDS_3D",
+    "LEAF_KEYS",
+    "BONDED_KEYS",
+    "LIMIT_ONLY",
+    "CORE_DEFAULTS_3D",
+    "ModelParameters3D",
+    "read_geometry",
+    "generate_boxes",
+    "case_from_tables",
+]
+
+#: The [geometry] forms of a 3D wall: an explicit list of boxes, and the generators' tables.
+GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner")
+#: Keys of [geometry.leaf]: a single leaf in running bond.
+LEAF_KEYS = ("length", "height", "thickness", "block_length", "block_height", "first_course", "openings")
+#: Keys of [geometry.u_wall] and [geometry.corner]: a facade with two return walls, or one.
+BONDED_KEYS = ("facade", "height", "returns", "thickness", "block_length", "block_height", "openings")
+#: The words of every refusal of what the 3D model does not take in this version.
+LIMIT_ONLY = "the 3D model takes limit analysis in this version"
+#: The core's defaults of ``Model3D``'s arguments (``ModelSpec3::default()``), for those a case leaves out.
+CORE_DEFAULTS_3D: Mapping[str, Any] = MappingProxyType(dict(_core.DEFAULTS_3D))
+
+# The core's generator of each [geometry] table, and the name its messages give the table.
+_GENERATORS = {"leaf": "running_bond_3d", "u_wall": "u_wall", "corner": "corner"}
+
+
+@dataclass(frozen=True, eq=False)
+class ModelParameters3D:
+    """The 3D wall of a case, as the arguments of :class:`masonry_dem.Model3D`.
+
+    ``boxes`` is an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] [m]; the others are those the case gives,
+    None when it leaves them out (the core's default, :data:`CORE_DEFAULTS_3D`; for top: no top beam; for
+    joints: the default law everywhere): density [kg/m3], base, top (the top beam's height [m]), joints, gravity
+    [m/s2], live, direction [deg].
+    """
+
+    dimension: ClassVar[int] = 3
+
+    boxes: np.ndarray
+    density: Optional[float] = None
+    base: Optional[bool] = None
+    top: Optional[float] = None
+    joints: Optional[Dict[str, Dict[str, float]]] = None
+    gravity: Optional[float] = None
+    live: Optional[str] = None
+    direction: Optional[float] = None
+
+    def arguments(self) -> Dict[str, Any]:
+        """The keyword arguments of ``Model3D``: boxes and the parameters given."""
+        values = ((f.name, getattr(self, f.name)) for f in fields(self))
+        return {name: value for name, value in values if value is not None}
+
+
+# --------------------------------------------------------------------------------------------------
+# [geometry]
+# --------------------------------------------------------------------------------------------------
+
+
+def read_geometry(geo: _Table, kind: str) -> Dict[str, Any]:
+    """The checked arguments of the 3D [geometry] form ``kind`` (one of :data:`GEOMETRY_KINDS_3D`)."""
+    if "thickness" in geo:
+        raise geo.key_error(
+            "thickness",
+            f"is the out-of-plane thickness of a wall in the plane; a 3D wall ([geometry] {kind}) has its thickness in "
+            "its boxes" + ("" if kind == "boxes" else f" or in [geometry.{kind}] thickness"),
+        )
+    if kind == "boxes":
+        return dict(boxes=_boxes(geo))
+    if kind == "leaf":
+        table = geo.table("leaf", LEAF_KEYS)
+        assert table is not None
+        names = ("length", "height", "thickness", "block_length", "block_height")
+        args = {name: table.number(name, check=_positive, unit="length") for name in names}
+        args["first_course"] = _first_course(table)
+    else:
+        table = geo.table(kind, BONDED_KEYS)
+        assert table is not None
+        names = ("facade", "height", "returns", "thickness", "block_length", "block_height")
+        args = {name: table.number(name, check=_positive, unit="length") for name in names}
+    args["openings"] = _openings(table)
+    return args
+
+
+def _boxes(geo: _Table) -> List[List[float]]:
+    """``boxes``: at least one box [x0, y0, z0, x1, y1, z1] [m] with x1 > x0, y1 > y0 and z1 > z0."""
+    items = geo.array("boxes")
+    assert items is not None
+    if not items:
+        raise geo.key_error("boxes", "expected at least one box [x0, y0, z0, x1, y1, z1]")
+    boxes = []
+    for i, item in enumerate(items):
+        label = f"{geo.where('boxes')}[{i}]"
+        x0, y0, z0, x1, y1, z1 = geo.numbers(label, item, 6, " [x0, y0, z0, x1, y1, z1]", unit="length")
+        if not (x1 > x0 and y1 > y0 and z1 > z0):
+            raise geo.error(f"{label}: expected x1 > x0, y1 > y0 and z1 > z0, got {item}", label)
+        boxes.append([x0, y0, z0, x1, y1, z1])
+    return boxes
+
+
+def _first_course(table: _Table) -> Any:
+    """``first_course`` of a leaf: "half" or "full", or an offset [m] >= 0 of the lowest course's joints; None
+    when left out (the generator's default, "half")."""
+    value = table.data.get("first_course")
+    if value is None:
+        return None
+    if isinstance(value, str) and value in ("half", "full"):
+        return value
+    if isinstance(value, str):
+        try:  # a length with its unit, "200 mm"
+            return table.number("first_course", check=lambda x: None if x >= 0 else "must be >= 0", unit="length")
+        except InputError:
+            pass
+    elif isinstance(value, (int, float)) and not isinstance(value, bool):
+        return table.number("first_course", check=lambda x: None if x >= 0 else "must be >= 0", unit="length")
+    raise table.key_error("first_course", f'expected "half", "full" or an offset [m] of the lowest course, {_got(value)}')
+
+
+def _openings(table: _Table) -> Optional[List[List[float]]]:
+    """``openings``: rectangles [x0, z0, x1, z1] [m] through the facade, x1 > x0 and z1 > z0 (None: none)."""
+    items = table.array("openings", required=False)
+    if items is None:
+        return None
+    rects = []
+    for i, item in enumerate(items):
+        label = f"{table.where('openings')}[{i}]"
+        x0, z0, x1, z1 = table.numbers(label, item, 4, " [x0, z0, x1, z1]", unit="length")
+        if not (x1 > x0 and z1 > z0):
+            raise table.error(f"{label}: expected x1 > x0 and z1 > z0, got {item}", label)
+        rects.append([x0, z0, x1, z1])
+    return rects
+
+
+def generate_boxes(kind: str, arguments: Mapping[str, Any], source: str) -> np.ndarray:
+    """The boxes of a checked 3D [geometry] of ``kind``; the core's refusals (a last course too thin, a return
+    too short, an opening over a corner) get the file name in front and the case file's key names."""
+    if kind == "boxes":
+        return np.asarray(arguments["boxes"], dtype=np.float64).reshape(-1, 6)
+    given = {key: value for key, value in arguments.items() if value is not None}
+    make = {"leaf": _core.running_bond_3d, "u_wall": _core.u_wall, "corner": _core.corner_wall}[kind]
+    try:
+        return np.asarray(make(**given), dtype=np.float64).reshape(-1, 6)
+    except MasonryError as exc:
+        message, key = _renamed(str(exc), kind), getattr(exc, "key", None)
+        again = type(exc)(f"{source}: {message}")
+        if isinstance(exc, InputError):
+            again.key = _renamed(key, kind) if key else f"geometry.{kind}"
+        raise again from exc
+
+
+def _renamed(text: str, kind: str) -> str:
+    """A message (or key) of the core's generator with its names as the case file's: ``u_wall.returns`` is
+    ``geometry.u_wall.returns``, ``openings`` is ``geometry.u_wall.openings``."""
+    text = text.replace("first_course_offset", "first_course")
+    text = re.sub(rf"(?<![\w.]){_GENERATORS[kind]}\.(?=[a-z])", f"geometry.{kind}.", text)
+    if kind == "leaf":  # the leaf's generator's bare name (the corner's would match "the corner")
+        text = re.sub(r"(?<![\w.])running_bond_3d(?!\w)", "geometry.leaf", text)
+    # the openings' messages start with their name
+    return re.sub(r"^(?:\w+\.)?openings(?=[\[:]|$)", f"geometry.{kind}.openings", text)
+
+
+# --------------------------------------------------------------------------------------------------
+# The case
+# --------------------------------------------------------------------------------------------------
+
+
+def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any], density: Optional[float]) -> Any:
+    """The :class:`masonry_dem.case.Case` of a 3D wall: its [geometry] already read (``kind``, ``geometry``,
+    ``density``), the other tables read here with the keys both dimensions share, and the refusals."""
+    from ..case.mapping import AnalysisParameters, Case
+    from ..case.reader import _analysis, _base, _joints, _reference, REFERENCE_KEYS
+
+    for name in ("ground_motion", "time_history"):
+        if name in top:
+            raise top.error(f"[{name}]: a time history is refused: {LIMIT_ONLY} (this case is 3D: [geometry] {kind})",
+                            name)
+    base = _base(top)
+    beam = _top_beam(top)
+    joints = _joints(top)
+    _dry_joints(top, joints)
+    gravity, live, direction = _loads(top)
+    method, analysis = _analysis(top, default_method="limit")
+    if method != "limit":
+        raise top.error(f'analysis.method = "{method}": {LIMIT_ONLY} (method = "limit"; this case is 3D: '
+                        f"[geometry] {kind})", "analysis.method")
+    table = top.table("reference", REFERENCE_KEYS)
+    reference = _reference(table, default_methods=("limit",))
+    if reference is not None:
+        others = [m for m in reference["methods"] if m != "limit"]
+        if others:
+            assert table is not None
+            raise table.key_error("methods", f"{_quote(others[0])}: {LIMIT_ONLY} (methods = [\"limit\"])")
+    boxes = generate_boxes(kind, geometry, top.source)
+    model = ModelParameters3D(boxes=boxes, density=density, base=base, top=beam, joints=joints, gravity=gravity,
+                              live=live, direction=direction)
+    assert isinstance(analysis, AnalysisParameters)
+    return Case(title=title, model=model, analysis=analysis, method="limit", source=top.source, reference=reference)
+
+
+def _top_beam(top: _Table) -> Optional[float]:
+    """[top] of a 3D wall: the beam's ``height`` [m] (required in the table); None without the table."""
+    table = top.table("top", ("rotation", "force", "vertical", "height"))
+    if table is None:
+        return None
+    for key in ("rotation", "force", "vertical"):
+        if key in table:
+            raise table.key_error(key, "belongs to the top beam of a wall in the plane; the top beam of a 3D wall is "
+                                       "free and weighs: give its height [m] only")
+    if "height" not in table:
+        raise table.error("missing key 'height' in [top] (the top beam's height [m]: a 3D wall's beam has a size "
+                          "and a weight)", table.where("height"))
+    return float(table.number("height", check=_positive, unit="length"))
+
+
+def _dry_joints(top: _Table, joints: Optional[Dict[str, Dict[str, float]]]) -> None:
+    """Refuse mortar (cohesion or tensile strength) in a 3D case, naming the key: the 3D limit analysis takes dry
+    joints only."""
+    for family, law in (joints or {}).items():
+        for key in ("cohesion", "tensile_strength"):
+            value = law.get(key, 0.0)
+            if value > 0:
+                name = f"joints.{key}" if family == "default" else f"joints.{family}.{key}"
+                raise top.error(f"{name} = {value:g} Pa: {LIMIT_ONLY}, of dry joints (cohesion and tensile_strength "
+                                "0): mortar joints are refused", name)
+
+
+def _loads(top: _Table) -> Any:
+    """[loads] of a 3D wall: gravity, live ("horizontal_weight" only) and direction [deg] (None: left out)."""
+    table = top.table("loads", ("gravity", "live", "direction"))
+    if table is None:
+        return None, None, None
+    from ..case.table import _non_negative
+
+    gravity = table.number("gravity", None, _non_negative, unit="acceleration")
+    live = table.string("live", None, ("horizontal_weight", "top_horizontal"))
+    if live == "top_horizontal":
+        raise table.key_error("live", '"top_horizontal" pushes the top beam of a wall in the plane; a 3D wall takes '
+                                      '"horizontal_weight" (in plan along direction)')
+    direction = table.number("direction", None)
+    if direction is not None and not math.isfinite(direction):  # pragma: no cover - number() refuses it
+        raise table.key_error("direction", f"expected a finite angle [deg], got {direction}")
+    return gravity, live, direction

@@ -1,0 +1,202 @@
+"""Plain-text reports of a 3D wall's limit analysis: the one-line description of its collapse mechanism
+(:func:`describe_mechanism`, what ``masonry-dem run`` prints for a 3D case) and the kinematic helpers the plots share
+(:func:`corner_motion`, :func:`moved_corners`). No matplotlib here. Lengths in m, rotations in rad, directions in
+plan in degrees from +x towards +y.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import Counter
+from typing import Any, List, Optional, Sequence
+
+import numpy as np
+
+from ..report import CRACK_TOLERANCE, MOVING_FRACTION, _connected_parts, _plural
+
+__all__ = ["box_corners", "corner_motion", "moved_corners", "contact_jumps", "describe_mechanism", "direction_text"]
+
+
+def box_corners(boxes: np.ndarray) -> np.ndarray:
+    """(n, 8, 3) corners [m] of boxes (n, 6) [x0, y0, z0, x1, y1, z1]: the bottom face counter-clockwise seen from
+    above, then the top face (VTK's order of a hexahedron)."""
+    b = np.asarray(boxes, dtype=np.float64).reshape(-1, 6)
+    x0, y0, z0, x1, y1, z1 = b.T
+    xs = np.stack([x0, x1, x1, x0, x0, x1, x1, x0], axis=1)
+    ys = np.stack([y0, y0, y1, y1, y0, y0, y1, y1], axis=1)
+    zs = np.stack([z0, z0, z0, z0, z1, z1, z1, z1], axis=1)
+    return np.stack([xs, ys, zs], axis=-1)
+
+
+def _centroids(boxes: np.ndarray) -> np.ndarray:
+    b = np.asarray(boxes, dtype=np.float64).reshape(-1, 6)
+    return 0.5 * (b[:, :3] + b[:, 3:])
+
+
+def corner_motion(boxes: np.ndarray, motion: np.ndarray) -> np.ndarray:
+    """(n,) largest corner motion [m] of each box for the small motion (ux, uy, uz, rx, ry, rz) at its centroid."""
+    corners = box_corners(boxes)
+    r = corners - _centroids(boxes)[:, None, :]
+    m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
+    u = m[:, None, :3] + np.cross(m[:, None, 3:], r)
+    return np.linalg.norm(u, axis=-1).max(axis=1)  # type: ignore[no-any-return]
+
+
+def contact_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
+    """(m, 3) jumps of a motion (n_all, 6) of the blocks across each contact, over its four corners: the largest
+    slip [m] (the jump along the contact's plane), and the largest and the smallest normal gap [m] (positive
+    opens). With the normal n from block a to block b, the jump at a corner p is u_b(p) - u_a(p)."""
+    boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
+    centroid = _centroids(boxes)
+    m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
+    pairs = np.asarray(model.interface_blocks, dtype=np.int64).reshape(-1, 2)
+    corners = np.asarray(model.interface_corners, dtype=np.float64).reshape(-1, 4, 3)
+    normals = np.asarray(model.interface_normals, dtype=np.float64).reshape(-1, 3)
+    a, b = pairs[:, 0], pairs[:, 1]
+
+    def at(i: np.ndarray) -> np.ndarray:
+        return m[i, None, :3] + np.cross(m[i, None, 3:], corners - centroid[i, None, :])
+
+    jump = at(b) - at(a)  # (m, 4, 3)
+    gap = np.einsum("kqi,ki->kq", jump, normals)
+    slip = np.linalg.norm(jump - gap[..., None] * normals[:, None, :], axis=-1)
+    return np.stack([slip.max(axis=1), gap.max(axis=1), gap.min(axis=1)], axis=1)  # type: ignore[no-any-return]
+
+
+def _rotation(w: np.ndarray) -> np.ndarray:
+    """The rotation matrix of the rotation vector ``w`` [rad] (Rodrigues): the drawn box keeps its shape."""
+    angle = float(np.linalg.norm(w))
+    if angle == 0.0:
+        return np.eye(3)
+    k = w / angle
+    kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + math.sin(angle) * kx + (1.0 - math.cos(angle)) * kx @ kx  # type: ignore[no-any-return]
+
+
+def moved_corners(boxes: np.ndarray, motion: np.ndarray, scale: float) -> np.ndarray:
+    """(n, 8, 3) corners [m] of the boxes moved by ``scale`` times (ux, uy, uz) and turned by ``scale`` times the
+    rotation (rx, ry, rz) about their centroids, the rotation applied exactly (the boxes keep their shape)."""
+    corners = box_corners(boxes)
+    centroid = _centroids(boxes)
+    m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
+    out = np.empty_like(corners)
+    for i in range(len(corners)):
+        rot = _rotation(scale * m[i, 3:])
+        out[i] = centroid[i] + scale * m[i, :3] + (corners[i] - centroid[i]) @ rot.T
+    return out
+
+
+def direction_text(direction: Optional[float]) -> str:
+    """A direction in plan [deg] for people: "+y (90°)", "30° from +x towards +y"."""
+    if direction is None or not math.isfinite(direction):
+        return "none"
+    d = direction % 360.0
+    axes = {0.0: "+x", 90.0: "+y", 180.0: "-x", 270.0: "-y"}
+    if d in axes:
+        return f"{axes[d]} ({direction:g}°)"
+    return f"{direction:g}° from +x towards +y"
+
+
+def _axis_words(axis: np.ndarray) -> str:
+    """A unit axis for people: "x", "y", "z" (within a degree) or its components."""
+    for k, name in enumerate("xyz"):
+        if abs(abs(axis[k]) - 1.0) < 2e-4:
+            return name
+    return "(" + ", ".join(f"{v:.2f}" for v in axis) + ")"
+
+
+def _describe_part(boxes: np.ndarray, motion: np.ndarray, part: Sequence[int]) -> str:
+    """The volume-weighted rigid motion of one part: "sliding towards +y (90°)", or "turning about an axis along x
+    through y = 0.10, z = 0.00 m"."""
+    b = np.asarray(boxes, dtype=np.float64)
+    volume = np.prod(b[part, 3:] - b[part, :3], axis=1)
+    cents = _centroids(b[part])
+    r = (volume[:, None] * cents).sum(axis=0) / volume.sum()
+    m = np.asarray(motion, dtype=np.float64)[part]
+    # each block's motion carried to r: v + w x (r - c)
+    v = m[:, :3] + np.cross(m[:, 3:], r - cents)
+    v = (volume[:, None] * v).sum(axis=0) / volume.sum()
+    w = (volume[:, None] * m[:, 3:]).sum(axis=0) / volume.sum()
+    size = float(np.linalg.norm(b[part, 3:].max(axis=0) - b[part, :3].min(axis=0)))
+    speed, spin = float(np.linalg.norm(v)), float(np.linalg.norm(w))
+    if spin * 5.0 * size < speed:  # the axis is far away: a translation
+        angle = math.degrees(math.atan2(v[1], v[0]))
+        if abs(v[2]) > 0.5 * speed:
+            return f"moving {'up' if v[2] > 0 else 'down'}"
+        return f"sliding towards {direction_text(round(angle, 0) % 360.0)}"
+    axis = w / spin
+    point = r + np.cross(w, v) / spin**2  # the point of the instantaneous axis nearest to r
+    named = _axis_words(axis)
+    if named in ("x", "y"):
+        other = "yx"["xy".index(named)]
+        where = f"{other} = {point['xyz'.index(other)]:.2f}, z = {point[2]:.2f} m"
+    elif named == "z":
+        where = f"x = {point[0]:.2f}, y = {point[1]:.2f} m"
+    else:
+        where = f"({point[0]:.2f}, {point[1]:.2f}, {point[2]:.2f}) m"
+    return f"turning about an axis along {named} through {where}"
+
+
+def _family_counts(indices: Sequence[int], families: Sequence[str]) -> str:
+    counts = Counter(families[k] for k in indices)
+    return ", ".join(f"{n} {fam}" for fam, n in counts.most_common())
+
+
+def describe_mechanism(model: Any, results: Any) -> str:
+    """One line on the collapse mechanism of a 3D wall (``Results.mechanism``: the collapse velocities): how many
+    wall blocks move, the parts they form (blocks held together by contacts the crack does not cross), each sliding
+    or turning about an axis, and the crack: the contacts across which the mechanism opens (a gap at every corner),
+    slides (a slip, closed) or rocks (a gap at some corners only), counted by family (:func:`contact_jumps`,
+    jumps beyond 5% of the largest corner motion)."""
+    boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
+    n = int(model.n_blocks)
+    mech = np.asarray(results.mechanism, dtype=np.float64)
+    if mech.shape != (len(boxes), 6) or not np.all(np.isfinite(mech)):
+        return "none (no collapse)"
+    top = model.top_index
+    bodies = list(range(n)) + ([int(top)] if top is not None else [])
+    cm = corner_motion(boxes, mech)
+    peak = float(max(cm[i] for i in bodies))
+    if not peak > 0:
+        return "none (no collapse)"
+    moving = [i for i in bodies if cm[i] > MOVING_FRACTION * peak]
+    n_moving = sum(1 for i in moving if i < n)
+    beam = " and the top beam" if top is not None and int(top) in moving else ""
+
+    # the crack: the contacts across which the mechanism has a jump (a slip, or a gap at some corners)
+    families = list(model.interface_family)
+    jumps = contact_jumps(model, mech)
+    tol = CRACK_TOLERANCE * peak
+    opens = [k for k, (_, _, g_min) in enumerate(jumps) if g_min > tol]
+    slips = [k for k, (slip, _, g_min) in enumerate(jumps) if slip > tol and g_min <= tol]
+    rocks = [k for k, (_, g_max, g_min) in enumerate(jumps) if g_max > tol >= g_min]
+    cracked = np.zeros(len(jumps), dtype=bool)
+    cracked[opens + slips + rocks] = True
+    parts = _connected_parts(moving, np.asarray(model.interface_blocks).reshape(-1, 2), list(cracked))
+    parts.sort(key=len, reverse=True)
+    if n_moving == 0:
+        head = "only the top beam moves"
+    else:
+        plural = "s" if n_moving == 1 and not beam else ""
+        head = f"{n_moving} of {n} block{'s' if n > 1 else ''}{beam} move{plural}"
+    if len(parts) == 1:
+        text = f"{head} as one part, {_describe_part(boxes, mech, parts[0])}"
+    else:
+        shown = "; ".join(f"{_part_name(p, n)} {_describe_part(boxes, mech, p)}" for p in parts[:2])
+        more = f"; {len(parts) - 2} more" if len(parts) > 2 else ""
+        text = f"{head} in {len(parts)} parts: {shown}{more}"
+    if cracked.any():
+        pieces = [
+            f"{len(ks)} {what} ({_family_counts(ks, families)})"
+            for ks, what in ((opens, "open"), (slips, "slide"), (rocks, "rock"))
+            if ks
+        ]
+        text += f"; the crack runs through {_plural(int(cracked.sum()), 'contact')}: " + ", ".join(pieces)
+    return text
+
+
+def _part_name(part: List[int], n_wall: int) -> str:
+    blocks = sum(1 for i in part if i < n_wall)
+    if blocks == len(part):
+        return _plural(blocks, "block")
+    return f"{_plural(blocks, 'block')} and the top beam" if blocks else "the top beam"

@@ -1,0 +1,445 @@
+//! The 3D walls: `Model3D` (the core's `Model3`, walls of axis-aligned boxes) with its limit
+//! analysis, and the generators `running_bond_3d`, `u_wall`, `corner_wall` and `cut_openings_3d`.
+
+use crate::*;
+use masonry_dem::space::{self, Box3, LiveLoad3, Model3, ModelSpec3};
+
+/// Boxes [x0, y0, z0, x1, y1, z1] from an (n, 6) array or a list of rows; `what` names them.
+pub(crate) fn boxes_from(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Box3>> {
+    let rows: Vec<Vec<f64>> = if let Ok(a) = obj.extract::<PyReadonlyArray2<f64>>() {
+        a.as_array().rows().into_iter().map(|r| r.to_vec()).collect()
+    } else {
+        obj.extract::<Vec<Vec<f64>>>().map_err(|_| {
+            InputError::new_err(format!("{what}: expected a list of [x0, y0, z0, x1, y1, z1] rows of numbers"))
+        })?
+    };
+    rows.iter()
+        .enumerate()
+        .map(|(i, r)| match r[..] {
+            [x0, y0, z0, x1, y1, z1] => Ok(Box3::new(x0, y0, z0, x1, y1, z1)),
+            _ => Err(InputError::new_err(format!(
+                "{what}[{i}]: expected 6 numbers [x0, y0, z0, x1, y1, z1], got {}",
+                r.len()
+            ))),
+        })
+        .collect()
+}
+
+/// Boxes as an (n, 6) array [x0, y0, z0, x1, y1, z1].
+fn boxes_to_py<'py>(py: Python<'py>, boxes: &[Box3]) -> Bound<'py, PyArray2<f64>> {
+    let rows: Vec<[f64; 6]> = boxes
+        .iter()
+        .map(|b| [b.min[0], b.min[1], b.min[2], b.max[0], b.max[1], b.max[2]])
+        .collect();
+    rows_of(py, &rows)
+}
+
+/// Openings [x0, z0, x1, z1] of a facade (None: none); `what` names them.
+fn openings_from(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Vec<[f64; 4]>> {
+    match obj {
+        Some(o) if !o.is_none() => Ok(rects_from(o, what)?.iter().map(|r| [r.x0, r.y0, r.x1, r.y1]).collect()),
+        _ => Ok(vec![]),
+    }
+}
+
+/// `blocks` with `openings` cut out of the facade, as an (n, 6) array.
+fn with_openings<'py>(py: Python<'py>, blocks: Vec<Box3>, openings: &[[f64; 4]]) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let cut = guarded(|| space::cut_openings(blocks, openings))?;
+    Ok(boxes_to_py(py, &cut))
+}
+
+/// Boxes [x0, y0, z0, x1, y1, z1] (shape (n, 6), m) of a single leaf in running bond: along x from x = 0 to
+/// length, y from 0 to thickness, z from 0 to height [m], of blocks block_length x thickness x block_height [m].
+///
+/// first_course: how the lowest course starts at x = 0: "half" (the default: with a half block), "full" (with a
+/// whole block) or an offset [m] in [0, block_length) by which its joints are shifted to the left; each course above
+/// is shifted by half a block more. A height that is not a whole number of courses gets a last course cut to fit
+/// (one under 25% of block_height is refused, as in running_bond). A joint that would fall closer than 5% of a block
+/// to a course's end is left out (the end block is longer by as much). openings: [x0, z0, x1, z1] [m], holes through
+/// the leaf, cut as cut_openings_3d cuts them.
+#[pyfunction]
+#[pyo3(signature = (length, height, thickness, block_length, block_height, first_course=None, openings=None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn running_bond_3d<'py>(
+    py: Python<'py>,
+    length: f64,
+    height: f64,
+    thickness: f64,
+    block_length: f64,
+    block_height: f64,
+    first_course: Option<&Bound<'py, PyAny>>,
+    openings: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let offset = match first_course {
+        None => 0.5 * block_length,
+        Some(v) if v.is_none() => 0.5 * block_length,
+        Some(v) if v.is_instance_of::<pyo3::types::PyBool>() => {
+            return Err(InputError::new_err("running_bond_3d.first_course: expected \"half\", \"full\" or an offset [m], got a boolean"))
+        }
+        Some(v) => match v.extract::<String>() {
+            Ok(s) if s == "half" => 0.5 * block_length,
+            Ok(s) if s == "full" => 0.0,
+            Ok(s) => {
+                return Err(InputError::new_err(format!(
+                    "running_bond_3d.first_course: expected \"half\", \"full\" or an offset [m], got {s:?}"
+                )))
+            }
+            Err(_) => v.extract::<f64>().map_err(|_| {
+                InputError::new_err("running_bond_3d.first_course: expected \"half\", \"full\" or an offset [m]")
+            })?,
+        },
+    };
+    let openings = openings_from(openings, "running_bond_3d.openings")?;
+    let blocks = guarded(|| space::running_bond_3d(length, height, thickness, block_length, block_height, offset))?;
+    with_openings(py, blocks, &openings)
+}
+
+/// Boxes [x0, y0, z0, x1, y1, z1] (shape (n, 6), m) of a U of three walls one block thick: a facade along x (x in
+/// [0, facade], y in [0, thickness]) and two return walls along +y at its ends, returns long from the facade's outer
+/// face, height high [m]; blocks block_length x thickness x block_height [m].
+///
+/// The corners are bonded: in the even courses the facade's end blocks run over the corners, in the odd ones the
+/// returns' do; within each wall the courses are in running bond. block_length must exceed thickness by 5% of a
+/// block. openings: [x0, z0, x1, z1] [m], holes through the facade, clear of the corners (cut_openings_3d).
+#[pyfunction]
+#[pyo3(signature = (facade, height, returns, thickness, block_length, block_height, openings=None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn u_wall<'py>(
+    py: Python<'py>,
+    facade: f64,
+    height: f64,
+    returns: f64,
+    thickness: f64,
+    block_length: f64,
+    block_height: f64,
+    openings: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let openings = openings_from(openings, "u_wall.openings")?;
+    let blocks = guarded(|| space::u_wall(facade, height, returns, thickness, block_length, block_height))?;
+    with_openings(py, blocks, &openings)
+}
+
+/// Boxes [x0, y0, z0, x1, y1, z1] (shape (n, 6), m) of an L of two walls one block thick: a facade along x (x in
+/// [0, facade], y in [0, thickness]) and one return wall along +y at x = 0, returns long from the facade's outer
+/// face, height high [m], the corner bonded as in u_wall; the facade's far end is free. openings: [x0, z0, x1, z1]
+/// [m], holes through the facade, clear of the corner (cut_openings_3d).
+#[pyfunction]
+#[pyo3(signature = (facade, height, returns, thickness, block_length, block_height, openings=None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn corner_wall<'py>(
+    py: Python<'py>,
+    facade: f64,
+    height: f64,
+    returns: f64,
+    thickness: f64,
+    block_length: f64,
+    block_height: f64,
+    openings: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let openings = openings_from(openings, "corner.openings")?;
+    let blocks = guarded(|| space::corner(facade, height, returns, thickness, block_length, block_height))?;
+    with_openings(py, blocks, &openings)
+}
+
+/// `boxes` [x0, y0, z0, x1, y1, z1] (m) with `openings` [x0, z0, x1, z1] (m) cut through the facade (the blocks of
+/// the smallest y) over its depth: a block partly inside an opening becomes its parts outside it (straight jambs,
+/// sill and lintel), no part thinner than 5% of the block being made; an opening that reaches a block deeper than
+/// the facade (a return wall's block over a corner) is refused.
+#[pyfunction]
+pub(crate) fn cut_openings_3d<'py>(
+    py: Python<'py>,
+    boxes: &Bound<'py, PyAny>,
+    openings: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let blocks = boxes_from(boxes, "boxes")?;
+    let openings = openings_from(Some(openings), "openings")?;
+    with_openings(py, blocks, &openings)
+}
+
+/// A wall of rigid axis-aligned boxes in 3D, z up, joined by dry Mohr-Coulomb contacts (limit analysis).
+///
+/// boxes: (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] in m (running_bond_3d, u_wall, corner_wall).
+/// density [kg/m3] of the blocks and the top beam (default 2000).
+/// base: True (the default) puts a fixed rigid foundation under the wall's footprint (the box around the blocks in
+///     plan, as deep as the tallest block); the lowest blocks stand on it.
+/// top: None (the default: no top beam) or the height [m] of a rigid top beam of the blocks' density over the box
+///     around the blocks in plan, resting on the highest blocks, free to move; it weighs and takes the live load.
+/// joints: as Model's, {family: law} with family in "default", "bed", "head", "base", "top"; limit analysis in 3D
+///     takes dry joints (cohesion and tensile_strength 0) and reads friction and dilatancy.
+/// gravity [m/s2], along -z (default 9.81); live: "horizontal_weight" (the default: lambda * W_i on every block
+///     that weighs, horizontal) or "none"; direction: the live load's direction in plan [deg], from +x towards +y
+///     (default 0: towards +x; 90 pushes a facade along x out of its plane, towards +y).
+/// Block indices: the boxes in the order given, then the base, then the top beam.
+/// Raises InputError naming the key or block on bad input (two overlapping boxes are both named).
+#[pyclass(name = "Model3D", module = "masonry_dem._core", subclass)]
+pub(crate) struct PyModel3D {
+    pub(crate) inner: Arc<Model3>,
+}
+
+/// The live load of `live` ("horizontal_weight" or "none") and `direction` [deg].
+fn live_from(live: Option<&str>, direction: Option<f64>) -> PyResult<LiveLoad3> {
+    match live.unwrap_or("horizontal_weight") {
+        "horizontal_weight" => Ok(LiveLoad3::HorizontalWeight { direction: direction.unwrap_or(0.0) }),
+        "none" if direction.is_some() => Err(InputError::new_err(
+            "direction applies to the horizontal-weight live load; with live = \"none\" there is no live load to turn",
+        )),
+        "none" => Ok(LiveLoad3::None),
+        other => Err(InputError::new_err(format!(
+            "live: expected \"horizontal_weight\" or \"none\" in 3D, got {other:?}"
+        ))),
+    }
+}
+
+/// Refuses, before a limit analysis, a wall that nothing holds: no base (so no fixed block), or blocks that no chain
+/// of contacts joins to the base (the 2D model's check; the core's 3D limit analysis would not converge on it).
+fn check_supports(model: &Model3) -> PyResult<()> {
+    let nb = model.n_blocks();
+    let fixed = model.fixed();
+    let mut seen: Vec<bool> = (0..nb).map(|i| fixed[6 * i..6 * i + 6].iter().any(|&f| f)).collect();
+    if !seen.iter().any(|&s| s) {
+        return Err(InputError::new_err(
+            "the wall has no support: no base ([base] kind = \"none\", base=False): nothing carries its weight",
+        ));
+    }
+    let mut adj: Vec<Vec<usize>> = vec![vec![]; nb];
+    for c in model.contacts() {
+        adj[c.a].push(c.b);
+        adj[c.b].push(c.a);
+    }
+    let mut stack: Vec<usize> = (0..nb).filter(|&i| seen[i]).collect();
+    while let Some(i) = stack.pop() {
+        for &j in &adj[i] {
+            if !seen[j] {
+                seen[j] = true;
+                stack.push(j);
+            }
+        }
+    }
+    let loose: Vec<usize> = (0..nb).filter(|&i| !seen[i]).collect();
+    if let Some(&first) = loose.first() {
+        return Err(InputError::new_err(format!(
+            "{} block{} not joined to the base by any chain of contacts, {} first: nothing carries {}",
+            loose.len(),
+            if loose.len() == 1 { " is" } else { "s are" },
+            model.block_name(first),
+            if loose.len() == 1 { "it" } else { "them" },
+        )));
+    }
+    Ok(())
+}
+
+/// An (m, 3) array of a vector of each contact.
+fn contact_vectors<'py>(py: Python<'py>, model: &Model3, f: impl Fn(&space::Contact) -> [f64; 3]) -> Bound<'py, PyArray2<f64>> {
+    let rows: Vec<[f64; 3]> = model.contacts().iter().map(f).collect();
+    rows_of(py, &rows)
+}
+
+#[pymethods]
+impl PyModel3D {
+    #[new]
+    #[pyo3(signature = (boxes, density=None, base=None, top=None, joints=None, gravity=None, live=None, direction=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        boxes: &Bound<'_, PyAny>,
+        density: Option<f64>,
+        base: Option<bool>,
+        top: Option<f64>,
+        joints: Option<&Bound<'_, PyDict>>,
+        gravity: Option<f64>,
+        live: Option<&str>,
+        direction: Option<f64>,
+    ) -> PyResult<Self> {
+        let d = ModelSpec3::default();
+        let spec = ModelSpec3 {
+            blocks: boxes_from(boxes, "boxes")?,
+            density: density.unwrap_or(d.density),
+            base: base.unwrap_or(d.base),
+            top,
+            joints: laws_from(joints)?,
+            gravity: gravity.unwrap_or(d.gravity),
+            live: live_from(live, direction)?,
+        };
+        // the GIL released, polling Ctrl-C in this thread
+        let mut raised = None;
+        let built = py.detach(|| {
+            guarded(|| {
+                Model3::new_with(&spec, &mut || match Python::attach(|py| py.check_signals()) {
+                    Ok(()) => true,
+                    Err(e) => {
+                        raised = Some(e);
+                        false
+                    }
+                })
+            })
+        });
+        if let Some(e) = raised {
+            return Err(e);
+        }
+        Ok(PyModel3D { inner: Arc::new(built?) })
+    }
+
+    /// 3: a wall of boxes in 3D (Model's is 2).
+    #[getter]
+    fn dimension(&self) -> usize {
+        3
+    }
+    /// The live load: "horizontal_weight" (lambda times each block's weight, horizontal, along direction) or "none".
+    #[getter]
+    fn live(&self) -> &'static str {
+        match self.inner.live() {
+            LiveLoad3::HorizontalWeight { .. } => "horizontal_weight",
+            LiveLoad3::None => "none",
+        }
+    }
+    /// The live load's direction in plan [deg], from +x towards +y; None without a live load.
+    #[getter]
+    fn direction(&self) -> Option<f64> {
+        match self.inner.live() {
+            LiveLoad3::HorizontalWeight { direction } => Some(direction),
+            LiveLoad3::None => None,
+        }
+    }
+    /// Acceleration of gravity [m/s2], along -z.
+    #[getter]
+    fn gravity(&self) -> f64 {
+        self.inner.gravity()
+    }
+    /// Number of wall blocks (base and top beam not counted), as Model.n_blocks.
+    #[getter]
+    fn n_blocks(&self) -> usize {
+        self.inner.n_wall()
+    }
+    /// Number of interfaces (the contacts between blocks, and with the base and the top beam).
+    #[getter]
+    fn n_interfaces(&self) -> usize {
+        self.inner.contacts().len()
+    }
+    /// Index of the base (the fixed foundation) among the blocks; None without one.
+    #[getter]
+    fn base_index(&self) -> Option<usize> {
+        self.inner.base()
+    }
+    /// Index of the top beam among the blocks; None without one.
+    #[getter]
+    fn top_index(&self) -> Option<usize> {
+        self.inner.top()
+    }
+    /// (n_all, 6) boxes [x0, y0, z0, x1, y1, z1] of all blocks [m], wall blocks first, then base, then top beam.
+    #[getter]
+    fn boxes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        boxes_to_py(py, self.inner.boxes())
+    }
+    /// (n_all, 3) centroid of each block [m] (where its dofs are and its moments are taken).
+    #[getter]
+    fn centroids<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        rows_of(py, self.inner.centroids())
+    }
+    /// (n_all,) mass of each block [kg] (the base's too, though it is fixed).
+    #[getter]
+    fn mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.mass().to_vec().into_pyarray(py)
+    }
+    /// (n_all,) weight of each block [N] (the wall's and the top beam's; 0 for the base).
+    #[getter]
+    fn weights<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let f = self.inner.dead_load();
+        (0..self.inner.n_blocks()).map(|i| -f[6 * i + 2]).collect::<Vec<_>>().into_pyarray(py)
+    }
+    /// (m, 2) block indices (a, b) of each interface; the normal points from a to b.
+    #[getter]
+    fn interface_blocks<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
+        let c = self.inner.contacts();
+        let flat: Vec<i64> = c.iter().flat_map(|k| [k.a as i64, k.b as i64]).collect();
+        Array2::from_shape_vec((c.len(), 2), flat).unwrap().into_pyarray(py)
+    }
+    /// (m, 3) unit normal of each interface, from block a into block b (+x, +y or +z).
+    #[getter]
+    fn interface_normals<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        contact_vectors(py, &self.inner, |c| c.n)
+    }
+    /// (m, 3) first unit tangent t1 of each interface: +x on a horizontal one, the horizontal tangent on a vertical one.
+    #[getter]
+    fn interface_t1<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        contact_vectors(py, &self.inner, |c| c.t1)
+    }
+    /// (m, 3) second unit tangent t2 = normal x t1 of each interface (+y on a horizontal one, +z on a vertical one).
+    #[getter]
+    fn interface_t2<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        contact_vectors(py, &self.inner, |c| c.t2)
+    }
+    /// (m, 3) centroid of each interface [m].
+    #[getter]
+    fn interface_centroids<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        contact_vectors(py, &self.inner, |c| c.centroid)
+    }
+    /// (m, 4, 3) corners of each interface's rectangle [m], counter-clockwise seen from the tip of its normal.
+    #[getter]
+    fn interface_corners<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
+        let c = self.inner.contacts();
+        let flat: Vec<f64> = c
+            .iter()
+            .flat_map(|k| (0..4).flat_map(move |q| k.corners.get(q).copied().unwrap_or([f64::NAN; 3])))
+            .collect();
+        numpy::ndarray::Array3::from_shape_vec((c.len(), 4, 3), flat).unwrap().into_pyarray(py)
+    }
+    /// (m,) area of each interface [m2].
+    #[getter]
+    fn interface_areas<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.contacts().iter().map(|c| c.area).collect::<Vec<_>>().into_pyarray(py)
+    }
+    /// Family of each interface: "bed", "head", "base" or "top".
+    #[getter]
+    fn interface_family(&self) -> Vec<&'static str> {
+        self.inner.contacts().iter().map(|c| c.family.name()).collect()
+    }
+
+    /// Limit analysis in 3D (the static theorem): the largest lambda for which contact forces inside the joints'
+    /// strength domains balance the dead loads plus lambda times the live load, a linear program solved by the
+    /// interior point of Model.solve_limit. Each corner of a contact carries a force in a friction pyramid of eight
+    /// sides inscribed in Coulomb's cone (turned to the live load on horizontal joints: sliding along the load is
+    /// exact); torsion and biaxial bending come from the corners' positions. Dry joints only: cohesion or
+    /// tensile_strength is refused (InputError), and so is a wall that nothing holds (no base, or blocks that no
+    /// chain of contacts joins to it). Exact for dry associative joints (dilatancy = friction), status
+    /// "collapse"; for dilatancy below friction the associative optimum, an upper bound, with status "estimate".
+    ///
+    /// tolerance: the interior point's stopping tolerance (0 < tolerance < 0.01; default 1e-8); max_iterations:
+    /// interior-point iterations (default 200). Returns Results with dimension 3, method "limit": the mechanism's
+    /// block velocities (vx, vy, vz, wx, wy, wz; largest block translation 1) in `mechanism`, the contact forces at
+    /// collapse (N, T1, T2, M_n, M_t1, M_t2) in interface_forces, the crack pattern in interface_states; statuses as
+    /// Model.solve_limit. Releases the GIL; Ctrl-C stops it between iterations and raises KeyboardInterrupt, whose
+    /// `results` attribute is a Results with status "interrupted" (no multiplier, no certificate).
+    /// progress: optional callable(iteration, multiplier, nan, nan) called after each interior-point iteration; an
+    /// exception raised by it stops the analysis and is raised again.
+    #[pyo3(signature = (tolerance=None, max_iterations=None, progress=None))]
+    fn solve_limit(
+        &self,
+        py: Python<'_>,
+        tolerance: Option<f64>,
+        max_iterations: Option<i64>,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Py<PyResults>> {
+        let defaults = LimitOptions::default();
+        let opts = LimitOptions {
+            tolerance: tolerance.unwrap_or(defaults.tolerance),
+            max_iterations: max_iterations.map_or(Ok(defaults.max_iterations), |v| count("max_iterations", v, 1))?,
+            ..defaults
+        };
+        check_supports(&self.inner)?;
+        limit_run(
+            py,
+            &self.inner,
+            progress,
+            move |model, monitor| limit::limit_analysis_3d_with(model, &opts, monitor),
+            |model, start| {
+                let c = model.centroids();
+                let top = (0..model.n_wall()).fold(0, |best, i| if c[i][2] > c[best][2] { i } else { best });
+                interrupted_limit(model.n_blocks(), model.contacts().len(), top, [0.0; 6], start)
+            },
+        )
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Model3D({} blocks, {} interfaces)", self.inner.n_wall(), self.inner.contacts().len())
+    }
+}

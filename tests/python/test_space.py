@@ -1,0 +1,377 @@
+"""3D walls from Python: ``Model3D`` and the generators (masonry_dem.space), the one ``Results`` of both dimensions,
+the case files' 3D tables and their refusals, and the command line on a 3D case (docs/case-format.md, "3D walls";
+docs/references.md, section 5)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import masonry_dem as md
+from masonry_dem import cli
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+LEAF = EXAMPLES / "leaf-out-of-plane.toml"
+PNG = b"\x89PNG\r\n\x1a\n"
+DRY = {"default": {"friction": 0.7, "dilatancy": 0.7}}  # dry, associative: limit analysis is exact
+
+
+def limit(boxes, **kwargs):
+    model = md.Model3D(boxes, **{"joints": DRY, **kwargs})
+    return model, model.solve_limit()
+
+
+# --------------------------------------------------------------------------------------------------
+# The API
+# --------------------------------------------------------------------------------------------------
+
+
+def test_generators_give_boxes() -> None:
+    leaf = md.running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175)
+    assert leaf.shape == (33, 6) and leaf.dtype == np.float64
+    volume = lambda b: float(np.prod(b[:, 3:] - b[:, :3], axis=1).sum())  # noqa: E731
+    assert volume(leaf) == pytest.approx(2.0 * 1.05 * 0.1, rel=1e-12)
+    # the leaf's courses are the 2D running bond's, extruded over the thickness
+    rects = md.running_bond(0.4, 0.175, courses=6, length=2.0)
+    extruded = np.c_[rects[:, 0], np.zeros(len(rects)), rects[:, 1], rects[:, 2], np.full(len(rects), 0.1), rects[:, 3]]
+    assert np.allclose(np.sort(leaf, axis=0), np.sort(extruded, axis=0))
+    full = md.running_bond_3d(1.2, 0.4, 0.1, 0.4, 0.2, first_course="full")
+    assert len(full) == 3 + 4  # three whole blocks, then a half, two whole and a half
+    u = md.u_wall(3.0, 2.5, 1.5, 0.25, 0.5, 0.25)
+    assert u.shape[1] == 6 and volume(u) == pytest.approx((3.0 + 2 * 1.25) * 0.25 * 2.5, rel=1e-12)
+    corner = md.corner_wall(3.0, 2.5, 1.5, 0.25, 0.5, 0.25)
+    assert volume(corner) == pytest.approx((3.0 + 1.25) * 0.25 * 2.5, rel=1e-12)
+    cut = md.space.cut_openings(leaf, [[0.5, 0.35, 1.3, 0.7]])
+    assert volume(cut) == pytest.approx((2.0 * 1.05 - 0.8 * 0.35) * 0.1, rel=1e-12)
+    opened = md.u_wall(3.0, 2.5, 1.5, 0.25, 0.5, 0.25, openings=[[1.0, 0.5, 2.0, 1.75]])
+    assert volume(opened) == pytest.approx(volume(u) - 1.0 * 1.25 * 0.25, rel=1e-12)
+
+
+def test_model3d_arrays() -> None:
+    boxes = md.running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175)
+    model = md.Model3D(boxes, density=1800.0, top=0.2, gravity=10.0, direction=90)
+    n, m = model.n_blocks, model.n_interfaces
+    assert (n, model.dimension, model.live, model.direction, model.gravity) == (33, 3, "horizontal_weight", 90.0, 10.0)
+    assert (model.base_index, model.top_index) == (33, 34)
+    assert model.boxes.shape == (35, 6) and np.array_equal(model.boxes[:n], boxes)
+    assert model.centroids.shape == (35, 3) and model.mass.shape == (35,)
+    assert model.interface_blocks.shape == (m, 2)
+    for name in ("interface_normals", "interface_t1", "interface_t2", "interface_centroids"):
+        assert getattr(model, name).shape == (m, 3), name
+    assert model.interface_corners.shape == (m, 4, 3) and model.interface_areas.shape == (m,)
+    assert set(model.interface_family) == {"bed", "head", "base", "top"}
+    t1, t2, normal = model.interface_t1, model.interface_t2, model.interface_normals
+    assert np.allclose(np.cross(t1, t2), normal)
+    # the wall and the beam weigh, the base does not
+    w = model.weights
+    assert w[33] == 0.0 and w[:33].sum() == pytest.approx(1800.0 * 10.0 * 2.0 * 1.05 * 0.1, rel=1e-12)
+    assert w[34] == pytest.approx(1800.0 * 10.0 * 2.0 * 0.1 * 0.2, rel=1e-12)
+    assert repr(model) == f"Model3D(33 blocks, {m} interfaces)"
+
+
+@pytest.mark.parametrize("direction, b", [(0, 0.3), (90, 0.2), (180, 0.3), (270, 0.2)])
+def test_a_box_overturns_at_b_over_h(direction: float, b: float) -> None:
+    """A 0.3 x 0.2 x 0.9 m box (x, y, z) pushed along x or y in plan rocks at b/h, b its side along the load."""
+    model, r = limit([[0.0, 0.0, 0.0, 0.3, 0.2, 0.9]], direction=direction)
+    assert r.status == "collapse" and r.dimension == 3 and r.method == "limit"
+    assert r.collapse_multiplier == pytest.approx(b / 0.9, abs=1e-6)
+    # the mechanism turns the box about the leeward edge of its base: its top moves with the load
+    v = r.mechanism[0]
+    d = np.radians(direction)
+    assert v[0] * np.cos(d) + v[1] * np.sin(d) > 0
+    assert r.mechanism.shape == (2, 6) and r.interface_forces.shape == (1, 6) and r.displacements.shape == (2, 6)
+
+
+def test_the_same_results_class_holds_both_dimensions() -> None:
+    plane = md.Model([[0.0, 0.0, 0.2, 0.6]], joints={"default": {"friction": 0.7, "dilatancy": 0.7}})
+    r2 = plane.solve_limit()
+    _, r3 = limit([[0.0, 0.0, 0.0, 0.2, 1.0, 0.6]])
+    assert type(r2) is type(r3) is md.Results
+    assert (r2.dimension, r3.dimension, plane.dimension) == (2, 3, 2)
+    assert r2.mechanism.shape[1] == 3 and r3.mechanism.shape[1] == 6
+    assert r3.collapse_multiplier == pytest.approx(r2.collapse_multiplier, abs=1e-6)
+    for name in ("status", "error", "iterations", "steps", "joint_states", "certificate", "bracket"):
+        assert type(getattr(r2, name)) is type(getattr(r3, name)), name
+    assert "dimension=3" in repr(r3) and "dimension" not in repr(r2)
+
+
+def test_an_extruded_wall_collapses_as_in_the_plane() -> None:
+    """Ferris & Tin-Loi wall 1 extruded over its thickness and pushed along its plane: the 2D multiplier."""
+    rects = md.running_bond(0.4, 0.175, courses=6, length=2.0)
+    law = {"friction": 0.65, "dilatancy": 0.65}
+    plane = md.Model(rects, thickness=0.3, gravity=10.0, joints={"default": law}).solve_limit()
+    boxes = np.c_[rects[:, 0], np.zeros(len(rects)), rects[:, 1], rects[:, 2], np.full(len(rects), 0.3), rects[:, 3]]
+    model = md.Model3D(boxes, gravity=10.0, joints={"default": law}, direction=0)
+    space = model.solve_limit()
+    assert plane.collapse_multiplier == pytest.approx(0.642857, abs=1e-5)
+    assert space.collapse_multiplier == pytest.approx(plane.collapse_multiplier, abs=1e-6)
+
+
+def test_wrong_argument_types_are_input_errors() -> None:
+    boxes = [[0.0, 0.0, 0.0, 1.0, 1.0, 1.0]]
+    with pytest.raises(md.InputError, match=r"boxes: expected a list of \[x0, y0, z0, x1, y1, z1\] rows"):
+        md.Model3D("boxes")
+    with pytest.raises(md.InputError, match="boxes must be real numbers"):
+        md.Model3D(np.ones((1, 6), dtype=bool))
+    with pytest.raises(md.InputError, match=r"boxes\[0\]: expected 6 numbers"):
+        md.Model3D([[0.0, 0.0, 1.0, 1.0]])
+    with pytest.raises(md.InputError, match="Model3D: 'density'"):
+        md.Model3D(boxes, density="heavy")
+    with pytest.raises(md.InputError, match="running_bond_3d"):
+        md.running_bond_3d("2 m", 1.0, 0.1, 0.4, 0.2)
+    with pytest.raises(md.InputError, match="first_course"):
+        md.running_bond_3d(2.0, 1.0, 0.1, 0.4, 0.2, first_course="third")
+    with pytest.raises(md.InputError, match="u_wall"):
+        md.u_wall(3.0, 2.5, 1.5, 0.25, 0.5, None)
+    with pytest.raises(md.InputError, match="live"):
+        md.Model3D(boxes, live="top_horizontal")
+    with pytest.raises(md.InputError, match="direction applies"):
+        md.Model3D(boxes, live="none", direction=90)
+    with pytest.raises(md.InputError, match="max_iterations"):
+        md.Model3D(boxes).solve_limit(max_iterations="many")
+    # mortar: the core's 3D limit analysis takes dry joints, and says so
+    with pytest.raises(md.InputError, match="dry joints"):
+        md.Model3D(boxes, joints={"default": {"cohesion": 1e5}}).solve_limit()
+
+
+def test_a_progress_callback_that_raises_stops_the_analysis() -> None:
+    model = md.Model3D(md.running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175), joints=DRY, direction=90)
+    calls = []
+
+    def progress(step, multiplier, _displacement, _fraction):
+        calls.append(step)
+        if step == 3:
+            raise ValueError("enough")
+
+    with pytest.raises(ValueError, match="enough") as info:
+        model.solve_limit(progress=progress)
+    assert calls == [1, 2, 3]
+    partial = info.value.results
+    assert partial.status == "interrupted" and partial.dimension == 3 and np.isnan(partial.collapse_multiplier)
+    assert partial.mechanism.shape == (34, 6)
+
+
+def test_to_dict_and_json_round_trip(tmp_path: Path) -> None:
+    model, r = limit(md.running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175), direction=90)
+    data = json.loads(json.dumps(md.to_dict(r, model, title="leaf")))
+    assert data["dimension"] == 3 and data["status"] == "collapse"
+    assert np.array(data["mechanism"]).shape == (34, 6) and np.array(data["interface_forces"]).shape == (83, 6)
+    assert np.array(data["block_boxes"]).shape == (34, 6) and len(data["interface_areas"]) == 83
+    assert np.allclose(np.array(data["mechanism"]), r.mechanism)
+    written = md.to_json(r, tmp_path / "leaf.json", model, title="leaf")
+    assert json.loads((tmp_path / "leaf.json").read_text()) == written
+    # the result file: the keys of a 2D limit analysis's and "dimension"
+    plane = md.Model([[0.0, 0.0, 0.2, 0.6]], joints=DRY)
+    keys_2d = set(md.result_dict(plane.solve_limit(), plane, "block"))
+    assert set(written) == keys_2d | {"dimension"} and "dimension" not in keys_2d
+    assert written["collapse_multiplier"] == pytest.approx(0.1 / 1.05, abs=1e-9)
+    columns = md.api.interface_columns(r, model)
+    assert list(columns) == list(md.api.INTERFACE_COLUMNS_3D) and len(columns["N_N"]) == 83
+    with pytest.raises(md.InputError, match="does not match"):
+        md.to_dict(r, plane)
+
+
+# --------------------------------------------------------------------------------------------------
+# Case files
+# --------------------------------------------------------------------------------------------------
+
+JOINTS = '[joints]\nfriction = 0.7\ndilatancy = 0.7\n'
+LEAF_TABLE = """[geometry.leaf]
+length = 2.0
+height = "1050 mm"
+thickness = 0.1
+block_length = 0.4
+block_height = 0.175
+"""
+
+
+def case(text: str, name: str = "w.toml"):
+    return md.parse_case("format = 1\n" + text, source=name)
+
+
+def test_the_leaf_table() -> None:
+    c = case(LEAF_TABLE + JOINTS + "[loads]\ndirection = 90\n")
+    assert c.dimension == 3 and c.method == "limit"
+    assert c.model_kwargs["boxes"].shape == (33, 6)
+    assert c.model_kwargs["density"] == 2000.0 and c.model_kwargs["direction"] == 90.0  # the core's default, given
+    r = c.run()
+    assert r.dimension == 3 and r.collapse_multiplier == pytest.approx(0.1 / 1.05, abs=1e-6)
+    full = case(LEAF_TABLE + 'first_course = "full"\n').model.boxes
+    offset = case(LEAF_TABLE + 'first_course = "0 mm"\n').model.boxes
+    assert np.array_equal(full, offset) and not np.array_equal(full, case(LEAF_TABLE).model.boxes)
+    opened = case(LEAF_TABLE + "openings = [[0.4, 0.35, 1.2, 0.7]]\n").model.boxes
+    removed = 2.0 * 1.05 * 0.1 - float(np.prod(opened[:, 3:] - opened[:, :3], axis=1).sum())
+    assert removed == pytest.approx(0.8 * 0.35 * 0.1, rel=1e-9)
+
+
+def test_the_u_wall_and_corner_tables() -> None:
+    table = """facade = 3.0
+height = 2.5
+returns = 1.5
+thickness = 0.25
+block_length = 0.5
+block_height = 0.25
+"""
+    u = case("[geometry.u_wall]\n" + table)
+    assert u.model.boxes.shape == (115, 6)
+    corner = case("[geometry.corner]\n" + table + "openings = [[1.5, 0.5, 2.5, 1.5]]\n")
+    assert corner.dimension == 3 and corner.model.boxes.shape[1] == 6
+    example = md.load_case(EXAMPLES / "u-wall.toml")
+    assert example.model.direction == 90.0 and example.model.joints == DRY
+
+
+def test_the_boxes_key_and_the_3d_keys_of_other_tables() -> None:
+    c = case('[geometry]\nboxes = [[0, 0, 0, "300 mm", 0.2, 0.9]]\ndensity = 1800\n[top]\nheight = 0.1\n' + JOINTS
+             + "[loads]\ndirection = 0\n[base]\nkind = \"fixed\"\n")
+    assert c.model.boxes.tolist() == [[0.0, 0.0, 0.0, 0.3, 0.2, 0.9]]
+    model = c.build_model()
+    assert model.top_index == 2 and model.base_index == 1 and model.boxes[2, 5] == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize(
+    "text, key, words",
+    [
+        (LEAF_TABLE + '[analysis]\nmethod = "static"\n', "analysis.method", "3D model takes limit analysis in this version"),
+        (LEAF_TABLE + '[analysis]\nmethod = "dynamic"\n', "analysis.method", "3D model takes limit analysis in this version"),
+        (LEAF_TABLE + "[time_history]\nduration = 1.0\n", "time_history", "a time history is refused"),
+        (LEAF_TABLE + '[ground_motion]\npulse = "ricker"\namplitude_g = 0.3\nperiod = 0.2\n', "ground_motion",
+         "a time history is refused"),
+        (LEAF_TABLE + '[joints]\ncohesion = "0.1 MPa"\n', "joints.cohesion", "mortar joints are refused"),
+        (LEAF_TABLE + "[joints.bed]\ntensile_strength = 1000\n", "joints.bed.tensile_strength", "dry joints"),
+        (LEAF_TABLE + '[reference]\ncollapse_multiplier = 0.1\nmethods = ["static"]\n', "reference.methods",
+         "limit analysis"),
+        (LEAF_TABLE + '[loads]\nlive = "top_horizontal"\n', "loads.live", "horizontal_weight"),
+        (LEAF_TABLE + '[top]\nrotation = "free"\n', "top.rotation", "give its height"),
+        (LEAF_TABLE + "[top]\n", "top.height", "missing key 'height' in [top]"),
+        ("[geometry]\nthickness = 0.3\n" + LEAF_TABLE, "geometry.thickness", "in [geometry.leaf] thickness"),
+        (LEAF_TABLE.replace("1050 mm", "1.06 m"), None, "use height = 1.05 m"),
+        (LEAF_TABLE + 'first_course = "third"\n', "geometry.leaf.first_course", '"half", "full" or an offset'),
+        ("[geometry]\nboxes = [[0, 0, 0, 1, 1]]\n", "geometry.boxes[0]", "expected 6 numbers"),
+        ("[geometry]\nboxes = [[0, 0, 0, 1, -1, 1]]\n", "geometry.boxes[0]", "y1 > y0"),
+        ("[geometry]\nboxes = []\n", "geometry.boxes", "at least one box"),
+        ("[geometry]\nboxes = [[0, 0, 0, true, 1, 1]]\n", "geometry.boxes[0][3]", "expected a number"),
+        ("[geometry]\nboxes = [[0, 0, 0, 1, 1, 1]]\nblocks = [[0, 0, 1, 1]]\n", None, "blocks and boxes are both given"),
+        ('[geometry]\nboxes = [[0, 0, 0, 1, 1, 1], [0, 0, 1, 1, 1, 2]]\n[base]\nkind = "none"\n', None, "no support"),
+        ("[geometry.u_wall]\nfacade = 3\nheight = 2.5\nreturns = 1.5\nthickness = 0.5\nblock_length = 0.5\n"
+         "block_height = 0.25\n", "geometry.u_wall.thickness", "a corner block must reach past the corner"),
+        # the 2D side refuses the 3D keys by name
+        ("[geometry]\nblocks = [[0, 0, 1, 1]]\n[loads]\ndirection = 90\n", "loads.direction",
+         "a wall in the plane is pushed along +x"),
+        ("[geometry]\nblocks = [[0, 0, 1, 1]]\n[top]\nheight = 0.2\n", "top.height", "3D wall's top beam"),
+    ],
+)
+def test_refusals_name_the_key(text: str, key, words: str) -> None:
+    with pytest.raises(md.InputError) as info:
+        case(text).run()
+    message = str(info.value)
+    assert message.startswith("w.toml: ") and "\n" not in message and words in message, message
+    if key is not None:
+        assert info.value.key == key, message
+
+
+def test_a_2d_case_keeps_its_meaning() -> None:
+    c = case('[geometry]\nblocks = [[0, 0, 0.2, 0.6]]\n[loads]\ndirection = 0\n' + JOINTS)
+    assert c.dimension == 2 and c.method == "static" and "direction" not in c.model_kwargs
+    with pytest.raises(md.InputError, match="3D model takes limit analysis"):
+        case(LEAF_TABLE).run("static")
+    with pytest.raises(md.InputError, match="time history is refused"):
+        case(LEAF_TABLE).simulate_kwargs()
+
+
+# --------------------------------------------------------------------------------------------------
+# The command line
+# --------------------------------------------------------------------------------------------------
+
+
+def test_run_the_leaf_example(tmp_path: Path) -> None:
+    """`masonry-dem run` on the 3D example: the multiplier printed, the result file, the plot and the VTK files."""
+    out = tmp_path / "out"
+    args = ["run", str(LEAF), "--json", str(out / "leaf.json"), "--plot", str(out / "leaf.png"), "--vtk",
+            str(out / "leaf")]
+    proc = subprocess.run([sys.executable, "-m", "masonry_dem", *args], cwd=tmp_path, capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == ""
+    text = proc.stdout
+    assert text.startswith("Leaf pushed out of plane (2 x 1.05 x 0.1 m)\n")
+    assert "collapse multiplier: 0.0952\n" in text and "status:              collapse" in text
+    assert "towards +y (90°)" in text and "turning about an axis along x through y = 0.10, z = 0.00 m" in text
+    data = json.loads((out / "leaf.json").read_text())
+    assert data["dimension"] == 3 and data["method"] == "limit" and data["blocks"] == 33
+    assert data["collapse_multiplier"] == pytest.approx(0.0952381, rel=1e-6)
+    assert (out / "leaf.png").read_bytes()[:8] == PNG and (out / "leaf.png").stat().st_size > 50_000
+    meshio = pytest.importorskip("meshio")
+    blocks = meshio.read(out / "leaf-blocks.vtu")
+    assert len(blocks.cells_dict["hexahedron"]) == 34  # the wall and the base
+    assert blocks.point_data["mechanism"].shape == (8 * 34, 3)
+    # the leaf turns out of plane (+y) about the leeward edge of its base (y = 0.1, z = 0): the top course's centroid
+    # (y = 0.05, z = 0.9625 m) moves the most, 1, and the top edge (z = 1.05 m) towards +y by 1.05 / hypot(0.05,
+    # 0.9625); the base not at all
+    assert np.linalg.norm(blocks.cell_data["mechanism"][0], axis=1).max() == pytest.approx(1.0, rel=1e-6)
+    assert blocks.point_data["mechanism"][:, 1].max() == pytest.approx(1.05 / np.hypot(0.05, 0.9625), rel=1e-6)
+    assert np.allclose(blocks.cell_data["mechanism"][0][33], 0.0)
+    faces = meshio.read(out / "leaf-interfaces.vtu")
+    assert len(faces.cells_dict["quad"]) == 83 and "normal_force" in faces.cell_data
+
+
+def test_refusals_on_the_command_line(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
+    static = tmp_path / "static.toml"
+    static.write_text(LEAF.read_text().replace('method = "limit"', 'method = "static"'))
+    plane = tmp_path / "plane.toml"
+    plane.write_text('format = 1\n[geometry]\nblocks = [[0, 0, 1, 1]]\n[loads]\ndirection = 45\n')
+    for args, words in [
+        (["run", str(LEAF), "--method", "static"], "the 3D model takes limit analysis in this version"),
+        (["run", str(static)], 'analysis.method = "static": the 3D model takes limit analysis'),
+        (["simulate", str(LEAF)], "simulate (a time history) is refused"),
+        (["run", str(plane)], "loads.direction: got 45"),
+    ]:
+        assert cli.main(args) == 2
+        captured = capsys.readouterr()
+        lines = captured.err.strip().splitlines()
+        assert len(lines) == 1 and lines[0].startswith("masonry-dem: error: ") and words in lines[0], captured.err
+        assert "Traceback" not in captured.err
+
+
+def test_compare_a_3d_case(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
+    assert cli.main(["compare", str(LEAF), "--json", str(tmp_path / "c.json")]) == 0
+    text = capsys.readouterr().out
+    assert "collapse multiplier: 0.0952" in text and "static, dynamic:     not run" in text
+    data = json.loads((tmp_path / "c.json").read_text())
+    assert data["dimension"] == 3 and set(data) == {"format", "title", "dimension", "limit", "note"}
+
+
+def test_the_plot_of_a_mechanism(tmp_path: Path) -> None:
+    from masonry_dem.space.plot import mechanism_figure
+
+    model, r = limit(md.corner_wall(1.5, 1.0, 1.0, 0.25, 0.5, 0.25), direction=270)
+    fig = mechanism_figure(model, r, title="L", path=tmp_path / "corner")
+    assert (tmp_path / "corner.png").read_bytes()[:8] == PNG
+    heading = fig._suptitle.get_text()
+    assert heading.startswith("L — limit, collapse, λu = ") and heading.endswith("towards -y (270°)")
+    assert f"λu = {r.collapse_multiplier:.4f}" in heading
+    assert len([ax for ax in fig.axes if ax.name == "3d"]) == 2
+    # no collapse: the wall at rest, said in the title
+    held = md.Model3D([[0.0, 0.0, 0.0, 1.0, 1.0, 0.2]], live="none")
+    fig = md.plot.report_figure(held, held.solve_limit(), title="held", path=tmp_path / "held.png")
+    assert "no mechanism drawn" in fig._suptitle.get_text()
+
+
+def test_import_stays_light() -> None:
+    code = ("import sys, masonry_dem as md; md.Model3D; md.running_bond_3d; "
+            "print(sorted(m for m in ('matplotlib', 'meshio', 'mpl_toolkits') if m in sys.modules))")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0 and proc.stdout.strip() == "[]", proc.stderr
+
+
+def test_a_study_of_a_3d_case_is_refused(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
+    pytest.importorskip("dask")
+    study = tmp_path / "study.toml"
+    study.write_text(f"format = 1\ncase = {json.dumps(str(LEAF))}\n")
+    assert cli.main(["study", str(study), "--out", str(tmp_path / "rows.parquet")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("masonry-dem: error: ") and "case: is a 3D wall: a study runs walls in the plane" in err
