@@ -222,7 +222,7 @@ block_height = 0.25
     corner = case("[geometry.corner]\n" + table + "openings = [[1.5, 0.5, 2.5, 1.5]]\n")
     assert corner.dimension == 3 and corner.model.boxes.shape[1] == 6
     example = md.load_case(EXAMPLES / "u-wall.toml")
-    assert example.model.direction == 90.0 and example.model.joints == DRY
+    assert example.model.direction == 270.0 and example.model.joints == DRY
 
 
 def test_the_boxes_key_and_the_3d_keys_of_other_tables() -> None:
