@@ -112,7 +112,7 @@ def test_solve_limit_on_ferris_tinloi_walls(number):
     check_limit_against_lp(*ferris_tinloi_wall(number))
 
 
-@pytest.mark.parametrize("seed", range(1, 20))
+@pytest.mark.parametrize("seed", range(1, 21))
 def test_solve_limit_on_random_walls(seed):
     check_limit_against_lp(*limit_analysis.random_wall(seed))
 
