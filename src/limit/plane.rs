@@ -153,10 +153,15 @@ impl Plane {
         let f_dead = (0..3 * nb).filter(free).map(|d| fd[d] * row_scale(d, length) / force).collect();
         let f_live = (0..3 * nb).filter(free).map(|d| fl[d] * row_scale(d, length) / live).collect();
         let flat = dofs.iter().flatten().copied().collect();
-        let lp = Lp::new(eq, n, 6, NV, Some(NV - 1), flat, f_dead, f_live, (force, length, live))?;
+        // dry associative joints: each domain is the cone of its four rays alone (the two
+        // contact points' n +- mu t, Livesley's form); the segment's variable would have a zero
+        // column, and the non-associative sequence, which moves the vertex, is not run
+        let points = hc.iter().chain(&ht).all(|&h| h == 0.0) && coulomb.iter().all(|c| c.2 >= c.1);
+        let (nv, bounded) = if points { (NV - 1, None) } else { (NV, Some(NV - 1)) };
+        let lp = Lp::new(eq, n, 6, nv, bounded, flat, f_dead, f_live, (force, length, live))?;
         let slope = coulomb.iter().map(|c| c.1).collect();
         let mut plane = Plane { lp, cols, hc, ht, slope, coulomb };
-        plane.lp.acols = vec![0.0; plane.lp.m * 6 * NV];
+        plane.lp.acols = vec![0.0; plane.lp.m * 6 * nv];
         plane.fill();
         Ok(plane)
     }
@@ -166,8 +171,9 @@ impl Plane {
     fn fill(&mut self) {
         for k in 0..self.lp.m {
             let (a, pv) = self.columns(k);
+            let nv = self.lp.nv;
             for (r, row) in a.iter().enumerate() {
-                self.lp.acols[(6 * k + r) * NV..(6 * k + r + 1) * NV].copy_from_slice(row);
+                self.lp.acols[(6 * k + r) * nv..(6 * k + r + 1) * nv].copy_from_slice(&row[..nv]);
             }
             self.lp.pv[6 * k..6 * k + 6].copy_from_slice(&pv);
         }
@@ -205,9 +211,10 @@ impl Plane {
         (0..self.lp.m)
             .map(|k| {
                 let g = generators(self.slope[k], self.hc[k], self.ht[k]);
-                let xk = &x[NV * k..NV * k + NV];
+                let nv = self.lp.nv;
+                let xk = &x[nv * k..nv * k + nv];
                 let mut s = g[0];
-                for (j, gj) in [g[2], g[3], g[4], g[5], g[1]].iter().enumerate() {
+                for (j, gj) in [g[2], g[3], g[4], g[5], g[1]].iter().take(nv).enumerate() {
                     for i in 0..3 {
                         s[i] += xk[j] * gj[i];
                     }
