@@ -41,6 +41,12 @@ SOLVER_OPTIONS = {"static": INCREMENTAL_OPTIONS, "dynamic": INCREMENTAL_OPTIONS 
 #: ``damping_coefficient``; the live load when the core's ``Model`` does not tell its own). None for
 #: top_rotation, joints, max_displacement and control_block: left out.
 CORE_DEFAULTS: Mapping[str, Any] = MappingProxyType(dict(_core.DEFAULTS))
+#: The core's defaults of ``Model3D``'s arguments (``ModelSpec3::default()``), for those a 3D case leaves out
+#: (:attr:`Case.model_kwargs`); also :data:`masonry_dem.space.case.CORE_DEFAULTS_3D`.
+CORE_DEFAULTS_3D: Mapping[str, Any] = MappingProxyType(dict(_core.DEFAULTS_3D))
+#: The words of every refusal of what the 3D model does not take in this version (a method other than limit
+#: analysis, a time history); also :data:`masonry_dem.space.case.LIMIT_ONLY`.
+LIMIT_ONLY = "the 3D model takes limit analysis in this version"
 
 Progress = Callable[[int, float, float, float], None]
 
@@ -284,8 +290,6 @@ class Case:
         gravity, live, direction). Setting a key sets that parameter of the case."""
         names = [f.name for f in fields(self.model)]
         if self.dimension == 3:
-            from ..space.case import CORE_DEFAULTS_3D
-
             return _Arguments(self, "model", names, shown=names, defaults=CORE_DEFAULTS_3D)
         return _Arguments(self, "model", names, shown=names)
 
@@ -329,8 +333,6 @@ class Case:
             expected = ", ".join(_quote(m) for m in METHODS)
             raise InputError(f"{self.source}: method: expected one of {expected}, got {_quote(method)}")
         if self.dimension == 3 and method != "limit":
-            from ..space.case import LIMIT_ONLY
-
             raise InputError(f"{self.source}: method {_quote(method)}: {LIMIT_ONLY} (method \"limit\"; this case is "
                              "3D)", "analysis.method")
         return method
@@ -398,8 +400,6 @@ class Case:
                 finite number (duration > 0), or Rayleigh damping without ``model``.
         """
         if self.dimension == 3:
-            from ..space.case import LIMIT_ONLY
-
             raise InputError(f"{self.source}: a time history is refused: {LIMIT_ONLY} (this case is 3D)")
         if self.ground_motion is None:
             raise InputError(f"{self.source}: no [ground_motion] table: a time history needs a ground motion "
