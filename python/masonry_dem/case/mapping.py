@@ -16,13 +16,14 @@ from __future__ import annotations
 import copy
 from dataclasses import dataclass, field, fields, replace
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any, Callable, ClassVar, Dict, Iterator, List, Mapping, MutableMapping, Optional, Sequence, Union
+from typing import Any, Callable, ClassVar, Dict, Iterator, List, Mapping, MutableMapping, Optional, Sequence, Union
 
 import numpy as np
 
 from .. import _core
 from .._core import InputError, MasonryError
 from ..ground_motion import GroundMotion, simulate_arguments
+from ..space.model import CORE_DEFAULTS_3D, LIMIT_ONLY, ModelParameters3D
 from .table import _quote
 
 #: The methods of a case, each the name of one of the core's solvers.
@@ -41,17 +42,8 @@ SOLVER_OPTIONS = {"static": INCREMENTAL_OPTIONS, "dynamic": INCREMENTAL_OPTIONS 
 #: ``damping_coefficient``; the live load when the core's ``Model`` does not tell its own). None for
 #: top_rotation, joints, max_displacement and control_block: left out.
 CORE_DEFAULTS: Mapping[str, Any] = MappingProxyType(dict(_core.DEFAULTS))
-#: The core's defaults of ``Model3D``'s arguments (``ModelSpec3::default()``), for those a 3D case leaves out
-#: (:attr:`Case.model_kwargs`); also :data:`masonry_dem.space.case.CORE_DEFAULTS_3D`.
-CORE_DEFAULTS_3D: Mapping[str, Any] = MappingProxyType(dict(_core.DEFAULTS_3D))
-#: The words of every refusal of what the 3D model does not take in this version (a method other than limit
-#: analysis, a time history); also :data:`masonry_dem.space.case.LIMIT_ONLY`.
-LIMIT_ONLY = "the 3D model takes limit analysis in this version"
 
 Progress = Callable[[int, float, float, float], None]
-
-if TYPE_CHECKING:
-    from ..space.case import ModelParameters3D
 
 #: The length of a time history under a built-in pulse when [time_history] gives no ``duration``, in periods
 #: of the pulse.
@@ -269,7 +261,7 @@ class Case:
     """
 
     title: str
-    model: Union[ModelParameters, "ModelParameters3D"]
+    model: Union[ModelParameters, ModelParameters3D]
     analysis: AnalysisParameters = field(default_factory=AnalysisParameters)
     method: str = "static"
     source: str = "<case>"
