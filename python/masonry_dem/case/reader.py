@@ -38,8 +38,7 @@ from .mapping import (
     TimeHistoryParameters,
     generate_blocks,
 )
-from .result_file import FORMAT
-from .table import _got, _non_negative, _positive, _short, _Table
+from .table import FORMAT, _got, _non_negative, _positive, _short, _Table
 
 if sys.version_info >= (3, 11):
     import tomllib
