@@ -95,12 +95,12 @@ __all__ = [
 # Where each name lives, imported when first asked for (see masonry_dem._lazy): importing a module of this package
 # (case.table from a lower layer) runs none of the others.
 _LAZY = {
-    **dict.fromkeys(("CORE_DEFAULTS", "EXPLICIT_OPTIONS", "INCREMENTAL_OPTIONS", "METHODS", "AnalysisParameters", "Case",
-                     "GroundMotionParameters", "ModelParameters", "TimeHistoryParameters"), ".mapping"),
+    **dict.fromkeys(("CORE_DEFAULTS", "EXPLICIT_OPTIONS", "INCREMENTAL_OPTIONS", "METHODS", "AnalysisParameters",
+                     "Case", "GroundMotionParameters", "ModelParameters", "TimeHistoryParameters"), ".mapping"),
     **dict.fromkeys(("ANALYSIS_KEYS", "DAMPINGS", "DEFAULT_REFERENCE_TOLERANCE", "DYNAMIC_KEYS", "FAMILIES",
-                     "GEOMETRY_KINDS", "GEOMETRY_KINDS_3D", "GROUND_MOTION_KEYS", "LAW_KEYS", "MAX_CASE_BYTES", "PULSES",
-                     "REFERENCE_KEYS", "TIME_HISTORY_KEYS", "case_from_dict", "load_case", "parse_case", "run_case"),
-                    ".reader"),
+                     "GEOMETRY_KINDS", "GEOMETRY_KINDS_3D", "GROUND_MOTION_KEYS", "LAW_KEYS", "MAX_CASE_BYTES",
+                     "PULSES", "REFERENCE_KEYS", "TIME_HISTORY_KEYS", "case_from_dict", "load_case", "parse_case",
+                     "run_case"), ".reader"),
     **dict.fromkeys(("CERTIFICATE_KEYS", "ERROR_STATUSES", "FORMAT", "JOINT_STATE_KEYS", "NOTE_STATUSES",
                      "UNFINISHED_STATUSES", "certificate_dict", "result_dict", "write_result_json"), ".result_file"),
 }
