@@ -22,9 +22,6 @@ The keys are a public contract, described in ``docs/case-format.md``; this packa
   :class:`TimeHistoryParameters`.
 
 Units are SI throughout: m, N, Pa, kg, s.
-
-The package imports none of its modules until one of its names is first used (:mod:`masonry_dem._lazy`): the 3D
-tables (:mod:`masonry_dem.space.case`) read with :mod:`.table` and :mod:`.common` without the reader above them.
 """
 
 from typing import TYPE_CHECKING
@@ -92,8 +89,8 @@ __all__ = [
     "write_result_json",
 ]
 
-# Where each name lives, imported when first asked for (see masonry_dem._lazy): importing a module of this package
-# (case.table from a lower layer) runs none of the others.
+# Where each name lives, imported when first asked for (see masonry_dem._lazy): the package imports none of its
+# modules, so that a lower layer imports one of them (space.case: case.table, case.common) without the others.
 _LAZY = {
     **dict.fromkeys(("CORE_DEFAULTS", "EXPLICIT_OPTIONS", "INCREMENTAL_OPTIONS", "METHODS", "AnalysisParameters",
                      "Case", "GroundMotionParameters", "ModelParameters", "TimeHistoryParameters"), ".mapping"),
