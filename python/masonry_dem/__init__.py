@@ -67,7 +67,8 @@ from ._checked import Model, pattern, running_bond
 if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); imported on first use at run time
     from .case import Case, load_case, parse_case, result_dict, run_case, write_result_json
     from .export import write_curve_csv, write_vtk
-    from .modal import Modes, modes, plot_modes, rayleigh_damping
+    from .modal import Modes, modes, rayleigh_damping
+    from .plot.modes import plot_modes
     from .api import (
         GroundMotion,
         curve_columns,
@@ -194,7 +195,8 @@ __all__ = [
 _LAZY = {
     **dict.fromkeys(("Case", "load_case", "parse_case", "result_dict", "run_case", "write_result_json"), ".case"),
     **dict.fromkeys(("write_curve_csv", "write_vtk"), ".export"),
-    **dict.fromkeys(("Modes", "modes", "plot_modes", "rayleigh_damping"), ".modal"),
+    **dict.fromkeys(("Modes", "modes", "rayleigh_damping"), ".modal"),
+    "plot_modes": ".plot.modes",
     "write_animation": ".plot.animation",
     **dict.fromkeys(("Model3D", "running_bond_3d", "u_wall", "corner_wall"), ".space"),
     **dict.fromkeys(("load_study", "run_study", "read_results"), ".study"),

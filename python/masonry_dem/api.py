@@ -38,8 +38,7 @@ from typing import Any, Dict, List, Optional, Union
 import numpy as np
 
 from ._core import InputError
-from .case import JOINT_STATE_KEYS, certificate_dict, write_result_json
-from .case.result_file import json_float as _float
+from .case.result_file import JOINT_STATE_KEYS, certificate_dict, json_float as _float, write_result_json
 from .ground_motion import GroundMotion, one_sine, read_at2, ricker
 from .ground_motion import read as read_ground_motion
 from .units import (

@@ -41,8 +41,7 @@ from typing import Any, Dict, Iterable, List, Optional, Union
 
 import numpy as np
 
-from .case import ERROR_STATUSES, FORMAT, NOTE_STATUSES, UNFINISHED_STATUSES, result_dict
-from .case.result_file import write_json
+from .case.result_file import ERROR_STATUSES, FORMAT, NOTE_STATUSES, UNFINISHED_STATUSES, result_dict, write_json
 from .report import OPEN, SLIDING, _plural, certificate_text, format_multiplier
 
 __all__ = [

@@ -39,7 +39,8 @@ from typing import Any, Dict, Iterable, List, Tuple, Union
 
 import numpy as np
 
-from .atomic import atomic_file, atomic_path, check_target
+from ._vtk import FAMILY_CODES as FAMILY_CODES, write_meshes as _write_meshes
+from .atomic import atomic_file, check_target
 from .history import ENERGIES, control_response, is_time_history, largest_translation, record
 
 __all__ = [
@@ -60,9 +61,6 @@ CSV_HEADER = "multiplier,displacement_m"
 
 #: The header line of a time history's CSV (units in the names: s, m, rad, J).
 HISTORY_CSV_HEADER = "time_s,displacement_m,rotation_rad,max_translation_m," + ",".join(f"{e}_J" for e in ENERGIES)
-
-#: Codes of the interface families in the ``family`` field.
-FAMILY_CODES = {"bed": 0, "head": 1, "base": 2, "top": 3}
 
 
 def _field(values: Any, shape: Tuple[int, ...]) -> np.ndarray:
@@ -205,15 +203,6 @@ def write_vtk(
     meshes = [(blocks_path, block_mesh(model, results)), (faces_path, interface_mesh(model, results))]
     _write_meshes(meshes, list(inputs))
     return blocks_path, faces_path
-
-
-def _write_meshes(meshes: List[Tuple[Path, Any]], inputs: List[PathLike]) -> None:
-    """Write each (path, mesh) as .vtu, atomically, after checking every target (the folders created)."""
-    for path, _ in meshes:
-        check_target(path, inputs)
-    for path, mesh in meshes:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        atomic_path(path, lambda tmp, mesh=mesh: mesh.write(tmp, file_format="vtu"), inputs=inputs)
 
 
 def _write_vtk_series(model: Any, history: Any, prefix: str, inputs: List[PathLike]) -> Tuple[Path, List[Path]]:

@@ -1,7 +1,9 @@
 """Plain-text reports of an analysis: the summary printed by the command line and a one-line
 description of the collapse mechanism, derived from ``Results.mechanism`` and the joint states.
 
-Also the kinematic helpers shared with :mod:`masonry_dem.plot` (no matplotlib here).
+Also the kinematic helpers shared with :mod:`masonry_dem.plot` (no matplotlib here). :func:`summary` reads both
+dimensions: a 3D wall's mechanism is described by :mod:`masonry_dem.space.report` (what the two share is in
+:mod:`masonry_dem._mechanism`, below both).
 Lengths in m, rotations in rad; a positive rotation is counterclockwise.
 """
 
@@ -13,6 +15,8 @@ from typing import Any, Dict, List, Sequence
 
 import numpy as np
 import numpy.typing as npt
+
+from ._mechanism import CRACK_TOLERANCE, MOVING_FRACTION, connected_parts as _connected_parts, plural as _plural
 
 __all__ = [
     "OPEN",
@@ -32,12 +36,6 @@ __all__ = [
 
 #: Bit flags of Results.interface_states (0 is elastic).
 OPEN, SLIDING, ROCKING = 1, 2, 4
-
-#: A block moves in the mechanism when its largest corner motion exceeds this fraction of the largest of all.
-MOVING_FRACTION = 1e-2
-#: An interface is cracked in the mechanism when the jump across it (slip, or the gap at one end) exceeds this
-#: fraction of the largest corner motion of a block.
-CRACK_TOLERANCE = 5e-2
 
 
 def interface_categories(states: npt.ArrayLike) -> List[str]:
@@ -119,25 +117,6 @@ def _transport(motion: np.ndarray, src: np.ndarray, dst: np.ndarray) -> np.ndarr
     return np.array([u1 - phi * d[1], u2 + phi * d[0], phi])
 
 
-def _connected_parts(moving: Sequence[int], pairs: np.ndarray, cracked: Sequence[bool]) -> List[List[int]]:
-    """Group the moving blocks into parts: blocks joined by an interface that the crack does not cross."""
-    parent = {i: i for i in moving}
-
-    def root(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    for (a, b), crack in zip(pairs, cracked):
-        if not crack and int(a) in parent and int(b) in parent:
-            parent[root(int(a))] = root(int(b))
-    groups: Dict[int, List[int]] = {}
-    for i in moving:
-        groups.setdefault(root(i), []).append(i)
-    return list(groups.values())
-
-
 def _describe_part(rects: np.ndarray, motion: np.ndarray, part: Sequence[int]) -> str:
     """'turning clockwise about (x, y) m' or 'sliding at +43 deg from +x': the area-weighted mean rigid
     motion of one part."""
@@ -156,10 +135,6 @@ def _describe_part(rects: np.ndarray, motion: np.ndarray, part: Sequence[int]) -
     sense = "counterclockwise" if phi > 0 else "clockwise"
     px, py = r[0] - u2 / phi, r[1] + u1 / phi
     return f"turning {sense} about ({px:.2f}, {py:.2f}) m"
-
-
-def _plural(n: int, word: str) -> str:
-    return f"{n} {word}" if n == 1 else f"{n} {word}s"
 
 
 def _part_name(part: Sequence[int], n_wall: int) -> str:

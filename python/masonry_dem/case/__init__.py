@@ -24,47 +24,52 @@ The keys are a public contract, described in ``docs/case-format.md``; this packa
 Units are SI throughout: m, N, Pa, kg, s.
 """
 
-from .mapping import (
-    CORE_DEFAULTS as CORE_DEFAULTS,
-    EXPLICIT_OPTIONS as EXPLICIT_OPTIONS,
-    INCREMENTAL_OPTIONS as INCREMENTAL_OPTIONS,
-    METHODS,
-    AnalysisParameters,
-    Case,
-    GroundMotionParameters,
-    ModelParameters,
-    TimeHistoryParameters,
-)
-from .reader import (
-    ANALYSIS_KEYS as ANALYSIS_KEYS,
-    DAMPINGS as DAMPINGS,
-    DEFAULT_REFERENCE_TOLERANCE as DEFAULT_REFERENCE_TOLERANCE,
-    DYNAMIC_KEYS as DYNAMIC_KEYS,
-    FAMILIES as FAMILIES,
-    GEOMETRY_KINDS as GEOMETRY_KINDS,
-    GEOMETRY_KINDS_3D as GEOMETRY_KINDS_3D,
-    GROUND_MOTION_KEYS as GROUND_MOTION_KEYS,
-    LAW_KEYS as LAW_KEYS,
-    MAX_CASE_BYTES as MAX_CASE_BYTES,
-    PULSES as PULSES,
-    REFERENCE_KEYS as REFERENCE_KEYS,
-    TIME_HISTORY_KEYS as TIME_HISTORY_KEYS,
-    case_from_dict,
-    load_case,
-    parse_case,
-    run_case,
-)
-from .result_file import (
-    CERTIFICATE_KEYS,
-    ERROR_STATUSES as ERROR_STATUSES,
-    FORMAT,
-    JOINT_STATE_KEYS as JOINT_STATE_KEYS,
-    NOTE_STATUSES as NOTE_STATUSES,
-    UNFINISHED_STATUSES as UNFINISHED_STATUSES,
-    certificate_dict,
-    result_dict,
-    write_result_json,
-)
+from typing import TYPE_CHECKING
+
+from .._lazy import lazy_package
+
+if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); imported on first use at run time
+    from .mapping import (
+        CORE_DEFAULTS as CORE_DEFAULTS,
+        EXPLICIT_OPTIONS as EXPLICIT_OPTIONS,
+        INCREMENTAL_OPTIONS as INCREMENTAL_OPTIONS,
+        METHODS,
+        AnalysisParameters,
+        Case,
+        GroundMotionParameters,
+        ModelParameters,
+        TimeHistoryParameters,
+    )
+    from .reader import (
+        ANALYSIS_KEYS as ANALYSIS_KEYS,
+        DAMPINGS as DAMPINGS,
+        DEFAULT_REFERENCE_TOLERANCE as DEFAULT_REFERENCE_TOLERANCE,
+        DYNAMIC_KEYS as DYNAMIC_KEYS,
+        FAMILIES as FAMILIES,
+        GEOMETRY_KINDS as GEOMETRY_KINDS,
+        GEOMETRY_KINDS_3D as GEOMETRY_KINDS_3D,
+        GROUND_MOTION_KEYS as GROUND_MOTION_KEYS,
+        LAW_KEYS as LAW_KEYS,
+        MAX_CASE_BYTES as MAX_CASE_BYTES,
+        PULSES as PULSES,
+        REFERENCE_KEYS as REFERENCE_KEYS,
+        TIME_HISTORY_KEYS as TIME_HISTORY_KEYS,
+        case_from_dict,
+        load_case,
+        parse_case,
+        run_case,
+    )
+    from .result_file import (
+        CERTIFICATE_KEYS,
+        ERROR_STATUSES as ERROR_STATUSES,
+        FORMAT,
+        JOINT_STATE_KEYS as JOINT_STATE_KEYS,
+        NOTE_STATUSES as NOTE_STATUSES,
+        UNFINISHED_STATUSES as UNFINISHED_STATUSES,
+        certificate_dict,
+        result_dict,
+        write_result_json,
+    )
 
 __all__ = [
     "FORMAT",
@@ -83,3 +88,18 @@ __all__ = [
     "certificate_dict",
     "write_result_json",
 ]
+
+# Where each name lives, imported when first asked for (see masonry_dem._lazy): the package imports none of its
+# modules, so that a lower layer imports one of them (space.case: case.table, case.common) without the others.
+_LAZY = {
+    **dict.fromkeys(("CORE_DEFAULTS", "EXPLICIT_OPTIONS", "INCREMENTAL_OPTIONS", "METHODS", "AnalysisParameters",
+                     "Case", "GroundMotionParameters", "ModelParameters", "TimeHistoryParameters"), ".mapping"),
+    **dict.fromkeys(("ANALYSIS_KEYS", "DAMPINGS", "DEFAULT_REFERENCE_TOLERANCE", "DYNAMIC_KEYS", "FAMILIES",
+                     "GEOMETRY_KINDS", "GEOMETRY_KINDS_3D", "GROUND_MOTION_KEYS", "LAW_KEYS", "MAX_CASE_BYTES",
+                     "PULSES", "REFERENCE_KEYS", "TIME_HISTORY_KEYS", "case_from_dict", "load_case", "parse_case",
+                     "run_case"), ".reader"),
+    **dict.fromkeys(("CERTIFICATE_KEYS", "ERROR_STATUSES", "FORMAT", "JOINT_STATE_KEYS", "NOTE_STATUSES",
+                     "UNFINISHED_STATUSES", "certificate_dict", "result_dict", "write_result_json"), ".result_file"),
+}
+
+__getattr__, __dir__ = lazy_package(__name__, _LAZY, __all__)

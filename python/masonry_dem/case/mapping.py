@@ -16,13 +16,14 @@ from __future__ import annotations
 import copy
 from dataclasses import dataclass, field, fields, replace
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any, Callable, ClassVar, Dict, Iterator, List, Mapping, MutableMapping, Optional, Sequence, Union
+from typing import Any, Callable, ClassVar, Dict, Iterator, List, Mapping, MutableMapping, Optional, Sequence, Union
 
 import numpy as np
 
 from .. import _core
 from .._core import InputError, MasonryError
 from ..ground_motion import GroundMotion, simulate_arguments
+from ..space.model import CORE_DEFAULTS_3D, LIMIT_ONLY, ModelParameters3D
 from .table import _quote
 
 #: The methods of a case, each the name of one of the core's solvers.
@@ -43,9 +44,6 @@ SOLVER_OPTIONS = {"static": INCREMENTAL_OPTIONS, "dynamic": INCREMENTAL_OPTIONS 
 CORE_DEFAULTS: Mapping[str, Any] = MappingProxyType(dict(_core.DEFAULTS))
 
 Progress = Callable[[int, float, float, float], None]
-
-if TYPE_CHECKING:
-    from ..space.case import ModelParameters3D
 
 #: The length of a time history under a built-in pulse when [time_history] gives no ``duration``, in periods
 #: of the pulse.
@@ -263,7 +261,7 @@ class Case:
     """
 
     title: str
-    model: Union[ModelParameters, "ModelParameters3D"]
+    model: Union[ModelParameters, ModelParameters3D]
     analysis: AnalysisParameters = field(default_factory=AnalysisParameters)
     method: str = "static"
     source: str = "<case>"
@@ -284,8 +282,6 @@ class Case:
         gravity, live, direction). Setting a key sets that parameter of the case."""
         names = [f.name for f in fields(self.model)]
         if self.dimension == 3:
-            from ..space.case import CORE_DEFAULTS_3D
-
             return _Arguments(self, "model", names, shown=names, defaults=CORE_DEFAULTS_3D)
         return _Arguments(self, "model", names, shown=names)
 
@@ -329,8 +325,6 @@ class Case:
             expected = ", ".join(_quote(m) for m in METHODS)
             raise InputError(f"{self.source}: method: expected one of {expected}, got {_quote(method)}")
         if self.dimension == 3 and method != "limit":
-            from ..space.case import LIMIT_ONLY
-
             raise InputError(f"{self.source}: method {_quote(method)}: {LIMIT_ONLY} (method \"limit\"; this case is "
                              "3D)", "analysis.method")
         return method
@@ -398,8 +392,6 @@ class Case:
                 finite number (duration > 0), or Rayleigh damping without ``model``.
         """
         if self.dimension == 3:
-            from ..space.case import LIMIT_ONLY
-
             raise InputError(f"{self.source}: a time history is refused: {LIMIT_ONLY} (this case is 3D)")
         if self.ground_motion is None:
             raise InputError(f"{self.source}: no [ground_motion] table: a time history needs a ground motion "

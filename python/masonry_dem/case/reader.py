@@ -16,19 +16,29 @@ from .. import _core
 from .._core import InputError
 from .._files import read_bytes
 from .. import ground_motion as _gm
+from .common import (
+    ANALYSIS_KEYS as ANALYSIS_KEYS,
+    DAMPINGS,
+    DEFAULT_REFERENCE_TOLERANCE as DEFAULT_REFERENCE_TOLERANCE,
+    DYNAMIC_KEYS as DYNAMIC_KEYS,
+    FAMILIES as FAMILIES,
+    LAW_KEYS as LAW_KEYS,
+    LAW_UNITS as LAW_UNITS,
+    REFERENCE_KEYS,
+    _analysis,
+    _base,
+    _joints,
+    _reference,
+)
 from .mapping import (
     CORE_DEFAULTS,
-    EXPLICIT_OPTIONS,
-    METHODS,
-    AnalysisParameters,
     Case,
     GroundMotionParameters,
     ModelParameters,
     TimeHistoryParameters,
     generate_blocks,
 )
-from .result_file import FORMAT
-from .table import _got, _non_negative, _open_unit, _positive, _quote, _short, _Table
+from .table import FORMAT, _got, _non_negative, _positive, _short, _Table
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -41,23 +51,12 @@ TOP_KEYS = (
     "format", "title", "geometry", "base", "top", "joints", "loads", "analysis", "reference", "ground_motion",
     "time_history",
 )
-# Keys of a joint law, in the order of docs/case-format.md, and the interface families that may override them.
-# the joint-law keys come from the core, which defines the law
-LAW_KEYS = tuple(_core.JOINT_LAW_KEYS)
-FAMILIES = ("bed", "head", "base", "top")
 GEOMETRY_KINDS = ("running_bond", "pattern", "blocks", "dxf")
 # The [geometry] forms of a 3D wall (masonry_dem.space.case): any of them makes the case 3D
 GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner")
 # Keys of [geometry] besides its kinds: the wall's, and the options of a drawing (dxf)
 DXF_KEYS = ("dxf_layer", "dxf_units")
 RUNNING_BOND_KEYS = ("block_length", "block_height", "courses", "height", "length", "first_course", "openings")
-# Keys of [analysis]: those of the incremental methods (static and dynamic), then those of the explicit solver
-# only. Limit analysis (method = "limit") has no load path: it uses none of them (they are checked, then ignored).
-ANALYSIS_KEYS = ("method", "control", "control_point", "max_displacement", "steps", "tolerance")
-DYNAMIC_KEYS = EXPLICIT_OPTIONS  # the explicit solver's options, by the same names
-DAMPINGS = ("local", "viscous", "none")
-# Keys of the optional [reference] table (a published or exact answer, checked by ``masonry-dem validate``).
-REFERENCE_KEYS = ("collapse_multiplier", "tolerance", "source", "methods")
 # Keys of the optional [ground_motion] table: a record file (and a vertical one), or a built-in pulse.
 GROUND_MOTION_KEYS = (
     "file", "units", "scale", "vertical_file", "vertical_scale", "pulse", "amplitude", "amplitude_g", "period",
@@ -70,18 +69,6 @@ TIME_HISTORY_KEYS = (
 )
 #: The kinds of damping of a time history: those of the quasi-static explicit solver and Rayleigh damping.
 TIME_HISTORY_DAMPINGS = DAMPINGS + ("rayleigh",)
-#: The kind of quantity of each joint-law key that also takes a string with its unit ("0.25 MPa"; the others
-#: are dimensionless). docs/case-format.md, "Units", lists these and the other keys that take units.
-LAW_UNITS = {
-    "normal_stiffness": "stiffness",
-    "shear_stiffness": "stiffness",
-    "cohesion": "stress",
-    "tensile_strength": "stress",
-    "fracture_energy_tension": "fracture_energy",
-    "fracture_energy_shear": "fracture_energy",
-}
-#: The relative tolerance of a [reference] that gives none (a default of the case file, not of the core).
-DEFAULT_REFERENCE_TOLERANCE = 0.01
 
 #: The largest case file read [bytes], refused from its size before it is read: a wall of 10^5 blocks listed one
 #: per line takes about 5 MB, which TOML parses in seconds (a larger wall: a generator, a pattern or a drawing).
@@ -347,13 +334,6 @@ def _drawing(geo: _Table, base_dir: Optional[PathLike]) -> Dict[str, Any]:
     return dict(blocks=blocks.tolist())
 
 
-def _base(top: _Table) -> Optional[bool]:
-    """[base]: whether the wall stands on a fixed foundation (None: left out)."""
-    table = top.table("base", ("kind",))
-    kind = None if table is None else table.string("kind", None, ("fixed", "none"))
-    return None if kind is None else kind == "fixed"
-
-
 def _top_beam(top: _Table) -> Dict[str, Any]:
     """[top]: the top beam's rotation (None: no beam; "fixed" when the table leaves it out), vertical
     restraint and dead force (None: left out)."""
@@ -371,32 +351,6 @@ def _top_beam(top: _Table) -> Dict[str, Any]:
     return beam
 
 
-def _joints(top: _Table) -> Optional[Dict[str, Dict[str, float]]]:
-    """[joints] and its family sub-tables: {"default": law, family: law}, the keys given (None: none)."""
-    table = top.table("joints", LAW_KEYS + FAMILIES)
-    joints: Dict[str, Dict[str, float]] = {}
-    if table is not None:
-        default_law = _law(table)
-        if default_law:
-            joints["default"] = default_law
-        for family in FAMILIES:
-            family_table = table.table(family, LAW_KEYS)
-            if family_table is not None:
-                joints[family] = _law(family_table)
-    return joints or None
-
-
-def _law(table: _Table) -> Dict[str, float]:
-    """The joint-law keys present in a [joints] or [joints.<family>] table."""
-    # stiffnesses must be positive, every other parameter non-negative (the core checks the rest)
-    positive = ("normal_stiffness", "shear_stiffness")
-    return {
-        key: table.number(key, check=_positive if key in positive else _non_negative, unit=LAW_UNITS.get(key))
-        for key in LAW_KEYS
-        if key in table
-    }
-
-
 def _loads(top: _Table, beam: bool) -> Dict[str, Any]:
     """[loads]: gravity and the live load (None: left out); ``beam``: whether the case has a top beam."""
     table = top.table("loads", ("gravity", "live", "direction"))
@@ -412,64 +366,6 @@ def _loads(top: _Table, beam: bool) -> Dict[str, Any]:
     if live == "top_horizontal" and not beam:
         raise table.key_error("live", '"top_horizontal" pushes the top beam: add a [top] table')
     return dict(gravity=gravity, live=live)
-
-
-def _analysis(top: _Table, default_method: str = "static") -> Tuple[str, AnalysisParameters]:
-    """[analysis]: the method (``default_method`` when left out: "static"; a 3D wall's, "limit") and the
-    solvers' options given."""
-    table = top.table("analysis", ANALYSIS_KEYS + DYNAMIC_KEYS)
-    if table is None:
-        return default_method, AnalysisParameters()
-    method = table.string("method", default_method, METHODS)
-    control = table.string("control", None, ("load", "displacement"))
-    table.string("control_point", None, ("top",))
-    options = dict(
-        control=control,
-        max_displacement=table.number("max_displacement", None, _positive, unit="length"),
-        steps=table.integer("steps", None, minimum=1),
-        tolerance=table.number("tolerance", None, _open_unit),
-    )
-    return method, AnalysisParameters(**options, **_dynamic_options(table))
-
-
-def _dynamic_options(table: _Table) -> Dict[str, Any]:
-    """The explicit solver's keys of [analysis], checked (None: left out)."""
-    damping = table.string("damping", None, DAMPINGS)
-    coefficient = table.number("damping_coefficient", None, _non_negative)
-    if coefficient is not None and (damping or CORE_DEFAULTS["damping"]) == "local" and coefficient >= 1:
-        raise table.key_error(
-            "damping_coefficient", f'must be < 1 with damping = "local" (alpha in [0, 1)), got {coefficient}'
-        )
-    return dict(
-        damping=damping,
-        damping_coefficient=coefficient,
-        time_step=table.number("time_step", None, _positive, unit="time"),
-        unbalanced_ratio=table.number("unbalanced_ratio", None, _open_unit),
-        threads=table.integer("threads", None, minimum=0),
-    )
-
-
-def _reference(table: Optional[_Table], default_methods: Tuple[str, ...] = METHODS) -> Optional[Dict[str, Any]]:
-    """The [reference] table, checked: collapse_multiplier (required), tolerance, source, and methods (the
-    methods the reference applies to; ``default_methods`` by default: all, or a 3D wall's, limit analysis)."""
-    if table is None:
-        return None
-    methods = table.array("methods", required=False)
-    if methods is None:
-        methods = list(default_methods)
-    for i, m in enumerate(methods):
-        if m not in METHODS:
-            options = ", ".join(_quote(c) for c in METHODS)
-            got = _quote(m) if isinstance(m, str) else _got(m)
-            raise table.key_error("methods", f"entry {i}: expected one of {options}, got {got}")
-    if not methods:
-        raise table.key_error("methods", "must name at least one method")
-    return {
-        "collapse_multiplier": table.number("collapse_multiplier"),
-        "tolerance": table.number("tolerance", DEFAULT_REFERENCE_TOLERANCE, _open_unit),
-        "source": table.string("source", ""),
-        "methods": tuple(methods),
-    }
 
 
 def _ground_motion(table: Optional[_Table], gravity: float, base_dir: Optional[PathLike]) -> Optional[GroundMotionParameters]:

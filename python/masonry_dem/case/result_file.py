@@ -11,9 +11,7 @@ from typing import Any, Dict, Iterable, Mapping, Optional, Union
 import numpy as np
 
 from ..atomic import write_text
-
-#: The version of the case-file and result-file format this package reads and writes.
-FORMAT = 1
+from .table import FORMAT as FORMAT  # the version of the case-file and result-file format
 
 PathLike = Union[str, "os.PathLike[str]"]
 

@@ -1,4 +1,5 @@
-"""A parsed TOML table checked key by key (:class:`_Table`), and the checks and message pieces it uses.
+"""A parsed TOML table checked key by key (:class:`_Table`), and the checks and message pieces it uses; the
+format version (:data:`FORMAT`) of case files and result files.
 
 Every message is one line that starts with the file name and names the key with its table path, e.g.
 ``wall.toml: unknown key 'frictoin' in [joints.bed]`` or ``wall.toml: geometry.thickness: must be > 0, got 0``.
@@ -13,6 +14,10 @@ from typing import Any, Callable, List, Mapping, Optional, Sequence
 
 from .._core import InputError
 from ..units import KINDS, parse_quantity, unit_names
+
+#: The version of the case-file and result-file format this package reads and writes (their top-level key
+#: ``format``; :mod:`.reader` checks it, :mod:`.result_file` writes it).
+FORMAT = 1
 
 #: A check of a number: None when it is fine, else what is wrong ("must be > 0").
 Check = Callable[[float], Optional[str]]

@@ -46,36 +46,42 @@ that mechanism) but no load path: no curve, no deformed shape (its panels say so
 A figure's file is :func:`figure_path` of the ``path`` given (".png" added when it has no suffix, as matplotlib
 does), written atomically (:mod:`masonry_dem.atomic`) by :func:`save_figure`.
 
-The panels are in :mod:`.panels`, the figures in :mod:`.figures`. Geometry in m; displacements plotted in mm.
-Matplotlib is imported when this package is.
+The panels are in :mod:`.panels` (:mod:`.time_panels` those of a time history), the figures in :mod:`.figures`,
+what every figure shares (of both dimensions: the 3D ones are :mod:`masonry_dem.space.plot`'s) in :mod:`.canvas`,
+the figure of the modes in :mod:`.modes`. Geometry in m; displacements plotted in mm. Matplotlib is imported with
+the first of these names used (the package imports its modules on first use, :mod:`masonry_dem._lazy`).
 """
 
-from ..report import interface_categories
-from .animation import write_animation
-from .figures import (
-    RESPONSE_PANELS as RESPONSE_PANELS,
-    energy_figure,
-    figure_path,
-    history_figure,
-    plot_comparison,
-    plot_results,
-    report_figure,
-    response_figure,
-    save_figure,
-)
-from .panels import (
-    DEFORMED_FRACTION as DEFORMED_FRACTION,
-    EXTRA_STYLES as EXTRA_STYLES,
-    MECHANISM_FRACTION as MECHANISM_FRACTION,
-    METHOD_STYLES as METHOD_STYLES,
-    STATE_STYLES,
-    plot_cracks,
-    plot_curve,
-    plot_deformed,
-    plot_mechanism,
-    plot_wall,
-)
-from .time_panels import plot_energy, plot_response
+from typing import TYPE_CHECKING
+
+from .._lazy import lazy_package
+
+if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); imported on first use at run time
+    from ..report import interface_categories
+    from .animation import write_animation
+    from .canvas import figure_path, save_figure
+    from .figures import (
+        RESPONSE_PANELS as RESPONSE_PANELS,
+        energy_figure,
+        history_figure,
+        plot_comparison,
+        plot_results,
+        report_figure,
+        response_figure,
+    )
+    from .panels import (
+        DEFORMED_FRACTION as DEFORMED_FRACTION,
+        EXTRA_STYLES as EXTRA_STYLES,
+        MECHANISM_FRACTION as MECHANISM_FRACTION,
+        METHOD_STYLES as METHOD_STYLES,
+        STATE_STYLES,
+        plot_cracks,
+        plot_curve,
+        plot_deformed,
+        plot_mechanism,
+        plot_wall,
+    )
+    from .time_panels import plot_energy, plot_response
 
 __all__ = [
     "plot_wall",
@@ -97,3 +103,19 @@ __all__ = [
     "interface_categories",
     "STATE_STYLES",
 ]
+
+# Where each name lives, imported when first asked for (see masonry_dem._lazy): matplotlib loads with the first
+# figure or panel, and a module of this package (canvas, for the 3D figures of masonry_dem.space.plot) is imported
+# without the others.
+_LAZY = {
+    "interface_categories": "..report",
+    "write_animation": ".animation",
+    **dict.fromkeys(("figure_path", "save_figure"), ".canvas"),
+    **dict.fromkeys(("RESPONSE_PANELS", "energy_figure", "history_figure", "plot_comparison", "plot_results",
+                     "report_figure", "response_figure"), ".figures"),
+    **dict.fromkeys(("DEFORMED_FRACTION", "EXTRA_STYLES", "MECHANISM_FRACTION", "METHOD_STYLES", "STATE_STYLES",
+                     "plot_cracks", "plot_curve", "plot_deformed", "plot_mechanism", "plot_wall"), ".panels"),
+    **dict.fromkeys(("plot_energy", "plot_response"), ".time_panels"),
+}
+
+__getattr__, __dir__ = lazy_package(__name__, _LAZY, __all__)

@@ -5,23 +5,26 @@ histories, mortar joints, the 2D keys that have no meaning there), and :class:`M
 of :class:`masonry_dem.Model3D` that a :class:`masonry_dem.case.Case` of a 3D wall holds.
 
 :mod:`masonry_dem.case.reader` reads every case file and hands a 3D one to :func:`case_from_tables` once its
-[geometry] is read; the keys the two dimensions share (``density``, [base], [joints], [loads] gravity and live,
-[analysis], [reference]) are read there, with the same meaning.
+[geometry] is read; the tables the two dimensions share ([base], [joints], [analysis], [reference]) are read with
+:mod:`masonry_dem.case.common`, with the same meaning. :class:`ModelParameters3D`, :data:`LIMIT_ONLY` and
+:data:`CORE_DEFAULTS_3D` are named here and live with the 3D model (:mod:`masonry_dem.space.model`), below the
+:class:`~masonry_dem.case.Case`, which holds, refuses and fills in by them.
 """
 
 from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, fields
-from types import MappingProxyType
-from typing import Any, ClassVar, Dict, List, Mapping, Optional
+from typing import Any, Dict, List, Mapping, Optional
 
 import numpy as np
 
 from .. import _core
 from .._core import InputError, MasonryError
-from ..case.table import _got, _positive, _quote, _Table
+from ..case.common import REFERENCE_KEYS, _analysis, _base, _joints, _reference
+from ..case.mapping import AnalysisParameters, Case
+from ..case.table import _got, _non_negative, _positive, _quote, _Table
+from .model import CORE_DEFAULTS_3D as CORE_DEFAULTS_3D, LIMIT_ONLY, ModelParameters3D
 
 __all__ = [
     "GEOMETRY_KINDS_3D",
@@ -41,40 +44,9 @@ GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner")
 LEAF_KEYS = ("length", "height", "thickness", "block_length", "block_height", "first_course", "openings")
 #: Keys of [geometry.u_wall] and [geometry.corner]: a facade with two return walls, or one.
 BONDED_KEYS = ("facade", "height", "returns", "thickness", "block_length", "block_height", "openings")
-#: The words of every refusal of what the 3D model does not take in this version.
-LIMIT_ONLY = "the 3D model takes limit analysis in this version"
-#: The core's defaults of ``Model3D``'s arguments (``ModelSpec3::default()``), for those a case leaves out.
-CORE_DEFAULTS_3D: Mapping[str, Any] = MappingProxyType(dict(_core.DEFAULTS_3D))
 
 # The core's generator of each [geometry] table, and the name its messages give the table.
 _GENERATORS = {"leaf": "running_bond_3d", "u_wall": "u_wall", "corner": "corner"}
-
-
-@dataclass(frozen=True, eq=False)
-class ModelParameters3D:
-    """The 3D wall of a case, as the arguments of :class:`masonry_dem.Model3D`.
-
-    ``boxes`` is an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] [m]; the others are those the case gives,
-    None when it leaves them out (the core's default, :data:`CORE_DEFAULTS_3D`; for top: no top beam; for
-    joints: the default law everywhere): density [kg/m3], base, top (the top beam's height [m]), joints, gravity
-    [m/s2], live, direction [deg].
-    """
-
-    dimension: ClassVar[int] = 3
-
-    boxes: np.ndarray
-    density: Optional[float] = None
-    base: Optional[bool] = None
-    top: Optional[float] = None
-    joints: Optional[Dict[str, Dict[str, float]]] = None
-    gravity: Optional[float] = None
-    live: Optional[str] = None
-    direction: Optional[float] = None
-
-    def arguments(self) -> Dict[str, Any]:
-        """The keyword arguments of ``Model3D``: boxes and the parameters given."""
-        values = ((f.name, getattr(self, f.name)) for f in fields(self))
-        return {name: value for name, value in values if value is not None}
 
 
 # --------------------------------------------------------------------------------------------------
@@ -192,9 +164,6 @@ def _renamed(text: str, kind: str) -> str:
 def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any], density: Optional[float]) -> Any:
     """The :class:`masonry_dem.case.Case` of a 3D wall: its [geometry] already read (``kind``, ``geometry``,
     ``density``), the other tables read here with the keys both dimensions share, and the refusals."""
-    from ..case.mapping import AnalysisParameters, Case
-    from ..case.reader import _analysis, _base, _joints, _reference, REFERENCE_KEYS
-
     for name in ("ground_motion", "time_history"):
         if name in top:
             raise top.error(f"[{name}]: a time history is refused: {LIMIT_ONLY} (this case is 3D: [geometry] {kind})",
@@ -254,8 +223,6 @@ def _loads(top: _Table) -> Any:
     table = top.table("loads", ("gravity", "live", "direction"))
     if table is None:
         return None, None, None
-    from ..case.table import _non_negative
-
     gravity = table.number("gravity", None, _non_negative, unit="acceleration")
     live = table.string("live", None, ("horizontal_weight", "top_horizontal"))
     if live == "top_horizontal":

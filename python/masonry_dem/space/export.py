@@ -25,6 +25,7 @@ from typing import Any, Iterable, Tuple, Union
 
 import numpy as np
 
+from .._vtk import FAMILY_CODES, write_meshes
 from .report import box_corners, corner_motion
 
 __all__ = ["block_mesh", "interface_mesh", "write_vtk"]
@@ -78,8 +79,6 @@ def interface_mesh(model: Any, results: Any) -> Any:
     """The contacts of a 3D wall as a :class:`meshio.Mesh` of quads (see the module docstring for the fields)."""
     import meshio
 
-    from ..export import FAMILY_CODES
-
     corners = np.asarray(model.interface_corners, dtype=np.float64).reshape(-1, 4, 3)
     m = len(corners)
     forces = _rows(results.interface_forces, m, 6)
@@ -105,12 +104,10 @@ def interface_mesh(model: Any, results: Any) -> Any:
 def write_vtk(model: Any, results: Any, path_prefix: PathLike, *, inputs: Iterable[PathLike] = ()) -> Tuple[Path, Path]:
     """Write ``PATH_PREFIX-blocks.vtu`` and ``PATH_PREFIX-interfaces.vtu`` of a 3D wall's analysis (a trailing
     ``.vtu`` of the prefix is dropped; the folder is created if missing); return their paths."""
-    from ..export import _write_meshes
-
     prefix = str(path_prefix)
     if prefix.endswith(".vtu"):
         prefix = prefix[: -len(".vtu")]
     blocks_path, faces_path = Path(prefix + "-blocks.vtu"), Path(prefix + "-interfaces.vtu")
     meshes = [(blocks_path, block_mesh(model, results)), (faces_path, interface_mesh(model, results))]
-    _write_meshes(meshes, list(inputs))
+    write_meshes(meshes, list(inputs))
     return blocks_path, faces_path

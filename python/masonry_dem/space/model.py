@@ -1,12 +1,18 @@
 """The user-facing 3D model and generators: :class:`Model3D` and ``running_bond_3d``, ``u_wall``,
 ``corner_wall``, ``cut_openings`` (the core's, in ``masonry_dem._core``), with a wrong argument type reported as
 :class:`masonry_dem.InputError` naming the function and the argument, as :mod:`masonry_dem._checked` does in 2D.
+
+Also what a case of a 3D wall hands the model (:mod:`masonry_dem.space.case` reads it, a
+:class:`masonry_dem.case.Case` holds it): :class:`ModelParameters3D`, the core's defaults of its arguments
+(:data:`CORE_DEFAULTS_3D`) and the words of what it refuses (:data:`LIMIT_ONLY`).
 """
 
 from __future__ import annotations
 
 import inspect
-from typing import Any
+from dataclasses import dataclass, fields
+from types import MappingProxyType
+from typing import Any, ClassVar, Dict, Mapping, Optional
 
 import numpy as np
 
@@ -15,6 +21,12 @@ from .._checked import input_errors
 from .._core import InputError
 
 __all__ = ["Model3D", "running_bond_3d", "u_wall", "corner_wall", "cut_openings"]
+
+#: The words of every refusal of what the 3D model does not take in this version (a method other than limit
+#: analysis, a time history, mortar joints).
+LIMIT_ONLY = "the 3D model takes limit analysis in this version"
+#: The core's defaults of ``Model3D``'s arguments (``ModelSpec3::default()``), for those a case leaves out.
+CORE_DEFAULTS_3D: Mapping[str, Any] = MappingProxyType(dict(_core.DEFAULTS_3D))
 
 
 def _real_boxes(func: str, boxes: Any) -> None:
@@ -54,3 +66,30 @@ class Model3D(_core.Model3D):
 # The constructor's signature as help() and inspect show it: the core's, not (*args, **kwargs).
 Model3D.__signature__ = inspect.signature(_core.Model3D)  # type: ignore[attr-defined]
 Model3D.solve_limit = input_errors(_core.Model3D.solve_limit, "Model3D.solve_limit")  # type: ignore[method-assign]
+
+
+@dataclass(frozen=True, eq=False)
+class ModelParameters3D:
+    """The 3D wall of a case, as the arguments of :class:`masonry_dem.Model3D`.
+
+    ``boxes`` is an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] [m]; the others are those the case gives,
+    None when it leaves them out (the core's default, :data:`CORE_DEFAULTS_3D`; for top: no top beam; for
+    joints: the default law everywhere): density [kg/m3], base, top (the top beam's height [m]), joints, gravity
+    [m/s2], live, direction [deg].
+    """
+
+    dimension: ClassVar[int] = 3
+
+    boxes: np.ndarray
+    density: Optional[float] = None
+    base: Optional[bool] = None
+    top: Optional[float] = None
+    joints: Optional[Dict[str, Dict[str, float]]] = None
+    gravity: Optional[float] = None
+    live: Optional[str] = None
+    direction: Optional[float] = None
+
+    def arguments(self) -> Dict[str, Any]:
+        """The keyword arguments of ``Model3D``: boxes and the parameters given."""
+        values = ((f.name, getattr(self, f.name)) for f in fields(self))
+        return {name: value for name, value in values if value is not None}

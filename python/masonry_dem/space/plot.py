@@ -10,7 +10,8 @@
   collapse multiplier and the load's direction.
 
 Geometry in m. Without a ``path`` the figure goes through pyplot (for ``plt.show()`` or a notebook); with one it is
-written atomically as the 2D figures are (:func:`masonry_dem.plot.save_figure`).
+written atomically as the 2D figures are (:func:`masonry_dem.plot.save_figure`, of :mod:`masonry_dem.plot.canvas`,
+what the figures of both dimensions share).
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
+from ..plot.canvas import _finish, _new_figure
 from ..report import format_multiplier
 from .report import box_corners, corner_motion, direction_text, moved_corners
 
@@ -151,8 +153,6 @@ def mechanism_figure(
     (:func:`plot_mechanism_3d`) seen from two sides, one across the live load and one along it, a colour bar of the
     blocks' motion, and a title with the status, the collapse multiplier and the load's direction. Written to
     ``path`` (a PNG, atomically) when given, else made through pyplot. Returns the figure."""
-    from ..plot.figures import _finish, _new_figure
-
     fig = _new_figure((14.0, 7.5), path is not None)
     grid = fig.add_gridspec(1, 2, width_ratios=[1.6, 1.0])
     direction = getattr(model, "direction", None)

@@ -12,7 +12,7 @@ from typing import Any, List, Optional, Sequence
 
 import numpy as np
 
-from ..report import CRACK_TOLERANCE, MOVING_FRACTION, _connected_parts, _plural
+from .._mechanism import CRACK_TOLERANCE, MOVING_FRACTION, connected_parts as _connected_parts, plural as _plural
 
 __all__ = ["box_corners", "corner_motion", "moved_corners", "contact_jumps", "describe_mechanism", "direction_text"]
 

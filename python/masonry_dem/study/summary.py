@@ -212,7 +212,7 @@ def summary_figure(
     rows only; one colour per method). Then the multiplier against each varied parameter, three to a row.
     Last row: the mechanisms of the ``weakest_count`` weakest analyses, computed again from the study.
     """
-    from ..plot.figures import _new_figure, save_figure
+    from ..plot.canvas import _new_figure, save_figure
 
     live = _live(study)
     parameters = [name for name in study.parameters]

@@ -1,0 +1,129 @@
+"""The tables a case file of either dimension reads alike: [base], [joints] (and its family sub-tables), [analysis]
+and [reference], with their key lists. :mod:`.reader` reads a wall in the plane with them,
+:mod:`masonry_dem.space.case` a 3D wall; the keys mean the same in both (docs/case-format.md).
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, Optional, Tuple
+
+from .. import _core
+from .mapping import CORE_DEFAULTS, EXPLICIT_OPTIONS, METHODS, AnalysisParameters
+from .table import _got, _non_negative, _open_unit, _positive, _quote, _Table
+
+# Keys of a joint law, in the order of docs/case-format.md, and the interface families that may override them.
+# the joint-law keys come from the core, which defines the law
+LAW_KEYS = tuple(_core.JOINT_LAW_KEYS)
+FAMILIES = ("bed", "head", "base", "top")
+
+# Keys of [analysis]: those of the incremental methods (static and dynamic), then those of the explicit solver
+# only. Limit analysis (method = "limit") has no load path: it uses none of them (they are checked, then ignored).
+ANALYSIS_KEYS = ("method", "control", "control_point", "max_displacement", "steps", "tolerance")
+DYNAMIC_KEYS = EXPLICIT_OPTIONS  # the explicit solver's options, by the same names
+DAMPINGS = ("local", "viscous", "none")
+# Keys of the optional [reference] table (a published or exact answer, checked by ``masonry-dem validate``).
+REFERENCE_KEYS = ("collapse_multiplier", "tolerance", "source", "methods")
+
+#: The kind of quantity of each joint-law key that also takes a string with its unit ("0.25 MPa"; the others
+#: are dimensionless). docs/case-format.md, "Units", lists these and the other keys that take units.
+LAW_UNITS = {
+    "normal_stiffness": "stiffness",
+    "shear_stiffness": "stiffness",
+    "cohesion": "stress",
+    "tensile_strength": "stress",
+    "fracture_energy_tension": "fracture_energy",
+    "fracture_energy_shear": "fracture_energy",
+}
+#: The relative tolerance of a [reference] that gives none (a default of the case file, not of the core).
+DEFAULT_REFERENCE_TOLERANCE = 0.01
+
+
+def _base(top: _Table) -> Optional[bool]:
+    """[base]: whether the wall stands on a fixed foundation (None: left out)."""
+    table = top.table("base", ("kind",))
+    kind = None if table is None else table.string("kind", None, ("fixed", "none"))
+    return None if kind is None else kind == "fixed"
+
+
+def _joints(top: _Table) -> Optional[Dict[str, Dict[str, float]]]:
+    """[joints] and its family sub-tables: {"default": law, family: law}, the keys given (None: none)."""
+    table = top.table("joints", LAW_KEYS + FAMILIES)
+    joints: Dict[str, Dict[str, float]] = {}
+    if table is not None:
+        default_law = _law(table)
+        if default_law:
+            joints["default"] = default_law
+        for family in FAMILIES:
+            family_table = table.table(family, LAW_KEYS)
+            if family_table is not None:
+                joints[family] = _law(family_table)
+    return joints or None
+
+
+def _law(table: _Table) -> Dict[str, float]:
+    """The joint-law keys present in a [joints] or [joints.<family>] table."""
+    # stiffnesses must be positive, every other parameter non-negative (the core checks the rest)
+    positive = ("normal_stiffness", "shear_stiffness")
+    return {
+        key: table.number(key, check=_positive if key in positive else _non_negative, unit=LAW_UNITS.get(key))
+        for key in LAW_KEYS
+        if key in table
+    }
+
+
+def _analysis(top: _Table, default_method: str = "static") -> Tuple[str, AnalysisParameters]:
+    """[analysis]: the method (``default_method`` when left out: "static"; a 3D wall's, "limit") and the
+    solvers' options given."""
+    table = top.table("analysis", ANALYSIS_KEYS + DYNAMIC_KEYS)
+    if table is None:
+        return default_method, AnalysisParameters()
+    method = table.string("method", default_method, METHODS)
+    control = table.string("control", None, ("load", "displacement"))
+    table.string("control_point", None, ("top",))
+    options = dict(
+        control=control,
+        max_displacement=table.number("max_displacement", None, _positive, unit="length"),
+        steps=table.integer("steps", None, minimum=1),
+        tolerance=table.number("tolerance", None, _open_unit),
+    )
+    return method, AnalysisParameters(**options, **_dynamic_options(table))
+
+
+def _dynamic_options(table: _Table) -> Dict[str, Any]:
+    """The explicit solver's keys of [analysis], checked (None: left out)."""
+    damping = table.string("damping", None, DAMPINGS)
+    coefficient = table.number("damping_coefficient", None, _non_negative)
+    if coefficient is not None and (damping or CORE_DEFAULTS["damping"]) == "local" and coefficient >= 1:
+        raise table.key_error(
+            "damping_coefficient", f'must be < 1 with damping = "local" (alpha in [0, 1)), got {coefficient}'
+        )
+    return dict(
+        damping=damping,
+        damping_coefficient=coefficient,
+        time_step=table.number("time_step", None, _positive, unit="time"),
+        unbalanced_ratio=table.number("unbalanced_ratio", None, _open_unit),
+        threads=table.integer("threads", None, minimum=0),
+    )
+
+
+def _reference(table: Optional[_Table], default_methods: Tuple[str, ...] = METHODS) -> Optional[Dict[str, Any]]:
+    """The [reference] table, checked: collapse_multiplier (required), tolerance, source, and methods (the
+    methods the reference applies to; ``default_methods`` by default: all, or a 3D wall's, limit analysis)."""
+    if table is None:
+        return None
+    methods = table.array("methods", required=False)
+    if methods is None:
+        methods = list(default_methods)
+    for i, m in enumerate(methods):
+        if m not in METHODS:
+            options = ", ".join(_quote(c) for c in METHODS)
+            got = _quote(m) if isinstance(m, str) else _got(m)
+            raise table.key_error("methods", f"entry {i}: expected one of {options}, got {got}")
+    if not methods:
+        raise table.key_error("methods", "must name at least one method")
+    return {
+        "collapse_multiplier": table.number("collapse_multiplier"),
+        "tolerance": table.number("tolerance", DEFAULT_REFERENCE_TOLERANCE, _open_unit),
+        "source": table.string("source", ""),
+        "methods": tuple(methods),
+    }
