@@ -1,4 +1,4 @@
-"""Blocks from a drawing: :func:`read_dxf` reads the rectangles of a DXF file into blocks [x0, y0, x1, y1] [m].
+"""Blocks from a drawing: :func:`read_dxf` reads the rectangles of a DXF file into blocks [x0, y0, x1, y1] (m).
 
 A wall drawn in CAD, one closed outline per block, becomes the blocks of a :class:`masonry_dem.Model`:
 

@@ -55,7 +55,7 @@ fn with_openings<'py>(py: Python<'py>, blocks: Vec<Box3>, openings: &[[f64; 4]])
 /// whole block) or an offset [m] in [0, block_length) by which its joints are shifted to the left; each course above
 /// is shifted by half a block more. A height that is not a whole number of courses gets a last course cut to fit
 /// (one under 25% of block_height is refused, as in running_bond). A joint that would fall closer than 5% of a block
-/// to a course's end is left out (the end block is longer by as much). openings: [x0, z0, x1, z1] [m], holes through
+/// to a course's end is left out (the end block is longer by as much). openings: [x0, z0, x1, z1] (m), holes through
 /// the leaf, cut as cut_openings_3d cuts them.
 #[pyfunction]
 #[pyo3(signature = (length, height, thickness, block_length, block_height, first_course=None, openings=None))]
@@ -100,7 +100,7 @@ pub(crate) fn running_bond_3d<'py>(
 ///
 /// The corners are bonded: in the even courses the facade's end blocks run over the corners, in the odd ones the
 /// returns' do; within each wall the courses are in running bond. block_length must exceed thickness by 5% of a
-/// block. openings: [x0, z0, x1, z1] [m], holes through the facade, clear of the corners (cut_openings_3d).
+/// block. openings: [x0, z0, x1, z1] (m), holes through the facade, clear of the corners (cut_openings_3d).
 #[pyfunction]
 #[pyo3(signature = (facade, height, returns, thickness, block_length, block_height, openings=None))]
 #[allow(clippy::too_many_arguments)]
@@ -122,7 +122,7 @@ pub(crate) fn u_wall<'py>(
 /// Boxes [x0, y0, z0, x1, y1, z1] (shape (n, 6), m) of an L of two walls one block thick: a facade along x (x in
 /// [0, facade], y in [0, thickness]) and one return wall along +y at x = 0, returns long from the facade's outer
 /// face, height high [m], the corner bonded as in u_wall; the facade's far end is free. openings: [x0, z0, x1, z1]
-/// [m], holes through the facade, clear of the corner (cut_openings_3d).
+/// (m), holes through the facade, clear of the corner (cut_openings_3d).
 #[pyfunction]
 #[pyo3(signature = (facade, height, returns, thickness, block_length, block_height, openings=None))]
 #[allow(clippy::too_many_arguments)]

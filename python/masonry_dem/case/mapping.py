@@ -69,7 +69,7 @@ def _given(parameters: Any, names: Sequence[str]) -> Dict[str, Any]:
 class ModelParameters:
     """The wall of a case, as the arguments of :class:`masonry_dem.Model`.
 
-    ``blocks`` is an (n, 4) array of rectangles [x0, y0, x1, y1] [m]; the others are those the case gives,
+    ``blocks`` is an (n, 4) array of rectangles [x0, y0, x1, y1] (m); the others are those the case gives,
     None when it leaves them out (the core's default; for top_rotation: no top beam; for joints: the
     default law everywhere): thickness [m], density [kg/m3], base, top_rotation, top_force [N], joints,
     gravity [m/s2], live, top_vertical.

@@ -240,7 +240,7 @@ class _Table:
         return [self._number_value(f"{label}[{i}]", v, unit=unit) for i, v in enumerate(value)]
 
     def rectangles(self, key: str, required: bool = True) -> Optional[List[List[float]]]:
-        """An array of rectangles [x0, y0, x1, y1] [m] with x1 > x0 and y1 > y0 (each a number [m] or a
+        """An array of rectangles [x0, y0, x1, y1] (m) with x1 > x0 and y1 > y0 (each a number [m] or a
         length with its unit, "175 mm")."""
         items = self.array(key, required)
         if items is None:

@@ -41,7 +41,7 @@ MECHANISM_FRACTION = 0.12
 
 
 def _outline(rect: Sequence[float]) -> np.ndarray:
-    """(5, 2) closed outline of a rectangle [x0, y0, x1, y1] [m]."""
+    """(5, 2) closed outline of a rectangle [x0, y0, x1, y1] (m)."""
     x0, y0, x1, y1 = rect
     return np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1], [x0, y0]], dtype=np.float64)
 

@@ -4,7 +4,7 @@
 :class:`masonry_dem.Results` (``dimension`` 3: arrays of 6 columns where the plane has 3) and the same case files,
 command line and result file.
 
-* :class:`Model3D` (``masonry_dem.Model3D``): the model, from an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] [m];
+* :class:`Model3D` (``masonry_dem.Model3D``): the model, from an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] (m);
   ``Model3D.solve_limit()`` is its limit analysis.
 * Generators, each returning an (n, 6) array of boxes [m]: :func:`running_bond_3d` (a single leaf in running bond),
   :func:`u_wall` (a facade with two bonded return walls), :func:`corner_wall` (with one), :func:`cut_openings`

@@ -80,7 +80,7 @@ def read_geometry(geo: _Table, kind: str) -> Dict[str, Any]:
 
 
 def _boxes(geo: _Table) -> List[List[float]]:
-    """``boxes``: at least one box [x0, y0, z0, x1, y1, z1] [m] with x1 > x0, y1 > y0 and z1 > z0."""
+    """``boxes``: at least one box [x0, y0, z0, x1, y1, z1] (m) with x1 > x0, y1 > y0 and z1 > z0."""
     items = geo.array("boxes")
     assert items is not None
     if not items:
@@ -114,7 +114,7 @@ def _first_course(table: _Table) -> Any:
 
 
 def _openings(table: _Table) -> Optional[List[List[float]]]:
-    """``openings``: rectangles [x0, z0, x1, z1] [m] through the facade, x1 > x0 and z1 > z0 (None: none)."""
+    """``openings``: rectangles [x0, z0, x1, z1] (m) through the facade, x1 > x0 and z1 > z0 (None: none)."""
     items = table.array("openings", required=False)
     if items is None:
         return None

@@ -72,7 +72,7 @@ Model3D.solve_limit = input_errors(_core.Model3D.solve_limit, "Model3D.solve_lim
 class ModelParameters3D:
     """The 3D wall of a case, as the arguments of :class:`masonry_dem.Model3D`.
 
-    ``boxes`` is an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] [m]; the others are those the case gives,
+    ``boxes`` is an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] (m); the others are those the case gives,
     None when it leaves them out (the core's default, :data:`CORE_DEFAULTS_3D`; for top: no top beam; for
     joints: the default law everywhere): density [kg/m3], base, top (the top beam's height [m]), joints, gravity
     [m/s2], live, direction [deg].

@@ -293,7 +293,7 @@ def mirrored(model: ModelParameters) -> ModelParameters:
 
 
 def texture_blocks(rb: Mapping[str, Any], texture: Texture, rng: np.random.Generator) -> List[List[float]]:
-    """The blocks [x0, y0, x1, y1] [m] of a running-bond wall (the keys of [geometry.running_bond]) with a
+    """The blocks [x0, y0, x1, y1] (m) of a running-bond wall (the keys of [geometry.running_bond]) with a
     random texture: course by course from the bottom, the course's height, then its first block and the
     others, each drawn from ``rng`` in that order. A course ends at ``length``; a last piece shorter than
     ``min_fraction`` block lengths is joined to the block before it. The openings are cut out of the blocks
