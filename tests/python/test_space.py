@@ -5,6 +5,8 @@ docs/references.md, section 5)."""
 from __future__ import annotations
 
 import json
+import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -375,3 +377,20 @@ def test_a_study_of_a_3d_case_is_refused(tmp_path: Path, capsys: pytest.CaptureF
     assert cli.main(["study", str(study), "--out", str(tmp_path / "rows.parquet")]) == 2
     err = capsys.readouterr().err.strip()
     assert err.startswith("masonry-dem: error: ") and "case: is a 3D wall: a study runs walls in the plane" in err
+
+
+def test_the_script_example_in_3d(tmp_path: Path) -> None:
+    # examples/u_wall_3d.py: four directions in plan, the free leaf against t / H, the figure and the VTK files
+    png = tmp_path / "u.png"
+    proc = subprocess.run([sys.executable, str(EXAMPLES / "u_wall_3d.py"), str(png)], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=120, env={**os.environ, "MPLBACKEND": "Agg"})
+    assert proc.returncode == 0, (proc.stdout, proc.stderr)
+    lam = {float(d): float(v) for d, v in re.findall(r"direction\s+([0-9.]+) deg: collapse, lambda = ([0-9.]+)", proc.stdout)}
+    assert sorted(lam) == [0.0, 90.0, 180.0, 270.0]
+    # the whole U sliding on its base (associative, friction 0.7) bounds every direction's multiplier
+    assert all(0.0 < v <= 0.7 for v in lam.values()), lam
+    # pushed away from its returns the facade has the least help: the weakest direction
+    assert min(lam, key=lam.get) == 270.0
+    leaf = re.search(r"free leaf: lambda = ([0-9.]+), t / H = ([0-9.]+)", proc.stdout)
+    assert leaf and abs(float(leaf.group(1)) - 0.1) <= 1e-6
+    assert png.stat().st_size > 0 and (tmp_path / "u-blocks.vtu").exists()
