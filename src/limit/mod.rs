@@ -44,8 +44,14 @@
 //! assert!((res.collapse_multiplier - 0.642857).abs() < 1e-5);
 //! ```
 //!
-//! Here: the options, the entry points and the non-associative sequence. The program is
-//! built in `program`, solved in `ipm`, and turned into Results in `outcome`.
+//! Walls of 3D blocks ([`crate::space::Model3`]) go through the same interior point
+//! ([`limit_analysis_3d`]): each corner of a contact carries a force in an eight-sided friction
+//! pyramid (the point-contact form; dry joints), six equations per block.
+//!
+//! Here: the options, the entry points and the non-associative sequence. The program the
+//! interior point solves is `program` (the same in both dimensions), built for walls in the
+//! plane in `plane` and in 3D in `space`, solved in `ipm`, and turned into Results in
+//! `outcome` (the plane) and `space`.
 
 use crate::error::{Error, Result};
 use crate::joint::{JointState, OPEN, ROCKING, SLIDING};
