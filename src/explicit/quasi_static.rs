@@ -341,13 +341,20 @@ impl<'a> QuasiStatic<'a> {
         let s = &mut self.s;
         let u0 = s.u.clone();
         let lam_cell = std::cell::Cell::new(*lam);
+        let loads = |f: &mut [f64], l: f64| {
+            for d in 0..f.len() {
+                f[d] = fd[d] + l * fl[d];
+            }
+        };
+        // a level of load control: the loads set once, for all its time steps (each step would
+        // set them to the same numbers)
+        if drive.is_none() {
+            loads(&mut s.f_ext, *lam);
+        }
         let mut set_ext = |f: &mut [f64], fint: &[f64]| {
             if drive.is_some() {
                 lam_cell.set((fint[cd] - fd[cd]) / fl[cd]);
-            }
-            let l = lam_cell.get();
-            for d in 0..f.len() {
-                f[d] = fd[d] + l * fl[d];
+                loads(f, lam_cell.get());
             }
         };
         let mut trend = Trend::default();
