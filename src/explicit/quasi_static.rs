@@ -28,7 +28,7 @@ pub(crate) fn relax_dead_state(
     let limit = 1e-2 * model.size();
     let nb = model.n_blocks();
     let max_steps = 2_000_000;
-    let mut last = Instant::now();
+    let (mut last, every) = (Instant::now(), s.clock_every());
     for k in 0..max_steps {
         s.step(&mut set_ext, None);
         if k % 16 == 15 {
@@ -46,7 +46,7 @@ pub(crate) fn relax_dead_state(
                 )));
             }
         }
-        if monitor_due(k, &mut last) {
+        if monitor_due(k, every, &mut last) {
             let p = Progress { step: k + 1, multiplier: 0.0, displacement: f64::NAN, fraction: f64::NAN, poll: false, time: f64::NAN };
             if !monitor(&p) {
                 return Err(Error::Interrupted);
@@ -214,8 +214,7 @@ impl Snapshot {
 ///   whose lowest values go up and down by a few percent from one window to the next; the
 ///   first test reads each dip below the window before as a fall fast enough to settle, and
 ///   waits for a run of windows that happen to rise (on wall 1, 26,624 and 49,152 time steps
-///   to call lambda = 0.645 a runaway, from 0.64 and from 0.6425; the second test calls it in
-///   17,408 and 18,432). The second alone would call
+///   to call lambda = 0.645 a runaway, from 0.64 and from 0.6425). The second alone would call
 ///   a creeping wall whose ratio jumps up and falls back a runaway if it took three windows to
 ///   fall below its lowest again, hence the longer run (on the walls of
 ///   `tests/explicit_openings.rs`, seeds 0 to 59, the 1,730 levels that settle give at most two
@@ -383,7 +382,7 @@ impl<'a> QuasiStatic<'a> {
             }
         };
         let mut trend = Trend::default();
-        let mut last = Instant::now();
+        let (mut last, every) = (Instant::now(), s.clock_every());
         for k in 0..opts.max_steps_per_level {
             s.step(&mut set_ext, drive.map(|x| (cd, x)));
             *lam = lam_cell.get();
@@ -397,7 +396,7 @@ impl<'a> QuasiStatic<'a> {
                     return Level::RanAway;
                 }
             }
-            if monitor_due(k, &mut last) {
+            if monitor_due(k, every, &mut last) {
                 let p = Progress { step: s.steps, multiplier: *lam, displacement: s.u[cd], fraction: f64::NAN, poll: false, time: f64::NAN };
                 if !monitor(&p) {
                     return Level::Stopped;
