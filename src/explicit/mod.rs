@@ -254,9 +254,10 @@ impl TimeHistory {
 
 /// Whether the monitor is due at step `k`: every 4,096 steps, or when 0.1 s of wall time have
 /// passed since it was last called (on a large wall 4,096 steps take minutes, and Ctrl-C must
-/// stop a run within half a second).
-fn monitor_due(k: usize, last: &mut Instant) -> bool {
-    if k % 4096 == 4095 || last.elapsed().as_secs_f64() >= 0.1 {
+/// stop a run within half a second), the clock read every `every` steps (a power of two, see
+/// [`Integrator::clock_every`]).
+fn monitor_due(k: usize, every: usize, last: &mut Instant) -> bool {
+    if k % 4096 == 4095 || (k % every == every - 1 && last.elapsed().as_secs_f64() >= 0.1) {
         *last = Instant::now();
         true
     } else {

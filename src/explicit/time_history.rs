@@ -390,7 +390,7 @@ impl Run<'_> {
         if self.due(n) {
             self.record(t);
         }
-        if monitor_due(n - 1, last) {
+        if monitor_due(n - 1, self.s.clock_every(), last) {
             let fraction = n as f64 / self.n_steps as f64;
             let p = Progress { step: n, multiplier: self.loads.lam, displacement: f64::NAN, fraction, poll: false, time: t };
             if !monitor(&p) {
