@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 export VIRTUAL_ENV := $(abspath $(VENV))
 
-.PHONY: demo test develop rust-test py-test fuzz fuzz-short wheel-check docs bench clean
+.PHONY: demo test develop rust-check rust-test cargo-test py-test fuzz fuzz-short wheel-check docs bench clean
 
 # The package's dependencies are pyproject.toml's: `maturin develop` installs them with the package and the
 # extras of the README's commands (studies and pandas). It is always run with these same extras and the same
@@ -57,16 +57,26 @@ demo: develop
 # doc check the dependencies once between them (one profile, one set of features: no code generation);
 # the tests reuse the extension's release build of the core and its dependencies (the same features:
 # the bindings build the core with bench-internals, whose items' doctests run here too). After `develop`, whose pyo3
-# configuration clippy reads (see PYO3_ENV).
-rust-test: develop
+# configuration clippy reads (see PYO3_ENV). rust-check is all but running the tests (clippy, the docs, the
+# tests' build); cargo-test runs them, built (for `test`, beside the fuzzer: it is given no MAKEFLAGS, whose
+# jobserver cargo would try and fail to join).
+CARGO_TEST = cargo test --release --features bench-internals
+rust-check: develop
 	$(PYO3_ENV) cargo clippy --release --workspace --all-targets --features masonry-dem/bench-internals -q -- -D warnings
 	RUSTDOCFLAGS="-D warnings" cargo doc --release --no-deps -q -p masonry-dem
-	cargo test --release --features bench-internals
+	$(CARGO_TEST) --no-run -q
+
+rust-test: rust-check
+	$(CARGO_TEST)
+
+cargo-test:
+	MAKEFLAGS= $(CARGO_TEST)
 
 # pytest on every core (pytest-xdist; each test's files in its own temporary directory), an idle worker taking
 # tests queued on the other (the long ones would otherwise end the run on one core)
+PYTEST = $(PY) -m pytest -q -n auto --dist worksteal tests/python
 py-test: develop $(VENV)/.extra-test
-	$(PY) -m pytest -q -n auto --dist worksteal tests/python
+	$(PYTEST)
 	$(MAKE) fuzz-short
 
 # Fuzzing of the case-file reader and model building (tests/fuzz/fuzz_case.py, atheris). The corpus grows
@@ -86,7 +96,12 @@ fuzz-short: develop $(VENV)/.extra-test
 		|| { tail -n 60 out/fuzz-short.log; echo "the fuzzer found a failing input: see out/fuzz/ and out/fuzz-short.log"; exit 1; }
 	@grep -E "^(Done|stat::number_of_executed_units|stat::new_units_added)" out/fuzz-short.log || true
 
-test: rust-test py-test
+# Every test: the Rust tests with the 20 s of fuzzing beside them, then pytest. cargo test runs its test
+# binaries one after the other, most of them on one core, and the fuzzer runs on one: side by side they
+# share the two cores the tests alone would leave half idle (each one's output printed whole when it ends).
+test: rust-check $(VENV)/.extra-test
+	@$(MAKE) --no-print-directory -j2 --output-sync=target cargo-test fuzz-short
+	$(PYTEST)
 
 # The wheel a user would install, checked as a newcomer would use it: a portable (manylinux2014, glibc >= 2.17)
 # wheel built with zig as the linker into out/wheels, installed with its dependencies alone into a fresh
