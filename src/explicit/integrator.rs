@@ -36,14 +36,9 @@ pub(super) struct Integrator<'a> {
     pub(super) straddlers: Straddlers,
     pub(super) terms: Vec<[f64; 3]>,
     pub(super) straddler_sums: Vec<[f64; 3]>,
-    pub(super) inv_mass: Vec<f64>,
-    pub(super) mass: Vec<f64>,
-    pub(super) free: Vec<bool>,
-    pub(super) u: Vec<f64>,
-    pub(super) v: Vec<f64>,
-    pub(super) a: Vec<f64>,
-    pub(super) f_int: Vec<f64>,
-    pub(super) f_ext: Vec<f64>,
+    /// the blocks' motion, dof by dof (the loop both dimensions share); its fields read as the
+    /// integrator's own (`Deref`)
+    pub(super) m: Motion,
     /// the committed joint histories, `hw` numbers an interface: the plastic jumps, then (only
     /// if a law softens, `hw` = 5) the opening and the slip, which no other law reads
     pub(super) hist: Vec<f64>,
@@ -54,12 +49,6 @@ pub(super) struct Integrator<'a> {
     /// the active set each interface's return mapping accepted at its last plastic update
     /// (bit j: face j; 0: none yet), tried first at the next ([`return_map`](crate::joint::return_map) with `MapOptions::warm`)
     pub(super) warm: Vec<u8>,
-    pub(super) dt: f64,
-    pub(super) damping: Damping,
-    pub(super) pool: std::sync::Arc<rayon::ThreadPool>,
-    /// whether the passes go to the pool (more than one thread and enough interfaces)
-    pub(super) par: bool,
-    pub(super) steps: usize,
     /// finite rotations (time histories) or the linearized kinematics of the static solver
     pub(super) large: bool,
     /// reference centroids and (cos, sin) of the current rotation of each block
@@ -70,10 +59,19 @@ pub(super) struct Integrator<'a> {
     pub(super) dynm: Vec<Dyn>,
     /// the next interface pass primes `dynm` (takes the jumps, damps nothing)
     pub(super) prime: bool,
-    /// energy dissipated by the damping of the motion (local or viscous) \[J\], summed only
-    /// with `track_damping`
-    pub(super) damping_work: f64,
-    pub(super) track_damping: bool,
+}
+
+impl std::ops::Deref for Integrator<'_> {
+    type Target = Motion;
+    fn deref(&self) -> &Motion {
+        &self.m
+    }
+}
+
+impl std::ops::DerefMut for Integrator<'_> {
+    fn deref_mut(&mut self) -> &mut Motion {
+        &mut self.m
+    }
 }
 
 impl<'a> Integrator<'a> {
@@ -81,24 +79,22 @@ impl<'a> Integrator<'a> {
     /// (None: `safety` times the stability limit), `damping`, and the interface pass on
     /// `threads` threads (0: all cores); bad values are refused with the option they come from.
     pub(super) fn new(model: &'a Model, dt: Option<f64>, safety: f64, damping: Damping, threads: usize) -> Result<Self, Error> {
-        let dt = time_step(model, dt, safety)?;
+        let dt = checked_time_step(critical_time_step(model), dt, safety)?;
         check_damping(damping)?;
-        if threads > MAX_THREADS {
-            return Err(Error::input(format!("analysis.threads = {threads} is more than the limit of {MAX_THREADS}")));
-        }
         let nb = model.n_blocks();
         let m = model.interfaces().len();
         if nb > BLOCK as usize || 2 * m >= u32::MAX as usize {
             return Err(Error::input(format!("{nb} blocks and {m} interfaces: the explicit solver takes fewer than 2^31 blocks and 2^31 interfaces")));
         }
         let fixed = model.fixed();
-        let (mass, inv_mass) = masses(model);
+        let mass = masses(model);
         // the laws by family index (see `family_index`)
         let laws = [Family::Bed, Family::Head, Family::Base, Family::Top].map(|f| *model.laws().of(f));
         let kinds = model.joint_kinds();
         let (shapes, geo) = shape_table(model, &kinds);
         let hw = if laws.iter().any(|l| l.is_softening()) { 5 } else { 3 };
-        let (pool, par, n_parts) = start_pool(threads, m)?;
+        let (pool, par, n_parts) = start_pool(threads, m, PAR_MIN_INTERFACES)?;
+        let motion = Motion::new(mass, fixed, model.prescribed().to_vec(), dt, damping, pool, par)?;
         let mut it = Integrator {
             model,
             geo,
@@ -109,32 +105,18 @@ impl<'a> Integrator<'a> {
             straddler_sums: vec![],
             terms: vec![],
             straddlers: Straddlers::default(),
-            inv_mass,
-            mass,
-            free: fixed.iter().map(|f| !f).collect(),
-            u: model.prescribed().to_vec(),
-            v: vec![0.0; 3 * nb],
-            a: vec![0.0; 3 * nb],
-            f_int: vec![0.0; 3 * nb],
-            f_ext: vec![0.0; 3 * nb],
+            m: motion,
             hist: vec![0.0; hw * m],
             hw,
             broken: vec![false; m],
             forces: vec![[0.0; 3]; m],
             flags: vec![0; m],
             warm: vec![0; m],
-            dt,
-            damping,
-            pool,
-            par,
-            steps: 0,
             large: false,
             centroids: vec![],
             cs: vec![],
             dynm: vec![],
             prime: false,
-            damping_work: 0.0,
-            track_damping: false,
         };
         it.set_parts(n_parts);
         Ok(it)
@@ -177,12 +159,7 @@ impl<'a> Integrator<'a> {
 
     /// Fixes the dofs the model holds once the dead loads are on, where they are now.
     pub(super) fn hold(&mut self) {
-        for &d in self.model.held_after_dead() {
-            self.free[d] = false;
-            self.inv_mass[d] = 0.0;
-            self.v[d] = 0.0;
-            self.a[d] = 0.0;
-        }
+        self.m.hold(self.model.held_after_dead());
     }
 
     /// The law of interface `k`.
@@ -226,7 +203,7 @@ impl<'a> Integrator<'a> {
         }
         let pass = Pass {
             model: self.model,
-            u: &self.u,
+            u: &self.m.u,
             geo: &self.geo,
             shapes: &self.shapes,
             laws: &self.laws,
@@ -249,7 +226,7 @@ impl<'a> Integrator<'a> {
             warm: &mut self.warm,
             dynm: &mut self.dynm,
             terms: &mut self.terms,
-            f_int: &mut self.f_int,
+            f_int: &mut self.m.f_int,
         };
         if par {
             run_parts(all, &self.parts, hw, &work);
@@ -264,7 +241,7 @@ impl<'a> Integrator<'a> {
     /// The (cos, sin) of each block's rotation at the current `u` (finite rotations), on the
     /// current rayon pool if `par`.
     fn rotations_in(&mut self, par: bool) {
-        let u = &self.u;
+        let u = &self.m.u;
         let rot = |i0: usize, cs: &mut [[f64; 2]]| {
             for (i, cs) in cs.iter_mut().enumerate() {
                 let (s, c) = u[3 * (i0 + i) + 2].sin_cos();
@@ -306,98 +283,7 @@ impl<'a> Integrator<'a> {
             gather(0, sums);
         }
         for (&i, x) in st.blocks.iter().zip(sums.iter()) {
-            self.f_int[3 * i as usize..3 * i as usize + 3].copy_from_slice(x);
-        }
-    }
-
-    /// Accelerations from the current forces, with damping against the current velocity; then,
-    /// with `kick`, the velocity half-step `v += kick * a` on the free dofs.
-    pub(super) fn accelerations_kick(&mut self, kick: Option<f64>) {
-        let damping = self.damping;
-        let (f_ext, f_int, free, inv_mass, mass) = (&self.f_ext, &self.f_int, &self.free, &self.inv_mass, &self.mass);
-        // one dof: the same operations for every kind of damping; the mass is read only by
-        // viscous damping (local damping and none do not touch it: 8 bytes a dof less per step).
-        // Without a branch on the dof (each value chosen, not jumped to: the loop can run on
-        // vectors): a fixed dof's acceleration is zero and its velocity kept.
-        #[inline(always)]
-        #[allow(clippy::too_many_arguments)]
-        fn dof(damping: Damping, kick: Option<f64>, a: &mut f64, v: &mut f64, free: bool, fe: f64, fi: f64, im: f64, m: impl FnOnce() -> f64) {
-            let f = fe - fi;
-            let vd = *v;
-            let fd = match damping {
-                Damping::None => 0.0,
-                Damping::Local(alpha) => {
-                    if vd != 0.0 {
-                        -alpha * f.abs() * vd.signum()
-                    } else {
-                        0.0
-                    }
-                }
-                Damping::Viscous(c) => -c * m() * vd,
-            };
-            let acc = (f + fd) * im;
-            *a = if free { acc } else { 0.0 };
-            if let Some(h) = kick {
-                *v = if free { vd + h * acc } else { vd };
-            }
-        }
-        let work = |d0: usize, a: &mut [f64], v: &mut [f64]| {
-            // the chunk's slices, zipped: no bounds check per dof
-            let r = d0..d0 + a.len();
-            let dofs = free[r.clone()].iter().zip(&f_ext[r.clone()]).zip(&f_int[r.clone()]).zip(&inv_mass[r.clone()]);
-            if let (Damping::Local(alpha), Some(h)) = (damping, kick) {
-                // the step of quasi-static runs: `dof` with its constants known, which the
-                // compiler turns into a loop on vectors
-                for ((a, v), (((&free, &fe), &fi), &im)) in a.iter_mut().zip(v.iter_mut()).zip(dofs) {
-                    dof(Damping::Local(alpha), Some(h), a, v, free, fe, fi, im, || 0.0);
-                }
-            } else if let Damping::Viscous(_) = damping {
-                for ((a, v), ((((&free, &fe), &fi), &im), &m)) in a.iter_mut().zip(v.iter_mut()).zip(dofs.zip(&mass[r])) {
-                    dof(damping, kick, a, v, free, fe, fi, im, || m);
-                }
-            } else {
-                for ((a, v), (((&free, &fe), &fi), &im)) in a.iter_mut().zip(v.iter_mut()).zip(dofs) {
-                    dof(damping, kick, a, v, free, fe, fi, im, || 0.0);
-                }
-            }
-        };
-        if self.par {
-            const G: usize = 3 * GRAIN_BLOCKS;
-            let (a, v) = (&mut self.a, &mut self.v);
-            self.pool.install(|| a.par_chunks_mut(G).zip(v.par_chunks_mut(G)).enumerate().for_each(|(c, (a, v))| work(c * G, a, v)));
-        } else {
-            work(0, &mut self.a, &mut self.v);
-        }
-    }
-
-    /// Accelerations from the current forces, with damping against the current velocity.
-    pub(super) fn accelerations(&mut self) {
-        self.accelerations_kick(None);
-    }
-
-    /// The first half of a velocity-Verlet step: `v += dt/2 a`, `u += dt v` on the free dofs,
-    /// then the prescribed dof; on the current rayon pool if `par`.
-    pub(super) fn drift_in(&mut self, prescribed: Option<(usize, f64)>, par: bool) {
-        let dt = self.dt;
-        let (a, free) = (&self.a, &self.free);
-        let drift = |d0: usize, u: &mut [f64], v: &mut [f64]| {
-            let r = d0..d0 + u.len();
-            for ((u, v), (&free, &a)) in u.iter_mut().zip(v.iter_mut()).zip(free[r.clone()].iter().zip(&a[r])) {
-                if free {
-                    *v += 0.5 * dt * a;
-                    *u += dt * *v;
-                }
-            }
-        };
-        if par {
-            const G: usize = 3 * GRAIN_BLOCKS;
-            self.u.par_chunks_mut(G).zip(self.v.par_chunks_mut(G)).enumerate().for_each(|(c, (u, v))| drift(c * G, u, v));
-        } else {
-            drift(0, &mut self.u, &mut self.v);
-        }
-        if let Some((d, val)) = prescribed {
-            self.v[d] = (val - self.u[d]) / dt;
-            self.u[d] = val;
+            self.m.f_int[3 * i as usize..3 * i as usize + 3].copy_from_slice(x);
         }
     }
 
@@ -408,22 +294,14 @@ impl<'a> Integrator<'a> {
             // one hand-off to the pool for the positions and the interface forces
             let pool = self.pool.clone();
             pool.install(|| {
-                self.drift_in(prescribed, true);
+                self.m.drift_in(prescribed, true);
                 self.interface_forces_in(true);
             });
         } else {
-            self.drift_in(prescribed, false);
+            self.m.drift_in(prescribed, false);
             self.interface_forces_in(false);
         }
-        set_ext(&mut self.f_ext, &self.f_int);
-        if self.track_damping {
-            self.damping_work += self.dt * self.damping_power();
-        }
-        self.accelerations_kick(Some(0.5 * self.dt));
-        if let Some((d, _)) = prescribed {
-            self.a[d] = 0.0;
-        }
-        self.steps += 1;
+        self.m.finish_step(set_ext, prescribed);
     }
 
     /// How often a loop of steps reads the clock for its monitor ([`monitor_due`]): every 16
@@ -436,37 +314,6 @@ impl<'a> Integrator<'a> {
         } else {
             1
         }
-    }
-
-    /// |unbalanced forces| / |applied forces| on the free dofs, dof `skip` left out.
-    pub(super) fn unbalanced_ratio(&self, skip: Option<usize>) -> f64 {
-        let (mut r, mut f) = (0.0, 0.0);
-        for d in 0..self.u.len() {
-            if self.free[d] && Some(d) != skip {
-                let x = self.f_ext[d] - self.f_int[d];
-                r += x * x;
-                f += self.f_ext[d] * self.f_ext[d];
-            }
-        }
-        (r / f.max(f64::MIN_POSITIVE)).sqrt()
-    }
-
-    /// The power the damping of the motion takes from it at the current forces and velocities
-    /// (those of the next kick: the mid-step velocities) \[W\], never negative.
-    fn damping_power(&self) -> f64 {
-        let mut p = 0.0;
-        for d in 0..self.u.len() {
-            if !self.free[d] {
-                continue;
-            }
-            let v = self.v[d];
-            p += match self.damping {
-                Damping::None => 0.0,
-                Damping::Local(alpha) => alpha * (self.f_ext[d] - self.f_int[d]).abs() * v.abs(),
-                Damping::Viscous(c) => c * self.mass[d] * v * v,
-            };
-        }
-        p
     }
 
     /// Starts the energy accounting and the contact dashpots of a time history: each interface's
@@ -500,10 +347,6 @@ impl<'a> Integrator<'a> {
         self.track_damping = !matches!(self.damping, Damping::None);
     }
 
-    pub(super) fn kinetic_energy(&self) -> f64 {
-        0.5 * (0..self.u.len()).filter(|&d| self.free[d]).map(|d| self.mass[d] * self.v[d] * self.v[d]).sum::<f64>()
-    }
-
     pub(super) fn elastic_energy(&self) -> f64 {
         let mut e = 0.0;
         for (k, f) in self.forces.iter().enumerate() {
@@ -514,65 +357,9 @@ impl<'a> Integrator<'a> {
     }
 }
 
-/// The time step: `dt` if given (finite, positive and within the stability limit of `model`),
-/// else `safety` (in (0, 1]) times that limit, which some stiffness must bound.
-fn time_step(model: &Model, dt: Option<f64>, safety: f64) -> Result<f64, Error> {
-    let crit = critical_time_step(model);
-    match dt {
-        Some(dt) => {
-            if !(dt.is_finite() && dt > 0.0) {
-                return Err(Error::input(format!("analysis.time_step must be a finite number > 0, got {dt}")));
-            }
-            if dt > crit {
-                return Err(Error::input(format!(
-                    "analysis.time_step = {dt:.3e} s exceeds the stability limit of this model, {crit:.3e} s"
-                )));
-            }
-            Ok(dt)
-        }
-        None => {
-            if !(safety > 0.0 && safety <= 1.0) {
-                return Err(Error::input(format!("safety must lie in (0, 1], got {safety}")));
-            }
-            if !crit.is_finite() {
-                return Err(Error::input("no stiffness holds the model: no stable time step"));
-            }
-            Ok(safety * crit)
-        }
-    }
-}
-
-/// Refuses a damping coefficient out of its range: local damping in [0, 1), viscous damping
-/// finite and non-negative.
-fn check_damping(damping: Damping) -> Result<(), Error> {
-    match damping {
-        Damping::Local(a) if !(0.0..1.0).contains(&a) => {
-            Err(Error::input(format!("analysis.damping_coefficient (local damping) must lie in [0, 1), got {a}")))
-        }
-        Damping::Viscous(c) if !(c.is_finite() && c >= 0.0) => {
-            Err(Error::input(format!("analysis.damping_coefficient (viscous damping) must be finite and >= 0, got {c}")))
-        }
-        _ => Ok(()),
-    }
-}
-
-/// The mass of each dof (m, m, J per block) and its inverse, zero on the fixed dofs (which the
-/// forces then do not move).
-fn masses(model: &Model) -> (Vec<f64>, Vec<f64>) {
-    let nb = model.n_blocks();
-    let fixed = model.fixed();
-    let mut mass = vec![0.0; 3 * nb];
-    let mut inv_mass = vec![0.0; 3 * nb];
-    for i in 0..nb {
-        let mm = [model.mass()[i], model.mass()[i], model.inertia()[i]];
-        for k in 0..3 {
-            mass[3 * i + k] = mm[k];
-            if !fixed[3 * i + k] {
-                inv_mass[3 * i + k] = 1.0 / mm[k];
-            }
-        }
-    }
-    (mass, inv_mass)
+/// The mass of each dof (m, m, J per block).
+fn masses(model: &Model) -> Vec<f64> {
+    (0..model.n_blocks()).flat_map(|i| [model.mass()[i], model.mass()[i], model.inertia()[i]]).collect()
 }
 
 /// The distinct shapes of the interfaces of `model` (of the kinds `kinds`), in the order they
@@ -594,15 +381,38 @@ fn shape_table(model: &Model, kinds: &Kinds) -> (Vec<Shape>, Vec<Geo>) {
     (shapes, geo)
 }
 
-/// The thread pool of `threads` threads (0: all cores) for `m` interfaces, whether the passes
-/// go to it (more than one thread and enough interfaces to pay for the hand-offs), and the
-/// parts of the interface pass (one unless they do; else at least two per thread).
-fn start_pool(threads: usize, m: usize) -> Result<(std::sync::Arc<rayon::ThreadPool>, bool, usize), Error> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| Error::input(format!("cannot start {threads} threads: {e}")))?;
-    let par = pool.current_num_threads() > 1 && m >= PAR_MIN_INTERFACES;
-    let n_parts = if par { (2 * pool.current_num_threads()).max(m.div_ceil(PART_INTERFACES)) } else { 1 };
-    Ok((std::sync::Arc::new(pool), par, n_parts))
+impl Kernel for Integrator<'_> {
+    const DOF: usize = 3;
+    type V = [f64; 3];
+    fn step(&mut self, set_ext: &mut dyn FnMut(&mut [f64], &[f64]), prescribed: Option<(usize, f64)>) {
+        Integrator::step(self, set_ext, prescribed)
+    }
+    fn interface_forces(&mut self) {
+        Integrator::interface_forces(self)
+    }
+    fn hold(&mut self) {
+        Integrator::hold(self)
+    }
+    fn clock_every(&self) -> usize {
+        Integrator::clock_every(self)
+    }
+    fn history(&self) -> (&[f64], &[bool]) {
+        (&self.hist, &self.broken)
+    }
+    fn history_mut(&mut self) -> (&mut [f64], &mut [bool]) {
+        (&mut self.hist, &mut self.broken)
+    }
+    #[inline]
+    fn translation(u: &[f64], from: Option<&[f64]>, i: usize) -> f64 {
+        match from {
+            Some(u0) => (u[3 * i] - u0[3 * i]).hypot(u[3 * i + 1] - u0[3 * i + 1]),
+            None => u[3 * i].hypot(u[3 * i + 1]),
+        }
+    }
+    fn block(u: &[f64], i: usize) -> [f64; 3] {
+        [u[3 * i], u[3 * i + 1], u[3 * i + 2]]
+    }
+    fn into_contacts(self) -> (Vec<[f64; 3]>, Vec<u8>, Vec<bool>) {
+        (self.forces, self.flags, self.broken)
+    }
 }

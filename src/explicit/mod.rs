@@ -303,8 +303,10 @@ pub fn critical_time_step(model: &Model) -> f64 {
 pub mod contact;
 mod evidence;
 mod integrator;
+mod motion;
 mod pass;
 mod quasi_static;
+mod space;
 #[cfg(feature = "bench-internals")]
 mod stepper;
 #[cfg(test)]
@@ -312,9 +314,11 @@ mod tests;
 mod time_history;
 
 use integrator::*;
+use motion::*;
 use pass::*;
 #[cfg(feature = "bench-internals")]
 pub use stepper::Stepper;
 pub(crate) use quasi_static::{relax_at_displacement, relax_dead_state};
 pub use quasi_static::{solve, solve_with};
+pub use space::{critical_time_step_3d, solve_3d, solve_3d_with};
 pub use time_history::{history_time_step_limit, record_count, record_size, simulate, simulate_with};

@@ -34,7 +34,7 @@ pub(crate) fn relax_dead_state(
         if k % 16 == 15 {
             if s.unbalanced_ratio(None) <= 1e-7 {
                 let states = s.states();
-                return Ok((s.u, states));
+                return Ok((s.m.u, states));
             }
             let (i, moved) = (0..nb)
                 .map(|i| (i, s.u[3 * i].hypot(s.u[3 * i + 1])))
@@ -93,7 +93,7 @@ pub(crate) fn relax_at_displacement(
             }
             if s.unbalanced_ratio(Some(cd)) <= 1e-7 {
                 let states = s.states();
-                return Ok((s.u, states, lam.get()));
+                return Ok((s.m.u, states, lam.get()));
             }
         }
     }
@@ -113,7 +113,9 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
     model.check_strength_range()?;
     let start = Instant::now();
     let control_block = check_options(model, opts)?;
-    let mut run = QuasiStatic::new(model, opts, control_block, start)?;
+    let s = Integrator::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
+    let setting = Setting::of_plane(model);
+    let mut run = QuasiStatic::new(s, setting, opts, control_block, start);
     let end = match run.settle_dead_loads(monitor) {
         ControlFlow::Break(end) => end,
         ControlFlow::Continue((dead_steps, limits)) => match opts.control {
@@ -156,7 +158,7 @@ fn check_options(model: &Model, opts: &ExplicitOptions) -> Result<usize, Error> 
 
 /// How a quasi-static run ends: its status, the error that says why, and the mechanism (an
 /// increment of the displacements) when the run saw one.
-struct End {
+pub(super) struct End {
     status: Status,
     error: Option<Error>,
     mechanism: Option<Vec<f64>>,
@@ -185,15 +187,17 @@ struct Snapshot {
 
 impl Snapshot {
     /// The state of `s` now.
-    fn of(s: &Integrator) -> Snapshot {
-        Snapshot { u: s.u.clone(), hist: s.hist.clone(), broken: s.broken.clone() }
+    fn of<K: Kernel>(s: &K) -> Snapshot {
+        let (hist, broken) = s.history();
+        Snapshot { u: s.u.clone(), hist: hist.to_vec(), broken: broken.to_vec() }
     }
 
     /// Puts `s` back in this state, at rest.
-    fn restore(&self, s: &mut Integrator) {
+    fn restore<K: Kernel>(&self, s: &mut K) {
         s.u.copy_from_slice(&self.u);
-        s.hist.copy_from_slice(&self.hist);
-        s.broken.copy_from_slice(&self.broken);
+        let (hist, broken) = s.history_mut();
+        hist.copy_from_slice(&self.hist);
+        broken.copy_from_slice(&self.broken);
         s.v.fill(0.0);
         s.a.fill(0.0);
     }
@@ -222,7 +226,7 @@ impl Snapshot {
 ///
 /// A block moving more than `u_max` (or a motion that is not finite) runs away at once.
 #[derive(Debug, Clone, Copy)]
-struct Limits {
+pub(super) struct Limits {
     elastic: f64,
     u_max: f64,
     window: usize,
@@ -318,17 +322,35 @@ struct Stages {
     prev: Snapshot,
 }
 
-/// A quasi-static run: the integrator, what each level reads (the options, the control dof,
-/// the dead and live loads), and the curve so far.
-struct QuasiStatic<'a> {
-    model: &'a Model,
+/// What a quasi-static run reads of its model, whatever the dimension: the dead and live loads
+/// (per dof), the wall's size \[m\] and the scale of lambda.
+pub(super) struct Setting {
+    pub(super) fd: Vec<f64>,
+    pub(super) fl: Vec<f64>,
+    pub(super) size: f64,
+    pub(super) scale: f64,
+    /// the control block's dof the curve follows (0: the first)
+    pub(super) offset: usize,
+}
+
+impl Setting {
+    fn of_plane(model: &Model) -> Setting {
+        Setting { fd: model.dead_load().to_vec(), fl: model.live_load().to_vec(), size: model.size(), scale: crate::analysis::lambda_scale(model), offset: 0 }
+    }
+}
+
+/// A quasi-static run: the integrator (of either dimension), what each level reads (the
+/// options, the control dof, the dead and live loads), and the curve so far.
+pub(super) struct QuasiStatic<'a, K: Kernel> {
     opts: &'a ExplicitOptions,
-    s: Integrator<'a>,
+    s: K,
     nb: usize,
     cd: usize,
     control_block: usize,
     fd: Vec<f64>,
     fl: Vec<f64>,
+    size: f64,
+    scale: f64,
     curve_l: Vec<f64>,
     curve_u: Vec<f64>,
     /// The lowest load level that ran away (NaN before one does): the bracket's upper end.
@@ -336,24 +358,26 @@ struct QuasiStatic<'a> {
     start: Instant,
 }
 
-impl<'a> QuasiStatic<'a> {
-    /// The run of `model` with `opts` (already checked), at rest with an empty curve.
-    fn new(model: &'a Model, opts: &'a ExplicitOptions, control_block: usize, start: Instant) -> Result<Self, Error> {
-        let s = Integrator::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
-        Ok(QuasiStatic {
-            model,
+impl<'a, K: Kernel> QuasiStatic<'a, K> {
+    /// The run on integrator `s` (at rest) of a model read as `setting`, with `opts` (already
+    /// checked), with an empty curve.
+    pub(super) fn new(s: K, setting: Setting, opts: &'a ExplicitOptions, control_block: usize, start: Instant) -> Self {
+        let Setting { fd, fl, size, scale, offset } = setting;
+        QuasiStatic {
             opts,
+            nb: fd.len() / K::DOF,
             s,
-            nb: model.n_blocks(),
-            cd: 3 * control_block,
+            cd: K::DOF * control_block + offset,
             control_block,
-            fd: model.dead_load().to_vec(),
-            fl: model.live_load().to_vec(),
+            fd,
+            fl,
+            size,
+            scale,
             curve_l: vec![],
             curve_u: vec![],
             ran_away_at: f64::NAN,
             start,
-        })
+        }
     }
 
     /// Relaxes the wall at multiplier `lam` (or, with `drive`, with the control dof held at
@@ -391,7 +415,7 @@ impl<'a> QuasiStatic<'a> {
                 if ratio <= opts.unbalanced_ratio {
                     return Level::Settled;
                 }
-                let moved = (0..nb).map(|i| (s.u[3 * i] - u0[3 * i]).hypot(s.u[3 * i + 1] - u0[3 * i + 1])).fold(0.0, f64::max);
+                let moved = (0..nb).map(|i| K::translation(&s.u, Some(&u0), i)).fold(0.0, f64::max);
                 if limits.ran_away(&mut trend, k + 1, moved, s.kinetic_energy(), ratio) {
                     return Level::RanAway;
                 }
@@ -410,8 +434,8 @@ impl<'a> QuasiStatic<'a> {
     /// means it does not stand), then holds the dofs held after them and starts the curve at
     /// lambda = 0: the time steps the dead state took, and the limits of the motion of a load
     /// level after it.
-    fn settle_dead_loads(&mut self, monitor: &mut dyn FnMut(&Progress) -> bool) -> ControlFlow<End, (usize, Limits)> {
-        let size = self.model.size();
+    pub(super) fn settle_dead_loads(&mut self, monitor: &mut dyn FnMut(&Progress) -> bool) -> ControlFlow<End, (usize, Limits)> {
+        let size = self.size;
         let mut lam = 0.0;
         let steps_before = self.s.steps;
         match self.relax(&mut lam, None, &Limits::at(1e-2 * size), monitor) {
@@ -432,7 +456,7 @@ impl<'a> QuasiStatic<'a> {
         // no elastic response: a mechanism, running or creeping; beyond 1% of the wall, as under
         // the dead loads, one that does not stop. The windows of its trend: the time the dead
         // state took to settle (at least 1,024 time steps), a multiple of 16 steps.
-        let settle = (0..self.nb).map(|i| s.u[3 * i].hypot(s.u[3 * i + 1])).fold(0.0, f64::max);
+        let settle = (0..self.nb).map(|i| K::translation(&s.u, None, i)).fold(0.0, f64::max);
         let window = dead_steps.max(1024).div_ceil(16) * 16;
         let (ratio, max_steps) = (self.opts.unbalanced_ratio, self.opts.max_steps_per_level);
         let limits = Limits { elastic: (20.0 * settle).max(1e-4 * size), u_max: 1e-2 * size, window, ratio, max_steps };
@@ -442,8 +466,8 @@ impl<'a> QuasiStatic<'a> {
     /// Load control: levels of lambda, each relaxed until the wall settles; a level at which it
     /// runs away (as `limits` judge it) is undone and the step halved, until the bracket on the
     /// collapse multiplier is within the tolerance.
-    fn load_control(&mut self, limits: &Limits, monitor: &mut dyn FnMut(&Progress) -> bool) -> End {
-        let scale = crate::analysis::lambda_scale(self.model);
+    pub(super) fn load_control(&mut self, limits: &Limits, monitor: &mut dyn FnMut(&Progress) -> bool) -> End {
+        let scale = self.scale;
         let dl = 4.0 * scale / self.opts.steps as f64;
         let mut steps = LoadSteps { scale, dl, lam_conv: 0.0, saved: Snapshot::of(&self.s), mechanism: None };
         let max_levels = 100 * self.opts.steps + 1000;
@@ -498,7 +522,7 @@ impl<'a> QuasiStatic<'a> {
 
     /// Displacement control: the control dof driven to `max_displacement` from where the dead
     /// loads left it, in stages, lambda from the control dof's equation.
-    fn displacement_control(&mut self, max_displacement: f64, dead_steps: usize, monitor: &mut dyn FnMut(&Progress) -> bool) -> End {
+    pub(super) fn displacement_control(&mut self, max_displacement: f64, dead_steps: usize, monitor: &mut dyn FnMut(&Progress) -> bool) -> End {
         let mut st = Stages {
             u_start: self.s.u[self.cd],
             max_displacement,
@@ -584,20 +608,24 @@ impl<'a> QuasiStatic<'a> {
     /// The results of the run, ended by `end`: the curve, the state reached, and the mechanism
     /// scaled to a largest block translation of 1 and oriented so that the live load does
     /// positive work on it (zero without one).
-    fn finish(self, end: End) -> Results {
+    pub(super) fn finish(self, end: End) -> Results<K::V> {
         let End { status, error: err, mechanism } = end;
-        let (model, s, curve_l, curve_u) = (self.model, self.s, self.curve_l, self.curve_u);
-        let nb = model.n_blocks();
+        let (s, curve_l, curve_u) = (self.s, self.curve_l, self.curve_u);
+        let nb = self.nb;
         let curve_l_len = curve_l.len();
-        let mech = mechanism.unwrap_or_else(|| vec![0.0; 3 * nb]);
-        let scale = (0..nb).map(|i| mech[3 * i].hypot(mech[3 * i + 1])).fold(0.0, f64::max);
-        let work: f64 = mech.iter().zip(model.live_load()).map(|(v, f)| v * f).sum();
+        let mech = mechanism.unwrap_or_else(|| vec![0.0; K::DOF * nb]);
+        let scale = (0..nb).map(|i| K::translation(&mech, None, i)).fold(0.0, f64::max);
+        let work: f64 = mech.iter().zip(&self.fl).map(|(v, f)| v * f).sum();
         let scale = if scale > 0.0 { work.signum() / scale } else { 0.0 };
         // the largest lambda at which the wall settled; a collapse multiplier only with a collapse
         let last_equilibrium = crate::results::peak(&curve_l);
         let collapse_multiplier = if status == Status::Collapse { last_equilibrium } else { f64::NAN };
         // load control: the highest level that settled and the lowest that ran away
         let bracket = (status == Status::Collapse && self.ran_away_at.is_finite()).then_some([last_equilibrium, self.ran_away_at]);
+        let mech: Vec<f64> = mech.iter().map(|x| x * scale).collect();
+        let steps = s.steps;
+        let displacements = (0..nb).map(|i| K::block(&s.u, i)).collect();
+        let (interface_forces, interface_states, broken) = s.into_contacts();
         Results {
             method: "dynamic",
             status,
@@ -607,12 +635,12 @@ impl<'a> QuasiStatic<'a> {
             curve_multiplier: curve_l,
             curve_displacement: curve_u,
             control_block: self.control_block,
-            displacements: (0..nb).map(|i| [s.u[3 * i], s.u[3 * i + 1], s.u[3 * i + 2]]).collect(),
-            mechanism: (0..nb).map(|i| [mech[3 * i] * scale, mech[3 * i + 1] * scale, mech[3 * i + 2] * scale]).collect(),
-            interface_forces: s.forces,
-            interface_states: s.flags,
-            broken: s.broken,
-            iterations: s.steps,
+            displacements,
+            mechanism: (0..nb).map(|i| K::block(&mech, i)).collect(),
+            interface_forces,
+            interface_states,
+            broken,
+            iterations: steps,
             steps: curve_l_len,
             elapsed_s: self.start.elapsed().as_secs_f64(),
             bracket,

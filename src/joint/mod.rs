@@ -252,6 +252,7 @@ mod domain;
 mod kinds;
 mod lu;
 mod mapping;
+mod point;
 #[cfg(test)]
 mod tests;
 
@@ -260,3 +261,4 @@ pub use kinds::Prepared;
 pub(crate) use kinds::Kinds;
 use lu::*;
 pub use mapping::*;
+pub use point::{point_map, PointLaw};

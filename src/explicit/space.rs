@@ -1,0 +1,649 @@
+//! The explicit solver in 3D: what differs from the plane's integrator, on the same loop
+//! ([`Motion`]) and the same drivers (quasi-static levels, time histories).
+//!
+//! - Contacts are points: each corner of a contact rectangle carries a quarter of its area with
+//!   the joint law at a point ([`crate::joint::point_map`]): a normal force that never pulls and
+//!   a shear vector within Coulomb's cone. Torsion and biaxial bending come from the corners'
+//!   positions, as in limit analysis.
+//! - Blocks have 6 dof: (ux, uy, uz) at the centroid and a rotation. Quasi-static runs use small
+//!   rotations (rx, ry, rz), the kinematics of limit analysis. Time histories with finite
+//!   rotations keep each block's orientation as a unit quaternion (nalgebra), the angular
+//!   velocity in the block's principal axes, and Euler's equations (the gyroscopic term
+//!   `omega x I omega` with the forces); the rotation dofs then accumulate the body-frame
+//!   increments `omega dt`, and results report the rotation vector of the quaternion.
+//! - The contact pass runs on rayon in chunks of contacts, each writing its own contact's forces
+//!   on its two blocks; a gather sums them per block in contact order, so the sums do not depend
+//!   on the number of threads.
+
+use super::quasi_static::{QuasiStatic, Setting};
+use super::*;
+use crate::joint::{point_map, PointLaw, OPEN, ROCKING, SLIDING};
+use crate::space::Model3;
+use nalgebra::{UnitQuaternion, Vector3};
+
+/// Contacts per task of the contact pass.
+const GRAIN_CONTACTS: usize = 512;
+/// Below this many contacts a step runs on one thread.
+const PAR_MIN_CONTACTS: usize = 1024;
+
+/// A contact as the pass reads it: its blocks, its law (by family) and its frame (n, t1, t2).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Ct {
+    a: u32,
+    b: u32,
+    frame: [[f64; 3]; 3],
+}
+
+/// A contact point: its position from the centroids of blocks a and b \[m\].
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Pt {
+    ra: [f64; 3],
+    rb: [f64; 3],
+}
+
+/// A time history's contact dashpot at a point (see [`super::contact`]): its coefficients
+/// (normal, shear) \[N s/m\], the jumps of the last step, its force then, and the energy it
+/// dissipated.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Dash {
+    c: [f64; 2],
+    jumps: [f64; 3],
+    force: [f64; 3],
+    damped: f64,
+}
+
+/// The 3D integrator: the motion, the contacts and their points, the joint histories.
+pub(super) struct Integrator3<'a> {
+    pub(super) model: &'a Model3,
+    pub(super) m: Motion,
+    cts: Vec<Ct>,
+    /// four per contact, in the order of the contact's corners
+    pts: Vec<Pt>,
+    /// the law at a point of each contact's family (Bed, Head, Base, Top), per contact
+    /// (the points of a contact share its area)
+    laws: Vec<PointLaw>,
+    /// the plastic jumps (p_n, p_t1, p_t2), three per point
+    pub(super) hist: Vec<f64>,
+    /// dry joints do not break: empty
+    broken: Vec<bool>,
+    /// (N, T1, T2) of each point \[N\]
+    pub(super) forces: Vec<[f64; 3]>,
+    /// each contact's state (OPEN, SLIDING, ROCKING)
+    pub(super) flags: Vec<u8>,
+    /// each contact's forces and moments on its blocks: a's (f, m) then b's
+    terms: Vec<[f64; 12]>,
+    /// per block, the slots (2 k + side) of the terms on it, in increasing k
+    start: Vec<u32>,
+    slots: Vec<u32>,
+    /// finite rotations: each block's orientation and its matrix (row-major)
+    pub(super) large: bool,
+    q: Vec<UnitQuaternion<f64>>,
+    rot: Vec<[f64; 9]>,
+    /// principal moments of inertia (body axes) of each block
+    inertia: Vec<[f64; 3]>,
+    /// time histories only (else empty): per point, its dashpot
+    pub(super) dash: Vec<Dash>,
+    prime: bool,
+}
+
+impl std::ops::Deref for Integrator3<'_> {
+    type Target = Motion;
+    fn deref(&self) -> &Motion {
+        &self.m
+    }
+}
+
+impl std::ops::DerefMut for Integrator3<'_> {
+    fn deref_mut(&mut self) -> &mut Motion {
+        &mut self.m
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+#[inline(always)]
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+#[inline(always)]
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline(always)]
+fn mat(r: &[f64; 9], x: [f64; 3]) -> [f64; 3] {
+    [r[0] * x[0] + r[1] * x[1] + r[2] * x[2], r[3] * x[0] + r[4] * x[1] + r[5] * x[2], r[6] * x[0] + r[7] * x[1] + r[8] * x[2]]
+}
+
+#[inline(always)]
+fn mat_t(r: &[f64; 9], x: [f64; 3]) -> [f64; 3] {
+    [r[0] * x[0] + r[3] * x[1] + r[6] * x[2], r[1] * x[0] + r[4] * x[1] + r[7] * x[2], r[2] * x[0] + r[5] * x[1] + r[8] * x[2]]
+}
+
+/// The rows of the map from the 12 dofs of a contact's blocks (a's, then b's) to the jumps of a
+/// point along each axis of `frame`: `(-w, -(ra x w), w, rb x w)`.
+fn jump_rows(pt: &Pt, frame: &[[f64; 3]; 3]) -> [[f64; 12]; 3] {
+    frame.map(|w| {
+        let (ma, mb) = (cross(pt.ra, w), cross(pt.rb, w));
+        [-w[0], -w[1], -w[2], -ma[0], -ma[1], -ma[2], w[0], w[1], w[2], mb[0], mb[1], mb[2]]
+    })
+}
+
+/// The stable time step of a 3D model: `2 / omega_max`, with a Gershgorin bound on `omega_max`
+/// from the points' elastic stiffnesses.
+pub fn critical_time_step_3d(model: &Model3) -> f64 {
+    let nb = model.n_blocks();
+    let mut row = vec![0.0; 6 * nb];
+    for (k, c) in model.contacts().iter().enumerate() {
+        let law = PointLaw::new(model.law(k), c.area / c.corners.len() as f64);
+        let frame = [c.n, c.t1, c.t2];
+        let d = [law.kn, law.kt, law.kt];
+        let dofs: Vec<usize> = (0..12).map(|j| if j < 6 { 6 * c.a + j } else { 6 * c.b + j - 6 }).collect();
+        for x in &c.corners {
+            let pt = Pt { ra: sub(*x, model.centroids()[c.a]), rb: sub(*x, model.centroids()[c.b]) };
+            let b = jump_rows(&pt, &frame);
+            for i in 0..12 {
+                for j in 0..12 {
+                    let kij = d[0] * b[0][i] * b[0][j] + d[1] * b[1][i] * b[1][j] + d[2] * b[2][i] * b[2][j];
+                    row[dofs[i]] += kij.abs();
+                }
+            }
+        }
+    }
+    let fixed = model.fixed();
+    let mut w2: f64 = 0.0;
+    for i in 0..nb {
+        let m = model.mass()[i];
+        let j = model.inertia()[i];
+        let mm = [m, m, m, j[0], j[1], j[2]];
+        for k in 0..6 {
+            if !fixed[6 * i + k] {
+                w2 = w2.max(row[6 * i + k] / mm[k]);
+            }
+        }
+    }
+    if w2 > 0.0 {
+        2.0 / w2.sqrt()
+    } else {
+        f64::INFINITY
+    }
+}
+
+impl<'a> Integrator3<'a> {
+    /// The integrator of `model` at rest, with time step `dt` (None: `safety` times the
+    /// stability limit), `damping`, and the contact pass on `threads` threads (0: all cores).
+    pub(super) fn new(model: &'a Model3, dt: Option<f64>, safety: f64, damping: Damping, threads: usize) -> Result<Self, Error> {
+        let dt = checked_time_step(critical_time_step_3d(model), dt, safety)?;
+        let nb = model.n_blocks();
+        let contacts = model.contacts();
+        let m = contacts.len();
+        if nb >= u32::MAX as usize / 2 || 2 * m >= u32::MAX as usize {
+            return Err(Error::input(format!("{nb} blocks and {m} contacts: the explicit solver takes fewer than 2^31 of each")));
+        }
+        let (pool, par, _) = start_pool(threads, m, PAR_MIN_CONTACTS)?;
+        let mass: Vec<f64> = (0..nb)
+            .flat_map(|i| {
+                let (mi, j) = (model.mass()[i], model.inertia()[i]);
+                [mi, mi, mi, j[0], j[1], j[2]]
+            })
+            .collect();
+        let motion = Motion::new(mass, model.fixed(), vec![0.0; 6 * nb], dt, damping, pool, par)?;
+        let cen = model.centroids();
+        let mut cts = Vec::with_capacity(m);
+        let mut pts = Vec::with_capacity(4 * m);
+        let mut laws = Vec::with_capacity(m);
+        for (k, c) in contacts.iter().enumerate() {
+            if c.corners.len() != 4 {
+                return Err(Error::input(format!("contact {k} has {} corners: the explicit solver takes rectangles", c.corners.len())));
+            }
+            cts.push(Ct { a: c.a as u32, b: c.b as u32, frame: [c.n, c.t1, c.t2] });
+            laws.push(PointLaw::new(model.law(k), 0.25 * c.area));
+            for x in &c.corners {
+                pts.push(Pt { ra: sub(*x, cen[c.a]), rb: sub(*x, cen[c.b]) });
+            }
+        }
+        // per block, its slots in increasing k
+        let mut count = vec![0u32; nb + 1];
+        for c in &cts {
+            count[c.a as usize + 1] += 1;
+            count[c.b as usize + 1] += 1;
+        }
+        for i in 0..nb {
+            count[i + 1] += count[i];
+        }
+        let start = count.clone();
+        let mut slots = vec![0u32; 2 * m];
+        let mut fill = count;
+        for (k, c) in cts.iter().enumerate() {
+            for (side, blk) in [(0, c.a), (1, c.b)] {
+                slots[fill[blk as usize] as usize] = (2 * k + side) as u32;
+                fill[blk as usize] += 1;
+            }
+        }
+        Ok(Integrator3 {
+            model,
+            m: motion,
+            cts,
+            pts,
+            laws,
+            hist: vec![0.0; 12 * m],
+            broken: vec![],
+            forces: vec![[0.0; 3]; 4 * m],
+            flags: vec![0; m],
+            terms: vec![[0.0; 12]; m],
+            start,
+            slots,
+            large: false,
+            q: vec![],
+            rot: vec![],
+            inertia: model.inertia().to_vec(),
+            dash: vec![],
+            prime: false,
+        })
+    }
+
+    /// Finite rotations (time histories) or small rotations (the default).
+    pub(super) fn set_large(&mut self, large: bool) {
+        self.large = large;
+        if large && self.q.is_empty() {
+            let nb = self.model.n_blocks();
+            self.q = vec![UnitQuaternion::identity(); nb];
+            self.rot = vec![[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]; nb];
+        }
+    }
+
+    /// Sets block `i`'s orientation to the rotation vector `r` \[rad\] (finite rotations).
+    pub(super) fn set_rotation(&mut self, i: usize, r: [f64; 3]) {
+        self.q[i] = UnitQuaternion::from_scaled_axis(Vector3::from(r));
+        self.rot[i] = matrix(&self.q[i]);
+    }
+
+    /// Block `i`'s dofs for results: the translation and the rotation vector (of the
+    /// quaternion with finite rotations, else the small rotations).
+    pub(super) fn block_state(&self, i: usize) -> [f64; 6] {
+        let u = &self.m.u[6 * i..6 * i + 6];
+        if self.large {
+            let r = self.q[i].scaled_axis();
+            [u[0], u[1], u[2], r[0], r[1], r[2]]
+        } else {
+            [u[0], u[1], u[2], u[3], u[4], u[5]]
+        }
+    }
+
+    /// Block `i`'s angular velocity in the world's axes (finite rotations: from the body's).
+    pub(super) fn block_velocity(&self, i: usize) -> [f64; 6] {
+        let v = &self.m.v[6 * i..6 * i + 6];
+        let w = if self.large { mat(&self.rot[i], [v[3], v[4], v[5]]) } else { [v[3], v[4], v[5]] };
+        [v[0], v[1], v[2], w[0], w[1], w[2]]
+    }
+
+    /// The orientations after the drift (finite rotations): each free block turned by its
+    /// body-frame angular velocity times the time step.
+    fn rotate(&mut self) {
+        let (v, dt, free) = (&self.m.v, self.m.dt, &self.m.free);
+        let turn = |i0: usize, q: &mut [UnitQuaternion<f64>], rot: &mut [[f64; 9]]| {
+            for (j, (q, rot)) in q.iter_mut().zip(rot.iter_mut()).enumerate() {
+                let i = i0 + j;
+                if free[6 * i + 3] || free[6 * i + 4] || free[6 * i + 5] {
+                    let w = Vector3::new(v[6 * i + 3], v[6 * i + 4], v[6 * i + 5]) * dt;
+                    *q = *q * UnitQuaternion::from_scaled_axis(w);
+                    *rot = matrix(q);
+                }
+            }
+        };
+        if self.m.par {
+            let (q, rot) = (&mut self.q, &mut self.rot);
+            self.m.pool.install(|| q.par_chunks_mut(GRAIN_BLOCKS).zip(rot.par_chunks_mut(GRAIN_BLOCKS)).enumerate().for_each(|(c, (q, r))| turn(c * GRAIN_BLOCKS, q, r)));
+        } else {
+            turn(0, &mut self.q, &mut self.rot);
+        }
+    }
+
+    /// The contact forces at the current displacements (the committed histories updated: each
+    /// time step is an increment), gathered into `f_int`; with finite rotations the moments in
+    /// the blocks' axes plus the gyroscopic term.
+    pub(super) fn interface_forces(&mut self) {
+        let (u, cts, pts, laws) = (&self.m.u, &self.cts, &self.pts, &self.laws);
+        let (large, rot, dt, prime) = (self.large, &self.rot, self.m.dt, self.prime);
+        let ident = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+        let dyn_on = !self.dash.is_empty();
+        let work = |k0: usize, hist: &mut [f64], forces: &mut [[f64; 3]], flags: &mut [u8], terms: &mut [[f64; 12]], dash: &mut [Dash]| {
+            for (j, ((term, flag), hist)) in terms.iter_mut().zip(flags.iter_mut()).zip(hist.chunks_exact_mut(12)).enumerate() {
+                let k = k0 + j;
+                let c = &cts[k];
+                let (a, b) = (c.a as usize, c.b as usize);
+                let (ra_m, rb_m) = if large { (&rot[a], &rot[b]) } else { (&ident, &ident) };
+                let frame = if large { c.frame.map(|w| mat(ra_m, w)) } else { c.frame };
+                let ua = [u[6 * a], u[6 * a + 1], u[6 * a + 2]];
+                let ub = [u[6 * b], u[6 * b + 1], u[6 * b + 2]];
+                let (ta, tb) = ([u[6 * a + 3], u[6 * a + 4], u[6 * a + 5]], [u[6 * b + 3], u[6 * b + 4], u[6 * b + 5]]);
+                let law = &laws[k];
+                let mut t = [0.0; 12];
+                let (mut open, mut slide) = (0u8, false);
+                for p in 0..4 {
+                    let pt = &pts[4 * k + p];
+                    // the jump of b's point from a's, and the lever arms now
+                    let (xa, xb, d) = if large {
+                        let (xa, xb) = (mat(ra_m, pt.ra), mat(rb_m, pt.rb));
+                        (xa, xb, [0, 1, 2].map(|r| ub[r] - ua[r] + xb[r] - pt.rb[r] - xa[r] + pt.ra[r]))
+                    } else {
+                        let (wa, wb) = (cross(ta, pt.ra), cross(tb, pt.rb));
+                        (pt.ra, pt.rb, [0, 1, 2].map(|r| ub[r] + wb[r] - ua[r] - wa[r]))
+                    };
+                    let e = [dot(frame[0], d), dot(frame[1], d), dot(frame[2], d)];
+                    let h: &mut [f64; 3] = (&mut hist[3 * p..3 * p + 3]).try_into().unwrap();
+                    let (mut f, s) = point_map(law, e, h);
+                    forces[4 * j + p] = f;
+                    if s & OPEN != 0 {
+                        open += 1;
+                    }
+                    slide |= s & SLIDING != 0;
+                    if dyn_on {
+                        let ds = &mut dash[4 * j + p];
+                        let extra = if prime { [0.0; 3] } else { dashpot(ds, law.friction, e, f, dt) };
+                        ds.damped += 0.5 * (0..3).map(|r| (ds.force[r] + extra[r]) * (e[r] - ds.jumps[r])).sum::<f64>();
+                        if prime {
+                            ds.damped = 0.0;
+                        }
+                        ds.jumps = e;
+                        ds.force = extra;
+                        f = [f[0] + extra[0], f[1] + extra[1], f[2] + extra[2]];
+                    }
+                    let fw = [0, 1, 2].map(|r| f[0] * frame[0][r] + f[1] * frame[1][r] + f[2] * frame[2][r]);
+                    let (ma, mb) = (cross(xa, fw), cross(xb, fw));
+                    for r in 0..3 {
+                        t[r] -= fw[r];
+                        t[3 + r] -= ma[r];
+                        t[6 + r] += fw[r];
+                        t[9 + r] += mb[r];
+                    }
+                }
+                *term = t;
+                *flag = if open == 4 {
+                    OPEN
+                } else {
+                    (if slide { SLIDING } else { 0 }) | (if open > 0 { ROCKING } else { 0 })
+                };
+            }
+        };
+        let n = self.cts.len();
+        if self.m.par {
+            let g = GRAIN_CONTACTS;
+            let (hist, forces, flags, terms) = (&mut self.hist, &mut self.forces, &mut self.flags, &mut self.terms);
+            let dash = &mut self.dash;
+            self.m.pool.install(|| {
+                let chunks = hist.par_chunks_mut(12 * g).zip(forces.par_chunks_mut(4 * g)).zip(flags.par_chunks_mut(g)).zip(terms.par_chunks_mut(g));
+                if dash.is_empty() {
+                    chunks.enumerate().for_each(|(c, (((h, f), fl), t))| work(c * g, h, f, fl, t, &mut []));
+                } else {
+                    chunks.zip(dash.par_chunks_mut(4 * g)).enumerate().for_each(|(c, ((((h, f), fl), t), d))| work(c * g, h, f, fl, t, d));
+                }
+            });
+        } else {
+            work(0, &mut self.hist, &mut self.forces, &mut self.flags, &mut self.terms, &mut self.dash);
+        }
+        debug_assert_eq!(self.terms.len(), n);
+        self.prime = false;
+        self.gather();
+    }
+
+    /// Each block's sum of its contacts' terms into `f_int`, in increasing k; with finite
+    /// rotations the moment turned into the block's axes, plus `omega x I omega`.
+    fn gather(&mut self) {
+        let (start, slots, terms) = (&self.start, &self.slots, &self.terms);
+        let (large, rot, inertia) = (self.large, &self.rot, &self.inertia);
+        let v = &self.m.v;
+        let sum = |i0: usize, out: &mut [f64]| {
+            for (j, f) in out.chunks_exact_mut(6).enumerate() {
+                let i = i0 + j;
+                let mut acc = [0.0; 6];
+                for &s in &slots[start[i] as usize..start[i + 1] as usize] {
+                    let t = &terms[s as usize / 2];
+                    let side = 6 * (s as usize % 2);
+                    for r in 0..6 {
+                        acc[r] += t[side + r];
+                    }
+                }
+                if large {
+                    let m = mat_t(&rot[i], [acc[3], acc[4], acc[5]]);
+                    let w = [v[6 * i + 3], v[6 * i + 4], v[6 * i + 5]];
+                    let jw = [inertia[i][0] * w[0], inertia[i][1] * w[1], inertia[i][2] * w[2]];
+                    let g = cross(w, jw);
+                    acc[3] = m[0] + g[0];
+                    acc[4] = m[1] + g[1];
+                    acc[5] = m[2] + g[2];
+                }
+                f.copy_from_slice(&acc);
+            }
+        };
+        if self.m.par {
+            let f_int = &mut self.m.f_int;
+            self.m.pool.install(|| f_int.par_chunks_mut(6 * GRAIN_BLOCKS).enumerate().for_each(|(c, f)| sum(c * GRAIN_BLOCKS, f)));
+        } else {
+            sum(0, &mut self.m.f_int);
+        }
+    }
+
+    /// One velocity-Verlet step (see [`Kernel::step`]).
+    pub(super) fn step(&mut self, set_ext: &mut dyn FnMut(&mut [f64], &[f64]), prescribed: Option<(usize, f64)>) {
+        let par = self.m.par;
+        if par {
+            let pool = self.m.pool.clone();
+            pool.install(|| self.m.drift_in(prescribed, true));
+        } else {
+            self.m.drift_in(prescribed, false);
+        }
+        if self.large {
+            self.rotate();
+        }
+        self.interface_forces();
+        self.m.finish_step(set_ext, prescribed);
+    }
+
+    /// Starts the contact dashpots of a time history: each point's from its law's restitution
+    /// and the reduced mass of its blocks (a quarter of the contact's, see [`super::contact`]).
+    pub(super) fn start_dynamics(&mut self) {
+        let model = self.model;
+        let free_mass = |i: usize| if (0..3).any(|r| self.m.free[6 * i + r]) { model.mass()[i] } else { f64::INFINITY };
+        let mut dash = Vec::with_capacity(self.pts.len());
+        for (k, c) in model.contacts().iter().enumerate() {
+            let reduced = 1.0 / (1.0 / free_mass(c.a) + 1.0 / free_mass(c.b));
+            let cf = super::contact::coefficients(model.law(k), c.area, 0.0, reduced);
+            for _ in 0..4 {
+                dash.push(Dash { c: [0.25 * cf[0], 0.25 * cf[1]], ..Dash::default() });
+            }
+        }
+        self.dash = dash;
+        self.prime = true;
+        self.m.track_damping = !matches!(self.m.damping, Damping::None);
+    }
+
+    /// Energy dissipated by the contact dashpots \[J\].
+    pub(super) fn impact_dissipation(&self) -> f64 {
+        self.dash.iter().map(|d| d.damped).sum()
+    }
+
+    /// Elastic energy stored in the contact points \[J\].
+    pub(super) fn elastic_energy(&self) -> f64 {
+        let mut e = 0.0;
+        for (k, law) in self.laws.iter().enumerate() {
+            for f in &self.forces[4 * k..4 * k + 4] {
+                e += 0.5 * (f[0] * f[0] / law.kn + (f[1] * f[1] + f[2] * f[2]) / law.kt);
+            }
+        }
+        e
+    }
+
+    /// The rotation angle of block `i` from the start (finite rotations: the quaternion's) \[rad\].
+    pub(super) fn rotation_angle(&self, i: usize) -> f64 {
+        if self.large {
+            self.q[i].angle()
+        } else {
+            let u = &self.m.u[6 * i + 3..6 * i + 6];
+            (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt()
+        }
+    }
+}
+
+/// The rotation matrix of `q`, row-major.
+fn matrix(q: &UnitQuaternion<f64>) -> [f64; 9] {
+    let m = q.to_rotation_matrix();
+    let m = m.matrix();
+    [m[(0, 0)], m[(0, 1)], m[(0, 2)], m[(1, 0)], m[(1, 1)], m[(1, 2)], m[(2, 0)], m[(2, 1)], m[(2, 2)]]
+}
+
+/// The dashpot force of a point (coefficients in `ds`), at jumps `e` after the last step's, with
+/// the joint's force `f` and friction `mu`: on a closed point the normal dashpot, cut so that
+/// the point does not pull, and the shear dashpot within the friction of the damped normal
+/// force. Its power is never negative.
+#[inline(always)]
+fn dashpot(ds: &Dash, mu: f64, e: [f64; 3], f: [f64; 3], dt: f64) -> [f64; 3] {
+    let closed = f[0] < 0.0;
+    if !closed || (ds.c[0] == 0.0 && ds.c[1] == 0.0) {
+        return [0.0; 3];
+    }
+    let inv = 1.0 / dt;
+    let rate = [(e[0] - ds.jumps[0]) * inv, (e[1] - ds.jumps[1]) * inv, (e[2] - ds.jumps[2]) * inv];
+    let dn = (ds.c[0] * rate[0]).min(-f[0]);
+    let n = f[0] + dn;
+    if n >= 0.0 {
+        return [dn, 0.0, 0.0];
+    }
+    let t = [f[1] + ds.c[1] * rate[1], f[2] + ds.c[1] * rate[2]];
+    let cap = f[1].hypot(f[2]).max(-mu * n);
+    let tn = t[0].hypot(t[1]);
+    let s = if tn > cap { cap / tn } else { 1.0 };
+    [dn, t[0] * s - f[1], t[1] * s - f[2]]
+}
+
+impl Kernel for Integrator3<'_> {
+    const DOF: usize = 6;
+    type V = [f64; 6];
+    fn step(&mut self, set_ext: &mut dyn FnMut(&mut [f64], &[f64]), prescribed: Option<(usize, f64)>) {
+        Integrator3::step(self, set_ext, prescribed)
+    }
+    fn interface_forces(&mut self) {
+        Integrator3::interface_forces(self)
+    }
+    fn hold(&mut self) {}
+    fn clock_every(&self) -> usize {
+        if self.m.par {
+            1
+        } else {
+            16
+        }
+    }
+    fn history(&self) -> (&[f64], &[bool]) {
+        (&self.hist, &self.broken)
+    }
+    fn history_mut(&mut self) -> (&mut [f64], &mut [bool]) {
+        (&mut self.hist, &mut self.broken)
+    }
+    #[inline]
+    fn translation(u: &[f64], from: Option<&[f64]>, i: usize) -> f64 {
+        let d = |r: usize| u[6 * i + r] - from.map_or(0.0, |u0| u0[6 * i + r]);
+        (d(0) * d(0) + d(1) * d(1) + d(2) * d(2)).sqrt()
+    }
+    fn block(u: &[f64], i: usize) -> [f64; 6] {
+        [u[6 * i], u[6 * i + 1], u[6 * i + 2], u[6 * i + 3], u[6 * i + 4], u[6 * i + 5]]
+    }
+    /// Per contact, its resultants at its centroid (N, T1, T2, M_n, M_t1, M_t2) from its points'
+    /// forces, as limit analysis reports them.
+    fn into_contacts(self) -> (Vec<[f64; 6]>, Vec<u8>, Vec<bool>) {
+        let model = self.model;
+        let forces = model
+            .contacts()
+            .iter()
+            .enumerate()
+            .map(|(k, c)| {
+                let mut s = [0.0; 6];
+                for (p, x) in c.corners.iter().enumerate() {
+                    let f = self.forces[4 * k + p];
+                    let fw = [0, 1, 2].map(|r| f[0] * c.n[r] + f[1] * c.t1[r] + f[2] * c.t2[r]);
+                    let m = cross(sub(*x, c.centroid), fw);
+                    s[0] += f[0];
+                    s[1] += f[1];
+                    s[2] += f[2];
+                    s[3] += dot(m, c.n);
+                    s[4] += dot(m, c.t1);
+                    s[5] += dot(m, c.t2);
+                }
+                s
+            })
+            .collect();
+        (forces, self.flags, vec![false; model.contacts().len()])
+    }
+}
+
+/// Runs a quasi-static analysis of a 3D model with the explicit solver (load control: levels
+/// relaxed until they settle, the collapse multiplier bracketed between the highest level that
+/// settled and the lowest that ran away).
+pub fn solve_3d(model: &Model3, opts: &ExplicitOptions) -> Result<Results<[f64; 6]>, Error> {
+    solve_3d_with(model, opts, &mut |_| true)
+}
+
+/// As [`solve_3d`], calling `monitor` after each settled level and every 0.1 s (return false to
+/// stop).
+pub fn solve_3d_with(model: &Model3, opts: &ExplicitOptions, monitor: &mut dyn FnMut(&Progress) -> bool) -> Result<Results<[f64; 6]>, Error> {
+    let start = Instant::now();
+    crate::analysis::check_path_options(opts.steps, opts.tolerance, opts.control)?;
+    if !(opts.unbalanced_ratio > 0.0 && opts.unbalanced_ratio < 1.0) {
+        return Err(Error::input(format!("analysis.unbalanced_ratio must lie in (0, 1), got {}", opts.unbalanced_ratio)));
+    }
+    if opts.max_steps_per_level == 0 {
+        return Err(Error::input("max_steps_per_level must be at least 1"));
+    }
+    if opts.control != Control::Load {
+        return Err(Error::input("3D explicit analyses are load-controlled (analysis.control = \"load\")"));
+    }
+    check_dry_3d(model)?;
+    if model.n_wall() == 0 {
+        return Err(Error::input("the model has no wall blocks"));
+    }
+    let control_block = match opts.control_block {
+        Some(i) if i >= model.n_blocks() => return Err(Error::input(format!("control_block {i} is out of range (the model has {} blocks)", model.n_blocks()))),
+        Some(i) => i,
+        None => highest_block(model),
+    };
+    let s = Integrator3::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
+    // the curve follows the control block along the horizontal axis nearer the load's direction
+    let offset = match model.live() {
+        crate::space::LiveLoad3::HorizontalWeight { direction } if direction.to_radians().sin().abs() > direction.to_radians().cos().abs() => 1,
+        _ => 0,
+    };
+    let setting = Setting { fd: model.dead_load().to_vec(), fl: model.live_load().to_vec(), size: model.size(), scale: 1.0, offset };
+    let mut run = QuasiStatic::new(s, setting, opts, control_block, start);
+    let end = match run.settle_dead_loads(monitor) {
+        std::ops::ControlFlow::Break(end) => end,
+        std::ops::ControlFlow::Continue((_, limits)) => run.load_control(&limits, monitor),
+    };
+    Ok(run.finish(end))
+}
+
+/// Refuses joints the 3D explicit solver does not model: cohesion and tensile strength (dry
+/// joints only, as 3D limit analysis).
+pub(super) fn check_dry_3d(model: &Model3) -> Result<(), Error> {
+    use crate::interface::Family;
+    for f in [Family::Bed, Family::Head, Family::Base, Family::Top] {
+        let l = model.laws().of(f);
+        if l.cohesion != 0.0 || l.tensile_strength != 0.0 {
+            return Err(Error::input(format!(
+                "the explicit solver in 3D takes dry joints (cohesion and tensile_strength 0); the {} joints have cohesion {} Pa and tensile_strength {} Pa",
+                f.name(),
+                l.cohesion,
+                l.tensile_strength
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The wall block whose top is highest (the first of them): the default control block, whose
+/// displacement the pushover curve follows.
+fn highest_block(model: &Model3) -> usize {
+    let boxes = model.boxes();
+    (0..model.n_wall()).fold(0, |best, i| if boxes[i].max[2] > boxes[best].max[2] { i } else { best })
+}

@@ -1,0 +1,85 @@
+//! The explicit solver in 3D against closed forms, the plane and 3D limit analysis: a box that
+//! slides or overturns in any direction in plan, Ferris and Tin-Loi's wall 1 extruded, the U wall.
+
+mod common;
+
+use common::dry;
+use masonry_dem::explicit::{solve, solve_3d, ExplicitOptions};
+use masonry_dem::geometry::{running_bond, FirstCourse, RunningBond};
+use masonry_dem::joint::JointLaw;
+use masonry_dem::limit::{limit_analysis_3d, LimitOptions};
+use masonry_dem::model::{JointLaws, Model, ModelSpec};
+use masonry_dem::results::Status;
+use masonry_dem::space::{u_wall, Box3, LiveLoad3, Model3, ModelSpec3};
+
+fn model(blocks: Vec<Box3>, law: JointLaw, direction: f64) -> Model3 {
+    Model3::new(&ModelSpec3 {
+        blocks,
+        gravity: 10.0,
+        joints: JointLaws::uniform(law),
+        live: LiveLoad3::HorizontalWeight { direction },
+        ..ModelSpec3::default()
+    })
+    .unwrap()
+}
+
+/// The explicit collapse multiplier of a 3D model, with the bracket's tolerance `tol`; asserts
+/// a collapse whose bracket holds `want` within `rel`.
+fn explicit(model: &Model3, tol: f64) -> f64 {
+    let r = solve_3d(model, &ExplicitOptions { tolerance: tol, ..ExplicitOptions::default() }).unwrap();
+    assert_eq!(r.status, Status::Collapse, "{:?}", r.error);
+    eprintln!("lambda {:.6} bracket {:?}, {} steps, {:.2} s", r.collapse_multiplier, r.bracket, r.iterations, r.elapsed_s);
+    r.collapse_multiplier
+}
+
+fn close(got: f64, want: f64, rel: f64, what: &str) {
+    assert!((got - want).abs() <= rel * want.abs(), "{what}: got {got:.6}, against {want:.6} ({:+.3}%)", 100.0 * (got / want - 1.0));
+}
+
+#[test]
+fn a_box_overturns_and_slides_in_any_direction_in_plan() {
+    // a x b x h = 0.4 x 0.6 x 1.0 m: lambda = min(a / (h cos phi), b / (h sin phi)) within 0.1%
+    let (a, b, h) = (0.4, 0.6, 1.0);
+    for phi in [0.0_f64, 30.0, 90.0, 200.0] {
+        let m = model(vec![Box3::new(0.0, 0.0, 0.0, a, b, h)], dry(2.0, 2.0, 1e9), phi);
+        let (c, s) = (phi.to_radians().cos().abs(), phi.to_radians().sin().abs());
+        let want = (a / (h * c)).min(b / (h * s));
+        close(explicit(&m, 2e-4), want, 1e-3, &format!("overturning at {phi} deg"));
+    }
+    // a squat box slides at mu = 0.3 in every direction: the explicit law takes the cone itself
+    for phi in [0.0, 22.5, 157.0] {
+        let m = model(vec![Box3::new(0.0, 0.0, 0.0, 1.0, 1.2, 0.5)], dry(0.3, 0.3, 1e9), phi);
+        close(explicit(&m, 2e-4), 0.3, 1e-3, &format!("sliding at {phi} deg"));
+    }
+}
+
+#[test]
+fn ferris_tin_loi_wall_1_extruded_is_the_plane_within_one_percent() {
+    let law = dry(0.65, 0.65, 1e9);
+    let rects = running_bond(&RunningBond {
+        block_length: 0.4,
+        block_height: 0.175,
+        courses: 6,
+        height: None,
+        length: 2.0,
+        first_course: FirstCourse::Half,
+        openings: vec![],
+    })
+    .unwrap();
+    let plane = Model::new(ModelSpec { blocks: rects.clone(), gravity: 10.0, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
+    let l2 = solve(&plane, &ExplicitOptions::default()).unwrap().collapse_multiplier;
+    let boxes = rects.iter().map(|r| Box3::new(r.x0, 0.0, r.y0, r.x1, 0.3, r.y1)).collect();
+    let l3 = explicit(&model(boxes, law, 0.0), 1e-3);
+    close(l3, 0.642857, 1e-2, "wall 1 extruded against the published 0.6429");
+    close(l3, l2, 1e-2, "wall 1 extruded against the plane's explicit solver");
+}
+
+#[test]
+fn the_u_wall_by_the_explicit_solver_is_limit_analysis_within_two_percent() {
+    let blocks = u_wall(3.0, 2.5, 1.5, 0.25, 0.5, 0.25).unwrap();
+    let m = model(blocks, dry(0.7, 0.7, 1e9), 270.0);
+    let la = limit_analysis_3d(&m, &LimitOptions::default()).unwrap();
+    assert_eq!(la.status, Status::Collapse);
+    let ex = explicit(&m, 1e-3);
+    close(ex, la.collapse_multiplier, 2e-2, "U wall, explicit against limit analysis");
+}
