@@ -83,3 +83,52 @@ fn the_u_wall_by_the_explicit_solver_is_limit_analysis_within_two_percent() {
     let ex = explicit(&m, 1e-3);
     close(ex, la.collapse_multiplier, 2e-2, "U wall, explicit against limit analysis");
 }
+
+/// The times at which a rotation record changes sign (interpolated).
+fn sign_changes(times: &[f64], rot: &[f64]) -> Vec<f64> {
+    (1..times.len())
+        .filter(|&k| rot[k - 1] != 0.0 && rot[k - 1] * rot[k] < 0.0)
+        .map(|k| times[k - 1] + (times[k] - times[k - 1]) * rot[k - 1] / (rot[k - 1] - rot[k]))
+        .collect()
+}
+
+#[test]
+fn a_box_rocks_freely_about_its_edge_as_the_plane_block_does() {
+    use masonry_dem::explicit::{simulate, simulate_3d, DynamicOptions, Recording};
+    use masonry_dem::geometry::Rect;
+    // the plane's rocking test: a 0.4 x 1.0 m block released at rest from half its slenderness
+    let (b, h, g) = (0.4, 1.0, 9.81);
+    let law = JointLaw { friction: 2.0, ..JointLaw::default() };
+    let th0 = 0.5 * (b / h as f64).atan();
+    // the centroid turned by th0 about the toe at the origin (leaning towards -x)
+    let r = [b / 2.0, h / 2.0];
+    let (c, s) = (th0.cos(), th0.sin());
+    let d = [c * r[0] - s * r[1] - r[0], s * r[0] + c * r[1] - r[1]];
+    let plane = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, b, h)], gravity: g, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
+    let opts = DynamicOptions { duration: 1.7, initial_displacement: Some(vec![[d[0], d[1], th0], [0.0; 3]]), record: Recording::Every(1), ..Default::default() };
+    let h2 = simulate(&plane, &opts).unwrap();
+    let phi: Vec<f64> = (0..h2.times.len()).map(|k| h2.displacement(k)[0][2]).collect();
+    let t2 = sign_changes(&h2.times, &phi);
+    // the same block 0.4 m deep in 3D, turned about -y (the plane's counter-clockwise rotation)
+    let space = Model3::new(&ModelSpec3 { blocks: vec![Box3::new(0.0, 0.0, 0.0, b, 0.4, h)], gravity: g, joints: JointLaws::uniform(law), ..ModelSpec3::default() }).unwrap();
+    let u0 = [d[0], 0.0, d[1], 0.0, -th0, 0.0];
+    let opts = DynamicOptions { duration: 1.7, initial_displacement: Some(vec![u0, [0.0; 6]]), record: Recording::Every(1), ..Default::default() };
+    let h3 = simulate_3d(&space, &opts).unwrap();
+    assert!(h3.error.is_none(), "{:?}", h3.error);
+    let ry: Vec<f64> = (0..h3.times.len()).map(|k| -h3.displacement(k)[0][4]).collect();
+    let t3 = sign_changes(&h3.times, &ry);
+    assert!(t2.len() >= 5 && t3.len() >= 5, "impacts: {} in the plane, {} in 3D", t2.len(), t3.len());
+    for k in 0..5 {
+        eprintln!("impact {}: 3D {:.4} s, plane {:.4} s ({:+.2}%)", k + 1, t3[k], t2[k], 100.0 * (t3[k] / t2[k] - 1.0));
+        assert!((t3[k] / t2[k] - 1.0).abs() < 0.02, "impact {}: 3D at {:.4} s, the plane's at {:.4} s", k + 1, t3[k], t2[k]);
+    }
+    // the block stays in its plane: no motion along y, no turn about x or z
+    let off = (0..h3.times.len()).map(|k| h3.displacement(k)[0]).fold(0.0f64, |a, u| a.max(u[1].abs()).max(u[3].abs()).max(u[5].abs()));
+    assert!(off < 1e-9, "out-of-plane motion {off:.3e}");
+    // the energy balance, as the plane's test: within 1% of the initial potential energy
+    let m = 2000.0 * b * 0.4 * h;
+    let e0 = m * g * d[1];
+    let worst = h3.energy_error.iter().fold(0.0f64, |a, e| a.max(e.abs()));
+    eprintln!("initial energy {e0:.2} J, dissipated {:.2} J, worst balance error {worst:.2e} J", h3.dissipated.last().unwrap());
+    assert!(worst < 0.01 * e0, "energy balance off by {worst:.3e} J of {e0:.3e} J");
+}

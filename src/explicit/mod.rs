@@ -122,9 +122,10 @@ impl Default for ExplicitOptions {
     }
 }
 
-/// Options of a dynamic time history.
+/// Options of a dynamic time history; `V` is a block's dofs: `[f64; 3]` in the plane (the
+/// default), `[f64; 6]` in 3D ([`simulate_3d`]).
 #[derive(Debug, Clone, PartialEq)]
-pub struct DynamicOptions {
+pub struct DynamicOptions<V = [f64; 3]> {
     /// Duration \[s\].
     pub duration: f64,
     /// The time step \[s\]; `None`: `safety` times the stability limit.
@@ -136,15 +137,18 @@ pub struct DynamicOptions {
     /// beta \[s\], stiffness-proportional damping `beta K` at the closed interfaces (dashpots
     /// `beta (kN A, kT A, kN I)` on the jump rates, cut as the contact dashpots are): with
     /// `Damping::Viscous(alpha)`, Rayleigh damping `alpha M + beta K`
-    /// ([`crate::modal::rayleigh_coefficients`]). 0: none.
+    /// ([`crate::modal::rayleigh_coefficients`]). 0: none. The plane's only.
     pub stiffness_damping: f64,
-    /// Initial (u1, u2, phi) of every block; None: zero.
-    pub initial_displacement: Option<Vec<[f64; 3]>>,
-    /// Initial velocities of every block; None: zero.
-    pub initial_velocity: Option<Vec<[f64; 3]>>,
-    /// Horizontal base acceleration history: times \[s\] and accelerations [m/s2], linear between
-    /// samples, zero outside.
+    /// Initial displacements of every block ((u1, u2, phi) in the plane; (ux, uy, uz, rx, ry,
+    /// rz) in 3D, the rotation a rotation vector); None: zero.
+    pub initial_displacement: Option<Vec<V>>,
+    /// Initial velocities of every block (in 3D the angular velocity in the world's axes); None: zero.
+    pub initial_velocity: Option<Vec<V>>,
+    /// Horizontal base acceleration history (along x): times \[s\] and accelerations [m/s2],
+    /// linear between samples, zero outside.
     pub base_acceleration: Option<(Vec<f64>, Vec<f64>)>,
+    /// Base acceleration history along y, as `base_acceleration` (3D only).
+    pub base_acceleration_y: Option<(Vec<f64>, Vec<f64>)>,
     /// Vertical base acceleration history (upwards positive), as `base_acceleration`.
     pub vertical_acceleration: Option<(Vec<f64>, Vec<f64>)>,
     /// Live load multiplier held constant during the run.
@@ -157,7 +161,7 @@ pub struct DynamicOptions {
     pub threads: usize,
 }
 
-impl Default for DynamicOptions {
+impl<V> Default for DynamicOptions<V> {
     fn default() -> Self {
         DynamicOptions {
             duration: 1.0,
@@ -168,6 +172,7 @@ impl Default for DynamicOptions {
             initial_displacement: None,
             initial_velocity: None,
             base_acceleration: None,
+            base_acceleration_y: None,
             vertical_acceleration: None,
             live_multiplier: 0.0,
             record: Recording::Interval(DEFAULT_RECORD_INTERVAL),
@@ -190,9 +195,9 @@ pub enum Recording {
 /// than any earthquake record's samples, and the impacts of a rocking block timed to 1 ms).
 pub const DEFAULT_RECORD_INTERVAL: f64 = 1e-3;
 
-/// A recorded time history.
+/// A recorded time history; `V` as in [`DynamicOptions`].
 #[derive(Debug, Clone, PartialEq)]
-pub struct TimeHistory {
+pub struct TimeHistory<V = [f64; 3]> {
     /// How the run ended.
     pub status: Status,
     /// Why, where the status is not a success (the message of the error that ended the run).
@@ -203,16 +208,22 @@ pub struct TimeHistory {
     pub times: Vec<f64>,
     /// Blocks in each record.
     pub n_blocks: usize,
-    /// (u1, u2, phi) of every block at each recorded time, flat and record-major: record k is
-    /// `displacements[k * n_blocks..(k + 1) * n_blocks]` (see [`TimeHistory::displacement`]).
-    pub displacements: Vec<[f64; 3]>,
-    /// Velocities, laid out as `displacements`.
-    pub velocities: Vec<[f64; 3]>,
-    /// The ground's acceleration (horizontal, vertical) [m/s2] at each recorded time.
+    /// The displacements of every block at each recorded time ((u1, u2, phi) in the plane;
+    /// (ux, uy, uz, rx, ry, rz) in 3D, the rotation vector of the block's orientation), flat and
+    /// record-major: record k is `displacements[k * n_blocks..(k + 1) * n_blocks]` (see
+    /// [`TimeHistory::displacement`]).
+    pub displacements: Vec<V>,
+    /// Velocities, laid out as `displacements` (in 3D the angular velocity in the world's axes).
+    pub velocities: Vec<V>,
+    /// The ground's acceleration (horizontal along x, vertical) [m/s2] at each recorded time.
     pub ground_acceleration: Vec<[f64; 2]>,
+    /// 3D: the ground's acceleration along y [m/s2] at each recorded time (empty in the plane).
+    pub ground_acceleration_y: Vec<f64>,
     /// The horizontal force of the wall on its base \[N\] (positive along +x) at each recorded
     /// time: the joints' forces on the base block, their dashpots' included.
     pub base_shear: Vec<f64>,
+    /// 3D: the force of the wall on its base along y \[N\] (empty in the plane).
+    pub base_shear_y: Vec<f64>,
     /// The energy balance, at each recorded time \[J\]: the initial kinetic and elastic energies
     /// plus the external work are the kinetic and elastic energies, the dissipated energy and
     /// the balance's error. Kinetic energy.
@@ -241,13 +252,13 @@ pub struct TimeHistory {
     pub elapsed_s: f64,
 }
 
-impl TimeHistory {
-    /// (u1, u2, phi) of every block at record `k`.
-    pub fn displacement(&self, k: usize) -> &[[f64; 3]] {
+impl<V> TimeHistory<V> {
+    /// The displacements of every block at record `k`.
+    pub fn displacement(&self, k: usize) -> &[V] {
         &self.displacements[k * self.n_blocks..(k + 1) * self.n_blocks]
     }
     /// Velocities of every block at record `k`.
-    pub fn velocity(&self, k: usize) -> &[[f64; 3]] {
+    pub fn velocity(&self, k: usize) -> &[V] {
         &self.velocities[k * self.n_blocks..(k + 1) * self.n_blocks]
     }
 }
@@ -320,5 +331,5 @@ use pass::*;
 pub use stepper::Stepper;
 pub(crate) use quasi_static::{relax_at_displacement, relax_dead_state};
 pub use quasi_static::{solve, solve_with};
-pub use space::{critical_time_step_3d, solve_3d, solve_3d_with};
+pub use space::{critical_time_step_3d, simulate_3d, simulate_3d_with, solve_3d, solve_3d_with};
 pub use time_history::{history_time_step_limit, record_count, record_size, simulate, simulate_with};

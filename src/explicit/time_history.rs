@@ -20,12 +20,25 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
     s.set_large(opts.large_rotations);
     set_initial_state(&mut s, opts);
     s.start_dynamics(opts.stiffness_damping);
-    let loads = Loads::new(model, opts, &s);
+    let loads = Loads::new(model.dead_load(), model.live_load(), opts, &s);
+    run_history(s, loads, opts, nb, start, monitor)
+}
+
+/// A time history on integrator `s` (its initial state and dashpots set) under `loads`: the
+/// loop both dimensions share.
+pub(super) fn run_history<V: Copy, K: Recorded<V = V>>(
+    mut s: K,
+    loads: Loads,
+    opts: &DynamicOptions<V>,
+    nb: usize,
+    start: Instant,
+    monitor: &mut dyn FnMut(&Progress) -> bool,
+) -> Result<TimeHistory<V>, Error> {
     loads.apply(&mut s.f_ext, 0.0);
     s.interface_forces();
     s.accelerations();
-    let n_steps = count_time_steps(opts, s.dt)?;
-    let h = TimeHistory::reserved(opts, s.dt, n_steps, nb)?;
+    let n_steps = count_time_steps(opts.duration, s.dt)?;
+    let h = TimeHistory::reserved(opts, s.dt, n_steps, nb, K::DOF == 6)?;
     // work of the external forces, by the trapezoidal rule on each step
     let (f_prev, fi_prev, u_prev) = (s.f_ext.clone(), s.f_int.clone(), s.u.clone());
     let (ke0, ee0, u0) = (s.kinetic_energy(), s.elastic_energy(), s.u.clone());
@@ -36,6 +49,49 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
     h.steps = s.steps;
     h.elapsed_s = start.elapsed().as_secs_f64();
     Ok(h)
+}
+
+/// What a time history records of an integrator of either dimension, beyond its motion.
+pub(super) trait Recorded: Kernel {
+    /// Block `i`'s displacements and velocities for the records.
+    fn record_block(&self, i: usize) -> (Self::V, Self::V);
+    /// The force of the wall on its base along x and y \[N\].
+    fn base_shear(&self) -> [f64; 2];
+    /// The work of the weights since displacements `u0` \[J\].
+    fn gravity_work(&self, u0: &[f64]) -> f64;
+    fn elastic_energy(&self) -> f64;
+    /// The energy the contact dashpots dissipated: their impacts' share and the
+    /// stiffness-proportional damping's \[J\].
+    fn dashpot_dissipation(&self) -> (f64, f64);
+    /// Why the state lies beyond the model's range, if it does (see [`out_of_range`]).
+    fn out_of_range(&self, u0: &[f64]) -> Option<String>;
+    /// The ground acceleration that acts on dof `d`: 0 along x, 1 along y, 2 vertical, 3 none.
+    fn ground_axis(d: usize) -> u8;
+}
+
+impl Recorded for Integrator<'_> {
+    fn record_block(&self, i: usize) -> ([f64; 3], [f64; 3]) {
+        ([self.u[3 * i], self.u[3 * i + 1], self.u[3 * i + 2]], [self.v[3 * i], self.v[3 * i + 1], self.v[3 * i + 2]])
+    }
+    fn base_shear(&self) -> [f64; 2] {
+        [self.model.base().map_or(0.0, |i| -self.f_int[3 * i]), 0.0]
+    }
+    fn gravity_work(&self, u0: &[f64]) -> f64 {
+        let model = self.model;
+        (0..model.n_blocks()).map(|i| -model.weight()[i] * (self.u[3 * i + 1] - u0[3 * i + 1])).sum()
+    }
+    fn elastic_energy(&self) -> f64 {
+        Integrator::elastic_energy(self)
+    }
+    fn dashpot_dissipation(&self) -> (f64, f64) {
+        self.dynm.iter().fold((0.0, 0.0), |(i, k), x| (i + x.damped, k + x.stiffness_damped))
+    }
+    fn out_of_range(&self, u0: &[f64]) -> Option<String> {
+        out_of_range(self, u0)
+    }
+    fn ground_axis(d: usize) -> u8 {
+        [0, 2, 3][d % 3]
+    }
 }
 
 /// The stable time step of a time history of `model` \[s\]: [`critical_time_step`] lowered for
@@ -58,6 +114,12 @@ pub fn history_time_step_limit(model: &Model, beta: f64) -> f64 {
 fn history_time_step(model: &Model, opts: &DynamicOptions) -> Result<f64, Error> {
     let crit = critical_time_step(model);
     let limit = history_time_step_limit(model, opts.stiffness_damping);
+    dashpot_time_step(crit, limit, opts)
+}
+
+/// The time step of a time history of stability limit `crit`, `limit` with its dashpots (see
+/// [`history_time_step`]).
+pub(super) fn dashpot_time_step<V>(crit: f64, limit: f64, opts: &DynamicOptions<V>) -> Result<f64, Error> {
     match opts.time_step {
         Some(dt) if dt.is_finite() && dt > limit && dt <= crit => Err(Error::input(format!(
             "analysis.time_step = {dt:.3e} s exceeds the stability limit of this model with its contact dashpots (restitution), {limit:.3e} s"
@@ -72,6 +134,21 @@ fn history_time_step(model: &Model, opts: &DynamicOptions) -> Result<f64, Error>
 /// Checks the options of a time history against the model, in the order their errors are
 /// reported, before the integrator is built.
 fn check_options(model: &Model, opts: &DynamicOptions) -> Result<(), Error> {
+    check_common(opts, model.n_blocks())?;
+    if opts.base_acceleration_y.is_some() {
+        return Err(Error::input("base_acceleration_y: a plane model moves in x and z; the base acceleration along y is for 3D models"));
+    }
+    model.check_supports()?;
+    if !model.held_after_dead().is_empty() {
+        return Err(Error::input(
+            "top.vertical = \"held\" is for quasi-static analyses (held once the dead loads are on); a time history loads the beam with its force: use top.vertical = \"free\"",
+        ));
+    }
+    Ok(())
+}
+
+/// Checks the options of a time history either dimension reads, for a model of `nb` blocks.
+pub(super) fn check_common<V: AsRef<[f64]>>(opts: &DynamicOptions<V>, nb: usize) -> Result<(), Error> {
     if !(opts.duration.is_finite() && opts.duration > 0.0) {
         return Err(Error::input(format!("duration must be a finite number > 0, got {}", opts.duration)));
     }
@@ -88,8 +165,7 @@ fn check_options(model: &Model, opts: &DynamicOptions) -> Result<(), Error> {
     if !opts.live_multiplier.is_finite() {
         return Err(Error::input("live_multiplier must be finite"));
     }
-    let nb = model.n_blocks();
-    for (what, series) in [("base_acceleration", &opts.base_acceleration), ("vertical_acceleration", &opts.vertical_acceleration)] {
+    for (what, series) in [("base_acceleration", &opts.base_acceleration), ("base_acceleration_y", &opts.base_acceleration_y), ("vertical_acceleration", &opts.vertical_acceleration)] {
         if let Some((t, a)) = series {
             if t.len() != a.len() || t.is_empty() {
                 return Err(Error::input(format!(
@@ -108,16 +184,10 @@ fn check_options(model: &Model, opts: &DynamicOptions) -> Result<(), Error> {
             if v.len() != nb {
                 return Err(Error::input(format!("{what}: expected {nb} rows (one per block), got {}", v.len())));
             }
-            if v.iter().flatten().any(|x| !x.is_finite()) {
+            if v.iter().flat_map(|x| x.as_ref()).any(|x| !x.is_finite()) {
                 return Err(Error::input(format!("{what}: every value must be finite")));
             }
         }
-    }
-    model.check_supports()?;
-    if !model.held_after_dead().is_empty() {
-        return Err(Error::input(
-            "top.vertical = \"held\" is for quasi-static analyses (held once the dead loads are on); a time history loads the beam with its force: use top.vertical = \"free\"",
-        ));
     }
     Ok(())
 }
@@ -149,12 +219,11 @@ fn set_initial_state(s: &mut Integrator, opts: &DynamicOptions) {
 
 /// The time steps that cover the options' duration at time step `dt`, refused beyond
 /// [`MAX_TIME_STEPS`].
-fn count_time_steps(opts: &DynamicOptions, dt: f64) -> Result<usize, Error> {
-    let n_steps_f = (opts.duration / dt).ceil();
+pub(super) fn count_time_steps(duration: f64, dt: f64) -> Result<usize, Error> {
+    let n_steps_f = (duration / dt).ceil();
     if !(n_steps_f <= MAX_TIME_STEPS as f64) {
         return Err(Error::input(format!(
-            "duration = {} s with a time step of {dt:.3e} s is {n_steps_f:.0} time steps, more than the limit of {MAX_TIME_STEPS}",
-            opts.duration
+            "duration = {duration} s with a time step of {dt:.3e} s is {n_steps_f:.0} time steps, more than the limit of {MAX_TIME_STEPS}"
         )));
     }
     Ok(n_steps_f as usize)
@@ -163,42 +232,47 @@ fn count_time_steps(opts: &DynamicOptions, dt: f64) -> Result<usize, Error> {
 /// The external forces of a time history: the dead loads, the live loads times a constant
 /// multiplier, and the inertial forces `-m a_g(t)` of a horizontal base acceleration (the
 /// blocks move in the frame of the base).
-struct Loads {
+pub(super) struct Loads {
     fd: Vec<f64>,
     fl: Vec<f64>,
     lam: f64,
     mass: Vec<f64>,
+    /// the ground acceleration on each dof (see [`Recorded::ground_axis`])
+    axis: Vec<u8>,
     base: Option<(Vec<f64>, Vec<f64>)>,
+    base_y: Option<(Vec<f64>, Vec<f64>)>,
     vertical: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 impl Loads {
-    /// The loads of `model` under `opts`, with the masses of `s`.
-    fn new(model: &Model, opts: &DynamicOptions, s: &Integrator) -> Loads {
+    /// The dead loads `fd` and live loads `fl` under `opts`, with the masses of `s`.
+    pub(super) fn new<V, K: Recorded>(fd: &[f64], fl: &[f64], opts: &DynamicOptions<V>, s: &K) -> Loads {
         Loads {
-            fd: model.dead_load().to_vec(),
-            fl: model.live_load().to_vec(),
+            fd: fd.to_vec(),
+            fl: fl.to_vec(),
             lam: opts.live_multiplier,
             mass: s.mass.clone(),
+            axis: (0..fd.len()).map(K::ground_axis).collect(),
             base: opts.base_acceleration.clone(),
+            base_y: opts.base_acceleration_y.clone(),
             vertical: opts.vertical_acceleration.clone(),
         }
     }
 
-    /// The base acceleration (horizontal, vertical) at time `t`.
-    fn ground(&self, t: f64) -> [f64; 2] {
-        [sample(&self.base, t), sample(&self.vertical, t)]
+    /// The base acceleration (along x, along y, vertical) at time `t`.
+    fn ground(&self, t: f64) -> [f64; 3] {
+        [sample(&self.base, t), sample(&self.base_y, t), sample(&self.vertical, t)]
     }
 
     /// The external forces at time `t`, into `f`.
     fn apply(&self, f: &mut [f64], t: f64) {
         let (fd, fl, lam, mass) = (&self.fd, &self.fl, self.lam, &self.mass);
         let g = self.ground(t);
+        let g = [g[0], g[1], g[2], 0.0];
         for d in 0..f.len() {
-            let inertia = match d % 3 {
-                0 => mass[d] * g[0],
-                1 => mass[d] * g[1],
-                _ => 0.0,
+            let inertia = match self.axis[d] {
+                3 => 0.0,
+                k => mass[d] * g[k as usize],
             };
             f[d] = fd[d] + lam * fl[d] - inertia;
         }
@@ -207,7 +281,7 @@ impl Loads {
 
 /// An acceleration history at time `t`: linear between the samples, zero outside them (and
 /// zero without one).
-fn sample(series: &Option<(Vec<f64>, Vec<f64>)>, t: f64) -> f64 {
+pub(super) fn sample(series: &Option<(Vec<f64>, Vec<f64>)>, t: f64) -> f64 {
     let Some((ts, a)) = series else { return 0.0 };
     let n = ts.len();
     if n == 0 || t < ts[0] || t > ts[n - 1] {
@@ -236,19 +310,19 @@ pub fn record_count(record: Recording, dt: f64, n_steps: usize) -> usize {
 pub fn record_size(model: &Model, opts: &DynamicOptions) -> Result<(usize, f64), Error> {
     check_options(model, opts)?;
     let dt = history_time_step(model, opts)?;
-    let n_steps = count_time_steps(opts, dt)?;
+    let n_steps = count_time_steps(opts.duration, dt)?;
     let records = record_count(opts.record, dt, n_steps);
     Ok((records, records as f64 * (48.0 * model.n_blocks() as f64 + 8.0 * 13.0)))
 }
 
-impl TimeHistory {
+impl<V> TimeHistory<V> {
     /// An empty history with room for every record of `n_steps` time steps of `dt` (see
     /// [`record_count`]), reserved once so that recording does not allocate inside the time
-    /// loop; refused beyond [`MAX_RECORDED_VALUES`].
-    fn reserved(opts: &DynamicOptions, dt: f64, n_steps: usize, nb: usize) -> Result<TimeHistory, Error> {
+    /// loop; refused beyond [`MAX_RECORDED_VALUES`]. `space`: a 3D model's (the y components).
+    fn reserved(opts: &DynamicOptions<V>, dt: f64, n_steps: usize, nb: usize, space: bool) -> Result<TimeHistory<V>, Error> {
         let cap = record_count(opts.record, dt, n_steps);
-        // two histories (displacements, velocities) of 3 values per block and record
-        let stored = 6.0 * cap as f64 * nb as f64;
+        // two histories (displacements, velocities) of 3 (6 in 3D) values per block and record
+        let stored = (if space { 12.0 } else { 6.0 }) * cap as f64 * nb as f64;
         if stored > MAX_RECORDED_VALUES as f64 {
             return Err(Error::input(format!(
                 "recording {cap} states of {nb} blocks (duration {} s, time step {dt:.3e} s, {}) stores {stored:.0} numbers ({:.1} GB), more than the limit of {MAX_RECORDED_VALUES}: raise record_interval (or record_every) or shorten the duration",
@@ -270,7 +344,9 @@ impl TimeHistory {
             displacements: Vec::with_capacity(cap * nb),
             velocities: Vec::with_capacity(cap * nb),
             ground_acceleration: Vec::with_capacity(cap),
+            ground_acceleration_y: if space { series() } else { vec![] },
             base_shear: series(),
+            base_shear_y: if space { series() } else { vec![] },
             kinetic_energy: series(),
             elastic_energy: series(),
             external_work: series(),
@@ -290,10 +366,10 @@ impl TimeHistory {
 /// of the external forces and of the joints' forces on the blocks (the trapezoidal rule on each
 /// step: the forces and displacements of the last step are kept), and the initial energies and
 /// displacements.
-struct Run<'a> {
-    s: Integrator<'a>,
+struct Run<V, K> {
+    s: K,
     loads: Loads,
-    h: TimeHistory,
+    h: TimeHistory<V>,
     n_steps: usize,
     record: Recording,
     work: f64,
@@ -306,23 +382,28 @@ struct Run<'a> {
     u0: Vec<f64>,
 }
 
-impl Run<'_> {
+impl<V: Copy, K: Recorded<V = V>> Run<V, K> {
     /// Records the state at time `t`: displacements, velocities, the ground's acceleration, the
     /// base shear and the energy balance.
     fn record(&mut self, t: f64) {
         let (s, h) = (&self.s, &mut self.h);
         let nb = h.n_blocks;
-        let model = s.model;
         h.times.push(t);
-        h.displacements.extend((0..nb).map(|i| [s.u[3 * i], s.u[3 * i + 1], s.u[3 * i + 2]]));
-        h.velocities.extend((0..nb).map(|i| [s.v[3 * i], s.v[3 * i + 1], s.v[3 * i + 2]]));
-        h.ground_acceleration.push(self.loads.ground(t));
-        h.base_shear.push(model.base().map_or(0.0, |i| -s.f_int[3 * i]));
+        h.displacements.extend((0..nb).map(|i| s.record_block(i).0));
+        h.velocities.extend((0..nb).map(|i| s.record_block(i).1));
+        let g = self.loads.ground(t);
+        h.ground_acceleration.push([g[0], g[2]]);
+        let shear = s.base_shear();
+        h.base_shear.push(shear[0]);
+        if K::DOF == 6 {
+            h.ground_acceleration_y.push(g[1]);
+            h.base_shear_y.push(shear[1]);
+        }
         let (ke, ee) = (s.kinetic_energy(), s.elastic_energy());
-        let gravity: f64 = (0..nb).map(|i| -model.weight()[i] * (s.u[3 * i + 1] - self.u0[3 * i + 1])).sum();
+        let gravity = s.gravity_work(&self.u0);
         // what the joints' forces took from the blocks, less what the dashpots dissipated and
         // the elastic energy gained, the joints dissipated
-        let (impacts, stiffness) = s.dynm.iter().fold((0.0, 0.0), |(i, k), x| (i + x.damped, k + x.stiffness_damped));
+        let (impacts, stiffness) = s.dashpot_dissipation();
         let damping = s.damping_work + stiffness;
         let friction = self.joints - impacts - stiffness - (ee - self.ee0);
         let dissipated = friction + damping + impacts;
@@ -383,7 +464,7 @@ impl Run<'_> {
             return ControlFlow::Break((Status::Failed, format!("non-finite displacement at t = {t:.6} s (step {n})")));
         }
         if n % 16 == 0 || n == self.n_steps {
-            if let Some(why) = out_of_range(s, &self.u0) {
+            if let Some(why) = s.out_of_range(&self.u0) {
                 return ControlFlow::Break((Status::Failed, format!("the response left the model's range at t = {t:.6} s (step {n}): {why}; the wall has collapsed or the excitation lies beyond what the model represents")));
             }
         }
