@@ -37,35 +37,53 @@ pub(super) fn check_collapse(model: &Model, opts: &ExplicitOptions, mut res: Res
         polled = Instant::now();
         monitor(&last)
     })?;
+    Ok(judge(opts, res, lp, None))
+}
+
+/// The explicit collapse `res` judged against the limit analysis `lp` of the same model (see
+/// [`check_collapse`]): either dimension. `upper`: in 3D, where limit analysis takes Coulomb's
+/// cone as an inscribed pyramid and the explicit solver the cone itself, `lp` is a lower bound
+/// of the collapse multiplier and `upper` the multiplier of the circumscribed pyramid, an upper
+/// bound; the collapse must lie between them. None: `lp` is exact (the plane).
+pub(super) fn judge<V: Clone>(opts: &ExplicitOptions, mut res: Results<V>, lp: Results<V>, upper: Option<f64>) -> Results<V> {
     if lp.status != Status::Collapse {
-        return Ok(res);
+        return res;
     }
     let exact = lp.collapse_multiplier;
+    let high = upper.unwrap_or(exact);
     // levels dropped as above the exact multiplier: the bracket is pinned no closer than a level's settling
     let mut below = crate::static_solver::COLLAPSE_EVIDENCE * opts.tolerance;
     let above = opts.tolerance.max(SETTLED_ABOVE);
-    if opts.control == Control::Load && res.collapse_multiplier > exact && (res.collapse_multiplier - exact) <= above * exact {
+    if upper.is_none() && opts.control == Control::Load && res.collapse_multiplier > exact && (res.collapse_multiplier - exact) <= above * exact {
         below = below.max(SETTLED_ABOVE);
         below_exact(&mut res, exact, below);
     }
     let found = res.collapse_multiplier.abs();
-    let gap = (found - exact) / exact;
+    let (gap, gap_high) = ((found - exact) / exact, (found - high) / high);
+    let what = match upper {
+        None => format!("the collapse multiplier of limit analysis, {exact:.6} (exact for these associative dry joints)"),
+        Some(_) => format!("limit analysis's {exact:.6} (with friction pyramids inscribed in Coulomb's cone: a lower bound for these associative dry joints)"),
+    };
     let message = if gap < -below && opts.control == Control::Load {
         res.status = Status::Stalled;
-        format!("the explicit solver's collapse at lambda = {found:.6} is {:.2}% below the collapse multiplier of limit analysis, {exact:.6} (exact for these associative dry joints): not a collapse", -100.0 * gap)
-    } else if gap > opts.tolerance.max(SETTLED_ABOVE) {
+        format!("the explicit solver's collapse at lambda = {found:.6} is {:.2}% below {what}: not a collapse", -100.0 * gap)
+    } else if gap_high > above {
         res.status = Status::Failed;
-        format!("the explicit solver settled at lambda = {found:.6}, {:.2}% above the collapse multiplier of limit analysis, {exact:.6} (exact for these associative dry joints): a level it judged settled is not an equilibrium (a small block's unbalance is too small against the wall's forces to be seen)", 100.0 * gap)
+        let what = match upper {
+            None => what,
+            Some(_) => format!("limit analysis's {high:.6} with the pyramids circumscribed (an upper bound for these associative dry joints)"),
+        };
+        format!("the explicit solver settled at lambda = {found:.6}, {:.2}% above {what}: a level it judged settled is not an equilibrium (a small block's unbalance is too small against the wall's forces to be seen)", 100.0 * gap_high)
     } else {
         res.certificate = lp.certificate;
-        return Ok(res);
+        return res;
     };
     res.error = Some(Error::Convergence(message).to_string());
     res.collapse_multiplier = f64::NAN;
     // the bracket is one on a collapse, which this is not
     res.bracket = None;
     res.certificate = lp.certificate;
-    Ok(res)
+    res
 }
 
 /// Load control whose highest settled levels lie above the exact multiplier `exact`, by less
@@ -76,7 +94,7 @@ pub(super) fn check_collapse(model: &Model, opts: &ExplicitOptions, mut res: Res
 /// when that level lies within `resolution` (relative) of `exact`: a level far below (the load
 /// steps were coarse there) would make a collapse of a number the run did not pin, and the
 /// result is then left as it is (within the tolerance above `exact`, as the check accepts).
-fn below_exact(res: &mut Results, exact: f64, resolution: f64) {
+fn below_exact<V>(res: &mut Results<V>, exact: f64, resolution: f64) {
     let keep = res.curve_multiplier.iter().take_while(|&&l| l <= exact).count();
     if keep == 0 || keep == res.curve_multiplier.len() || res.curve_multiplier[keep - 1] < exact * (1.0 - resolution) {
         return;

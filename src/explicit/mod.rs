@@ -328,7 +328,7 @@ use integrator::*;
 use motion::*;
 use pass::*;
 #[cfg(feature = "bench-internals")]
-pub use stepper::Stepper;
+pub use stepper::{Stepper, Stepper3};
 pub(crate) use quasi_static::{relax_at_displacement, relax_dead_state};
 pub use quasi_static::{solve, solve_with};
 pub use space::{critical_time_step_3d, simulate_3d, simulate_3d_with, solve_3d, solve_3d_with};

@@ -353,7 +353,8 @@ pub(super) struct QuasiStatic<'a, K: Kernel> {
     scale: f64,
     curve_l: Vec<f64>,
     curve_u: Vec<f64>,
-    /// The lowest load level that ran away (NaN before one does): the bracket's upper end.
+    /// The lowest load level that ran away above the highest that settled (NaN before one
+    /// does): the bracket's upper end.
     ran_away_at: f64,
     start: Instant,
 }
@@ -488,6 +489,12 @@ impl<'a, K: Kernel> QuasiStatic<'a, K> {
         let mut l = st.lam_conv + st.dl;
         match self.relax(&mut l, None, limits, monitor) {
             Level::Settled => {
+                // a level that ran away below one that settles was no evidence of a collapse
+                // (the wall crept on from a state nearer its equilibrium): the bracket's upper
+                // end is a level above the highest that settled
+                if l >= self.ran_away_at {
+                    self.ran_away_at = f64::NAN;
+                }
                 st.lam_conv = l;
                 st.saved = Snapshot::of(&self.s);
                 self.s.v.fill(0.0);

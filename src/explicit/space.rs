@@ -1,10 +1,10 @@
 //! The explicit solver in 3D: what differs from the plane's integrator, on the same loop
 //! ([`Motion`]) and the same drivers (quasi-static levels, time histories).
 //!
-//! - Contacts are points: each corner of a contact rectangle carries a quarter of its area with
-//!   the joint law at a point ([`crate::joint::point_map`]): a normal force that never pulls and
-//!   a shear vector within Coulomb's cone. Torsion and biaxial bending come from the corners'
-//!   positions, as in limit analysis.
+//! - Contacts are points: the four corners of a contact rectangle with the joint law at its
+//!   corners ([`crate::joint::corner_map`]): normal forces that never pull, with the rectangle's
+//!   elastic stiffness in translation and rotation, and a shear vector within Coulomb's cone at
+//!   each. Torsion and biaxial bending come from the corners' positions, as in limit analysis.
 //! - Blocks have 6 dof: (ux, uy, uz) at the centroid and a rotation. Quasi-static runs use small
 //!   rotations (rx, ry, rz), the kinematics of limit analysis. Time histories with finite
 //!   rotations keep each block's orientation as a unit quaternion (nalgebra), the angular
@@ -17,7 +17,7 @@
 
 use super::quasi_static::{QuasiStatic, Setting};
 use super::*;
-use crate::joint::{point_map, PointLaw, OPEN, ROCKING, SLIDING};
+use crate::joint::{corner_map, CornerLaw, OPEN, ROCKING, SLIDING};
 use crate::space::Model3;
 use nalgebra::{UnitQuaternion, Vector3};
 
@@ -59,9 +59,8 @@ pub(super) struct Integrator3<'a> {
     cts: Vec<Ct>,
     /// four per contact, in the order of the contact's corners
     pts: Vec<Pt>,
-    /// the law at a point of each contact's family (Bed, Head, Base, Top), per contact
-    /// (the points of a contact share its area)
-    laws: Vec<PointLaw>,
+    /// the law at the corners of each contact (its family's, at its area)
+    laws: Vec<CornerLaw>,
     /// the plastic jumps (p_n, p_t1, p_t2), three per point
     pub(super) hist: Vec<f64>,
     /// dry joints do not break: empty
@@ -138,9 +137,10 @@ pub fn critical_time_step_3d(model: &Model3) -> f64 {
     let nb = model.n_blocks();
     let mut row = vec![0.0; 6 * nb];
     for (k, c) in model.contacts().iter().enumerate() {
-        let law = PointLaw::new(model.law(k), c.area / c.corners.len() as f64);
+        // each corner a spring of kN A / 4 (the contact's law is softer in rotation: an upper bound)
+        let law = CornerLaw::new(model.law(k), c.area);
         let frame = [c.n, c.t1, c.t2];
-        let d = [law.kn, law.kt, law.kt];
+        let d = [0.25 * law.kn, law.kt, law.kt];
         let dofs: Vec<usize> = (0..12).map(|j| if j < 6 { 6 * c.a + j } else { 6 * c.b + j - 6 }).collect();
         for x in &c.corners {
             let pt = Pt { ra: sub(*x, model.centroids()[c.a]), rb: sub(*x, model.centroids()[c.b]) };
@@ -200,7 +200,7 @@ impl<'a> Integrator3<'a> {
                 return Err(Error::input(format!("contact {k} has {} corners: the explicit solver takes rectangles", c.corners.len())));
             }
             cts.push(Ct { a: c.a as u32, b: c.b as u32, frame: [c.n, c.t1, c.t2] });
-            laws.push(PointLaw::new(model.law(k), 0.25 * c.area));
+            laws.push(CornerLaw::new(model.law(k), c.area));
             for x in &c.corners {
                 pts.push(Pt { ra: sub(*x, cen[c.a]), rb: sub(*x, cen[c.b]) });
             }
@@ -323,7 +323,7 @@ impl<'a> Integrator3<'a> {
                 let law = &laws[k];
                 let mut t = [0.0; 12];
                 let (mut open, mut slide) = (0u8, false);
-                let (mut es, mut fs, mut xs) = ([[0.0; 3]; 4], [[0.0; 3]; 4], [[[0.0; 3]; 2]; 4]);
+                let (mut es, mut xs) = ([[0.0; 3]; 4], [[[0.0; 3]; 2]; 4]);
                 for p in 0..4 {
                     let pt = &pts[4 * k + p];
                     // the jump of b's point from a's, and the lever arms now
@@ -334,15 +334,18 @@ impl<'a> Integrator3<'a> {
                         let (wa, wb) = (cross(ta, pt.ra), cross(tb, pt.rb));
                         (pt.ra, pt.rb, [0, 1, 2].map(|r| ub[r] + wb[r] - ua[r] - wa[r]))
                     };
-                    let e = [dot(frame[0], d), dot(frame[1], d), dot(frame[2], d)];
-                    let h: &mut [f64; 3] = (&mut hist[3 * p..3 * p + 3]).try_into().unwrap();
-                    let (f, s) = point_map(law, e, h);
-                    forces[4 * j + p] = f;
+                    es[p] = [dot(frame[0], d), dot(frame[1], d), dot(frame[2], d)];
+                    xs[p] = [xa, xb];
+                }
+                let mut h = [0, 1, 2, 3].map(|p| [hist[3 * p], hist[3 * p + 1], hist[3 * p + 2]]);
+                let (mut fs, states) = corner_map(law, &es, &mut h);
+                hist.copy_from_slice(h.as_flattened());
+                forces[4 * j..4 * j + 4].copy_from_slice(&fs);
+                for s in states {
                     if s & OPEN != 0 {
                         open += 1;
                     }
                     slide |= s & SLIDING != 0;
-                    (es[p], fs[p], xs[p]) = (e, f, [xa, xb]);
                 }
                 if dyn_on {
                     let ds: &mut [Dash; 4] = (&mut dash[4 * j..4 * j + 4]).try_into().unwrap();
@@ -473,13 +476,7 @@ impl<'a> Integrator3<'a> {
 
     /// Elastic energy stored in the contact points \[J\].
     pub(super) fn elastic_energy(&self) -> f64 {
-        let mut e = 0.0;
-        for (k, law) in self.laws.iter().enumerate() {
-            for f in &self.forces[4 * k..4 * k + 4] {
-                e += 0.5 * (f[0] * f[0] / law.kn + (f[1] * f[1] + f[2] * f[2]) / law.kt);
-            }
-        }
-        e
+        self.laws.iter().enumerate().map(|(k, law)| law.energy(self.forces[4 * k..4 * k + 4].try_into().unwrap())).sum()
     }
 
     /// The rotation angle of block `i` from the start (finite rotations: the quaternion's) \[rad\].
@@ -500,36 +497,29 @@ fn matrix(q: &UnitQuaternion<f64>) -> [f64; 9] {
     [m[(0, 0)], m[(0, 1)], m[(0, 2)], m[(1, 0)], m[(1, 1)], m[(1, 2)], m[(2, 0)], m[(2, 1)], m[(2, 2)]]
 }
 
-/// The dashpot forces of a contact's four points (coefficients in `ds`), at jumps `es` after
-/// the last step's, with the joint's forces `fs` and friction `mu` (see [`super::contact`]).
-/// The normal dashpots act on the points' closing rates: their mean (the contact's normal
-/// mode) with the point's share of `c_N`, their deviations from it (the two rotations, and the
-/// warping of the four corners) with `sqrt(3)` times it: four corners give a rotation three
-/// times the stiffness of the rectangle's (`kN A l^2 / 4` against `kN A l^2 / 12`), and the
-/// dashpot keeps the damping ratio of the plane's interface in each mode (the plane's rocking
-/// impacts, within 2%). Each point's normal dashpot is cut so that the point does not pull,
-/// and its shear dashpot kept within the friction of its damped normal force; their power is
-/// never negative.
+/// The dashpot forces of a contact's four corners (coefficients in `ds`), at jumps `es` after
+/// the last step's, with the joint's forces `fs` and friction `mu` (see [`super::contact`]):
+/// each corner, a quarter of the contact's dashpot as each end of the plane's interface has
+/// half of it, on its own closing rate, cut so that the corner does not pull; and on its slip
+/// rate, kept within the friction of its damped normal force. Their power is never negative.
 #[inline(always)]
 fn dashpots(ds: &[Dash; 4], mu: f64, es: &[[f64; 3]; 4], fs: &[[f64; 3]; 4], dt: f64) -> [[f64; 3]; 4] {
-    const ROCKING: f64 = 1.732_050_807_568_877_2; // sqrt(3)
     let inv = 1.0 / dt;
-    let rate = |p: usize, r: usize| (es[p][r] - ds[p].jumps[r]) * inv;
-    let mean = 0.25 * (0..4).map(|p| rate(p, 0)).sum::<f64>();
     let mut out = [[0.0; 3]; 4];
     for p in 0..4 {
         let (f, c) = (fs[p], ds[p].c);
-        // a point carries a share of N where it is closed
+        // a corner carries a share of N where it is closed
         if !(f[0] < 0.0) || (c[0] == 0.0 && c[1] == 0.0) {
             continue;
         }
-        let dn = (c[0] * (mean + ROCKING * (rate(p, 0) - mean))).min(-f[0]);
+        let rate = [0, 1, 2].map(|r| (es[p][r] - ds[p].jumps[r]) * inv);
+        let dn = (c[0] * rate[0]).min(-f[0]);
         let n = f[0] + dn;
         if n >= 0.0 {
             out[p] = [dn, 0.0, 0.0];
             continue;
         }
-        let t = [f[1] + c[1] * rate(p, 1), f[2] + c[1] * rate(p, 2)];
+        let t = [f[1] + c[1] * rate[1], f[2] + c[1] * rate[2]];
         let cap = f[1].hypot(f[2]).max(-mu * n);
         let tn = t[0].hypot(t[1]);
         let s = if tn > cap { cap / tn } else { 1.0 };
@@ -639,7 +629,31 @@ pub fn solve_3d_with(model: &Model3, opts: &ExplicitOptions, monitor: &mut dyn F
         std::ops::ControlFlow::Break(end) => end,
         std::ops::ControlFlow::Continue((_, limits)) => run.load_control(&limits, monitor),
     };
-    Ok(run.finish(end))
+    let res = run.finish(end);
+    // dry associative joints: limit analysis is exact, and the collapse is checked against it
+    let associative = (0..model.contacts().len()).all(|k| model.law(k).dilatancy == model.law(k).friction);
+    if res.status != Status::Collapse || !associative {
+        return Ok(res);
+    }
+    let last = Progress { step: res.iterations, multiplier: res.last_equilibrium, displacement: f64::NAN, fraction: f64::NAN, poll: true, time: f64::NAN };
+    let mut polled = Instant::now();
+    let mut poll = |_: &crate::limit::LimitProgress| {
+        if polled.elapsed().as_secs_f64() < 0.1 {
+            return true;
+        }
+        polled = Instant::now();
+        monitor(&last)
+    };
+    // limit analysis takes the cone as a pyramid inscribed in it: a lower bound of the cone's
+    // multiplier; the pyramid circumscribed (friction and dilatancy over cos(pi / sides)) an upper
+    let lp = crate::limit::limit_analysis_3d_with(model, &crate::limit::LimitOptions::default(), &mut poll)?;
+    if lp.status != Status::Collapse {
+        return Ok(res);
+    }
+    let out = model.with_friction_scaled(1.0 / (std::f64::consts::PI / crate::limit::PYRAMID_SIDES as f64).cos());
+    let up = crate::limit::limit_analysis_3d_with(&out, &crate::limit::LimitOptions::default(), &mut poll)?;
+    let upper = if up.status == Status::Collapse { up.collapse_multiplier } else { f64::INFINITY };
+    Ok(super::evidence::judge(opts, res, lp, Some(upper)))
 }
 
 /// Refuses joints the 3D explicit solver does not model: cohesion and tensile strength (dry

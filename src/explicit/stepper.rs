@@ -66,3 +66,59 @@ impl<'a> Stepper<'a> {
         &self.s.forces
     }
 }
+
+/// The 3D counterpart of [`Stepper`]: bare time steps of the 3D integrator (small rotations
+/// unless `large_rotations`), for benchmarks and profiling (not part of the supported API).
+///
+/// ```
+/// use masonry_dem::explicit::{Damping, Stepper3};
+/// use masonry_dem::space::{Box3, Model3, ModelSpec3};
+/// let model = Model3::new(&ModelSpec3 { blocks: vec![Box3::new(0.0, 0.0, 0.0, 0.4, 0.4, 0.2)], ..ModelSpec3::default() }).unwrap();
+/// let mut s = Stepper3::new(&model, 0.0, Damping::Local(0.8), false, 1).unwrap();
+/// s.run(10);
+/// assert_eq!(s.n_points(), 4);
+/// assert!(s.displacements()[2] < 0.0); // the block settles onto the base
+/// ```
+#[cfg(feature = "bench-internals")]
+pub struct Stepper3<'a> {
+    pub(super) s: super::space::Integrator3<'a>,
+    pub(super) f: Vec<f64>,
+}
+
+#[cfg(feature = "bench-internals")]
+impl<'a> Stepper3<'a> {
+    /// The integrator of `model` on `threads` threads (0: all cores).
+    pub fn new(model: &'a crate::space::Model3, live_multiplier: f64, damping: Damping, large_rotations: bool, threads: usize) -> Result<Self, Error> {
+        let mut s = super::space::Integrator3::new(model, None, 0.8, damping, threads)?;
+        s.set_large(large_rotations);
+        let f: Vec<f64> = model.dead_load().iter().zip(model.live_load()).map(|(d, l)| d + live_multiplier * l).collect();
+        s.m.f_ext.copy_from_slice(&f);
+        s.interface_forces();
+        s.m.accelerations();
+        Ok(Stepper3 { s, f })
+    }
+
+    /// `k` time steps.
+    pub fn run(&mut self, k: usize) {
+        let f = &self.f;
+        let mut set_ext = |fe: &mut [f64], _: &[f64]| fe.copy_from_slice(f);
+        for _ in 0..k {
+            self.s.step(&mut set_ext, None);
+        }
+    }
+
+    /// Number of contact points (four per contact).
+    pub fn n_points(&self) -> usize {
+        4 * self.s.model.contacts().len()
+    }
+
+    /// The time step \[s\].
+    pub fn time_step(&self) -> f64 {
+        self.s.m.dt
+    }
+
+    /// The 6 dofs of every block, flat.
+    pub fn displacements(&self) -> &[f64] {
+        &self.s.m.u
+    }
+}

@@ -278,3 +278,7 @@ use ipm::*;
 use plane::*;
 use program::*;
 pub use space::{limit_analysis_3d, limit_analysis_3d_with};
+
+/// Sides of the friction pyramid that 3D limit analysis inscribes in Coulomb's cone at each
+/// contact corner (it keeps `cos(pi / sides)` of the cone midway between two generators).
+pub const PYRAMID_SIDES: usize = space::SIDES;
