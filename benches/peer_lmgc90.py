@@ -1,4 +1,5 @@
-"""Our 3D limit analysis side by side with a peer, LMGC90 (non-smooth contact dynamics), on two dry-joint walls.
+"""Our 3D limit analysis and explicit solver side by side with a peer, LMGC90 (non-smooth contact dynamics), on two
+dry-joint walls.
 
 Run, from the repository's root, in a venv where `make develop` built masonry_dem:
 
@@ -8,8 +9,11 @@ Run, from the repository's root, in a venv where `make develop` built masonry_de
 
 What it measures, for each wall:
 
-* ours: `Model3D(boxes, joints={"default": {"friction": mu, "dilatancy": mu}}).solve_limit()`, the exact collapse
-  multiplier of the associative model (a linear program), and its own time (Results.elapsed_s).
+* ours: `Model3D(boxes, joints={"default": {"friction": mu, "dilatancy": mu}}).solve_limit()`, the collapse
+  multiplier of the associative model with friction pyramids inscribed in the cone (a linear program), and its own
+  time (Results.elapsed_s); the explicit solver's quasi-static pushover (`solve_dynamic()`, load control, Coulomb's
+  cone itself) with the same joints, and with dilatancy 0, LMGC90's law (its time: Results.elapsed_s; joints of
+  1e9 N/m3).
 * LMGC90: the same boxes as rigid polyhedra (POLYR) on a fixed base box (the footprint box our Model3D puts under
   the wall), density 2000 kg/m3, contact law IQS_CLB (Signorini with inelastic shocks, Coulomb friction mu,
   no cohesion), theta = 0.5, time step 1e-3 s. The live load is a force lambda * m_i * g on each block's centre
@@ -30,7 +34,8 @@ The walls, both from our generators:
   0.5 x 0.25 m, 115 blocks, friction 0.7, pushed out of the facade's plane away from the returns (-y, direction
   270). Ours 0.2960.
 
-The two methods differ in what they assume: our limit analysis is associative (dilatancy = friction: a joint may
+The explicit solver with dilatancy 0 takes LMGC90's law (Coulomb friction without dilatancy); the last column
+compares them. Limit analysis differs in what it assumes: it is associative (dilatancy = friction: a joint may
 slide only while it opens by at least friction times the slip), contact dynamics has Coulomb friction without
 dilatancy (non-associative: a joint that opens carries nothing, however it slides), which can only lower the
 collapse load. It also sees inertia, and its multiplier depends a little on the hold time, the collapse threshold
@@ -81,17 +86,20 @@ CASES = [
 ]
 
 
-def ours(boxes, friction, gravity, direction):
-    model = md.Model3D(
-        boxes,
-        density=DENSITY,
-        joints={"default": {"friction": friction, "dilatancy": friction}},
-        gravity=gravity,
-        direction=direction,
-    )
-    res = model.solve_limit()
+def ours(boxes, friction, gravity, direction, dilatancy=None, method="limit"):
+    dilatancy = friction if dilatancy is None else dilatancy
+    joint = {"friction": friction, "dilatancy": dilatancy, "normal_stiffness": 1e9, "shear_stiffness": 1e9}
+    model = md.Model3D(boxes, density=DENSITY, joints={"default": joint}, gravity=gravity, direction=direction)
+    res = model.solve_limit() if method == "limit" else model.solve_dynamic()
     base = np.asarray(model.boxes)[model.base_index]
     return res, base
+
+
+def _multiplier(res):
+    """The collapse multiplier, or the last equilibrium marked with the status where there is no collapse."""
+    if res.status == "collapse":
+        return f"{res.collapse_multiplier:.4f}"
+    return f"{res.last_equilibrium:.4f} ({res.status})"
 
 
 # --------------------------------------------------------------------------------------------------------------------
@@ -253,8 +261,8 @@ def main(argv=None):
         print("compas_lmgc90 is not installed (pip install compas-lmgc90): showing ours only.", file=sys.stderr)
 
     print(
-        "| wall | blocks | ours: method | ours: lambda | ours: time | LMGC90: lambda bracket | LMGC90: time "
-        "| LMGC90: steps (runs) | difference |"
+        "| wall | blocks | limit analysis | explicit | explicit, dilatancy 0 | LMGC90: lambda bracket | LMGC90: time "
+        "| LMGC90: steps (runs) | difference (explicit, dilatancy 0) |"
     )
     print("|---|---|---|---|---|---|---|---|---|", flush=True)
     for key, name, make, friction, gravity, direction in CASES:
@@ -262,8 +270,14 @@ def main(argv=None):
             continue
         boxes = make()
         res, base = ours(boxes, friction, gravity, direction)
-        lam = res.collapse_multiplier
-        row = f"| {name} | {len(boxes)} | limit ({res.status}) | {lam:.4f} | {res.elapsed_s:.3f} s "
+        ex, _ = ours(boxes, friction, gravity, direction, method="dynamic")
+        ex0, _ = ours(boxes, friction, gravity, direction, dilatancy=0.0, method="dynamic")
+        # LMGC90's law is Coulomb's without dilatancy: the explicit solver's with dilatancy 0 is the one to compare
+        lam = ex0.collapse_multiplier if ex0.status == "collapse" else ex0.last_equilibrium
+        row = (
+            f"| {name} | {len(boxes)} | {_multiplier(res)} in {res.elapsed_s:.3f} s | {_multiplier(ex)} in "
+            f"{ex.elapsed_s:.2f} s | {_multiplier(ex0)} in {ex0.elapsed_s:.2f} s "
+        )
         if compas_lmgc90 is None:
             print(row + "| n/a | n/a | n/a | n/a |", flush=True)
             continue

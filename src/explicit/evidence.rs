@@ -19,7 +19,7 @@ const SETTLED_ABOVE: f64 = 1e-4;
 /// multiplier are dropped ([`below_exact`]) and the collapse is the highest level at or below it,
 /// `Stalled` only if more than [`SETTLED_ABOVE`] (at least the above) below it, the resolution of
 /// the levels' settling. The limit analysis's certificate is kept as the evidence.
-pub(super) fn check_collapse(model: &Model, opts: &ExplicitOptions, mut res: Results, monitor: &mut dyn FnMut(&Progress) -> bool) -> Result<Results, Error> {
+pub(super) fn check_collapse(model: &Model, opts: &ExplicitOptions, res: Results, monitor: &mut dyn FnMut(&Progress) -> bool) -> Result<Results, Error> {
     let reversed = matches!(opts.control, Control::Displacement { max_displacement } if max_displacement < 0.0);
     let flipped;
     let model = if reversed {
