@@ -12,7 +12,7 @@ use masonry_dem::space::{cut_openings, u_wall, LiveLoad3, Model3, ModelSpec3};
 fn main() {
     let arg = |i: usize, d: f64| std::env::args().nth(i).and_then(|s| s.parse().ok()).unwrap_or(d);
     let (facade, height, returns) = (arg(1, 60.0), arg(2, 12.5), arg(3, 20.0));
-    let mut blocks = u_wall(facade, height, returns, 0.25, 0.5, 0.25).expect("u_wall");
+    let blocks = u_wall(facade, height, returns, 0.25, 0.5, 0.25).expect("u_wall");
     // windows 1 m wide and 1.25 m high, one per 2.5 m bay and per 2.5 m storey
     let mut holes = vec![];
     let mut z = 0.75;
@@ -24,7 +24,7 @@ fn main() {
         }
         z += 2.5;
     }
-    let blocks = cut_openings(blocks.drain(..).collect(), &holes).expect("openings");
+    let blocks = cut_openings(blocks, &holes).expect("openings");
     let law = JointLaw { friction: 0.7, dilatancy: 0.7, ..JointLaw::default() };
     let spec = ModelSpec3 { blocks, joints: JointLaws::uniform(law), live: LiveLoad3::HorizontalWeight { direction: 90.0 }, ..ModelSpec3::default() };
     let model = Model3::new(&spec).expect("model");

@@ -110,9 +110,9 @@ fn a_box_rocks_freely_about_its_edge_as_the_plane_block_does() {
     use masonry_dem::explicit::{simulate, simulate_3d, DynamicOptions, Recording};
     use masonry_dem::geometry::Rect;
     // the plane's rocking test: a 0.4 x 1.0 m block released at rest from half its slenderness
-    let (b, h, g) = (0.4, 1.0, 9.81);
+    let (b, h, g): (f64, f64, f64) = (0.4, 1.0, 9.81);
     let law = JointLaw { friction: 2.0, ..JointLaw::default() };
-    let th0 = 0.5 * (b / h as f64).atan();
+    let th0 = 0.5 * (b / h).atan();
     // the centroid turned by th0 about the toe at the origin (leaning towards -x)
     let r = [b / 2.0, h / 2.0];
     let (c, s) = (th0.cos(), th0.sin());

@@ -339,7 +339,8 @@ class Model:
         damping ratio)."""
 
 class Model3D:
-    """A wall of rigid axis-aligned boxes in 3D, z up, joined by dry Mohr-Coulomb contacts (limit analysis).
+    """A wall of rigid axis-aligned boxes in 3D, z up, joined by dry Mohr-Coulomb contacts (limit analysis, the explicit
+    solver and time histories).
 
     boxes: (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] in m (running_bond_3d, u_wall, corner_wall).
     density [kg/m3] of the blocks and the top beam (default 2000).
@@ -347,8 +348,9 @@ class Model3D:
         plan, as deep as the tallest block); the lowest blocks stand on it.
     top: None (the default: no top beam) or the height [m] of a rigid top beam of the blocks' density over the box
         around the blocks in plan, resting on the highest blocks, free to move; it weighs and takes the live load.
-    joints: as Model's, {family: law} with family in "default", "bed", "head", "base", "top"; limit analysis in 3D
-        takes dry joints (cohesion and tensile_strength 0) and reads friction and dilatancy.
+    joints: as Model's, {family: law} with family in "default", "bed", "head", "base", "top"; the 3D analyses take
+        dry joints (cohesion and tensile_strength 0): limit analysis reads friction and dilatancy, the explicit
+        solver the stiffnesses too (and restitution, in time histories).
     gravity [m/s2], along -z (default 9.81); live: "horizontal_weight" (the default: lambda * W_i on every block
         that weighs, horizontal) or "none"; direction: the live load's direction in plan [deg], from +x towards +y
         (default 0: towards +x; 90 pushes a facade along x out of its plane, towards +y).
@@ -449,11 +451,78 @@ class Model3D:
         `results` attribute is a Results with status "interrupted" (no multiplier, no certificate).
         progress: optional callable(iteration, multiplier, nan, nan) called after each interior-point iteration; an
         exception raised by it stops the analysis and is raised again."""
+    def solve_dynamic(
+        self,
+        control: Optional[Literal["load"]] = None,
+        steps: Optional[int] = None,
+        max_displacement: Optional[float] = None,
+        control_block: Optional[int] = None,
+        tolerance: Optional[float] = None,
+        unbalanced_ratio: Optional[float] = None,
+        damping: Optional[Literal["local", "viscous", "none"]] = None,
+        damping_coefficient: Optional[float] = None,
+        time_step: Optional[float] = None,
+        safety: Optional[float] = None,
+        threads: Optional[int] = None,
+        progress: Optional[Callable[[int, float, float, float], None]] = None,
+    ) -> "Results":
+        """Quasi-static analysis in 3D with the explicit solver: Model.solve_dynamic's on the wall of boxes, with the same
+        options (and defaults) and Results of dimension 3, method "dynamic", `iterations` = time steps. Each corner of a
+        contact is a point with the joint law (a normal force that never pulls, with the rectangle's elastic stiffness,
+        and a shear force within Coulomb's cone);
+        the blocks' rotations are small, as in limit analysis. Load control only: each load level is relaxed until
+        |unbalanced| <= unbalanced_ratio * |applied|, and the collapse multiplier is bracketed to `tolerance`
+        (Results.bracket: the highest level that settled, the lowest that ran away); control="displacement" is
+        refused (InputError), and so are cohesion or tensile_strength (dry joints only) and a wall that nothing holds.
+        The curve follows control_block (default: the highest wall block) along x, or along y when the live load's
+        direction is nearer y. damping, damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in
+        Model.solve_dynamic (Model3D.critical_time_step gives the stability limit). Releases the GIL; Ctrl-C raises
+        KeyboardInterrupt with the partial Results as its `results` attribute. progress: as in Model.solve_dynamic."""
+    def simulate(
+        self,
+        duration: float,
+        time_step: Optional[float] = None,
+        safety: Optional[float] = None,
+        damping: Optional[Literal["local", "viscous", "none"]] = None,
+        damping_coefficient: Optional[float] = None,
+        initial_displacements: Optional[npt.ArrayLike] = None,
+        initial_velocities: Optional[npt.ArrayLike] = None,
+        base_acceleration: Optional[tuple[npt.ArrayLike, npt.ArrayLike]] = None,
+        live_multiplier: Optional[float] = None,
+        record_every: Optional[int] = None,
+        large_rotations: Optional[bool] = None,
+        threads: Optional[int] = None,
+        progress: Optional[Callable[[int, float, float, float], None]] = None,
+        vertical_acceleration: Optional[tuple[npt.ArrayLike, npt.ArrayLike]] = None,
+        record_interval: Optional[float] = None,
+        rayleigh: Optional[tuple[float, float]] = None,
+        base_acceleration_y: Optional[tuple[npt.ArrayLike, npt.ArrayLike]] = None,
+    ) -> "TimeHistory":
+        """Time history of the wall of boxes with the explicit solver: Model.simulate's options (and defaults), in 3D.
+        Free motion from initial conditions (initial_displacements / initial_velocities: (n_all, 6) arrays of ux, uy,
+        uz [m] and a rotation vector rx, ry, rz [rad], and their rates: the angular velocity in the world's axes
+        [rad/s]) and/or the ground's motion: base_acceleration (along x), base_acceleration_y (along y) and
+        vertical_acceleration (upwards), each (times [s], accelerations [m/s2]), linear between samples and zero
+        outside them; the blocks move in the frame of the base. Finite rotations (unit quaternions, Euler's
+        equations) unless large_rotations is False. Impacts lose energy by the joints' restitution (the time step is
+        lowered for the contact dashpots this takes). Dry joints only (cohesion or tensile_strength is refused);
+        damping "local", "viscous" or "none": stiffness-proportional damping is the plane's only (rayleigh takes
+        beta = 0 only). Returns a TimeHistory of dimension 3, with the ground's acceleration and the base shear along
+        y too. Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory computed so far
+        as its `results` attribute. progress: optional callable(step, time [s], nan, fraction done)."""
+    def critical_time_step(self, time_history: bool = False) -> float:
+        """The stability limit of the explicit solver's time step in 3D [s] (Gershgorin bound on the contact points'
+        elastic stiffnesses), as Model.critical_time_step(); with time_history=True, that of Model3D.simulate:
+        lowered for the contact dashpots of the joints' restitution."""
 
 class TimeHistory:
-    """A time history (Model.simulate). Energy balance at each record: initial kinetic + elastic
-    energy + external_work = kinetic_energy + elastic_energy + dissipated + energy_error."""
+    """A time history (Model.simulate, Model3D.simulate). Energy balance at each record: initial kinetic + elastic
+    energy + external_work = kinetic_energy + elastic_energy + dissipated + energy_error. One class for both
+    dimensions: the block arrays have 3 columns in the plane (dimension 2) and 6 in 3D (dimension 3)."""
 
+    dimension: Literal[2, 3]
+    """2 for a wall in the plane (Model.simulate), 3 for a wall of boxes (Model3D.simulate): the block arrays have
+    3 or 6 columns."""
     status: str
     """How the run ended: "completed", "failed" or "interrupted"."""
     error: Optional[str]
@@ -463,13 +532,19 @@ class TimeHistory:
     times: FloatArray
     """(k,) time of each record [s]."""
     displacements: FloatArray
-    """(k, n_all, 3): u1 [m], u2 [m], phi [rad], relative to the ground."""
+    """(k, n_all, 3): u1 [m], u2 [m], phi [rad], relative to the ground; in 3D (k, n_all, 6): ux, uy, uz [m] and
+    rx, ry, rz [rad], the rotation vector of the block's orientation."""
     velocities: FloatArray
-    """(k, n_all, 3): du1/dt [m/s], du2/dt [m/s], dphi/dt [rad/s], relative to the ground."""
+    """(k, n_all, 3): du1/dt [m/s], du2/dt [m/s], dphi/dt [rad/s], relative to the ground; in 3D (k, n_all, 6):
+    vx, vy, vz [m/s] and the angular velocity wx, wy, wz [rad/s] in the world's axes."""
     ground_acceleration: FloatArray
-    """(k, 2) the ground's (horizontal, vertical) acceleration [m/s2]."""
+    """(k, 2) the ground's (horizontal, vertical) acceleration [m/s2]; in 3D the horizontal one along x."""
+    ground_acceleration_y: FloatArray
+    """(k,) 3D: the ground's acceleration along y [m/s2]; (0,) in the plane."""
     base_shear: FloatArray
     """(k,) horizontal force of the wall on its base [N] (+x positive)."""
+    base_shear_y: FloatArray
+    """(k,) 3D: the force of the wall on its base along y [N] (+y positive); (0,) in the plane."""
     kinetic_energy: FloatArray
     """(k,) kinetic energy of the blocks [J]."""
     elastic_energy: FloatArray
@@ -507,10 +582,11 @@ class _Certificate(TypedDict):
     peak_strengths: bool  # some joint has cohesion or tensile strength, taken at its peak (no softening)
 
 class Results:
-    """The results of an analysis (Model.solve_static, solve_dynamic, solve_limit, Model3D.solve_limit): the curve of
-    the live load's multiplier lambda [-] against the control block's displacement [m], the displacements [m, rad]
-    and the joints' forces [N, N m] and states at the end, and the collapse multiplier. One class for both
-    dimensions: the block and interface arrays have 3 columns in the plane (dimension 2) and 6 in 3D (dimension 3)."""
+    """The results of an analysis (Model.solve_static, solve_dynamic, solve_limit; Model3D.solve_dynamic, solve_limit):
+    the curve of the live load's multiplier lambda [-] against the control block's displacement [m], the
+    displacements [m, rad] and the joints' forces [N, N m] and states at the end, and the collapse multiplier. One
+    class for both dimensions: the block and interface arrays have 3 columns in the plane (dimension 2) and 6 in 3D
+    (dimension 3)."""
 
     dimension: Literal[2, 3]
     """2 for a wall in the plane (Model), 3 for a wall of boxes (Model3D): the block and interface arrays have 3 or
@@ -534,16 +610,18 @@ class Results:
     curve_multiplier: FloatArray
     """(k,) lambda at each converged step, from 0 (empty for "limit")."""
     curve_displacement: FloatArray
-    """(k,) horizontal displacement of the control point [m] (empty for "limit")."""
+    """(k,) horizontal displacement of the control point [m] (empty for "limit"); in 3D along x, or along y when the
+    live load's direction is nearer y."""
     control_block: int
     """The block whose horizontal displacement the curve follows (Model.default_control_block unless given; in 3D the
-    highest wall block)."""
+    highest wall block unless given)."""
     displacements: FloatArray
     """(n_all, 3): u1 [m], u2 [m], phi [rad] at the last converged step (zeros for "limit"); in 3D (n_all, 6): ux, uy,
     uz [m], rx, ry, rz [rad] (small rotations about the block's centroid)."""
     mechanism: FloatArray
     """(n_all, 3): last increment (limit: the block velocities), scaled so that max |u| is 1; in 3D (n_all, 6): the
-    velocities (vx, vy, vz, wx, wy, wz) of the collapse mechanism, its largest block translation 1."""
+    velocities (vx, vy, vz, wx, wy, wz) of the collapse mechanism (dynamic: the motion at the level that ran
+    away), its largest block translation 1."""
     interface_forces: FloatArray
     """(m, 3): N [N] (tension > 0), T [N], M [N m] (limit: at collapse); in 3D (m, 6): N, T1, T2 [N], M_n, M_t1,
     M_t2 [N m], the force and moment (about the contact's centroid) of block b on block a in the contact's axes

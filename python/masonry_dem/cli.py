@@ -141,10 +141,10 @@ def _simulate(args: Any) -> int:
     except OSError as exc:
         return _error(f"cannot read {args.case}: {exc.strerror or exc}", EXIT_INPUT)
     if case.dimension == 3:
-        from .space.case import LIMIT_ONLY
+        from .space.case import NO_CASE_HISTORY_3D
 
-        raise InputError(f"{args.case}: simulate (a time history) is refused: {LIMIT_ONLY} (this case is 3D; run it "
-                         "with masonry-dem run)")
+        raise InputError(f"{args.case}: simulate (a time history) is refused: {NO_CASE_HISTORY_3D} (this case is 3D; "
+                         "masonry-dem run takes its limit analysis or its explicit pushover)")
     if case.ground_motion is None:
         raise InputError(f"{args.case}: no [ground_motion] table: simulate needs a ground motion (a record file "
                          "or a pulse; see docs/case-format.md)")
@@ -412,7 +412,7 @@ def _compare(
     case: Case, json_path: Optional[str], plot_path: Optional[str], quiet: bool = False, inputs: Sequence[Any] = ()
 ) -> int:
     """Run the three methods on one model, write the outputs, print them side by side; return the exit status.
-    A 3D wall takes limit analysis only: that one run is printed (:func:`_compare_limit_only`)."""
+    A 3D wall: its limit analysis alone is run and printed (:func:`_compare_limit_only`)."""
     from .compare import comparison_text, write_comparison_json
 
     targets, plot_file = _output_targets(json_path, plot_path)
@@ -458,8 +458,8 @@ def _compare(
 def _compare_limit_only(
     case: Case, model: Any, json_path: Optional[str], plot_file: Any, quiet: bool, inputs: Sequence[Any]
 ) -> int:
-    """``compare`` of a 3D wall: its limit analysis alone (the other methods are not run in 3D), its outputs (the
-    comparison file with the limit analysis only, the 3D mechanism's plot) and its exit status."""
+    """``compare`` of a 3D wall: its limit analysis alone (:data:`masonry_dem.compare.LIMIT_ONLY_NOTE`), its outputs
+    (the comparison file with the limit analysis only, the 3D mechanism's plot) and its exit status."""
     from .case.result_file import write_json
     from .compare import limit_only_dict, limit_only_text
 

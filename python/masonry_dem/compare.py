@@ -28,9 +28,10 @@ The comparison file::
 
 Numbers that cannot be computed (a NaN multiplier, a zero time) are null.
 
-A 3D wall (a :class:`masonry_dem.Model3D`) takes limit analysis only in this version: its comparison is that one
-run (:func:`limit_only_text`, :func:`limit_only_dict`: ``{"format": 1, "title", "dimension": 3, "limit": <result
-file>, "note": "..."}``), the static and explicit solvers named as not run.
+The comparison of a 3D wall (a :class:`masonry_dem.Model3D`) is its limit analysis alone in this version
+(:func:`limit_only_text`, :func:`limit_only_dict`: ``{"format": 1, "title", "dimension": 3, "limit": <result
+file>, "note": "..."}``), the static and explicit solvers named as not run (:data:`LIMIT_ONLY_NOTE`: the static
+solver is the plane's; the explicit one runs with ``masonry-dem run --method dynamic``).
 """
 
 from __future__ import annotations
@@ -58,8 +59,8 @@ __all__ = [
 ]
 
 #: What the comparison of a 3D wall says about the methods not run.
-LIMIT_ONLY_NOTE = ("the 3D model takes limit analysis in this version: the static and explicit (dynamic) solvers are "
-                   "not run")
+LIMIT_ONLY_NOTE = ("compare runs limit analysis alone on a 3D wall in this version: the static solver is the plane's, "
+                   "and the explicit one runs with masonry-dem run --method dynamic")
 
 #: The state bits of a failed interface: open or sliding.
 FAILED = OPEN | SLIDING

@@ -41,7 +41,7 @@ import numpy as np
 
 from ._vtk import FAMILY_CODES as FAMILY_CODES, write_meshes as _write_meshes
 from .atomic import atomic_file, check_target
-from .history import ENERGIES, control_response, is_time_history, largest_translation, record
+from .history import ENERGIES, check_plane, control_response, is_time_history, largest_translation, record
 
 __all__ = [
     "write_vtk",
@@ -193,6 +193,8 @@ def write_vtk(
     for ending in (".vtu", ".pvd"):
         if prefix.endswith(ending):
             prefix = prefix[: -len(ending)]
+    if is_time_history(results):
+        check_plane(model, "write_vtk")
     if int(getattr(model, "dimension", 2)) == 3:  # a wall of boxes: hexahedra and contact quads
         from .space.export import write_vtk as write_vtk_3d
 
@@ -249,6 +251,7 @@ def write_curve_csv(
     if is_time_history(results):
         if model is None:
             raise TypeError("write_curve_csv of a TimeHistory needs model= (the Model simulated: its control block)")
+        check_plane(model, "write_curve_csv")
         u, phi = control_response(model, results)
         energies = [np.asarray(getattr(results, name), dtype=np.float64).reshape(-1) for name in ENERGIES]
         columns = [np.asarray(results.times, dtype=np.float64).reshape(-1), u, phi, largest_translation(results)]

@@ -1,5 +1,7 @@
 """Time histories (:class:`masonry_dem.TimeHistory`, from ``Model.simulate``) as results: the response of the
 control block, shared by the exports (:mod:`masonry_dem.export`) and the figures (:mod:`masonry_dem.plot`).
+These read a wall in the plane's: a 3D wall's time history (``Model3D.simulate``, ``TimeHistory.dimension`` 3) is
+refused there with :func:`check_plane` (its arrays are read directly in this version).
 
 Displacements of a time history (``TimeHistory.displacements``, (k, n_all, 3): u1 [m], u2 [m], phi [rad]) are
 relative to the ground: the blocks move in the frame of the base (a base acceleration acts as the inertial
@@ -14,11 +16,12 @@ from typing import Any, Tuple
 
 import numpy as np
 
-from ._core import TimeHistory
+from ._core import InputError, TimeHistory
 
 __all__ = [
     "ENERGIES",
     "is_time_history",
+    "check_plane",
     "default_control_block",
     "control_response",
     "largest_translation",
@@ -46,8 +49,19 @@ def is_time_history(results: Any) -> bool:
     return isinstance(results, TimeHistory)
 
 
+def check_plane(model: Any, what: str = "this output of a time history") -> None:
+    """Refuse a 3D wall's time history (``model`` a :class:`masonry_dem.Model3D`) where only the plane's is read
+    (the exports, the figures and the response of this module's users), with InputError naming ``what``."""
+    if int(getattr(model, "dimension", 2)) == 3:
+        raise InputError(f"{what}: a 3D wall's time history (Model3D.simulate) is not drawn or exported in this "
+                         "version: read its TimeHistory's arrays (displacements (k, n_all, 6), base_shear, "
+                         "base_shear_y, the energies)")
+
+
 def default_control_block(model: Any) -> int:
-    """The model's default control block, the solvers' own (``Model.default_control_block``)."""
+    """The model's default control block, the solvers' own (``Model.default_control_block``); a 3D model's time
+    history is refused (:func:`check_plane`)."""
+    check_plane(model)
     return int(model.default_control_block)
 
 

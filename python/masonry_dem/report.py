@@ -290,10 +290,10 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
     """The short human summary printed by ``masonry-dem run`` (several lines, no trailing newline).
 
     A limit analysis (method "limit") has no load path: its joint states are those of the collapse
-    mechanism, and a ``certificate`` line (or lines) replaces the count of steps. A static run checked
-    against limit analysis (associative dry joints) gets a ``checked against`` line with the exact value. A 3D wall
-    (a :class:`masonry_dem.Model3D`) gets a line with the live load's direction in plan, and its mechanism is
-    described in 3D (:func:`masonry_dem.space.report.describe_mechanism`)."""
+    mechanism, and a ``certificate`` line (or lines) replaces the count of steps. A static or explicit run checked
+    against limit analysis (associative dry joints) gets a ``checked against`` line with the exact value (in 3D a
+    lower bound). A 3D wall (a :class:`masonry_dem.Model3D`) gets a line with the live load's direction in plan, and
+    its mechanism is described in 3D (:func:`masonry_dem.space.report.describe_mechanism`)."""
     describe = describe_mechanism
     three_d = int(getattr(model, "dimension", 2)) == 3
     if three_d:
@@ -348,10 +348,13 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
     else:
         cert = getattr(results, "certificate", None)
         if cert and cert.get("multiplier") is not None:
-            # a static run checked against limit analysis (associative dry joints: the exact multiplier)
+            # a run checked against limit analysis (associative dry joints: the exact multiplier; in 3D a lower
+            # bound, the friction pyramids inscribed in Coulomb's cone)
+            exact = "a lower bound in 3D: friction pyramids inscribed in Coulomb's cone" if three_d \
+                else "exact for these associative dry joints"
             lines.append(
                 f"  checked against:     limit analysis, {format_multiplier(float(cert['multiplier']), live)} "
-                f"(exact for these associative dry joints; duality gap {_sci(cert.get('duality_gap'))})"
+                f"({exact}; duality gap {_sci(cert.get('duality_gap'))})"
             )
         lines.append(
             f"  elapsed:             {results.elapsed_s:.3g} s ({results.steps} steps, {results.iterations} iterations)"

@@ -1,5 +1,6 @@
 //! Conversions between Python values and the core's: rectangles, boxes, rows of three or six
-//! numbers, counts, damping and joint laws, each error naming the argument or key.
+//! numbers (a block's dofs in the plane or in 3D), counts, damping and joint laws, each error
+//! naming the argument or key.
 
 use crate::*;
 
@@ -57,21 +58,21 @@ pub(crate) fn rows_of<'py, const W: usize>(py: Python<'py>, v: &[[f64; W]]) -> B
         .into_pyarray(py)
 }
 
-pub(crate) fn rows3_from(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<Vec<[f64; 3]>>> {
+/// Rows of `W` numbers, one per block (a block's dofs: (u1, u2, phi) in the plane, W = 3; (ux, uy, uz, rx, ry,
+/// rz) in 3D, W = 6), from an (n, W) array or a list of rows; None (or Python's None): left out. `what` names them.
+pub(crate) fn rows_from<const W: usize>(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<Vec<[f64; W]>>> {
     let Some(o) = obj.filter(|o| !o.is_none()) else { return Ok(None) };
     let rows: Vec<Vec<f64>> = if let Ok(a) = o.extract::<PyReadonlyArray2<f64>>() {
         a.as_array().rows().into_iter().map(|r| r.to_vec()).collect()
     } else {
-        o.extract().map_err(|_| InputError::new_err(format!("{what}: expected an (n, 3) array of numbers")))?
+        o.extract().map_err(|_| InputError::new_err(format!("{what}: expected an (n, {W}) array of numbers")))?
     };
+    let names = if W == 3 { "u1, u2, phi" } else { "ux, uy, uz, rx, ry, rz" };
     rows.iter()
         .enumerate()
         .map(|(i, r)| {
-            if r.len() == 3 {
-                Ok([r[0], r[1], r[2]])
-            } else {
-                Err(InputError::new_err(format!("{what}[{i}]: expected 3 numbers (u1, u2, phi), got {}", r.len())))
-            }
+            <[f64; W]>::try_from(r.as_slice())
+                .map_err(|_| InputError::new_err(format!("{what}[{i}]: expected {W} numbers ({names}), got {}", r.len())))
         })
         .collect::<PyResult<Vec<_>>>()
         .map(Some)

@@ -4,7 +4,8 @@
 //!
 //! Here: the exceptions and the module. `convert` turns Python values into the core's, `walls`
 //! binds the wall generators, `model` the Model and its analyses, `space` the 3D Model3D with its
-//! generators and limit analysis, `results` what they return (one Results for both dimensions),
+//! generators and analyses (limit, explicit), `results` what they return (one Results and one
+//! TimeHistory for both dimensions),
 //! `run` runs an analysis in a thread of its own while Ctrl-C is watched.
 
 use masonry_dem::error::Error;

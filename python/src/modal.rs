@@ -32,7 +32,7 @@ impl PyModes {
     #[getter]
     fn shapes<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
         let rows: Vec<[f64; 3]> = self.inner.shapes.iter().flat_map(|s| s.chunks_exact(3).map(|c| [c[0], c[1], c[2]])).collect();
-        history3(py, &rows, self.n_blocks)
+        history_of(py, &rows, self.n_blocks)
     }
     /// (n,) ||K phi - omega^2 M phi|| / ||K phi||.
     #[getter]

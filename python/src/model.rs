@@ -298,20 +298,11 @@ impl PyModel {
         threads: Option<i64>,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Py<PyResults>> {
-        let defaults = ExplicitOptions::default();
-        let control = Control::from_keys(control, max_displacement, defaults.control).map_err(to_py)?;
-        let opts = ExplicitOptions {
-            control,
-            steps: steps.map_or(Ok(defaults.steps), |v| count("analysis.steps", v, 1))?,
-            tolerance: tolerance.unwrap_or(defaults.tolerance),
-            unbalanced_ratio: unbalanced_ratio.unwrap_or(defaults.unbalanced_ratio),
-            damping: Damping::from_keys(damping, damping_coefficient, defaults.damping).map_err(to_py)?,
-            time_step,
-            safety: safety.unwrap_or(defaults.safety),
-            threads: threads.map_or(Ok(defaults.threads), |v| count("threads", v, 0))?,
-            control_block,
-            ..defaults
-        };
+        let opts = explicit_options(
+            (control, steps, max_displacement, control_block, tolerance),
+            (unbalanced_ratio, damping, damping_coefficient),
+            (time_step, safety, threads),
+        )?;
         analyse(py, &self.inner, progress, move |model, monitor| {
             explicit::solve_with(model, &opts, monitor).map(PyResults::from)
         })
@@ -359,20 +350,20 @@ impl PyModel {
         record_interval: Option<f64>,
         rayleigh: Option<(f64, f64)>,
     ) -> PyResult<Py<PyTimeHistory>> {
-        let opts = dynamic_options(
+        let opts = dynamic_options::<3>(
             duration,
             time_step,
             safety,
             (damping, damping_coefficient, rayleigh),
             (initial_displacements, initial_velocities),
-            (base_acceleration, vertical_acceleration),
+            (base_acceleration, None, vertical_acceleration),
             live_multiplier,
             (record_every, record_interval),
             large_rotations,
             threads,
         )?;
         analyse(py, &self.inner, progress, move |model, monitor| {
-            explicit::simulate_with(model, &opts, monitor).map(|inner| PyTimeHistory { inner })
+            explicit::simulate_with(model, &opts, monitor).map(PyTimeHistory::from)
         })
     }
 
@@ -407,6 +398,29 @@ impl PyModel {
     }
 }
 
+/// The options of a quasi-static explicit analysis (`Model.solve_dynamic`, `Model3D.solve_dynamic`), those left
+/// out (None) the core's defaults.
+#[allow(clippy::type_complexity)]
+pub(crate) fn explicit_options(
+    (control, steps, max_displacement, control_block, tolerance): (Option<&str>, Option<i64>, Option<f64>, Option<usize>, Option<f64>),
+    (unbalanced_ratio, damping, damping_coefficient): (Option<f64>, Option<&str>, Option<f64>),
+    (time_step, safety, threads): (Option<f64>, Option<f64>, Option<i64>),
+) -> PyResult<ExplicitOptions> {
+    let defaults = ExplicitOptions::default();
+    Ok(ExplicitOptions {
+        control: Control::from_keys(control, max_displacement, defaults.control).map_err(to_py)?,
+        steps: steps.map_or(Ok(defaults.steps), |v| count("analysis.steps", v, 1))?,
+        tolerance: tolerance.unwrap_or(defaults.tolerance),
+        unbalanced_ratio: unbalanced_ratio.unwrap_or(defaults.unbalanced_ratio),
+        damping: Damping::from_keys(damping, damping_coefficient, defaults.damping).map_err(to_py)?,
+        time_step,
+        safety: safety.unwrap_or(defaults.safety),
+        threads: threads.map_or(Ok(defaults.threads), |v| count("threads", v, 0))?,
+        control_block,
+        ..defaults
+    })
+}
+
 /// The recording of a time history: `record_every` steps or `record_interval` seconds (not
 /// both); neither: the core's default.
 fn recording(record_every: Option<i64>, record_interval: Option<f64>) -> PyResult<Recording> {
@@ -414,7 +428,7 @@ fn recording(record_every: Option<i64>, record_interval: Option<f64>) -> PyResul
         (Some(_), Some(_)) => Err(InputError::new_err("give record_every (steps) or record_interval (seconds), not both")),
         (Some(k), None) => Ok(Recording::Every(count("record_every", k, 1)?)),
         (None, Some(i)) => Ok(Recording::Interval(i)),
-        (None, None) => Ok(DynamicOptions::default().record),
+        (None, None) => Ok(DynamicOptions::<[f64; 3]>::default().record),
     }
 }
 
@@ -429,21 +443,23 @@ fn series(o: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<(Vec<f64>
     }
 }
 
-/// The options of `Model.simulate`, those left out (None) the core's defaults.
-#[allow(clippy::too_many_arguments)]
-fn dynamic_options(
+/// The options of a time history (`Model.simulate`, W = 3; `Model3D.simulate`, W = 6: initial conditions of W
+/// numbers per block), those left out (None) the core's defaults; the base's accelerations along x, y (3D only)
+/// and z.
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+pub(crate) fn dynamic_options<const W: usize>(
     duration: f64,
     time_step: Option<f64>,
     safety: Option<f64>,
     (damping, damping_coefficient, rayleigh): (Option<&str>, Option<f64>, Option<(f64, f64)>),
     (initial_displacements, initial_velocities): (Option<&Bound<'_, PyAny>>, Option<&Bound<'_, PyAny>>),
-    (base_acceleration, vertical_acceleration): (Option<&Bound<'_, PyAny>>, Option<&Bound<'_, PyAny>>),
+    (base_acceleration, base_acceleration_y, vertical_acceleration): (Option<&Bound<'_, PyAny>>, Option<&Bound<'_, PyAny>>, Option<&Bound<'_, PyAny>>),
     live_multiplier: Option<f64>,
     (record_every, record_interval): (Option<i64>, Option<f64>),
     large_rotations: Option<bool>,
     threads: Option<i64>,
-) -> PyResult<DynamicOptions> {
-    let defaults = DynamicOptions::default();
+) -> PyResult<DynamicOptions<[f64; W]>> {
+    let defaults = DynamicOptions::<[f64; W]>::default();
     // Rayleigh damping alpha M + beta K: viscous alpha and stiffness-proportional beta
     let (damping, stiffness_damping) = match rayleigh {
         Some(_) if damping.is_some() || damping_coefficient.is_some() => {
@@ -458,9 +474,10 @@ fn dynamic_options(
         safety: safety.unwrap_or(defaults.safety),
         damping,
         stiffness_damping,
-        initial_displacement: rows3_from(initial_displacements, "initial_displacements")?,
-        initial_velocity: rows3_from(initial_velocities, "initial_velocities")?,
+        initial_displacement: rows_from(initial_displacements, "initial_displacements")?,
+        initial_velocity: rows_from(initial_velocities, "initial_velocities")?,
         base_acceleration: series(base_acceleration, "base_acceleration")?,
+        base_acceleration_y: series(base_acceleration_y, "base_acceleration_y")?,
         vertical_acceleration: series(vertical_acceleration, "vertical_acceleration")?,
         live_multiplier: live_multiplier.unwrap_or(defaults.live_multiplier),
         record: recording(record_every, record_interval)?,

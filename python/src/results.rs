@@ -2,131 +2,200 @@
 
 use crate::*;
 
-/// A time history (Model.simulate). Energy balance at each record: initial kinetic + elastic
-/// energy + external_work = kinetic_energy + elastic_energy + dissipated + energy_error.
-#[pyclass(name = "TimeHistory", module = "masonry_dem._core")]
-pub(crate) struct PyTimeHistory {
-    pub(crate) inner: TimeHistory,
+/// What the core returns in either dimension: a wall in the plane carries [f64; 3] per block and
+/// interface, a wall of boxes [f64; 6] (`P` and `S`: the core's Results, or its TimeHistory, of each).
+pub(crate) enum Dimensioned<P, S> {
+    Plane(P),
+    Space(S),
 }
 
-pub(crate) fn history3<'py>(py: Python<'py>, v: &[[f64; 3]], n_blocks: usize) -> Bound<'py, numpy::PyArray3<f64>> {
+impl<P, S> Dimensioned<P, S> {
+    /// 2 in the plane, 3 in space.
+    fn dimension(&self) -> usize {
+        match self {
+            Dimensioned::Plane(_) => 2,
+            Dimensioned::Space(_) => 3,
+        }
+    }
+}
+
+impl From<Results> for PyResults {
+    fn from(r: Results) -> Self {
+        PyResults { inner: Dimensioned::Plane(r) }
+    }
+}
+
+impl From<Results<[f64; 6]>> for PyResults {
+    fn from(r: Results<[f64; 6]>) -> Self {
+        PyResults { inner: Dimensioned::Space(r) }
+    }
+}
+
+impl From<TimeHistory> for PyTimeHistory {
+    fn from(h: TimeHistory) -> Self {
+        PyTimeHistory { inner: Dimensioned::Plane(h) }
+    }
+}
+
+impl From<TimeHistory<[f64; 6]>> for PyTimeHistory {
+    fn from(h: TimeHistory<[f64; 6]>) -> Self {
+        PyTimeHistory { inner: Dimensioned::Space(h) }
+    }
+}
+
+/// `$body` evaluated on the core's Results (or TimeHistory) `$r` of either dimension (its fields that do not
+/// depend on the dimension).
+macro_rules! either {
+    ($self:ident, $r:ident => $body:expr) => {
+        match &$self.inner {
+            Dimensioned::Plane($r) => $body,
+            Dimensioned::Space($r) => $body,
+        }
+    };
+}
+
+/// A time history (Model.simulate, Model3D.simulate). Energy balance at each record: initial kinetic + elastic
+/// energy + external_work = kinetic_energy + elastic_energy + dissipated + energy_error. One class for both
+/// dimensions: the block arrays have 3 columns in the plane (dimension 2) and 6 in 3D (dimension 3).
+#[pyclass(name = "TimeHistory", module = "masonry_dem._core")]
+pub(crate) struct PyTimeHistory {
+    pub(crate) inner: Dimensioned<TimeHistory, TimeHistory<[f64; 6]>>,
+}
+
+/// Records of `n_blocks` rows of `W` numbers each, flat and record-major, as a (k, n_blocks, W) array.
+pub(crate) fn history_of<'py, const W: usize>(py: Python<'py>, v: &[[f64; W]], n_blocks: usize) -> Bound<'py, numpy::PyArray3<f64>> {
     let k = v.len().checked_div(n_blocks).unwrap_or(0);
     let flat: Vec<f64> = v[..k * n_blocks].iter().flatten().copied().collect();
     // the shape matches the data by construction: no panic can come from here
-    numpy::ndarray::Array3::from_shape_vec((k, n_blocks, 3), flat)
-        .unwrap_or_else(|_| numpy::ndarray::Array3::zeros((0, n_blocks, 3)))
+    numpy::ndarray::Array3::from_shape_vec((k, n_blocks, W), flat)
+        .unwrap_or_else(|_| numpy::ndarray::Array3::zeros((0, n_blocks, W)))
         .into_pyarray(py)
 }
 
 #[pymethods]
 impl PyTimeHistory {
+    /// 2 for a wall in the plane (Model.simulate), 3 for a wall of boxes (Model3D.simulate): the block arrays have
+    /// 3 or 6 columns.
+    #[getter]
+    fn dimension(&self) -> usize {
+        self.inner.dimension()
+    }
     /// How the run ended: "completed", "failed" or "interrupted".
     #[getter]
     fn status(&self) -> &'static str {
-        self.inner.status.as_str()
+        either!(self, h => h.status.as_str())
     }
     /// Why, when the status is "failed" or "interrupted" (None otherwise).
     #[getter]
     fn error(&self) -> Option<String> {
-        self.inner.error.clone()
+        either!(self, h => h.error.clone())
     }
     /// The time step used [s].
     #[getter]
     fn time_step(&self) -> f64 {
-        self.inner.time_step
+        either!(self, h => h.time_step)
     }
     /// (k,) time of each record [s].
     #[getter]
     fn times<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.inner.times.clone().into_pyarray(py)
+        either!(self, h => h.times.clone().into_pyarray(py))
     }
-    /// (k, n_all, 3): u1 [m], u2 [m], phi [rad], relative to the ground.
+    /// (k, n_all, 3): u1 [m], u2 [m], phi [rad], relative to the ground; in 3D (k, n_all, 6): ux, uy, uz [m] and
+    /// rx, ry, rz [rad], the rotation vector of the block's orientation.
     #[getter]
     fn displacements<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
-        history3(py, &self.inner.displacements, self.inner.n_blocks)
+        either!(self, h => history_of(py, &h.displacements, h.n_blocks))
     }
-    /// (k, n_all, 3): du1/dt [m/s], du2/dt [m/s], dphi/dt [rad/s], relative to the ground.
+    /// (k, n_all, 3): du1/dt [m/s], du2/dt [m/s], dphi/dt [rad/s], relative to the ground; in 3D (k, n_all, 6):
+    /// vx, vy, vz [m/s] and the angular velocity wx, wy, wz [rad/s] in the world's axes.
     #[getter]
     fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
-        history3(py, &self.inner.velocities, self.inner.n_blocks)
+        either!(self, h => history_of(py, &h.velocities, h.n_blocks))
     }
-    /// (k, 2) the ground's (horizontal, vertical) acceleration [m/s2].
+    /// (k, 2) the ground's (horizontal, vertical) acceleration [m/s2]; in 3D the horizontal one along x.
     #[getter]
-    fn ground_acceleration<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-        let rows: Vec<Vec<f64>> = self.inner.ground_acceleration.iter().map(|g| g.to_vec()).collect();
-        if rows.is_empty() {
-            return Ok(numpy::PyArray2::zeros(py, [0, 2], false));
-        }
-        Ok(numpy::PyArray2::from_vec2(py, &rows)?)
+    fn ground_acceleration<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        either!(self, h => rows_of(py, &h.ground_acceleration))
+    }
+    /// (k,) 3D: the ground's acceleration along y [m/s2]; (0,) in the plane.
+    #[getter]
+    fn ground_acceleration_y<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        either!(self, h => h.ground_acceleration_y.clone().into_pyarray(py))
     }
     /// (k,) horizontal force of the wall on its base [N] (+x positive).
     #[getter]
     fn base_shear<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.inner.base_shear.clone().into_pyarray(py)
+        either!(self, h => h.base_shear.clone().into_pyarray(py))
+    }
+    /// (k,) 3D: the force of the wall on its base along y [N] (+y positive); (0,) in the plane.
+    #[getter]
+    fn base_shear_y<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        either!(self, h => h.base_shear_y.clone().into_pyarray(py))
     }
     /// (k,) kinetic energy of the blocks [J].
     #[getter]
     fn kinetic_energy<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.inner.kinetic_energy.clone().into_pyarray(py)
+        either!(self, h => h.kinetic_energy.clone().into_pyarray(py))
     }
     /// (k,) energy stored in the joints [J].
     #[getter]
     fn elastic_energy<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.inner.elastic_energy.clone().into_pyarray(py)
+        either!(self, h => h.elastic_energy.clone().into_pyarray(py))
     }
     /// (k,) work of the external loads since t = 0 (weights, loads, base motion) [J].
     #[getter]
     fn external_work<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.inner.external_work.clone().into_pyarray(py)
+        either!(self, h => h.external_work.clone().into_pyarray(py))
     }
     /// (k,) the weights' part of external_work [J].
     #[getter]
     fn gravity_work<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.inner.gravity_work.clone().into_pyarray(py)
+        either!(self, h => h.gravity_work.clone().into_pyarray(py))
     }
     /// (k,) dissipated by friction and loss of strength in the joints [J].
     #[getter]
     fn friction_dissipation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.inner.friction_dissipation.clone().into_pyarray(py)
+        either!(self, h => h.friction_dissipation.clone().into_pyarray(py))
     }
     /// (k,) dissipated by the damping of the motion (local, viscous, Rayleigh) [J].
     #[getter]
     fn damping_dissipation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.inner.damping_dissipation.clone().into_pyarray(py)
+        either!(self, h => h.damping_dissipation.clone().into_pyarray(py))
     }
     /// (k,) dissipated by impacts (the joints' restitution) [J].
     #[getter]
     fn impact_dissipation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.inner.impact_dissipation.clone().into_pyarray(py)
+        either!(self, h => h.impact_dissipation.clone().into_pyarray(py))
     }
     /// (k,) the three dissipations together [J].
     #[getter]
     fn dissipated<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.inner.dissipated.clone().into_pyarray(py)
+        either!(self, h => h.dissipated.clone().into_pyarray(py))
     }
     /// (k,) the balance's error [J].
     #[getter]
     fn energy_error<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.inner.energy_error.clone().into_pyarray(py)
+        either!(self, h => h.energy_error.clone().into_pyarray(py))
     }
     /// Time steps computed.
     #[getter]
     fn steps(&self) -> usize {
-        self.inner.steps
+        either!(self, h => h.steps)
     }
     /// Wall-clock time of the run [s].
     #[getter]
     fn elapsed_s(&self) -> f64 {
-        self.inner.elapsed_s
+        either!(self, h => h.elapsed_s)
     }
     fn __repr__(&self) -> String {
-        format!(
-            "TimeHistory(status={:?}, {} steps of {:.3e} s, {} records)",
-            self.inner.status.as_str(),
-            self.inner.steps,
-            self.inner.time_step,
-            self.inner.times.len()
-        )
+        let dim = if self.inner.dimension() == 3 { ", dimension=3" } else { "" };
+        either!(self, h => format!(
+            "TimeHistory(status={:?}, {} steps of {:.3e} s, {} records{dim})",
+            h.status.as_str(),
+            h.steps,
+            h.time_step,
+            h.times.len()
+        ))
     }
 }
 
@@ -156,43 +225,14 @@ pub(crate) fn interrupted_limit<V: Copy>(blocks: usize, interfaces: usize, contr
     }
 }
 
-/// The core's results of either dimension: a wall in the plane carries [f64; 3] per block and
-/// interface, a wall of boxes [f64; 6].
-pub(crate) enum Dimensioned {
-    Plane(Results),
-    Space(Results<[f64; 6]>),
-}
-
-impl From<Results> for PyResults {
-    fn from(r: Results) -> Self {
-        PyResults { inner: Dimensioned::Plane(r) }
-    }
-}
-
-impl From<Results<[f64; 6]>> for PyResults {
-    fn from(r: Results<[f64; 6]>) -> Self {
-        PyResults { inner: Dimensioned::Space(r) }
-    }
-}
-
-/// `$body` evaluated on the core's Results `$r` of either dimension (its fields that do not depend
-/// on the dimension).
-macro_rules! either {
-    ($self:ident, $r:ident => $body:expr) => {
-        match &$self.inner {
-            Dimensioned::Plane($r) => $body,
-            Dimensioned::Space($r) => $body,
-        }
-    };
-}
-
-/// The results of an analysis (Model.solve_static, solve_dynamic, solve_limit, Model3D.solve_limit): the curve of
-/// the live load's multiplier lambda [-] against the control block's displacement [m], the displacements [m, rad]
-/// and the joints' forces [N, N m] and states at the end, and the collapse multiplier. One class for both
-/// dimensions: the block and interface arrays have 3 columns in the plane (dimension 2) and 6 in 3D (dimension 3).
+/// The results of an analysis (Model.solve_static, solve_dynamic, solve_limit; Model3D.solve_dynamic, solve_limit):
+/// the curve of the live load's multiplier lambda [-] against the control block's displacement [m], the
+/// displacements [m, rad] and the joints' forces [N, N m] and states at the end, and the collapse multiplier. One
+/// class for both dimensions: the block and interface arrays have 3 columns in the plane (dimension 2) and 6 in 3D
+/// (dimension 3).
 #[pyclass(name = "Results", module = "masonry_dem._core")]
 pub(crate) struct PyResults {
-    pub(crate) inner: Dimensioned,
+    pub(crate) inner: Dimensioned<Results, Results<[f64; 6]>>,
 }
 
 #[pymethods]
@@ -201,10 +241,7 @@ impl PyResults {
     /// 6 columns.
     #[getter]
     fn dimension(&self) -> usize {
-        match self.inner {
-            Dimensioned::Plane(_) => 2,
-            Dimensioned::Space(_) => 3,
-        }
+        self.inner.dimension()
     }
     /// The solver: "static", "dynamic" or "limit".
     #[getter]
@@ -245,13 +282,14 @@ impl PyResults {
     fn curve_multiplier<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         either!(self, r => r.curve_multiplier.clone().into_pyarray(py))
     }
-    /// (k,) horizontal displacement of the control point [m] (empty for "limit").
+    /// (k,) horizontal displacement of the control point [m] (empty for "limit"); in 3D along x, or along y when the
+    /// live load's direction is nearer y.
     #[getter]
     fn curve_displacement<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         either!(self, r => r.curve_displacement.clone().into_pyarray(py))
     }
     /// The block whose horizontal displacement the curve follows (Model.default_control_block unless given; in 3D the
-    /// highest wall block).
+    /// highest wall block unless given).
     #[getter]
     fn control_block(&self) -> usize {
         either!(self, r => r.control_block)
@@ -263,7 +301,8 @@ impl PyResults {
         either!(self, r => rows_of(py, &r.displacements))
     }
     /// (n_all, 3): last increment (limit: the block velocities), scaled so that max |u| is 1; in 3D (n_all, 6): the
-    /// velocities (vx, vy, vz, wx, wy, wz) of the collapse mechanism, its largest block translation 1.
+    /// velocities (vx, vy, vz, wx, wy, wz) of the collapse mechanism (dynamic: the motion at the level that ran
+    /// away), its largest block translation 1.
     #[getter]
     fn mechanism<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         either!(self, r => rows_of(py, &r.mechanism))

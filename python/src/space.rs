@@ -1,5 +1,6 @@
 //! The 3D walls: `Model3D` (the core's `Model3`, walls of axis-aligned boxes) with its limit
-//! analysis, and the generators `running_bond_3d`, `u_wall`, `corner_wall` and `cut_openings_3d`.
+//! analysis and its explicit ones (quasi-static, time histories), and the generators
+//! `running_bond_3d`, `u_wall`, `corner_wall` and `cut_openings_3d`.
 
 use crate::*;
 use masonry_dem::space::{self, Box3, LiveLoad3, Model3, ModelSpec3};
@@ -156,7 +157,8 @@ pub(crate) fn cut_openings_3d<'py>(
     with_openings(py, blocks, &openings)
 }
 
-/// A wall of rigid axis-aligned boxes in 3D, z up, joined by dry Mohr-Coulomb contacts (limit analysis).
+/// A wall of rigid axis-aligned boxes in 3D, z up, joined by dry Mohr-Coulomb contacts (limit analysis, the explicit
+/// solver and time histories).
 ///
 /// boxes: (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] in m (running_bond_3d, u_wall, corner_wall).
 /// density [kg/m3] of the blocks and the top beam (default 2000).
@@ -164,8 +166,9 @@ pub(crate) fn cut_openings_3d<'py>(
 ///     plan, as deep as the tallest block); the lowest blocks stand on it.
 /// top: None (the default: no top beam) or the height [m] of a rigid top beam of the blocks' density over the box
 ///     around the blocks in plan, resting on the highest blocks, free to move; it weighs and takes the live load.
-/// joints: as Model's, {family: law} with family in "default", "bed", "head", "base", "top"; limit analysis in 3D
-///     takes dry joints (cohesion and tensile_strength 0) and reads friction and dilatancy.
+/// joints: as Model's, {family: law} with family in "default", "bed", "head", "base", "top"; the 3D analyses take
+///     dry joints (cohesion and tensile_strength 0): limit analysis reads friction and dilatancy, the explicit
+///     solver the stiffnesses too (and restitution, in time histories).
 /// gravity [m/s2], along -z (default 9.81); live: "horizontal_weight" (the default: lambda * W_i on every block
 ///     that weighs, horizontal) or "none"; direction: the live load's direction in plan [deg], from +x towards +y
 ///     (default 0: towards +x; 90 pushes a facade along x out of its plane, towards +y).
@@ -190,8 +193,9 @@ fn live_from(live: Option<&str>, direction: Option<f64>) -> PyResult<LiveLoad3> 
     }
 }
 
-/// Refuses, before a limit analysis, a wall that nothing holds: no base (so no fixed block), or blocks that no chain
-/// of contacts joins to the base (the 2D model's check; the core's 3D limit analysis would not converge on it).
+/// Refuses, before a limit analysis or a quasi-static explicit one, a wall that nothing holds: no base (so no fixed
+/// block), or blocks that no chain of contacts joins to the base (the 2D model's check; the core's 3D limit analysis
+/// would not converge on it, and the explicit solver would see the wall fall under its weight).
 fn check_supports(model: &Model3) -> PyResult<()> {
     let nb = model.n_blocks();
     let fixed = model.fixed();
@@ -437,6 +441,111 @@ impl PyModel3D {
                 interrupted_limit(model.n_blocks(), model.contacts().len(), top, [0.0; 6], start)
             },
         )
+    }
+
+    /// Quasi-static analysis in 3D with the explicit solver: Model.solve_dynamic's on the wall of boxes, with the same
+    /// options (and defaults) and Results of dimension 3, method "dynamic", `iterations` = time steps. Each corner of a
+    /// contact is a point with the joint law (a normal force that never pulls, with the rectangle's elastic stiffness,
+    /// and a shear force within Coulomb's cone);
+    /// the blocks' rotations are small, as in limit analysis. Load control only: each load level is relaxed until
+    /// |unbalanced| <= unbalanced_ratio * |applied|, and the collapse multiplier is bracketed to `tolerance`
+    /// (Results.bracket: the highest level that settled, the lowest that ran away); control="displacement" is
+    /// refused (InputError), and so are cohesion or tensile_strength (dry joints only) and a wall that nothing holds.
+    /// The curve follows control_block (default: the highest wall block) along x, or along y when the live load's
+    /// direction is nearer y. damping, damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in
+    /// Model.solve_dynamic (Model3D.critical_time_step gives the stability limit). Releases the GIL; Ctrl-C raises
+    /// KeyboardInterrupt with the partial Results as its `results` attribute. progress: as in Model.solve_dynamic.
+    #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, progress=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn solve_dynamic(
+        &self,
+        py: Python<'_>,
+        control: Option<&str>,
+        steps: Option<i64>,
+        max_displacement: Option<f64>,
+        control_block: Option<usize>,
+        tolerance: Option<f64>,
+        unbalanced_ratio: Option<f64>,
+        damping: Option<&str>,
+        damping_coefficient: Option<f64>,
+        time_step: Option<f64>,
+        safety: Option<f64>,
+        threads: Option<i64>,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Py<PyResults>> {
+        let opts = explicit_options(
+            (control, steps, max_displacement, control_block, tolerance),
+            (unbalanced_ratio, damping, damping_coefficient),
+            (time_step, safety, threads),
+        )?;
+        check_supports(&self.inner)?;
+        analyse(py, &self.inner, progress, move |model, monitor| {
+            explicit::solve_3d_with(model, &opts, monitor).map(PyResults::from)
+        })
+    }
+
+    /// Time history of the wall of boxes with the explicit solver: Model.simulate's options (and defaults), in 3D.
+    /// Free motion from initial conditions (initial_displacements / initial_velocities: (n_all, 6) arrays of ux, uy,
+    /// uz [m] and a rotation vector rx, ry, rz [rad], and their rates: the angular velocity in the world's axes
+    /// [rad/s]) and/or the ground's motion: base_acceleration (along x), base_acceleration_y (along y) and
+    /// vertical_acceleration (upwards), each (times [s], accelerations [m/s2]), linear between samples and zero
+    /// outside them; the blocks move in the frame of the base. Finite rotations (unit quaternions, Euler's
+    /// equations) unless large_rotations is False. Impacts lose energy by the joints' restitution (the time step is
+    /// lowered for the contact dashpots this takes). Dry joints only (cohesion or tensile_strength is refused);
+    /// damping "local", "viscous" or "none": stiffness-proportional damping is the plane's only (rayleigh takes
+    /// beta = 0 only). Returns a TimeHistory of dimension 3, with the ground's acceleration and the base shear along
+    /// y too. Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory computed so far
+    /// as its `results` attribute. progress: optional callable(step, time [s], nan, fraction done).
+    #[pyo3(signature = (duration, time_step=None, safety=None, damping=None, damping_coefficient=None, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=None, record_every=None, large_rotations=None, threads=None, progress=None, vertical_acceleration=None, record_interval=None, rayleigh=None, base_acceleration_y=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn simulate(
+        &self,
+        py: Python<'_>,
+        duration: f64,
+        time_step: Option<f64>,
+        safety: Option<f64>,
+        damping: Option<&str>,
+        damping_coefficient: Option<f64>,
+        initial_displacements: Option<&Bound<'_, PyAny>>,
+        initial_velocities: Option<&Bound<'_, PyAny>>,
+        base_acceleration: Option<&Bound<'_, PyAny>>,
+        live_multiplier: Option<f64>,
+        record_every: Option<i64>,
+        large_rotations: Option<bool>,
+        threads: Option<i64>,
+        progress: Option<Py<PyAny>>,
+        vertical_acceleration: Option<&Bound<'_, PyAny>>,
+        record_interval: Option<f64>,
+        rayleigh: Option<(f64, f64)>,
+        base_acceleration_y: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyTimeHistory>> {
+        let opts = dynamic_options::<6>(
+            duration,
+            time_step,
+            safety,
+            (damping, damping_coefficient, rayleigh),
+            (initial_displacements, initial_velocities),
+            (base_acceleration, base_acceleration_y, vertical_acceleration),
+            live_multiplier,
+            (record_every, record_interval),
+            large_rotations,
+            threads,
+        )?;
+        analyse(py, &self.inner, progress, move |model, monitor| {
+            explicit::simulate_3d_with(model, &opts, monitor).map(PyTimeHistory::from)
+        })
+    }
+
+    /// The stability limit of the explicit solver's time step in 3D [s] (Gershgorin bound on the contact points'
+    /// elastic stiffnesses), as Model.critical_time_step(); with time_history=True, that of Model3D.simulate:
+    /// lowered for the contact dashpots of the joints' restitution.
+    #[pyo3(signature = (time_history=false))]
+    fn critical_time_step(&self, time_history: bool) -> f64 {
+        if time_history {
+            explicit::history_time_step_limit_3d(&self.inner)
+        } else {
+            explicit::critical_time_step_3d(&self.inner)
+        }
     }
 
     fn __repr__(&self) -> String {

@@ -289,7 +289,7 @@ impl<'a> Integrator3<'a> {
                 let i = i0 + j;
                 if free[6 * i + 3] || free[6 * i + 4] || free[6 * i + 5] {
                     let w = Vector3::new(v[6 * i + 3], v[6 * i + 4], v[6 * i + 5]) * dt;
-                    *q = *q * UnitQuaternion::from_scaled_axis(w);
+                    *q *= UnitQuaternion::from_scaled_axis(w);
                     *rot = matrix(q);
                 }
             }

@@ -102,9 +102,9 @@ fn normals(kn: f64, e: [f64; 4]) -> [f64; 4] {
                 }
             }
             // the multipliers of the corners at zero: -(C (f - t))_j >= 0
-            for j in 0..4 {
+            for (j, &tj) in t.iter().enumerate() {
                 if s & 1 << j != 0 {
-                    let g = -3.0 * t[j] - 0.5 * (moved - s_sum);
+                    let g = -3.0 * tj - 0.5 * (moved - s_sum);
                     ok &= g <= 1e-12 * kn * mean.abs().max(1e-300);
                 }
             }

@@ -174,7 +174,7 @@ def test_validate_examples_static(tmp_path: Path) -> None:
         "j4d-shear-wall",
         "leaf-out-of-plane",
     }
-    # the 3D leaf's reference is limit analysis's (the 3D model's only method): not run, neither passed nor failed
+    # the 3D leaf's reference is limit analysis's: not run, neither passed nor failed
     assert rows.pop("leaf-out-of-plane")[-1] == "not run"
     for name, cells in rows.items():
         assert cells[-1] == "pass", cells

@@ -15,8 +15,8 @@ The keys are a public contract, described in ``docs/case-format.md``; this packa
 * :func:`result_dict` / :func:`write_result_json` produce the result file (:mod:`.result_file`).
 * A case whose [geometry] gives boxes (``boxes``, ``[geometry.leaf]``, ``[geometry.u_wall]``,
   ``[geometry.corner]``) is a 3D wall: its model is a :class:`masonry_dem.Model3D`
-  (:class:`masonry_dem.space.case.ModelParameters3D`), analysed by limit analysis only in this version;
-  ``Case.dimension`` is 3.
+  (:class:`masonry_dem.space.case.ModelParameters3D`), analysed by limit analysis or the explicit solver
+  (method "limit" or "dynamic", load control) in this version; ``Case.dimension`` is 3.
 * A case with a [ground_motion] (a record file, read with the case, or a pulse) and a [time_history] runs its
   time history with :meth:`Case.simulate` (``masonry-dem simulate``): :class:`GroundMotionParameters`,
   :class:`TimeHistoryParameters`.

@@ -108,7 +108,7 @@ def _dynamic_options(table: _Table) -> Dict[str, Any]:
 
 def _reference(table: Optional[_Table], default_methods: Tuple[str, ...] = METHODS) -> Optional[Dict[str, Any]]:
     """The [reference] table, checked: collapse_multiplier (required), tolerance, source, and methods (the
-    methods the reference applies to; ``default_methods`` by default: all, or a 3D wall's, limit analysis)."""
+    methods the reference applies to; ``default_methods`` by default: all, or a 3D wall's, limit analysis alone)."""
     if table is None:
         return None
     methods = table.array("methods", required=False)

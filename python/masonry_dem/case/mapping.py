@@ -1,6 +1,6 @@
-"""A checked case mapped onto the core: :class:`Case` builds the :class:`masonry_dem.Model` and runs its
-analysis with the static solver (``Model.solve_static``), the explicit one (``Model.solve_dynamic``) or
-limit analysis (``Model.solve_limit``).
+"""A checked case mapped onto the core: :class:`Case` builds the :class:`masonry_dem.Model` (of a 3D wall the
+:class:`masonry_dem.Model3D`) and runs its analysis with the static solver (``Model.solve_static``; not in 3D), the
+explicit one (``solve_dynamic``) or limit analysis (``solve_limit``).
 
 A case holds what its file gives in two frozen objects: :class:`ModelParameters` (the wall, the arguments
 of ``Model``) and :class:`AnalysisParameters` (the options of the solvers); a case with a ground motion also
@@ -23,7 +23,7 @@ import numpy as np
 from .. import _core
 from .._core import InputError, MasonryError
 from ..ground_motion import GroundMotion, simulate_arguments
-from ..space.model import CORE_DEFAULTS_3D, LIMIT_ONLY, ModelParameters3D
+from ..space.model import CORE_DEFAULTS_3D, IN_3D, LOAD_CONTROL_3D, METHODS_3D, NO_CASE_HISTORY_3D, ModelParameters3D
 from .table import _quote
 
 #: The methods of a case, each the name of one of the core's solvers.
@@ -318,15 +318,18 @@ class Case:
         """The method to use, ``method`` ("static" | "dynamic" | "limit") overriding the case's.
 
         Raises:
-            masonry_dem.InputError: an unknown method, or a method other than "limit" for a 3D wall.
+            masonry_dem.InputError: an unknown method; for a 3D wall, "static" (it takes "limit" and "dynamic"), or
+                "dynamic" with displacement control.
         """
         method = self.method if method is None else method
         if method not in METHODS:
             expected = ", ".join(_quote(m) for m in METHODS)
             raise InputError(f"{self.source}: method: expected one of {expected}, got {_quote(method)}")
-        if self.dimension == 3 and method != "limit":
-            raise InputError(f"{self.source}: method {_quote(method)}: {LIMIT_ONLY} (method \"limit\"; this case is "
-                             "3D)", "analysis.method")
+        if self.dimension == 3 and method not in METHODS_3D:
+            raise InputError(f"{self.source}: method {_quote(method)}: {IN_3D} (this case is 3D)", "analysis.method")
+        if self.dimension == 3 and method == "dynamic" and self.analysis.control == "displacement":
+            raise InputError(f'{self.source}: analysis.control = "displacement": {LOAD_CONTROL_3D} (this case is 3D)',
+                             "analysis.control")
         return method
 
     def solver_kwargs(self, method: Optional[str] = None) -> Dict[str, Any]:
@@ -362,8 +365,8 @@ class Case:
         kwargs = self.analysis.arguments(method)
         if progress is not None:
             kwargs["progress"] = progress
-        if self.dimension == 3:
-            solver = model.solve_limit  # the only method of a 3D wall (check_method refuses the others)
+        if self.dimension == 3:  # limit analysis or the explicit solver (check_method refuses the static one)
+            solver = {"dynamic": model.solve_dynamic, "limit": model.solve_limit}[method]
         else:
             solver = {"static": model.solve_static, "dynamic": model.solve_dynamic, "limit": model.solve_limit}[method]
         try:
@@ -392,7 +395,7 @@ class Case:
                 finite number (duration > 0), or Rayleigh damping without ``model``.
         """
         if self.dimension == 3:
-            raise InputError(f"{self.source}: a time history is refused: {LIMIT_ONLY} (this case is 3D)")
+            raise InputError(f"{self.source}: a time history is refused: {NO_CASE_HISTORY_3D} (this case is 3D)")
         if self.ground_motion is None:
             raise InputError(f"{self.source}: no [ground_motion] table: a time history needs a ground motion "
                              "(a record file or a pulse)", "ground_motion")

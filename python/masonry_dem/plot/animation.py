@@ -141,9 +141,11 @@ def write_animation(
     from matplotlib.figure import Figure
     from matplotlib.patches import Rectangle
 
+    from ..history import check_plane
     from ..response import drift
     from .panels import _wall_axes, _wall_limits
 
+    check_plane(model, "write_animation")
     target = Path(path)
     check_animation_format(target)
     if isinstance(fps, bool) or not (isinstance(fps, (int, float)) and math.isfinite(fps) and fps > 0):

@@ -11,7 +11,7 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..history import default_control_block, is_time_history, peak_record, record
+from ..history import check_plane, default_control_block, is_time_history, peak_record, record
 from ..report import _plural, corner_motion
 from .canvas import _finish, _new_figure, figure_path as figure_path, save_figure as save_figure
 from .panels import (
@@ -169,6 +169,7 @@ def history_figure(
     Returns:
         The figure.
     """
+    check_plane(model, "the figure of a time history")
     a = float(np.clip(_aspect(model), 0.35, 2.5))
     n = max(1, len(quantities))
     fig = _new_figure((5.0 * a + 7.5, max(6.5, 2.0 * n + 1.0)), path is not None)

@@ -1,11 +1,13 @@
 """3D walls: walls of rigid axis-aligned boxes (z up) joined by dry Mohr-Coulomb contacts, analysed by limit analysis
-(the out-of-plane collapse of a leaf, a facade with its return walls). The package's 2D side is a wall in the plane
-(:class:`masonry_dem.Model`); this one is its counterpart in space, with the same joint laws, the same
-:class:`masonry_dem.Results` (``dimension`` 3: arrays of 6 columns where the plane has 3) and the same case files,
-command line and result file.
+and the explicit solver (the out-of-plane collapse of a leaf, a facade with its return walls; their motion in time).
+The package's 2D side is a wall in the plane (:class:`masonry_dem.Model`); this one is its counterpart in space, with
+the same joint laws, the same :class:`masonry_dem.Results` and :class:`masonry_dem.TimeHistory` (``dimension`` 3:
+arrays of 6 columns where the plane has 3) and the same case files, command line and result file.
 
 * :class:`Model3D` (``masonry_dem.Model3D``): the model, from an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] (m);
-  ``Model3D.solve_limit()`` is its limit analysis.
+  ``Model3D.solve_limit()`` is its limit analysis, ``Model3D.solve_dynamic()`` the explicit solver's quasi-static
+  pushover (load control) and ``Model3D.simulate()`` a time history (initial conditions, base accelerations along
+  x, y and z), with the names and keywords of ``Model``'s.
 * Generators, each returning an (n, 6) array of boxes [m]: :func:`running_bond_3d` (a single leaf in running bond),
   :func:`u_wall` (a facade with two bonded return walls), :func:`corner_wall` (with one), :func:`cut_openings`
   (openings [x0, z0, x1, z1] through a facade).
@@ -15,8 +17,8 @@ command line and result file.
 * :mod:`.export` (meshio, on first use): :func:`write_vtk` (the blocks as hexahedra, the contacts as quads).
 * :mod:`.report`: :func:`describe_mechanism`, the one-line description of a 3D mechanism.
 
-In this version a 3D wall takes limit analysis only: the static and explicit solvers and time histories are those
-of the plane.
+In this version a 3D wall takes dry joints, and no static (Newton) solver; its explicit pushover is load-controlled,
+and its time histories run from Python (``Model3D.simulate``), not from a case file.
 
 >>> import masonry_dem as md
 >>> boxes = md.running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175)   # a 2 m x 1.05 m x 0.1 m leaf

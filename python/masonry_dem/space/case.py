@@ -1,14 +1,17 @@
 """Case files of 3D walls (docs/case-format.md, "3D walls"): the [geometry] forms that make a case 3D (``boxes``
 and the tables ``leaf``, ``u_wall``, ``corner``), the 3D keys of the other tables ([top] height, [loads] direction),
-the refusals of what the 3D model does not take in this version (methods other than limit analysis, time
-histories, mortar joints, the 2D keys that have no meaning there), and :class:`ModelParameters3D`, the arguments
-of :class:`masonry_dem.Model3D` that a :class:`masonry_dem.case.Case` of a 3D wall holds.
+the methods a 3D case takes (:data:`METHODS_3D`: limit analysis, and the explicit solver's quasi-static pushover
+with the [analysis] keys of 2D), the refusals of what the 3D model does not take in this version (the static
+solver, displacement control, time histories from a case file, mortar joints, the 2D keys that have no meaning
+there), and :class:`ModelParameters3D`, the arguments of :class:`masonry_dem.Model3D` that a
+:class:`masonry_dem.case.Case` of a 3D wall holds.
 
 :mod:`masonry_dem.case.reader` reads every case file and hands a 3D one to :func:`case_from_tables` once its
 [geometry] is read; the tables the two dimensions share ([base], [joints], [analysis], [reference]) are read with
-:mod:`masonry_dem.case.common`, with the same meaning. :class:`ModelParameters3D`, :data:`LIMIT_ONLY` and
-:data:`CORE_DEFAULTS_3D` are named here and live with the 3D model (:mod:`masonry_dem.space.model`), below the
-:class:`~masonry_dem.case.Case`, which holds, refuses and fills in by them.
+:mod:`masonry_dem.case.common`, with the same meaning. :class:`ModelParameters3D`, :data:`METHODS_3D`, the words
+of the refusals and :data:`CORE_DEFAULTS_3D` are named here and live with the 3D model
+(:mod:`masonry_dem.space.model`), below the :class:`~masonry_dem.case.Case`, which holds, refuses and fills in by
+them.
 """
 
 from __future__ import annotations
@@ -24,13 +27,25 @@ from .._core import InputError, MasonryError
 from ..case.common import REFERENCE_KEYS, _analysis, _base, _joints, _reference
 from ..case.mapping import AnalysisParameters, Case
 from ..case.table import _got, _non_negative, _positive, _quote, _Table
-from .model import CORE_DEFAULTS_3D as CORE_DEFAULTS_3D, LIMIT_ONLY, ModelParameters3D
+from .model import (
+    CORE_DEFAULTS_3D as CORE_DEFAULTS_3D,
+    DRY_3D,
+    IN_3D,
+    LOAD_CONTROL_3D,
+    METHODS_3D,
+    NO_CASE_HISTORY_3D,
+    ModelParameters3D,
+)
 
 __all__ = [
     "GEOMETRY_KINDS_3D",
     "LEAF_KEYS",
     "BONDED_KEYS",
-    "LIMIT_ONLY",
+    "METHODS_3D",
+    "IN_3D",
+    "DRY_3D",
+    "LOAD_CONTROL_3D",
+    "NO_CASE_HISTORY_3D",
     "CORE_DEFAULTS_3D",
     "ModelParameters3D",
     "read_geometry",
@@ -166,29 +181,32 @@ def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any
     ``density``), the other tables read here with the keys both dimensions share, and the refusals."""
     for name in ("ground_motion", "time_history"):
         if name in top:
-            raise top.error(f"[{name}]: a time history is refused: {LIMIT_ONLY} (this case is 3D: [geometry] {kind})",
-                            name)
+            raise top.error(f"[{name}]: a time history is refused: {NO_CASE_HISTORY_3D} (this case is 3D: [geometry] "
+                            f"{kind})", name)
     base = _base(top)
     beam = _top_beam(top)
     joints = _joints(top)
     _dry_joints(top, joints)
     gravity, live, direction = _loads(top)
     method, analysis = _analysis(top, default_method="limit")
-    if method != "limit":
-        raise top.error(f'analysis.method = "{method}": {LIMIT_ONLY} (method = "limit"; this case is 3D: '
-                        f"[geometry] {kind})", "analysis.method")
+    if method not in METHODS_3D:
+        raise top.error(f'analysis.method = "{method}": {IN_3D} (this case is 3D: [geometry] {kind})',
+                        "analysis.method")
+    if method == "dynamic" and analysis.control == "displacement":
+        raise top.error(f'analysis.control = "displacement": {LOAD_CONTROL_3D} (this case is 3D: [geometry] {kind})',
+                        "analysis.control")
     table = top.table("reference", REFERENCE_KEYS)
     reference = _reference(table, default_methods=("limit",))
     if reference is not None:
-        others = [m for m in reference["methods"] if m != "limit"]
+        others = [m for m in reference["methods"] if m not in METHODS_3D]
         if others:
             assert table is not None
-            raise table.key_error("methods", f"{_quote(others[0])}: {LIMIT_ONLY} (methods = [\"limit\"])")
+            raise table.key_error("methods", f"{_quote(others[0])}: {IN_3D}")
     boxes = generate_boxes(kind, geometry, top.source)
     model = ModelParameters3D(boxes=boxes, density=density, base=base, top=beam, joints=joints, gravity=gravity,
                               live=live, direction=direction)
     assert isinstance(analysis, AnalysisParameters)
-    return Case(title=title, model=model, analysis=analysis, method="limit", source=top.source, reference=reference)
+    return Case(title=title, model=model, analysis=analysis, method=method, source=top.source, reference=reference)
 
 
 def _top_beam(top: _Table) -> Optional[float]:
@@ -207,15 +225,14 @@ def _top_beam(top: _Table) -> Optional[float]:
 
 
 def _dry_joints(top: _Table, joints: Optional[Dict[str, Dict[str, float]]]) -> None:
-    """Refuse mortar (cohesion or tensile strength) in a 3D case, naming the key: the 3D limit analysis takes dry
-    joints only."""
+    """Refuse mortar (cohesion or tensile strength) in a 3D case, naming the key: the 3D analyses (limit analysis,
+    the explicit solver) take dry joints only."""
     for family, law in (joints or {}).items():
         for key in ("cohesion", "tensile_strength"):
             value = law.get(key, 0.0)
             if value > 0:
                 name = f"joints.{key}" if family == "default" else f"joints.{family}.{key}"
-                raise top.error(f"{name} = {value:g} Pa: {LIMIT_ONLY}, of dry joints (cohesion and tensile_strength "
-                                "0): mortar joints are refused", name)
+                raise top.error(f"{name} = {value:g} Pa: {DRY_3D}: mortar joints are refused", name)
 
 
 def _loads(top: _Table) -> Any:

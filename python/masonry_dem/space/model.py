@@ -2,9 +2,14 @@
 ``corner_wall``, ``cut_openings`` (the core's, in ``masonry_dem._core``), with a wrong argument type reported as
 :class:`masonry_dem.InputError` naming the function and the argument, as :mod:`masonry_dem._checked` does in 2D.
 
+``Model3D``'s analyses are the core's methods, each wrapped the same way: ``solve_limit`` (limit analysis),
+``solve_dynamic`` (the explicit solver's quasi-static pushover, load control) and ``simulate`` (time histories), with
+the names and keywords of :class:`masonry_dem.Model`'s (``simulate`` adds ``base_acceleration_y``).
+
 Also what a case of a 3D wall hands the model (:mod:`masonry_dem.space.case` reads it, a
 :class:`masonry_dem.case.Case` holds it): :class:`ModelParameters3D`, the core's defaults of its arguments
-(:data:`CORE_DEFAULTS_3D`) and the words of what it refuses (:data:`LIMIT_ONLY`).
+(:data:`CORE_DEFAULTS_3D`), the methods it takes (:data:`METHODS_3D`) and the words of what it refuses
+(:data:`IN_3D`, :data:`DRY_3D`, :data:`LOAD_CONTROL_3D`, :data:`NO_CASE_HISTORY_3D`).
 """
 
 from __future__ import annotations
@@ -22,9 +27,18 @@ from .._core import InputError
 
 __all__ = ["Model3D", "running_bond_3d", "u_wall", "corner_wall", "cut_openings"]
 
-#: The words of every refusal of what the 3D model does not take in this version (a method other than limit
-#: analysis, a time history, mortar joints).
-LIMIT_ONLY = "the 3D model takes limit analysis in this version"
+#: The methods of a case that a 3D wall takes: limit analysis and the explicit solver (quasi-static, load control).
+METHODS_3D = ("limit", "dynamic")
+#: The words of the refusals of a method the 3D model does not take in this version (the static solver).
+IN_3D = 'the 3D model takes limit analysis and the explicit solver (method "limit" or "dynamic") in this version'
+#: The words of the refusal of mortar joints in 3D (cohesion or tensile strength).
+DRY_3D = "the 3D model takes dry joints (cohesion and tensile_strength 0) in this version"
+#: The words of the refusal of displacement control in 3D (the explicit solver's pushover is load-controlled).
+LOAD_CONTROL_3D = 'the explicit solver in 3D is load-controlled in this version (analysis.control = "load")'
+#: The words of the refusal of a time history in a 3D case file (``masonry-dem simulate``, [ground_motion],
+#: [time_history]): ``Model3D.simulate`` runs it from Python.
+NO_CASE_HISTORY_3D = ("3D time histories run from Python in this version (masonry_dem.Model3D.simulate), not from a "
+                      "case file")
 #: The core's defaults of ``Model3D``'s arguments (``ModelSpec3::default()``), for those a case leaves out.
 CORE_DEFAULTS_3D: Mapping[str, Any] = MappingProxyType(dict(_core.DEFAULTS_3D))
 
@@ -65,7 +79,9 @@ class Model3D(_core.Model3D):
 
 # The constructor's signature as help() and inspect show it: the core's, not (*args, **kwargs).
 Model3D.__signature__ = inspect.signature(_core.Model3D)  # type: ignore[attr-defined]
-Model3D.solve_limit = input_errors(_core.Model3D.solve_limit, "Model3D.solve_limit")  # type: ignore[method-assign]
+for _name in ("solve_limit", "solve_dynamic", "simulate"):
+    setattr(Model3D, _name, input_errors(getattr(_core.Model3D, _name), f"Model3D.{_name}"))
+del _name
 
 
 @dataclass(frozen=True, eq=False)

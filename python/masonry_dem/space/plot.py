@@ -1,4 +1,4 @@
-"""Plots of a 3D wall's limit analysis (matplotlib's mplot3d, imported with this module):
+"""Plots of a 3D wall's analysis, limit or explicit (matplotlib's mplot3d, imported with this module):
 
 * :func:`plot_mechanism_3d` (ax, model, results, scale=None): on a 3D ``Axes``, the blocks moved along the
   collapse mechanism (``Results.mechanism``, rigidly: each box turned exactly about its centroid), scaled so that
@@ -149,7 +149,7 @@ def mechanism_figure(
     path: Optional[Union[str, "os.PathLike[str]"]] = None,
     dpi: int = 150,
 ) -> Figure:
-    """The page of a 3D wall's limit analysis (``masonry-dem run --plot`` of a 3D case): the collapse mechanism
+    """The page of a 3D wall's analysis (``masonry-dem run --plot`` of a 3D case): the collapse mechanism
     (:func:`plot_mechanism_3d`) seen from two sides, one across the live load and one along it, a colour bar of the
     blocks' motion, and a title with the status, the collapse multiplier and the load's direction. Written to
     ``path`` (a PNG, atomically) when given, else made through pyplot. Returns the figure."""

@@ -1,4 +1,4 @@
-"""Plain-text reports of a 3D wall's limit analysis: the one-line description of its collapse mechanism
+"""Plain-text reports of a 3D wall's analysis (limit or explicit): the one-line description of its collapse mechanism
 (:func:`describe_mechanism`, what ``masonry-dem run`` prints for a 3D case) and the kinematic helpers the plots share
 (:func:`corner_motion`, :func:`moved_corners`). No matplotlib here. Lengths in m, rotations in rad, directions in
 plan in degrees from +x towards +y.
