@@ -375,9 +375,12 @@ pub(super) fn set_tangent(
     // where the trial slip is exactly 0, e.g. a pure opening). Any trial nearby returns to
     // the apex too, so the derivative is the apex's, zero; the set's own tangent would
     // give the free direction (the shear of an open joint) its elastic stiffness.
+    // (Without strength, c = ft = 0, either pair is the apex itself: N = 0 leaves M no room, and
+    // the other pair's faces are reached up to the rounding of N, which may exceed the tolerance.)
     let pair = |m: u8| mask & m == m;
     let reached = |j: usize| faces.f(j, s) > -tol;
-    let apex = (pair(0b1100) && (reached(0) || reached(1))) || (pair(0b0011) && (reached(2) || reached(3)));
+    let strengthless = faces.b[0] == 0.0 && faces.b[2] == 0.0;
+    let apex = (pair(0b1100) && (strengthless || reached(0) || reached(1))) || (pair(0b0011) && (strengthless || reached(2) || reached(3)));
     if apex {
         [[0.0; 3]; 3]
     } else {
