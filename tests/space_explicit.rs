@@ -3,9 +3,8 @@
 
 mod common;
 
-use common::dry;
+use common::{dry, ferris, ferris_blocks};
 use masonry_dem::explicit::{solve, solve_3d, ExplicitOptions};
-use masonry_dem::geometry::{running_bond, FirstCourse, RunningBond};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::limit::{limit_analysis_3d, LimitOptions};
 use masonry_dem::model::{JointLaws, Model, ModelSpec};
@@ -58,17 +57,8 @@ fn a_box_overturns_and_slides_in_any_direction_in_plan() {
 #[test]
 fn ferris_tin_loi_wall_1_extruded_is_the_plane_within_one_percent() {
     let law = dry(0.65, 0.65, 1e9);
-    let rects = running_bond(&RunningBond {
-        block_length: 0.4,
-        block_height: 0.175,
-        courses: 6,
-        height: None,
-        length: 2.0,
-        first_course: FirstCourse::Half,
-        openings: vec![],
-    })
-    .unwrap();
-    let plane = Model::new(ModelSpec { blocks: rects.clone(), gravity: 10.0, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
+    let rects = ferris_blocks(6);
+    let plane = ferris(6, law);
     let l2 = solve(&plane, &ExplicitOptions::default()).unwrap().collapse_multiplier;
     let boxes = rects.iter().map(|r| Box3::new(r.x0, 0.0, r.y0, r.x1, 0.3, r.y1)).collect();
     let l3 = explicit(&model(boxes, law, 0.0), 1e-3);

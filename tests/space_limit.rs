@@ -4,11 +4,10 @@
 
 mod common;
 
-use common::dry;
-use masonry_dem::geometry::{running_bond, FirstCourse, RunningBond};
+use common::{dry, ferris, ferris_blocks};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::limit::{limit_analysis, limit_analysis_3d, LimitOptions};
-use masonry_dem::model::{JointLaws, Model, ModelSpec};
+use masonry_dem::model::JointLaws;
 use masonry_dem::results::Status;
 use masonry_dem::space::{running_bond_3d, Box3, LiveLoad3, Model3, ModelSpec3};
 
@@ -58,23 +57,8 @@ fn a_box_slides_at_the_friction_coefficient_in_any_direction_in_plan() {
 #[test]
 fn ferris_tin_loi_wall_1_extruded_equals_the_plane() {
     let law = dry(0.65, 0.65, 1e9);
-    let rects = running_bond(&RunningBond {
-        block_length: 0.4,
-        block_height: 0.175,
-        courses: 6,
-        height: None,
-        length: 2.0,
-        first_course: FirstCourse::Half,
-        openings: vec![],
-    })
-    .unwrap();
-    let plane = Model::new(ModelSpec {
-        blocks: rects.clone(),
-        gravity: 10.0,
-        joints: JointLaws::uniform(law),
-        ..ModelSpec::default()
-    })
-    .unwrap();
+    let rects = ferris_blocks(6);
+    let plane = ferris(6, law);
     let l2 = limit_analysis(&plane, &LimitOptions::default()).unwrap().collapse_multiplier;
     let t = 0.3;
     let boxes = rects.iter().map(|r| Box3::new(r.x0, 0.0, r.y0, r.x1, t, r.y1)).collect();

@@ -5,7 +5,8 @@ blocks form, and the plural of a count for the sentences that say it. Below both
 
 from __future__ import annotations
 
-from typing import Dict, List, Sequence
+from collections import Counter
+from typing import Callable, Dict, List, Sequence, Tuple
 
 import numpy as np
 
@@ -38,3 +39,48 @@ def connected_parts(moving: Sequence[int], pairs: np.ndarray, cracked: Sequence[
 def plural(n: int, word: str) -> str:
     """``n`` and ``word``, with an s unless ``n`` is 1: "1 block", "3 blocks"."""
     return f"{n} {word}" if n == 1 else f"{n} {word}s"
+
+
+def part_name(part: Sequence[int], n_wall: int) -> str:
+    """'3 blocks', '2 blocks and the top beam', 'the top beam' (indices >= n_wall are the top beam)."""
+    blocks = sum(1 for i in part if i < n_wall)
+    if blocks == len(part):
+        return plural(blocks, "block")
+    return f"{plural(blocks, 'block')} and the top beam" if blocks else "the top beam"
+
+
+def family_counts(indices: Sequence[int], families: Sequence[str]) -> str:
+    """'3 bed, 1 head': the families of the interfaces ``indices``, most frequent first."""
+    counts = Counter(families[k] for k in indices)
+    return ", ".join(f"{n} {fam}" for fam, n in counts.most_common())
+
+
+def mechanism_text(
+    n_moving: int,
+    n_wall: int,
+    beam: str,
+    parts: List[List[int]],
+    describe: Callable[[Sequence[int]], str],
+    crack: Sequence[Tuple[List[int], str]],
+    families: Sequence[str],
+    noun: str,
+) -> str:
+    """The line on a mechanism, in either dimension: how many of the ``n_wall`` wall blocks move (``beam``: " and the
+    top beam" when it moves too), the ``parts`` they form (largest first), the first two described by ``describe``,
+    and the crack: each group of interfaces (``noun``) with its word, counted by family."""
+    if n_moving == 0:
+        head = "only the top beam moves"
+    else:
+        verb = "s" if n_moving == 1 and not beam else ""
+        head = f"{n_moving} of {n_wall} block{'s' if n_wall > 1 else ''}{beam} move{verb}"
+    if len(parts) == 1:
+        text = f"{head} as one part, {describe(parts[0])}"
+    else:
+        shown = "; ".join(f"{part_name(p, n_wall)} {describe(p)}" for p in parts[:2])
+        more = f"; {len(parts) - 2} more" if len(parts) > 2 else ""
+        text = f"{head} in {len(parts)} parts: {shown}{more}"
+    cracked = {k for ks, _ in crack for k in ks}
+    if cracked:
+        pieces = [f"{len(ks)} {what} ({family_counts(ks, families)})" for ks, what in crack if ks]
+        text += f"; the crack runs through {plural(len(cracked), noun)}: " + ", ".join(pieces)
+    return text

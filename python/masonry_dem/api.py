@@ -286,34 +286,27 @@ def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dic
         "elapsed_s": _float(results.elapsed_s),
         "certificate": certificate_dict(getattr(results, "certificate", None)),
     })
-    if model is not None and _dimension(model) == 3:
+    if model is not None:
         _check_model("to_dict", results, model)
+        space = _dimension(model) == 3
         out.update({
             "blocks": int(model.n_blocks),
             "interfaces": int(model.n_interfaces),
             "base_index": None if model.base_index is None else int(model.base_index),
             "top_index": None if model.top_index is None else int(model.top_index),
-            "block_boxes": _floats(model.boxes),
+            "block_boxes" if space else "block_rects": _floats(model.boxes if space else model.rects),
             "weights": _floats(model.weights),
             "interface_blocks": [[int(a), int(b)] for a, b in np.asarray(model.interface_blocks).reshape(-1, 2)],
-            "interface_centroids": _floats(np.asarray(model.interface_centroids).reshape(-1, 3)),
-            "interface_normals": _floats(np.asarray(model.interface_normals).reshape(-1, 3)),
-            "interface_areas": _floats(model.interface_areas),
-            "interface_family": [str(s) for s in model.interface_family],
         })
-    elif model is not None:
-        _check_model("to_dict", results, model)
-        out.update({
-            "blocks": int(model.n_blocks),
-            "interfaces": int(model.n_interfaces),
-            "base_index": None if model.base_index is None else int(model.base_index),
-            "top_index": None if model.top_index is None else int(model.top_index),
-            "block_rects": _floats(model.rects),
-            "weights": _floats(model.weights),
-            "interface_blocks": [[int(a), int(b)] for a, b in np.asarray(model.interface_blocks).reshape(-1, 2)],
-            "interface_geometry": _floats(np.asarray(model.interface_geometry).reshape(-1, 5)),
-            "interface_family": [str(s) for s in model.interface_family],
-        })
+        if space:
+            out.update({
+                "interface_centroids": _floats(np.asarray(model.interface_centroids).reshape(-1, 3)),
+                "interface_normals": _floats(np.asarray(model.interface_normals).reshape(-1, 3)),
+                "interface_areas": _floats(model.interface_areas),
+            })
+        else:
+            out["interface_geometry"] = _floats(np.asarray(model.interface_geometry).reshape(-1, 5))
+        out["interface_family"] = [str(s) for s in model.interface_family]
     return out
 
 

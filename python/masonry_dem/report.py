@@ -10,13 +10,12 @@ Lengths in m, rotations in rad; a positive rotation is counterclockwise.
 from __future__ import annotations
 
 import math
-from collections import Counter
 from typing import Any, Dict, List, Sequence
 
 import numpy as np
 import numpy.typing as npt
 
-from ._mechanism import CRACK_TOLERANCE, MOVING_FRACTION, connected_parts as _connected_parts, plural as _plural
+from ._mechanism import CRACK_TOLERANCE, MOVING_FRACTION, connected_parts as _connected_parts, mechanism_text, plural as _plural
 
 __all__ = [
     "OPEN",
@@ -137,19 +136,6 @@ def _describe_part(rects: np.ndarray, motion: np.ndarray, part: Sequence[int]) -
     return f"turning {sense} about ({px:.2f}, {py:.2f}) m"
 
 
-def _part_name(part: Sequence[int], n_wall: int) -> str:
-    """'3 blocks', '2 blocks and the top beam', 'the top beam' (indices >= n_wall are the top beam)."""
-    blocks = sum(1 for i in part if i < n_wall)
-    if blocks == len(part):
-        return _plural(blocks, "block")
-    return f"{_plural(blocks, 'block')} and the top beam" if blocks else "the top beam"
-
-
-def _family_counts(indices: Sequence[int], families: Sequence[str]) -> str:
-    counts = Counter(families[k] for k in indices)
-    return ", ".join(f"{n} {fam}" for fam, n in counts.most_common())
-
-
 def describe_mechanism(model: Any, results: Any) -> str:
     """One line on the mechanism (``Results.mechanism``: the last displacement increment, or the collapse
     velocities of a limit analysis).
@@ -190,26 +176,9 @@ def describe_mechanism(model: Any, results: Any) -> str:
     # The parts: moving blocks held together by uncracked interfaces.
     parts = _connected_parts(moving, np.asarray(model.interface_blocks), list(cracked))
     parts.sort(key=len, reverse=True)
-    if n_moving == 0:
-        head = "only the top beam moves"
-    else:
-        plural = "s" if n_moving == 1 and not beam else ""
-        head = f"{n_moving} of {n} block{'s' if n > 1 else ''}{beam} move{plural}"
-    if len(parts) == 1:
-        text = f"{head} as one part, {_describe_part(rects, mech, parts[0])}"
-    else:
-        shown = "; ".join(f"{_part_name(p, n)} {_describe_part(rects, mech, p)}" for p in parts[:2])
-        more = f"; {len(parts) - 2} more" if len(parts) > 2 else ""
-        text = f"{head} in {len(parts)} parts: {shown}{more}"
-
-    if cracked.any():
-        pieces = [
-            f"{len(ks)} {what} ({_family_counts(ks, families)})"
-            for ks, what in ((slips, "slip"), (opens, "separate"), (rocks, "rock"))
-            if ks
-        ]
-        text += f"; the crack runs through {_plural(int(cracked.sum()), 'interface')}: " + ", ".join(pieces)
-    return text
+    crack = ((slips, "slip"), (opens, "separate"), (rocks, "rock"))
+    describe = lambda part: _describe_part(rects, mech, part)  # noqa: E731
+    return mechanism_text(n_moving, n, beam, parts, describe, crack, families, "interface")
 
 
 def multiplier_symbol(live: str = "horizontal_weight") -> str:

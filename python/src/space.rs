@@ -193,45 +193,6 @@ fn live_from(live: Option<&str>, direction: Option<f64>) -> PyResult<LiveLoad3> 
     }
 }
 
-/// Refuses, before a limit analysis or a quasi-static explicit one, a wall that nothing holds: no base (so no fixed
-/// block), or blocks that no chain of contacts joins to the base (the 2D model's check; the core's 3D limit analysis
-/// would not converge on it, and the explicit solver would see the wall fall under its weight).
-fn check_supports(model: &Model3) -> PyResult<()> {
-    let nb = model.n_blocks();
-    let fixed = model.fixed();
-    let mut seen: Vec<bool> = (0..nb).map(|i| fixed[6 * i..6 * i + 6].iter().any(|&f| f)).collect();
-    if !seen.iter().any(|&s| s) {
-        return Err(InputError::new_err(
-            "the wall has no support: no base ([base] kind = \"none\", base=False): nothing carries its weight",
-        ));
-    }
-    let mut adj: Vec<Vec<usize>> = vec![vec![]; nb];
-    for c in model.contacts() {
-        adj[c.a].push(c.b);
-        adj[c.b].push(c.a);
-    }
-    let mut stack: Vec<usize> = (0..nb).filter(|&i| seen[i]).collect();
-    while let Some(i) = stack.pop() {
-        for &j in &adj[i] {
-            if !seen[j] {
-                seen[j] = true;
-                stack.push(j);
-            }
-        }
-    }
-    let loose: Vec<usize> = (0..nb).filter(|&i| !seen[i]).collect();
-    if let Some(&first) = loose.first() {
-        return Err(InputError::new_err(format!(
-            "{} block{} not joined to the base by any chain of contacts, {} first: nothing carries {}",
-            loose.len(),
-            if loose.len() == 1 { " is" } else { "s are" },
-            model.block_name(first),
-            if loose.len() == 1 { "it" } else { "them" },
-        )));
-    }
-    Ok(())
-}
-
 /// An (m, 3) array of a vector of each contact.
 fn contact_vectors<'py>(py: Python<'py>, model: &Model3, f: impl Fn(&space::Contact) -> [f64; 3]) -> Bound<'py, PyArray2<f64>> {
     let rows: Vec<[f64; 3]> = model.contacts().iter().map(f).collect();
@@ -429,7 +390,7 @@ impl PyModel3D {
             max_iterations: max_iterations.map_or(Ok(defaults.max_iterations), |v| count("max_iterations", v, 1))?,
             ..defaults
         };
-        check_supports(&self.inner)?;
+        self.inner.check_supports().map_err(to_py)?;
         limit_run(
             py,
             &self.inner,
@@ -478,7 +439,7 @@ impl PyModel3D {
             (unbalanced_ratio, damping, damping_coefficient),
             (time_step, safety, threads),
         )?;
-        check_supports(&self.inner)?;
+        self.inner.check_supports().map_err(to_py)?;
         analyse(py, &self.inner, progress, move |model, monitor| {
             explicit::solve_3d_with(model, &opts, monitor).map(PyResults::from)
         })

@@ -358,7 +358,7 @@ impl<'a> Integrator<'a> {
 }
 
 /// The mass of each dof (m, m, J per block).
-fn masses(model: &Model) -> Vec<f64> {
+pub(super) fn masses(model: &Model) -> Vec<f64> {
     (0..model.n_blocks()).flat_map(|i| [model.mass()[i], model.mass()[i], model.inertia()[i]]).collect()
 }
 

@@ -279,36 +279,12 @@ fn monitor_due(k: usize, every: usize, last: &mut Instant) -> bool {
 
 /// The stable time step of the model: `2 / omega_max` with a Gershgorin bound on `omega_max`.
 pub fn critical_time_step(model: &Model) -> f64 {
-    let nb = model.n_blocks();
-    let mut row = vec![0.0; 3 * nb];
+    let mut row = vec![0.0; 3 * model.n_blocks()];
     for (k, it) in model.interfaces().iter().enumerate() {
-        let law = model.law(k);
-        let s = &model.sections()[k];
-        let d = crate::joint::stiffness(law, s);
-        let dofs = it.dofs();
-        let b = &it.b_mat;
-        for i in 0..6 {
-            for j in 0..6 {
-                let kij = d[0] * b[0][i] * b[0][j] + d[1] * b[1][i] * b[1][j] + d[2] * b[2][i] * b[2][j];
-                row[dofs[i]] += kij.abs();
-            }
-        }
+        let d = crate::joint::stiffness(model.law(k), &model.sections()[k]);
+        add_gershgorin(&mut row, &it.dofs(), &it.b_mat, d);
     }
-    let fixed = model.fixed();
-    let mut w2: f64 = 0.0;
-    for i in 0..nb {
-        let mm = [model.mass()[i], model.mass()[i], model.inertia()[i]];
-        for k in 0..3 {
-            if !fixed[3 * i + k] {
-                w2 = w2.max(row[3 * i + k] / mm[k]);
-            }
-        }
-    }
-    if w2 > 0.0 {
-        2.0 / w2.sqrt()
-    } else {
-        f64::INFINITY
-    }
+    gershgorin_step(&row, &integrator::masses(model), model.fixed())
 }
 
 pub mod contact;

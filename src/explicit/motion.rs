@@ -211,6 +211,33 @@ impl Motion {
     }
 }
 
+/// Gershgorin's bound on an interface's share of the stiffness matrix `B^T diag(d) B`: the
+/// absolute values of its entries, added to the rows of its dofs `dofs` in `row`.
+pub(super) fn add_gershgorin<const N: usize>(row: &mut [f64], dofs: &[usize], b: &[[f64; N]; 3], d: [f64; 3]) {
+    for i in 0..N {
+        for j in 0..N {
+            let kij = d[0] * b[0][i] * b[0][j] + d[1] * b[1][i] * b[1][j] + d[2] * b[2][i] * b[2][j];
+            row[dofs[i]] += kij.abs();
+        }
+    }
+}
+
+/// The stable time step `2 / omega_max` of a model whose stiffness rows sum to `row` (see
+/// [`add_gershgorin`]), with the masses `mass` of its dofs (the fixed ones left out).
+pub(super) fn gershgorin_step(row: &[f64], mass: &[f64], fixed: &[bool]) -> f64 {
+    let mut w2: f64 = 0.0;
+    for ((&r, &m), &f) in row.iter().zip(mass).zip(fixed) {
+        if !f {
+            w2 = w2.max(r / m);
+        }
+    }
+    if w2 > 0.0 {
+        2.0 / w2.sqrt()
+    } else {
+        f64::INFINITY
+    }
+}
+
 /// The time step: `dt` if given (finite, positive and within the stability limit `crit`), else
 /// `safety` (in (0, 1]) times that limit, which some stiffness must bound.
 pub(super) fn checked_time_step(crit: f64, dt: Option<f64>, safety: f64) -> Result<f64, Error> {

@@ -134,42 +134,28 @@ fn jump_rows(pt: &Pt, frame: &[[f64; 3]; 3]) -> [[f64; 12]; 3] {
 /// The stable time step of a 3D model: `2 / omega_max`, with a Gershgorin bound on `omega_max`
 /// from the points' elastic stiffnesses.
 pub fn critical_time_step_3d(model: &Model3) -> f64 {
-    let nb = model.n_blocks();
-    let mut row = vec![0.0; 6 * nb];
+    let mut row = vec![0.0; 6 * model.n_blocks()];
     for (k, c) in model.contacts().iter().enumerate() {
         // each corner a spring of kN A / 4 (the contact's law is softer in rotation: an upper bound)
         let law = CornerLaw::new(model.law(k), c.area);
         let frame = [c.n, c.t1, c.t2];
-        let d = [0.25 * law.kn, law.kt, law.kt];
         let dofs: Vec<usize> = (0..12).map(|j| if j < 6 { 6 * c.a + j } else { 6 * c.b + j - 6 }).collect();
         for x in &c.corners {
             let pt = Pt { ra: sub(*x, model.centroids()[c.a]), rb: sub(*x, model.centroids()[c.b]) };
-            let b = jump_rows(&pt, &frame);
-            for i in 0..12 {
-                for j in 0..12 {
-                    let kij = d[0] * b[0][i] * b[0][j] + d[1] * b[1][i] * b[1][j] + d[2] * b[2][i] * b[2][j];
-                    row[dofs[i]] += kij.abs();
-                }
-            }
+            add_gershgorin(&mut row, &dofs, &jump_rows(&pt, &frame), [0.25 * law.kn, law.kt, law.kt]);
         }
     }
-    let fixed = model.fixed();
-    let mut w2: f64 = 0.0;
-    for i in 0..nb {
-        let m = model.mass()[i];
-        let j = model.inertia()[i];
-        let mm = [m, m, m, j[0], j[1], j[2]];
-        for k in 0..6 {
-            if !fixed[6 * i + k] {
-                w2 = w2.max(row[6 * i + k] / mm[k]);
-            }
-        }
-    }
-    if w2 > 0.0 {
-        2.0 / w2.sqrt()
-    } else {
-        f64::INFINITY
-    }
+    gershgorin_step(&row, &masses_3d(model), model.fixed())
+}
+
+/// The mass of each dof (m, m, m, Jx, Jy, Jz per block).
+fn masses_3d(model: &Model3) -> Vec<f64> {
+    (0..model.n_blocks())
+        .flat_map(|i| {
+            let (m, j) = (model.mass()[i], model.inertia()[i]);
+            [m, m, m, j[0], j[1], j[2]]
+        })
+        .collect()
 }
 
 impl<'a> Integrator3<'a> {
@@ -184,13 +170,7 @@ impl<'a> Integrator3<'a> {
             return Err(Error::input(format!("{nb} blocks and {m} contacts: the explicit solver takes fewer than 2^31 of each")));
         }
         let (pool, par, _) = start_pool(threads, m, PAR_MIN_CONTACTS)?;
-        let mass: Vec<f64> = (0..nb)
-            .flat_map(|i| {
-                let (mi, j) = (model.mass()[i], model.inertia()[i]);
-                [mi, mi, mi, j[0], j[1], j[2]]
-            })
-            .collect();
-        let motion = Motion::new(mass, model.fixed(), vec![0.0; 6 * nb], dt, damping, pool, par)?;
+        let motion = Motion::new(masses_3d(model), model.fixed(), vec![0.0; 6 * nb], dt, damping, pool, par)?;
         let cen = model.centroids();
         let mut cts = Vec::with_capacity(m);
         let mut pts = Vec::with_capacity(4 * m);
@@ -609,6 +589,7 @@ pub fn solve_3d_with(model: &Model3, opts: &ExplicitOptions, monitor: &mut dyn F
         return Err(Error::input("3D explicit analyses are load-controlled (analysis.control = \"load\")"));
     }
     check_dry_3d(model)?;
+    model.check_supports()?;
     if model.n_wall() == 0 {
         return Err(Error::input("the model has no wall blocks"));
     }
@@ -747,6 +728,7 @@ pub fn simulate_3d_with(model: &Model3, opts: &DynamicOptions<[f64; 6]>, monitor
         return Err(Error::input("stiffness_damping (beta): stiffness-proportional damping is the plane's only; 3D time histories take mass-proportional or local damping"));
     }
     check_dry_3d(model)?;
+    model.check_supports()?;
     let dt = super::time_history::dashpot_time_step(critical_time_step_3d(model), history_time_step_limit_3d(model), opts)?;
     let mut s = Integrator3::new(model, Some(dt), opts.safety, opts.damping, opts.threads)?;
     s.set_large(opts.large_rotations);

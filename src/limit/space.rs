@@ -310,6 +310,7 @@ pub(super) fn limit_analysis_3d_aligned(
     monitor: &mut dyn FnMut(&LimitProgress) -> bool,
 ) -> Result<Results<[f64; 6]>> {
     validate(opts)?;
+    model.check_supports()?;
     let start = Instant::now();
     let mut space = Space::new(model, align)?;
     let sol = space.lp.solve(opts, 0, monitor)?;

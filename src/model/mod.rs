@@ -17,6 +17,8 @@ mod build;
 mod keys;
 mod supports;
 
+pub(crate) use supports::unsupported;
+
 use crate::geometry::Rect;
 use crate::interface::{BlockKind, Family, Interface};
 use crate::joint::{JointLaw, Kinds, Section};

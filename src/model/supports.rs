@@ -38,29 +38,13 @@ impl Model {
     /// with a fixed dof (the base, or a user support).
     pub fn check_supports(&self) -> Result<()> {
         let nb = self.rects.len();
-        let mut adj: Vec<Vec<usize>> = vec![vec![]; nb];
-        for it in &self.interfaces {
-            adj[it.a].push(it.b);
-            adj[it.b].push(it.a);
-        }
-        let mut seen: Vec<bool> = (0..nb)
-            .map(|i| self.fixed[3 * i..3 * i + 3].iter().any(|&f| f))
-            .collect();
-        if !seen.iter().any(|&s| s) {
+        let held: Vec<bool> = (0..nb).map(|i| self.fixed[3 * i..3 * i + 3].iter().any(|&f| f)).collect();
+        if !held.iter().any(|&s| s) {
             return Err(Error::input(
                 "the wall has no support: no base ([base] kind = \"none\") and no fixed dof",
             ));
         }
-        let mut stack: Vec<usize> = (0..nb).filter(|&i| seen[i]).collect();
-        while let Some(i) = stack.pop() {
-            for &j in &adj[i] {
-                if !seen[j] {
-                    seen[j] = true;
-                    stack.push(j);
-                }
-            }
-        }
-        let loose: Vec<usize> = (0..nb).filter(|&i| !seen[i]).collect();
+        let loose = unsupported(held, self.interfaces.iter().map(|it| (it.a, it.b)));
         if !loose.is_empty() {
             let names: Vec<String> = loose.iter().take(5).map(|&i| self.block_name(i)).collect();
             return Err(Error::input(format!(
@@ -72,4 +56,26 @@ impl Model {
         }
         Ok(())
     }
+}
+
+/// The blocks that no chain of interfaces `pairs` joins to a block of `held` (a block with a
+/// fixed dof), in increasing order: the plane's and the 3D model's check of their supports.
+pub(crate) fn unsupported(held: Vec<bool>, pairs: impl Iterator<Item = (usize, usize)>) -> Vec<usize> {
+    let nb = held.len();
+    let mut adj: Vec<Vec<usize>> = vec![vec![]; nb];
+    for (a, b) in pairs {
+        adj[a].push(b);
+        adj[b].push(a);
+    }
+    let mut seen = held;
+    let mut stack: Vec<usize> = (0..nb).filter(|&i| seen[i]).collect();
+    while let Some(i) = stack.pop() {
+        for &j in &adj[i] {
+            if !seen[j] {
+                seen[j] = true;
+                stack.push(j);
+            }
+        }
+    }
+    (0..nb).filter(|&i| !seen[i]).collect()
 }

@@ -168,6 +168,29 @@ impl Model3 {
     pub fn laws(&self) -> &JointLaws {
         &self.laws
     }
+    /// Refuses a wall that nothing holds: no base (so no fixed block), or blocks that no chain of
+    /// contacts joins to the base (limit analysis would not converge on it, and the explicit
+    /// solver would see the wall fall under its weight).
+    pub fn check_supports(&self) -> Result<()> {
+        let nb = self.n_blocks();
+        let held: Vec<bool> = (0..nb).map(|i| self.fixed[6 * i..6 * i + 6].iter().any(|&f| f)).collect();
+        if !held.iter().any(|&s| s) {
+            return Err(Error::input(
+                "the wall has no support: no base ([base] kind = \"none\", base=False): nothing carries its weight",
+            ));
+        }
+        let loose = crate::model::unsupported(held, self.contacts.iter().map(|c| (c.a, c.b)));
+        if let Some(&first) = loose.first() {
+            return Err(Error::input(format!(
+                "{} block{} not joined to the base by any chain of contacts, {} first: nothing carries {}",
+                loose.len(),
+                if loose.len() == 1 { " is" } else { "s are" },
+                self.block_name(first),
+                if loose.len() == 1 { "it" } else { "them" },
+            )));
+        }
+        Ok(())
+    }
     /// The same model with every joint's friction and dilatancy multiplied by `factor` (the
     /// explicit solver's upper bound from limit analysis: the pyramid circumscribed about the cone).
     pub fn with_friction_scaled(&self, factor: f64) -> Model3 {

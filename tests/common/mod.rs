@@ -17,7 +17,12 @@ pub fn blocks_model(blocks: Vec<Rect>, law: JointLaw) -> Model {
 
 /// Ferris & Tin-Loi wall with `courses` courses (6: wall 1, 10: wall 2).
 pub fn ferris(courses: usize, law: JointLaw) -> Model {
-    let blocks = running_bond(&RunningBond {
+    blocks_model(ferris_blocks(courses), law)
+}
+
+/// The blocks of [`ferris`].
+pub fn ferris_blocks(courses: usize) -> Vec<Rect> {
+    running_bond(&RunningBond {
         block_length: 0.4,
         block_height: 0.175,
         courses,
@@ -26,8 +31,7 @@ pub fn ferris(courses: usize, law: JointLaw) -> Model {
         first_course: FirstCourse::Half,
         openings: vec![],
     })
-    .unwrap();
-    blocks_model(blocks, law)
+    .unwrap()
 }
 
 /// |got - want| <= rel * |want|, with a message.

@@ -7,12 +7,11 @@ plan in degrees from +x towards +y.
 from __future__ import annotations
 
 import math
-from collections import Counter
-from typing import Any, List, Optional, Sequence
+from typing import Any, Optional, Sequence
 
 import numpy as np
 
-from .._mechanism import CRACK_TOLERANCE, MOVING_FRACTION, connected_parts as _connected_parts, plural as _plural
+from .._mechanism import CRACK_TOLERANCE, MOVING_FRACTION, connected_parts as _connected_parts, mechanism_text
 
 __all__ = ["box_corners", "corner_motion", "moved_corners", "contact_jumps", "describe_mechanism", "direction_text"]
 
@@ -137,11 +136,6 @@ def _describe_part(boxes: np.ndarray, motion: np.ndarray, part: Sequence[int]) -
     return f"turning about an axis along {named} through {where}"
 
 
-def _family_counts(indices: Sequence[int], families: Sequence[str]) -> str:
-    counts = Counter(families[k] for k in indices)
-    return ", ".join(f"{n} {fam}" for fam, n in counts.most_common())
-
-
 def describe_mechanism(model: Any, results: Any) -> str:
     """One line on the collapse mechanism of a 3D wall (``Results.mechanism``: the collapse velocities): how many
     wall blocks move, the parts they form (blocks held together by contacts the crack does not cross), each sliding
@@ -174,29 +168,6 @@ def describe_mechanism(model: Any, results: Any) -> str:
     cracked[opens + slips + rocks] = True
     parts = _connected_parts(moving, np.asarray(model.interface_blocks).reshape(-1, 2), list(cracked))
     parts.sort(key=len, reverse=True)
-    if n_moving == 0:
-        head = "only the top beam moves"
-    else:
-        plural = "s" if n_moving == 1 and not beam else ""
-        head = f"{n_moving} of {n} block{'s' if n > 1 else ''}{beam} move{plural}"
-    if len(parts) == 1:
-        text = f"{head} as one part, {_describe_part(boxes, mech, parts[0])}"
-    else:
-        shown = "; ".join(f"{_part_name(p, n)} {_describe_part(boxes, mech, p)}" for p in parts[:2])
-        more = f"; {len(parts) - 2} more" if len(parts) > 2 else ""
-        text = f"{head} in {len(parts)} parts: {shown}{more}"
-    if cracked.any():
-        pieces = [
-            f"{len(ks)} {what} ({_family_counts(ks, families)})"
-            for ks, what in ((opens, "open"), (slips, "slide"), (rocks, "rock"))
-            if ks
-        ]
-        text += f"; the crack runs through {_plural(int(cracked.sum()), 'contact')}: " + ", ".join(pieces)
-    return text
-
-
-def _part_name(part: List[int], n_wall: int) -> str:
-    blocks = sum(1 for i in part if i < n_wall)
-    if blocks == len(part):
-        return _plural(blocks, "block")
-    return f"{_plural(blocks, 'block')} and the top beam" if blocks else "the top beam"
+    crack = ((opens, "open"), (slips, "slide"), (rocks, "rock"))
+    describe = lambda part: _describe_part(boxes, mech, part)  # noqa: E731
+    return mechanism_text(n_moving, n, beam, parts, describe, crack, families, "contact")
