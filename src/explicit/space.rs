@@ -588,7 +588,7 @@ pub fn solve_3d_with(model: &Model3, opts: &ExplicitOptions, monitor: &mut dyn F
     if opts.control != Control::Load {
         return Err(Error::input("3D explicit analyses are load-controlled (analysis.control = \"load\")"));
     }
-    check_dry_3d(model)?;
+    model.check_dry("the explicit solver in 3D")?;
     model.check_supports()?;
     if model.n_wall() == 0 {
         return Err(Error::input("the model has no wall blocks"));
@@ -635,24 +635,6 @@ pub fn solve_3d_with(model: &Model3, opts: &ExplicitOptions, monitor: &mut dyn F
     let up = crate::limit::limit_analysis_3d_with(&out, &crate::limit::LimitOptions::default(), &mut poll)?;
     let upper = if up.status == Status::Collapse { up.collapse_multiplier } else { f64::INFINITY };
     Ok(super::evidence::judge(opts, res, lp, Some(upper)))
-}
-
-/// Refuses joints the 3D explicit solver does not model: cohesion and tensile strength (dry
-/// joints only, as 3D limit analysis).
-pub(super) fn check_dry_3d(model: &Model3) -> Result<(), Error> {
-    use crate::interface::Family;
-    for f in [Family::Bed, Family::Head, Family::Base, Family::Top] {
-        let l = model.laws().of(f);
-        if l.cohesion != 0.0 || l.tensile_strength != 0.0 {
-            return Err(Error::input(format!(
-                "the explicit solver in 3D takes dry joints (cohesion and tensile_strength 0); the {} joints have cohesion {} Pa and tensile_strength {} Pa",
-                f.name(),
-                l.cohesion,
-                l.tensile_strength
-            )));
-        }
-    }
-    Ok(())
 }
 
 /// The wall block whose top is highest (the first of them): the default control block, whose
@@ -727,7 +709,7 @@ pub fn simulate_3d_with(model: &Model3, opts: &DynamicOptions<[f64; 6]>, monitor
     if opts.stiffness_damping != 0.0 {
         return Err(Error::input("stiffness_damping (beta): stiffness-proportional damping is the plane's only; 3D time histories take mass-proportional or local damping"));
     }
-    check_dry_3d(model)?;
+    model.check_dry("the explicit solver in 3D")?;
     model.check_supports()?;
     let dt = super::time_history::dashpot_time_step(critical_time_step_3d(model), history_time_step_limit_3d(model), opts)?;
     let mut s = Integrator3::new(model, Some(dt), opts.safety, opts.damping, opts.threads)?;

@@ -78,16 +78,8 @@ impl Space {
     pub(super) fn new(model: &Model3, align: bool) -> Result<Space> {
         let nb = model.n_blocks();
         let contacts = model.contacts();
-        for (k, c) in contacts.iter().enumerate() {
-            let law = model.law(k);
-            if law.cohesion > 0.0 || law.tensile_strength > 0.0 {
-                return Err(Error::input(format!(
-                    "limit analysis in 3D takes dry joints (cohesion and tensile_strength 0); the {} joints have cohesion {} Pa and tensile_strength {} Pa",
-                    c.family.name(),
-                    law.cohesion,
-                    law.tensile_strength
-                )));
-            }
+        model.check_dry("limit analysis in 3D")?;
+        for c in contacts {
             if c.corners.len() != CORNERS {
                 return Err(Error::input(format!(
                     "limit analysis in 3D takes contact polygons of {CORNERS} corners; the contact of {} and {} has {}",

@@ -168,6 +168,21 @@ impl Model3 {
     pub fn laws(&self) -> &JointLaws {
         &self.laws
     }
+    /// Refuses joints with cohesion or tensile strength: `what` (an analysis in 3D) takes dry joints.
+    pub fn check_dry(&self, what: &str) -> Result<()> {
+        for (k, c) in self.contacts.iter().enumerate() {
+            let law = self.law(k);
+            if law.cohesion > 0.0 || law.tensile_strength > 0.0 {
+                return Err(Error::input(format!(
+                    "{what} takes dry joints (cohesion and tensile_strength 0); the {} joints have cohesion {} Pa and tensile_strength {} Pa",
+                    c.family.name(),
+                    law.cohesion,
+                    law.tensile_strength
+                )));
+            }
+        }
+        Ok(())
+    }
     /// Refuses a wall that nothing holds: no base (so no fixed block), or blocks that no chain of
     /// contacts joins to the base (limit analysis would not converge on it, and the explicit
     /// solver would see the wall fall under its weight).
