@@ -24,9 +24,9 @@
 //! vertices for joints with strength). Each iteration solves the normal equations
 //! `A Theta A^T dy = r`, whose matrix is assembled exactly as the stiffness matrix is (one 3 x 3
 //! block per interface, on the same pattern) and factorized by the crate's `linalg` module (LDL^T on the
-//! sparse Cholesky's symbolic analysis, which is done once), each solve refined twice on the
-//! exact operator. lambda, a free variable, borders the system: two solves with one
-//! factorization. The dual variables of the equilibrium rows are the block velocities of the
+//! sparse Cholesky's symbolic analysis, which is done once). The direction kept is corrected
+//! until it meets the primal equation and lambda's dual row. lambda, a free variable, borders
+//! the system: two solves with one factorization. The dual variables of the equilibrium rows are the block velocities of the
 //! collapse mechanism.
 //!
 //! ```
@@ -107,12 +107,17 @@ const REDUCED_ACCURACY: f64 = 100.0;
 /// lambda = 1), beyond which no multiplier in the range reaches them.
 const STRENGTH_CAP: f64 = 1e4;
 
-/// Gondzio's centrality correctors per iteration, at most: more cut iterations but not time
-/// (BENCHMARKS.md).
-const CORRECTORS: usize = 1;
+/// Gondzio's centrality correctors per iteration, at most: one solve each against a
+/// factorization per iteration; at 10^4 and 10^5 blocks four take a third fewer iterations than
+/// one, in about the same time at 10^4 (BENCHMARKS.md).
+const CORRECTORS: usize = 4;
 
-/// Steps of iterative refinement of a solve of the normal equations, at most.
+/// Corrections of a search direction, at most (one solve each).
 const REFINEMENTS: usize = 2;
+
+/// A search direction meets the primal equation to this, relative to the right-hand side's
+/// scale, and lambda's dual row to this: far below the tolerance.
+const DIRECTION_ACCURACY: f64 = 1e-12;
 
 /// The largest `max_iterations` accepted.
 pub const MAX_ITERATIONS: usize = 100_000;
