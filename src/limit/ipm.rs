@@ -12,9 +12,22 @@ pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-/// The largest step in (0, 1] that keeps `v + a dv >= 0`.
+/// The largest step in (0, 1] that keeps `v + a dv >= 0`. Eight running minima, one per lane,
+/// so that the compiler vectorizes the divisions (one minimum is a chain of dependent steps:
+/// 9% of an analysis in 3D).
 pub(super) fn max_step(v: &[f64], dv: &[f64]) -> f64 {
-    v.iter().zip(dv).fold(1.0, |a, (&x, &d)| if d < 0.0 { a.min(-x / d) } else { a })
+    const LANES: usize = 8;
+    let ratio = |x: f64, d: f64| if d < 0.0 { -x / d } else { 1.0 };
+    let mut lanes = [1.0f64; LANES];
+    let (vc, dc) = (v.chunks_exact(LANES), dv.chunks_exact(LANES));
+    let (vr, dr) = (vc.remainder(), dc.remainder());
+    for (x, d) in vc.zip(dc) {
+        for k in 0..LANES {
+            lanes[k] = lanes[k].min(ratio(x[k], d[k]));
+        }
+    }
+    let rest = vr.iter().zip(dr).fold(1.0f64, |a, (&x, &d)| a.min(ratio(x, d)));
+    lanes.iter().fold(rest, |a, &l| a.min(l))
 }
 
 /// The interior point's iterate. Variables: `nv` per element (in the plane the last, theta,
