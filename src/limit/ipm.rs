@@ -429,8 +429,8 @@ impl Lp {
     /// Gondzio's centrality correctors on direction `d` (of complementarity targets `rxs`,
     /// `rtv`): aim a longer step at products within [0.1, 10] of `target`, where the
     /// predictor-corrector's step left them outside; kept while they lengthen the step (one
-    /// solve each, against a factorization per iteration), at most [`CORRECTORS`]. The
-    /// direction kept, with its targets.
+    /// solve each, against a factorization per iteration), at most [`CORRECTORS`] (one below
+    /// [`CORRECTORS_FROM`] equations). The direction kept, with its targets.
     fn centrality_correctors(
         &mut self,
         ipm: &Ipm,
@@ -443,7 +443,8 @@ impl Lp {
         let (p, res, theta, u) = (&ipm.p, &ipm.res, &ipm.theta, &ipm.u);
         let (m, nx) = (self.n_bounded(), theta.len());
         let (mut d, mut rxs, mut rtv) = (d, rxs, rtv);
-        for _ in 0..CORRECTORS {
+        let most = if self.n < CORRECTORS_FROM { 1 } else { CORRECTORS };
+        for _ in 0..most {
             let (ap, ad) = p.max_steps(&d);
             if ap.min(ad) >= 0.9 {
                 break;

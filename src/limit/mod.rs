@@ -108,9 +108,13 @@ const REDUCED_ACCURACY: f64 = 100.0;
 const STRENGTH_CAP: f64 = 1e4;
 
 /// Gondzio's centrality correctors per iteration, at most: one solve each against a
-/// factorization per iteration; at 10^4 and 10^5 blocks four take a third fewer iterations than
-/// one, in about the same time at 10^4 (BENCHMARKS.md).
+/// factorization per iteration. From a few hundred blocks four take fewer iterations than one
+/// (a third fewer at 10^4 and 10^5) in less time (BENCHMARKS.md).
 const CORRECTORS: usize = 4;
+
+/// Below this many equations one corrector: on walls of tens of blocks more correctors cost
+/// more than they save (Ferris & Tin-Loi wall 2: 1.35 against 1.58 ms, 11 iterations both).
+const CORRECTORS_FROM: usize = 500;
 
 /// Corrections of a search direction, at most (one solve each).
 const REFINEMENTS: usize = 2;
