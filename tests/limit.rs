@@ -62,7 +62,10 @@ fn the_non_associative_estimate_lies_below_the_associative_bound() {
     assert_close(c.upper_bound, 0.6429, 1e-4, "associative bound");
     assert!(c.sequence >= 1);
     assert_eq!(c.multiplier, r.last_equilibrium);
-    assert!(r.last_equilibrium <= c.upper_bound * (1.0 + 1e-9), "{} above {}", r.last_equilibrium, c.upper_bound);
+    // each program's lambda is known to the interior point's tolerance (its duality gap, relative to
+    // 1 + lambda): on wall 1 the two agree to that, the estimate's mechanism being the bound's
+    let accuracy = 2.0 * LimitOptions::default().tolerance * (1.0 + c.upper_bound);
+    assert!(r.last_equilibrium <= c.upper_bound + accuracy, "{} above {}", r.last_equilibrium, c.upper_bound);
     assert!(r.error.unwrap().contains("is an estimate"));
 }
 
