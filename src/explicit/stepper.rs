@@ -2,6 +2,26 @@
 
 use super::*;
 
+/// Puts `s` under `dead + live_multiplier live` at rest (its interface forces and
+/// accelerations with them): those loads, for [`run`].
+#[cfg(feature = "bench-internals")]
+fn loaded<K: Kernel>(s: &mut K, dead: &[f64], live: &[f64], live_multiplier: f64) -> Vec<f64> {
+    let f: Vec<f64> = dead.iter().zip(live).map(|(d, l)| d + live_multiplier * l).collect();
+    s.f_ext.copy_from_slice(&f);
+    s.interface_forces();
+    s.accelerations();
+    f
+}
+
+/// `k` time steps of `s` under the fixed loads `f`.
+#[cfg(feature = "bench-internals")]
+fn run<K: Kernel>(s: &mut K, f: &[f64], k: usize) {
+    let mut set_ext = |fe: &mut [f64], _: &[f64]| fe.copy_from_slice(f);
+    for _ in 0..k {
+        s.step(&mut set_ext, None);
+    }
+}
+
 /// A bare time stepper over the integrator of [`simulate`], for benchmarks and profiling (not
 /// part of the supported API): the model under its dead loads plus `live_multiplier` times its
 /// live loads, from rest, with the automatic time step (safety 0.8). [`Stepper::run`] does
@@ -30,20 +50,13 @@ impl<'a> Stepper<'a> {
     pub fn new(model: &'a Model, live_multiplier: f64, damping: Damping, large_rotations: bool, threads: usize) -> Result<Self, Error> {
         let mut s = Integrator::new(model, None, 0.8, damping, threads)?;
         s.set_large(large_rotations);
-        let f: Vec<f64> = model.dead_load().iter().zip(model.live_load()).map(|(d, l)| d + live_multiplier * l).collect();
-        s.f_ext.copy_from_slice(&f);
-        s.interface_forces();
-        s.accelerations();
+        let f = loaded(&mut s, model.dead_load(), model.live_load(), live_multiplier);
         Ok(Stepper { s, f })
     }
 
     /// `k` time steps.
     pub fn run(&mut self, k: usize) {
-        let f = &self.f;
-        let mut set_ext = |fe: &mut [f64], _: &[f64]| fe.copy_from_slice(f);
-        for _ in 0..k {
-            self.s.step(&mut set_ext, None);
-        }
+        run(&mut self.s, &self.f, k);
     }
 
     /// Number of interfaces.
@@ -91,20 +104,13 @@ impl<'a> Stepper3<'a> {
     pub fn new(model: &'a crate::space::Model3, live_multiplier: f64, damping: Damping, large_rotations: bool, threads: usize) -> Result<Self, Error> {
         let mut s = super::space::Integrator3::new(model, None, 0.8, damping, threads)?;
         s.set_large(large_rotations);
-        let f: Vec<f64> = model.dead_load().iter().zip(model.live_load()).map(|(d, l)| d + live_multiplier * l).collect();
-        s.m.f_ext.copy_from_slice(&f);
-        s.interface_forces();
-        s.m.accelerations();
+        let f = loaded(&mut s, model.dead_load(), model.live_load(), live_multiplier);
         Ok(Stepper3 { s, f })
     }
 
     /// `k` time steps.
     pub fn run(&mut self, k: usize) {
-        let f = &self.f;
-        let mut set_ext = |fe: &mut [f64], _: &[f64]| fe.copy_from_slice(f);
-        for _ in 0..k {
-            self.s.step(&mut set_ext, None);
-        }
+        run(&mut self.s, &self.f, k);
     }
 
     /// Number of contact points (four per contact).
