@@ -530,13 +530,18 @@ impl Lp {
         let mut r = vec![0.0; self.n];
         let mut c = vec![0.0; theta.len()];
         let accuracy = DIRECTION_ACCURACY * (1.0 + ipm.b_norm);
-        for _ in 0..REFINEMENTS {
-            self.apply(&d.dx, d.dlam, &mut r);
+        let residual = |lp: &Self, d: &Direction, r: &mut [f64]| {
+            lp.apply(&d.dx, d.dlam, r);
             r.iter_mut().zip(&res.rb).for_each(|(r, b)| *r = b - *r);
-            let r_l = res.rl + dot(&self.f_live, &d.dy);
-            if norm_inf(&r) <= accuracy && r_l.abs() <= DIRECTION_ACCURACY {
+            let r_l = res.rl + dot(&lp.f_live, &d.dy);
+            ((norm_inf(r) / accuracy).max(r_l.abs() / DIRECTION_ACCURACY), r_l)
+        };
+        let (mut worst, mut r_l) = residual(self, d, &mut r);
+        for _ in 0..REFINEMENTS {
+            if worst <= 1.0 {
                 break;
             }
+            let kept = (d.dx.clone(), d.dy.clone(), d.dlam);
             self.solve_normal(&mut r)?;
             let dl = -(r_l + dot(&self.f_live, &r)) / fu;
             r.iter_mut().zip(u).for_each(|(z, u)| *z += dl * u);
@@ -544,6 +549,14 @@ impl Lp {
             d.dlam += dl;
             self.apply_t(&r, &mut c);
             d.dx.iter_mut().zip(theta.iter().zip(&c)).for_each(|(dx, (t, c))| *dx += t * c);
+            let (now, now_l) = residual(self, d, &mut r);
+            if now >= worst {
+                // the factorization is too poor for the correction to converge: the direction
+                // before it is the better one
+                (d.dx, d.dy, d.dlam) = kept;
+                break;
+            }
+            (worst, r_l) = (now, now_l);
         }
         (d.ds, d.dt, d.dv) = self.duals_of(p, res, rxs, rtv, &d.dx);
         let ok = d.dx.iter().chain(&d.dy).chain(&d.ds).chain(&d.dv).all(|v| v.is_finite()) && d.dlam.is_finite();
