@@ -97,8 +97,10 @@ def test_translation_invariance(w: dict, dx: float, dy: float) -> None:
     a = model(w).solve_static(control="displacement", steps=30)
     b = model(w, shifted(w["blocks"], dx, dy)).solve_static(control="displacement", steps=30)
     assert a.status == b.status, (a.error, b.error)
-    peak = abs(a.collapse_multiplier)
-    assert abs(a.collapse_multiplier - b.collapse_multiplier) <= CURVE_TOL * peak
+    # the peak of the curve, whatever the status (collapse_multiplier is NaN but for a collapse: found, a
+    # 9-block wall whose displacement-controlled path peaks 0.45% below limit analysis, "stalled" both times)
+    peak = abs(a.last_equilibrium)
+    assert abs(a.last_equilibrium - b.last_equilibrium) <= CURVE_TOL * peak
     # round-off may cut a step differently; where the prescribed displacements coincide, every
     # point of the curve must
     if len(a.curve_displacement) == len(b.curve_displacement) and np.allclose(
