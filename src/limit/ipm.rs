@@ -366,8 +366,8 @@ impl Lp {
             return None;
         }
         let fu = dot(&self.f_live, &ipm.u);
-        let (d, rxs, rtv, target) = self.predictor_corrector(ipm, mu, fu)?;
-        let (mut d, rxs, rtv) = self.centrality_correctors(ipm, d, rxs, rtv, target, fu);
+        let (d, rxs, rtv, steps, target) = self.predictor_corrector(ipm, mu, fu)?;
+        let (mut d, rxs, rtv) = self.centrality_correctors(ipm, d, rxs, rtv, steps, target, fu);
         self.refine(ipm, &mut d, &rxs, &rtv, fu)?;
         ipm.p.step(&d);
         Some(())
@@ -405,15 +405,16 @@ impl Lp {
 
     /// Mehrotra's predictor (the affine direction) and corrector (centred at `sigma mu`, with
     /// sigma from the predictor's complementarity): the corrector's direction, its
-    /// complementarity targets and `sigma mu`; None if a solve fails.
-    fn predictor_corrector(&mut self, ipm: &Ipm, mu: f64, fu: f64) -> Option<(Direction, Vec<f64>, Vec<f64>, f64)> {
+    /// complementarity targets, the longest steps along it and `sigma mu`; None if a solve
+    /// fails.
+    #[allow(clippy::type_complexity)]
+    fn predictor_corrector(&mut self, ipm: &Ipm, mu: f64, fu: f64) -> Option<(Direction, Vec<f64>, Vec<f64>, (f64, f64), f64)> {
         let (p, res, theta, u) = (&ipm.p, &ipm.res, &ipm.theta, &ipm.u);
         let (m, nx) = (self.n_bounded(), theta.len());
         // predictor
         let rxs: Vec<f64> = p.x.iter().zip(&p.s).map(|(x, s)| -x * s).collect();
         let rtv: Vec<f64> = p.t.iter().zip(&p.v).map(|(t, v)| -t * v).collect();
-        let aff = self.direction(p, res, &rxs, &rtv, theta, u, fu)?;
-        let (ap, ad) = p.max_steps(&aff);
+        let (aff, (ap, ad)) = self.direction(p, res, &rxs, &rtv, theta, u, fu)?;
         let comp = |a: &[f64], da: &[f64], b: &[f64], db: &[f64]| {
             a.iter().zip(da).zip(b.iter().zip(db)).map(|((a, da), (b, db))| (a + ap * da) * (b + ad * db)).sum::<f64>()
         };
@@ -422,30 +423,33 @@ impl Lp {
         // corrector
         let rxs: Vec<f64> = (0..nx).map(|i| sigma * mu - p.x[i] * p.s[i] - aff.dx[i] * aff.ds[i]).collect();
         let rtv: Vec<f64> = (0..m).map(|i| sigma * mu - p.t[i] * p.v[i] - aff.dt[i] * aff.dv[i]).collect();
-        let d = self.direction(p, res, &rxs, &rtv, theta, u, fu)?;
-        Some((d, rxs, rtv, sigma * mu))
+        let (d, steps) = self.direction(p, res, &rxs, &rtv, theta, u, fu)?;
+        Some((d, rxs, rtv, steps, sigma * mu))
     }
 
     /// Gondzio's centrality correctors on direction `d` (of complementarity targets `rxs`,
     /// `rtv`): aim a longer step at products within [0.1, 10] of `target`, where the
     /// predictor-corrector's step left them outside; kept while they lengthen the step (one
     /// solve each, against a factorization per iteration), at most [`CORRECTORS`] (one below
-    /// [`CORRECTORS_FROM`] equations). The direction kept, with its targets.
+    /// [`CORRECTORS_FROM`] equations). `steps`: the longest steps along `d`. The direction
+    /// kept, with its targets.
+    #[allow(clippy::too_many_arguments)]
     fn centrality_correctors(
         &mut self,
         ipm: &Ipm,
         d: Direction,
         rxs: Vec<f64>,
         rtv: Vec<f64>,
+        steps: (f64, f64),
         target: f64,
         fu: f64,
     ) -> (Direction, Vec<f64>, Vec<f64>) {
         let (p, res, theta, u) = (&ipm.p, &ipm.res, &ipm.theta, &ipm.u);
         let (m, nx) = (self.n_bounded(), theta.len());
-        let (mut d, mut rxs, mut rtv) = (d, rxs, rtv);
+        let (mut d, mut rxs, mut rtv, mut steps) = (d, rxs, rtv, steps);
         let most = if self.n < CORRECTORS_FROM { 1 } else { CORRECTORS };
         for _ in 0..most {
-            let (ap, ad) = p.max_steps(&d);
+            let (ap, ad) = steps;
             if ap.min(ad) >= 0.9 {
                 break;
             }
@@ -458,13 +462,13 @@ impl Lp {
                 (0..nx).map(|i| rxs[i] + fix((p.x[i] + ap_t * d.dx[i]) * (p.s[i] + ad_t * d.ds[i]))).collect();
             let rtv2: Vec<f64> =
                 (0..m).map(|i| rtv[i] + fix((p.t[i] + ap_t * d.dt[i]) * (p.v[i] + ad_t * d.dv[i]))).collect();
-            let Some(d2) = self.direction(p, res, &rxs2, &rtv2, theta, u, fu) else {
+            let Some((d2, (ap2, ad2))) = self.direction(p, res, &rxs2, &rtv2, theta, u, fu) else {
                 break;
             };
-            let (ap2, ad2) = p.max_steps(&d2);
             if ap2 + ad2 < 1.01 * (ap + ad) {
                 break;
             }
+            steps = (ap2, ad2);
             d = d2;
             rxs = rxs2;
             rtv = rtv2;
@@ -574,11 +578,14 @@ impl Lp {
     }
 
     /// The Newton direction for the complementarity targets `rxs` (x s) and `rtv` (t v), with
-    /// the normal matrix factorized and `u = M^-1 f_live`; None if a solve fails.
+    /// the normal matrix factorized and `u = M^-1 f_live`, and the longest steps along it
+    /// ([`Iterate::max_steps`]); None if a solve fails or the direction is not finite.
     ///
     /// With `Theta = 1 / (s / x + v / t)` and `xi = rc - rxs / x + (rtv - v ru) / t`:
     /// `dx = Theta (A^T dy - xi)`, `M dy - f_live dlam = rb + A Theta xi` (M = A Theta A^T) and
     /// lambda's dual row `-f_live . dy = rl`: `dy = M^-1 (q + f_live dlam)`, one solve and `u`.
+    /// dx, ds, the step lengths and the check that they are finite come out of one pass over
+    /// the variables (in 3D they are 15 times the equations, and each pass streams memory).
     #[allow(clippy::too_many_arguments)]
     pub(super) fn direction(
         &mut self,
@@ -589,30 +596,62 @@ impl Lp {
         theta: &[f64],
         u: &[f64],
         fu: f64,
-    ) -> Option<Direction> {
+    ) -> Option<(Direction, (f64, f64))> {
+        const LANES: usize = 8;
         let m = self.n_bounded();
         let nx = theta.len();
         let mut xi: Vec<f64> = (0..nx).map(|i| res.rc[i] - rxs[i] / p.x[i]).collect();
         for i in 0..m {
             xi[self.bounded_var(i)] += (rtv[i] - p.v[i] * res.ru[i]) / p.t[i];
         }
-        let txi: Vec<f64> = theta.iter().zip(&xi).map(|(t, x)| t * x).collect();
+        // Theta xi, whose buffer then takes dx
+        let mut dx: Vec<f64> = theta.iter().zip(&xi).map(|(t, x)| t * x).collect();
         let mut q = vec![0.0; self.n];
-        self.apply(&txi, 0.0, &mut q);
+        self.apply(&dx, 0.0, &mut q);
         for (q, r) in q.iter_mut().zip(&res.rb) {
             *q += r;
         }
         self.solve_normal(&mut q)?;
-        // -f . (q + u dlam) = rl
+        // -f . (q + u dlam) = rl; q (finite after a solve) becomes dy
         let dlam = -(res.rl + dot(&self.f_live, &q)) / fu;
-        let dy: Vec<f64> = q.iter().zip(u).map(|(q, u)| q + dlam * u).collect();
-        let mut dx = vec![0.0; nx];
-        self.apply_t(&dy, &mut dx);
-        for i in 0..nx {
-            dx[i] = theta[i] * (dx[i] - xi[i]);
+        if !dlam.is_finite() {
+            return None;
         }
-        let (ds, dt, dv) = self.duals_of(p, res, rxs, rtv, &dx);
-        let ok = dx.iter().chain(&dy).chain(&ds).chain(&dv).all(|v| v.is_finite()) && dlam.is_finite();
-        ok.then_some(Direction { dx, ds, dt, dv, dy, dlam })
+        q.iter_mut().zip(u).for_each(|(q, u)| *q += dlam * u);
+        let dy = q;
+        self.apply_t(&dy, &mut dx);
+        let mut ds = vec![0.0; nx];
+        // per lane: the primal and dual step lengths, and a sum that is NaN if a value is not
+        let ratio = |v: f64, d: f64| if d < 0.0 { -v / d } else { 1.0 };
+        let (mut lp, mut ld, mut nan) = ([1.0f64; LANES], [1.0f64; LANES], [0.0f64; LANES]);
+        let whole = nx - nx % LANES;
+        for c in (0..whole).step_by(LANES) {
+            for k in 0..LANES {
+                let i = c + k;
+                let d = theta[i] * (dx[i] - xi[i]);
+                let e = (rxs[i] - p.s[i] * d) / p.x[i];
+                dx[i] = d;
+                ds[i] = e;
+                lp[k] = lp[k].min(ratio(p.x[i], d));
+                ld[k] = ld[k].min(ratio(p.s[i], e));
+                nan[k] += 0.0 * (d + e);
+            }
+        }
+        for i in whole..nx {
+            let d = theta[i] * (dx[i] - xi[i]);
+            let e = (rxs[i] - p.s[i] * d) / p.x[i];
+            dx[i] = d;
+            ds[i] = e;
+            lp[0] = lp[0].min(ratio(p.x[i], d));
+            ld[0] = ld[0].min(ratio(p.s[i], e));
+            nan[0] += 0.0 * (d + e);
+        }
+        let dt: Vec<f64> = (0..m).map(|i| res.ru[i] - dx[self.bounded_var(i)]).collect();
+        let dv: Vec<f64> = (0..m).map(|i| (rtv[i] - p.v[i] * dt[i]) / p.t[i]).collect();
+        let fold = |l: [f64; LANES]| l.iter().fold(1.0f64, |a, &b| a.min(b));
+        let ap = fold(lp).min(max_step(&p.t, &dt));
+        let ad = fold(ld).min(max_step(&p.v, &dv));
+        let finite = nan.iter().sum::<f64>() == 0.0 && dv.iter().all(|v| v.is_finite());
+        finite.then_some((Direction { dx, ds, dt, dv, dy, dlam }, (ap, ad)))
     }
 }
