@@ -41,7 +41,7 @@ def wall(courses: int) -> md.Model:
     return md.Model(blocks, gravity=10.0, joints={"default": {"friction": MU, "dilatancy": MU}})
 
 
-def random_wall(seed: int) -> tuple[md.Model, float]:
+def random_wall(seed: int, toothed: bool = False) -> tuple[md.Model, float]:
     """A seeded random running-bond wall of dry associative joints on a fixed base, and its friction mu.
 
     Drawn from numpy's default_rng(seed), so a seed gives the same wall on every machine: 10 to 500 blocks, block
@@ -51,7 +51,10 @@ def random_wall(seed: int) -> tuple[md.Model, float]:
     courses high, at least one block length from the ends and from each other, at least one course above the base
     and below the top (20 placements tried; a wall too small keeps fewer openings). A draw that md.Model refuses (a
     block cut off from the base) or whose block count falls outside 10..500 is drawn again from the same generator.
-    The wall may not stand under its dead load (a lintel course too long for its friction: seed 263, for one)."""
+    The wall may not stand under its dead load (a lintel course too long for its friction: seed 263, for one).
+    toothed: the openings are left toothed instead of cut, as masonry is built: the blocks whose centroid lies in an
+    opening are left out, the others kept whole (the same draws; a draw whose toothed wall md.Model refuses is drawn
+    again, so a seed's toothed wall may come from a later draw than its cut one)."""
     rng = np.random.default_rng(seed)
     while True:
         height = rng.uniform(0.1, 0.3)
@@ -80,7 +83,13 @@ def random_wall(seed: int) -> tuple[md.Model, float]:
             if all(x0 >= o[2] + block_length or x0 + w <= o[0] - block_length for o in openings):
                 openings.append([x0, y0, x0 + w, y0 + h])
         blocks = md.running_bond(block_length, height, courses, length, first_course=first,
-                                 openings=openings or None)
+                                 openings=None if toothed else (openings or None))
+        if toothed and openings:
+            centre = 0.5 * (blocks[:, :2] + blocks[:, 2:])
+            inside = np.zeros(len(blocks), dtype=bool)
+            for x0, y0, x1, y1 in openings:
+                inside |= (centre[:, 0] > x0) & (centre[:, 0] < x1) & (centre[:, 1] > y0) & (centre[:, 1] < y1)
+            blocks = blocks[~inside]
         if not 10 <= len(blocks) <= 500:
             continue
         try:
