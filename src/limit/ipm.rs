@@ -404,7 +404,8 @@ impl Lp {
     }
 
     /// Mehrotra's predictor (the affine direction) and corrector (centred at `sigma mu`, with
-    /// sigma from the predictor's complementarity): the corrector's direction, its
+    /// sigma from the predictor's complementarity, at most [`SIGMA_MAX`]): the corrector's
+    /// direction, its
     /// complementarity targets, the longest steps along it and `sigma mu`; None if a solve
     /// fails.
     #[allow(clippy::type_complexity)]
@@ -419,7 +420,7 @@ impl Lp {
             a.iter().zip(da).zip(b.iter().zip(db)).map(|((a, da), (b, db))| (a + ap * da) * (b + ad * db)).sum::<f64>()
         };
         let mu_aff = (comp(&p.x, &aff.dx, &p.s, &aff.ds) + comp(&p.t, &aff.dt, &p.v, &aff.dv)) / ipm.ncomp;
-        let sigma = (mu_aff / mu).powi(3).min(1.0);
+        let sigma = (mu_aff / mu).powi(3).min(SIGMA_MAX);
         // corrector
         let rxs: Vec<f64> = (0..nx).map(|i| sigma * mu - p.x[i] * p.s[i] - aff.dx[i] * aff.ds[i]).collect();
         let rtv: Vec<f64> = (0..m).map(|i| sigma * mu - p.t[i] * p.v[i] - aff.dt[i] * aff.dv[i]).collect();
@@ -622,6 +623,7 @@ impl Lp {
         self.apply_t(&dy, &mut dx);
         let mut ds = vec![0.0; nx];
         // per lane: the primal and dual step lengths, and a sum that is NaN if a value is not
+        // finite
         let ratio = |v: f64, d: f64| if d < 0.0 { -v / d } else { 1.0 };
         let (mut lp, mut ld, mut nan) = ([1.0f64; LANES], [1.0f64; LANES], [0.0f64; LANES]);
         let whole = nx - nx % LANES;
