@@ -238,10 +238,17 @@ impl Lp {
     }
 
     /// The interior point at its start: the right-hand side `b = f_dead - sum P V` (the cost is
-    /// -lambda, lambda free with its own column -f_live); the variables of least norm that
-    /// balance the dead loads at lambda = 0 (one solve with Theta = 1), shifted inside the
-    /// positive orthant, the bounded ones 1/2, and each product x s, t v = 1; and the work
-    /// arrays.
+    /// -lambda, lambda free with its own column -f_live), and Mehrotra's starting point: the
+    /// variables of least norm that balance the dead loads at lambda = 0 and the dual of least
+    /// norm that meets lambda's row (`y = u / (f_live . u)`, `s = -A^T y`, two solves with
+    /// Theta = 1), each shifted inside the positive orthant and then towards the other's scale
+    /// so that the products x s are alike; the bounded variables 1/2 with their products at the
+    /// same mean. And the work arrays.
+    ///
+    /// Why: from `y = 0`, `s = 1 / x` the first steps threw the dual objective to -10^4 (10^4
+    /// blocks) and the next three only undid it. Iterations from this start against that one
+    /// (sigma at most 0.2 in both): 40 blocks 10 / 13, 1,041 18 / 20, 10^4 36 / 37, 10^5
+    /// 56 / 64; in 3D 115 blocks 18 / 19, 1,785 30 / 35, 3,980 34 / 41, 9,331 93 / 104.
     fn start(&mut self) -> Ipm {
         let (n, nbd) = (self.n, self.n_bounded());
         let nx = self.nv * self.m;
@@ -252,27 +259,38 @@ impl Lp {
             }
         }
         let b_norm = norm_inf(&b);
-        let mut x = vec![1.0; nx];
+        let (mut x, mut s, mut y) = (vec![1.0; nx], vec![1.0; nx], vec![0.0; n]);
         self.assemble(&x);
-        let mut w = b.clone();
-        if self.normal.factorize().is_ok() && self.normal.solve_in_place(&mut w).is_ok() {
+        let (mut w, mut u) = (b.clone(), self.f_live.clone());
+        let solved = self.normal.factorize().is_ok()
+            && self.normal.solve_in_place(&mut w).is_ok()
+            && self.normal.solve_in_place(&mut u).is_ok();
+        let fu = dot(&self.f_live, &u);
+        if solved && fu > 0.0 {
             self.apply_t(&w, &mut x);
-            let shift = (0.1 * norm_inf(&x)).max(1.0);
-            x.iter_mut().for_each(|x| *x = x.max(0.0) + shift);
-        } else {
-            x.fill(1.0);
+            y.iter_mut().zip(&u).for_each(|(y, u)| *y = u / fu);
+            self.apply_t(&y, &mut s);
+            s.iter_mut().for_each(|s| *s = -*s);
+            // into the positive orthant, then each shifted by half the products over the
+            // other's sum
+            let lift = |v: &mut [f64]| {
+                let d = (-1.5 * v.iter().fold(f64::INFINITY, |a, &b| a.min(b))).max(0.0);
+                v.iter_mut().for_each(|v| *v += d);
+            };
+            lift(&mut x);
+            lift(&mut s);
+            let xs = dot(&x, &s);
+            let (dx, ds) = (0.5 * xs / s.iter().sum::<f64>(), 0.5 * xs / x.iter().sum::<f64>());
+            x.iter_mut().for_each(|v| *v += dx);
+            s.iter_mut().for_each(|v| *v += ds);
         }
+        // the bounded variables midway, their products x s and t v at the others' mean
+        let mu = (dot(&x, &s) / nx.max(1) as f64).max(f64::MIN_POSITIVE);
         for i in 0..nbd {
             x[self.bounded_var(i)] = 0.5;
+            s[self.bounded_var(i)] = 2.0 * mu;
         }
-        let p = Iterate {
-            s: x.iter().map(|x| 1.0 / x).collect(),
-            v: vec![2.0; nbd],
-            t: vec![0.5; nbd],
-            x,
-            lam: 0.0,
-            y: vec![0.0; n],
-        };
+        let p = Iterate { s, v: vec![2.0 * mu; nbd], t: vec![0.5; nbd], x, lam: 0.0, y };
         Ipm {
             b,
             b_norm,
