@@ -60,7 +60,7 @@ const NESTED_DISSECTION_MIN: usize = 150_000;
 /// solution along it comes out zero, as for a dependent row (Wright, "Modified Cholesky
 /// factorizations in interior-point algorithms for linear programming", 1999). Failing there and
 /// going to an LU instead left 32 of 1,000 textured 33-block walls short of the interior
-/// point's tolerance (the LU's directions no better); with it, one.
+/// point's tolerance (the LU's directions no better); with it, two.
 const ZERO_PIVOT_REPLACEMENT: f64 = 1e128;
 
 /// Up to this many equations a non-symmetric matrix is factorized dense (LU with partial

@@ -423,9 +423,8 @@ impl Lp {
 
     /// Mehrotra's predictor (the affine direction) and corrector (centred at `sigma mu`, with
     /// sigma from the predictor's complementarity, at most [`SIGMA_MAX`]): the corrector's
-    /// direction, its
-    /// complementarity targets, the longest steps along it and `sigma mu`; None if a solve
-    /// fails.
+    /// direction, its complementarity targets, the longest steps along it and `sigma mu`; None
+    /// if a solve fails.
     #[allow(clippy::type_complexity)]
     fn predictor_corrector(&mut self, ipm: &Ipm, mu: f64, fu: f64) -> Option<(Direction, Vec<f64>, Vec<f64>, (f64, f64), f64)> {
         let (p, res, theta, u) = (&ipm.p, &ipm.res, &ipm.theta, &ipm.u);
