@@ -350,8 +350,8 @@ impl SparseLu {
     /// pivoting: for a symmetric matrix that is positive semi-definite in exact arithmetic but
     /// on which rounding made a Cholesky pivot non-positive (an interior point's normal
     /// equations near the optimum); a tiny pivot of either sign is kept as it is, a zero one
-    /// replaced by [`ZERO_PIVOT_REPLACEMENT`], and the caller refines the solves. An error for
-    /// non-finite values.
+    /// replaced by [`ZERO_PIVOT_REPLACEMENT`], and the caller corrects what it solves. An error
+    /// for non-finite values.
     pub fn factorize_ldlt(&mut self) -> Result<()> {
         if self.values.iter().any(|v| !v.is_finite()) {
             return Err(Error::Convergence("the matrix has a non-finite entry".into()));
