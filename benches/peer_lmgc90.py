@@ -10,7 +10,7 @@ Run, from the repository's root, in a venv where `make develop` built masonry_de
 What it measures, for each wall:
 
 * ours: `Model3D(boxes, joints={"default": {"friction": mu, "dilatancy": mu}}).solve_limit()`, the collapse
-  multiplier of the associative model with friction pyramids inscribed in the cone (a linear program), and its own
+  multiplier of the associative model with Coulomb's cone (a second-order cone program), and its own
   time (Results.elapsed_s); the explicit solver's quasi-static pushover (`solve_dynamic()`, load control, Coulomb's
   cone itself) with the same joints, and with dilatancy 0, LMGC90's law (its time: Results.elapsed_s; joints of
   1e9 N/m3).

@@ -26,9 +26,9 @@ from masonry_dem.space.plot import plot_mechanism_3d
 #    an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] in m, z up.
 boxes = md.u_wall(facade=3.0, height=2.5, returns=1.5, thickness=0.25, block_length=0.5, block_height=0.25)
 
-# 2. Dry joints: friction 0.7, associative (dilatancy = friction): limit analysis gives the multiplier of the model
-#    with friction pyramids inscribed in Coulomb's cone (3D takes dry joints in this version; Model3D.solve_dynamic
-#    runs the explicit pushover on the cone itself). A fixed base under the footprint (base=True).
+# 2. Dry joints: friction 0.7, associative (dilatancy = friction): limit analysis gives the exact multiplier of the
+#    model, with Coulomb's cone at each corner of a contact, as Model3D.solve_dynamic's explicit pushover has it
+#    (3D takes dry joints in this version). A fixed base under the footprint (base=True).
 joints = {"default": {"friction": 0.7, "dilatancy": 0.7}}
 
 # 3. The horizontal load lambda * W_i on every block, along a direction in plan (degrees from +x towards +y):

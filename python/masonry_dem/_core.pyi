@@ -435,12 +435,11 @@ class Model3D:
         progress: Optional[Callable[[int, float, float, float], None]] = None,
     ) -> "Results":
         """Limit analysis in 3D (the static theorem): the largest lambda for which contact forces inside the joints'
-        strength domains balance the dead loads plus lambda times the live load, a linear program solved by the
-        interior point of Model.solve_limit. Each corner of a contact carries a force in a friction pyramid of eight
-        sides inscribed in Coulomb's cone (turned to the live load on horizontal joints: sliding along the load is
-        exact); torsion and biaxial bending come from the corners' positions. Dry joints only: cohesion or
-        tensile_strength is refused (InputError), and so is a wall that nothing holds (no base, or blocks that no
-        chain of contacts joins to it). Exact for dry associative joints (dilatancy = friction), status
+        strength domains balance the dead loads plus lambda times the live load, a second-order cone program solved
+        by the interior point of Model.solve_limit. Each corner of a contact carries a force in Coulomb's cone
+        (|T| <= mu N, the same in every direction of sliding, as in solve_dynamic); torsion and biaxial bending come
+        from the corners' positions. Dry joints only: cohesion or tensile_strength is refused (InputError), and so is
+        a wall that nothing holds (no base, or blocks that no chain of contacts joins to it). Exact for dry associative joints (dilatancy = friction), status
         "collapse"; for dilatancy below friction the associative optimum, an upper bound, with status "estimate".
 
         tolerance: the interior point's stopping tolerance (0 < tolerance < 0.01; default 1e-8); max_iterations:

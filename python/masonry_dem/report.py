@@ -317,10 +317,9 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
     else:
         cert = getattr(results, "certificate", None)
         if cert and cert.get("multiplier") is not None:
-            # a run checked against limit analysis (associative dry joints: the exact multiplier; in 3D a lower
-            # bound, the friction pyramids inscribed in Coulomb's cone)
-            exact = "a lower bound in 3D: friction pyramids inscribed in Coulomb's cone" if three_d \
-                else "exact for these associative dry joints"
+            # a run checked against limit analysis (associative dry joints: the exact multiplier, in either
+            # dimension)
+            exact = "exact for these associative dry joints"
             lines.append(
                 f"  checked against:     limit analysis, {format_multiplier(float(cert['multiplier']), live)} "
                 f"({exact}; duality gap {_sci(cert.get('duality_gap'))})"

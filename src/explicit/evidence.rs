@@ -37,43 +37,33 @@ pub(super) fn check_collapse(model: &Model, opts: &ExplicitOptions, res: Results
         polled = Instant::now();
         monitor(&last)
     })?;
-    Ok(judge(opts, res, lp, None))
+    Ok(judge(opts, res, lp))
 }
 
 /// The explicit collapse `res` judged against the limit analysis `lp` of the same model (see
-/// [`check_collapse`]): either dimension. `upper`: in 3D, where limit analysis takes Coulomb's
-/// cone as an inscribed pyramid and the explicit solver the cone itself, `lp` is a lower bound
-/// of the collapse multiplier and `upper` the multiplier of the circumscribed pyramid, an upper
-/// bound; the collapse must lie between them. None: `lp` is exact (the plane).
-pub(super) fn judge<V: Clone>(opts: &ExplicitOptions, mut res: Results<V>, lp: Results<V>, upper: Option<f64>) -> Results<V> {
+/// [`check_collapse`]): either dimension (in 3D limit analysis takes Coulomb's cone itself, as
+/// the explicit solver does, and is exact as in the plane).
+pub(super) fn judge<V: Clone>(opts: &ExplicitOptions, mut res: Results<V>, lp: Results<V>) -> Results<V> {
     if lp.status != Status::Collapse {
         return res;
     }
     let exact = lp.collapse_multiplier;
-    let high = upper.unwrap_or(exact);
     // levels dropped as above the exact multiplier: the bracket is pinned no closer than a level's settling
     let mut below = crate::static_solver::COLLAPSE_EVIDENCE * opts.tolerance;
     let above = opts.tolerance.max(SETTLED_ABOVE);
-    if upper.is_none() && opts.control == Control::Load && res.collapse_multiplier > exact && (res.collapse_multiplier - exact) <= above * exact {
+    if opts.control == Control::Load && res.collapse_multiplier > exact && (res.collapse_multiplier - exact) <= above * exact {
         below = below.max(SETTLED_ABOVE);
         below_exact(&mut res, exact, below);
     }
     let found = res.collapse_multiplier.abs();
-    let (gap, gap_high) = ((found - exact) / exact, (found - high) / high);
-    let what = match upper {
-        None => format!("the collapse multiplier of limit analysis, {exact:.6} (exact for these associative dry joints)"),
-        Some(_) => format!("limit analysis's {exact:.6} (with friction pyramids inscribed in Coulomb's cone: a lower bound for these associative dry joints)"),
-    };
+    let gap = (found - exact) / exact;
+    let what = format!("the collapse multiplier of limit analysis, {exact:.6} (exact for these associative dry joints)");
     let message = if gap < -below && opts.control == Control::Load {
         res.status = Status::Stalled;
         format!("the explicit solver's collapse at lambda = {found:.6} is {:.2}% below {what}: not a collapse", -100.0 * gap)
-    } else if gap_high > above {
+    } else if gap > above {
         res.status = Status::Failed;
-        let what = match upper {
-            None => what,
-            Some(_) => format!("limit analysis's {high:.6} with the pyramids circumscribed (an upper bound for these associative dry joints)"),
-        };
-        format!("the explicit solver settled at lambda = {found:.6}, {:.2}% above {what}: a level it judged settled is not an equilibrium (a small block's unbalance is too small against the wall's forces to be seen)", 100.0 * gap_high)
+        format!("the explicit solver settled at lambda = {found:.6}, {:.2}% above {what}: a level it judged settled is not an equilibrium (a small block's unbalance is too small against the wall's forces to be seen)", 100.0 * gap)
     } else {
         res.certificate = lp.certificate;
         return res;

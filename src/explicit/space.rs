@@ -625,16 +625,8 @@ pub fn solve_3d_with(model: &Model3, opts: &ExplicitOptions, monitor: &mut dyn F
         polled = Instant::now();
         monitor(&last)
     };
-    // limit analysis takes the cone as a pyramid inscribed in it: a lower bound of the cone's
-    // multiplier; the pyramid circumscribed (friction and dilatancy over cos(pi / sides)) an upper
     let lp = crate::limit::limit_analysis_3d_with(model, &crate::limit::LimitOptions::default(), &mut poll)?;
-    if lp.status != Status::Collapse {
-        return Ok(res);
-    }
-    let out = model.with_friction_scaled(1.0 / (std::f64::consts::PI / crate::limit::PYRAMID_SIDES as f64).cos());
-    let up = crate::limit::limit_analysis_3d_with(&out, &crate::limit::LimitOptions::default(), &mut poll)?;
-    let upper = if up.status == Status::Collapse { up.collapse_multiplier } else { f64::INFINITY };
-    Ok(super::evidence::judge(opts, res, lp, Some(upper)))
+    Ok(super::evidence::judge(opts, res, lp))
 }
 
 /// The wall block whose top is highest (the first of them): the default control block, whose

@@ -45,8 +45,10 @@
 //! ```
 //!
 //! Walls of 3D blocks ([`crate::space::Model3`]) go through the same interior point
-//! ([`limit_analysis_3d`]): each corner of a contact carries a force in an eight-sided friction
-//! pyramid (the point-contact form; dry joints), six equations per block.
+//! ([`limit_analysis_3d`]): each corner of a contact carries a force in Coulomb's cone (the
+//! point-contact form; dry joints), six equations per block. The program is then a
+//! second-order cone program: its variables lie in cones `z0 >= |(z1, z2)|` rather than the
+//! orthant, and Theta is the 3 x 3 block `W^2` of each cone's Nesterov-Todd scaling.
 //!
 //! Here: the options, the entry points and the non-associative sequence. The program the
 //! interior point solves is `program` (the same in both dimensions), built for walls in the
@@ -287,6 +289,7 @@ struct Solution {
     iterations: usize,
 }
 
+mod cone;
 mod ipm;
 mod outcome;
 mod plane;
@@ -297,7 +300,3 @@ use ipm::*;
 use plane::*;
 use program::*;
 pub use space::{limit_analysis_3d, limit_analysis_3d_with};
-
-/// Sides of the friction pyramid that 3D limit analysis inscribes in Coulomb's cone at each
-/// contact corner (it keeps `cos(pi / sides)` of the cone midway between two generators).
-pub const PYRAMID_SIDES: usize = space::SIDES;

@@ -9,6 +9,7 @@
 //! these blocks. The normal matrix `sum_k A_k Theta_k A_k^T` has the pattern of the stiffness
 //! matrix: one `rows x rows` block per interface, analysed once.
 
+use super::cone::Nt;
 use super::*;
 
 /// A dof held by a support: no equation.
@@ -33,6 +34,9 @@ pub(super) struct Lp {
     pub(super) acols: Vec<f64>,
     /// The blocks `A_k` in factored form, where they are forces at contact points (3D).
     pub(super) corners: Option<Corners>,
+    /// The dimension of the cones the variables lie in, in groups of that many: 1 (the
+    /// orthant, `x >= 0`) or 3 (second-order cones `x0 >= |(x1, x2)|`).
+    pub(super) cone: usize,
     /// Per element: `P_k`, `rows` each.
     pub(super) pv: Vec<f64>,
     /// Per element: the value slot of each entry of its `rows x rows` block in the normal
@@ -76,6 +80,7 @@ impl Lp {
             dofs,
             acols: vec![],
             corners: None,
+            cone: 1,
             pv: vec![0.0; m * rows],
             slots,
             f_dead,
@@ -202,8 +207,9 @@ impl Lp {
     }
 
     /// `sum_k A_k Theta_k A_k^T` for a program in corner form: per corner, the 3 x 3
-    /// `G Theta G^T` carried to the 12 rows of the two bodies.
-    pub(super) fn assemble_corners(&mut self, cf: &Corners, theta: &[f64]) {
+    /// `G Theta G^T` carried to the 12 rows of the two bodies. Theta: diagonal (`theta`), or
+    /// where each corner's variables are a second-order cone, `W^2` of its scaling in `nt`.
+    pub(super) fn assemble_corners(&mut self, cf: &Corners, theta: &[f64], nt: &[Nt]) {
         let vals = self.normal.values_mut();
         vals.fill(0.0);
         for k in 0..self.m {
@@ -211,12 +217,24 @@ impl Lp {
             let g = &cf.gens[cf.sides * k..cf.sides * (k + 1)];
             let mut block = [[0.0; 12]; 12];
             for q in 0..cf.corners {
-                let th = &theta[cf.var(self.nv, k, q)..cf.var(self.nv, k, q) + cf.sides];
                 let mut mq = [[0.0; 3]; 3];
-                for (gj, t) in g.iter().zip(th) {
+                if self.cone == 3 {
+                    // G W^2 G^T, G's columns the cone's three generators
+                    let th = nt[cf.var(self.nv, k, q) / 3].theta();
+                    let gt: [[f64; 3]; 3] =
+                        std::array::from_fn(|i| std::array::from_fn(|b| g[0][i] * th[0][b] + g[1][i] * th[1][b] + g[2][i] * th[2][b]));
                     for i in 0..3 {
                         for l in 0..3 {
-                            mq[i][l] += t * gj[i] * gj[l];
+                            mq[i][l] = gt[i][0] * g[0][l] + gt[i][1] * g[1][l] + gt[i][2] * g[2][l];
+                        }
+                    }
+                } else {
+                    let th = &theta[cf.var(self.nv, k, q)..cf.var(self.nv, k, q) + cf.sides];
+                    for (gj, t) in g.iter().zip(th) {
+                        for i in 0..3 {
+                            for l in 0..3 {
+                                mq[i][l] += t * gj[i] * gj[l];
+                            }
                         }
                     }
                 }

@@ -1,41 +1,29 @@
-//! The linear program of a model in 3D, in the point-contact form (Livesley; Portioli et al.):
-//! each corner of a contact polygon carries a force in a friction pyramid, and torsion and
+//! The program of a model in 3D, in the point-contact form (Livesley; Portioli et al.): each
+//! corner of a contact polygon carries a force in Coulomb's cone `|T| <= mu N`, and torsion and
 //! biaxial bending come out of the corners' positions.
 //!
-//! The pyramid is inscribed in Coulomb's cone `|T| <= mu N` with [`SIDES`] generators
-//! `n + mu (cos a_j t1 + sin a_j t2)`, `a_j = a_0 + 2 pi j / SIDES`, each with its variable
-//! `rho_j >= 0`: it is safe (a lower bound of the cone's strength), exact along its
-//! generators, and `cos(pi / SIDES)` of the cone midway between two of them (0.924 for eight
-//! sides). On horizontal joints one generator lies along the live load's direction in plan
-//! (a_0 is the load's angle in the joint's axes): sliding along the load is then exact at
-//! any angle, and so are the axes x and y when the load is along one of them. On vertical
-//! joints the generators start along the joint's horizontal tangent (a_0 = 0): in-plane
-//! sliding, horizontal or vertical, is exact.
+//! The corner's variables are a second-order cone `z0 >= |(z1, z2)|` (the interior point's cones
+//! of three dimensions) and its force `z0 n + mu (z1 t1 + z2 t2)`: the cone itself, the same
+//! strength in every direction of sliding, as the explicit solver's joint law has it. (An
+//! inscribed pyramid of eight sides, which this form replaced, kept cos(22.5 deg) = 0.924 of it
+//! midway between two sides and took 32 variables per contact where the cones take 12.)
 //!
-//! Dry joints only (no cohesion, no tensile strength): a point's domain is then the pyramid
-//! alone, a cone of generators with no vertex to carry.
+//! Dry joints only (no cohesion, no tensile strength): a corner's domain is then the cone
+//! alone, with no vertex to carry.
 
 use super::*;
-use crate::space::{Contact, LiveLoad3, Model3};
-
-/// Sides of the friction pyramid.
-pub(super) const SIDES: usize = 8;
+use crate::space::{Contact, Model3};
 
 /// Corners of a contact polygon (boxes touch along rectangles).
 const CORNERS: usize = 4;
 
-/// Variables per contact: a pyramid's generators at each corner.
-const NV3: usize = CORNERS * SIDES;
-
 /// Equations per contact: the six dofs of each of its two blocks.
 const ROWS3: usize = 12;
 
-/// The program of a model in 3D: the generic [`Lp`] and each contact's generators (unit
-/// normal plus mu times a tangent direction, in global axes), for the resultants.
+/// The program of a model in 3D: the generic [`Lp`] whose corners carry each contact's cone
+/// generators (unit normal, mu times each tangent, in global axes).
 pub(super) struct Space {
     pub(super) lp: Lp,
-    /// per contact, the pyramid's generators (global axes), the same at its corners
-    generators: Vec<[[f64; 3]; SIDES]>,
 }
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -50,32 +38,9 @@ fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// The first generator's angle in the contact's axes: along the live load's direction in plan
-/// on a horizontal joint (`align`), else along t1.
-fn first_angle(c: &Contact, live: LiveLoad3, align: bool) -> f64 {
-    match live {
-        LiveLoad3::HorizontalWeight { direction } if align && c.n[2].abs() > 0.5 => {
-            let d = direction.to_radians();
-            let dir = [d.cos(), d.sin(), 0.0];
-            dot3(dir, c.t2).atan2(dot3(dir, c.t1))
-        }
-        _ => 0.0,
-    }
-}
-
-/// The pyramid's generators of a contact of friction `mu` whose first lies at `a0` in its axes.
-fn pyramid(c: &Contact, mu: f64, a0: f64) -> [[f64; 3]; SIDES] {
-    std::array::from_fn(|j| {
-        let a = a0 + 2.0 * std::f64::consts::PI * j as f64 / SIDES as f64;
-        let (s, co) = a.sin_cos();
-        std::array::from_fn(|i| c.n[i] + mu * (co * c.t1[i] + s * c.t2[i]))
-    })
-}
-
 impl Space {
-    /// The program of `model`; `align`: the pyramids of horizontal joints turned to the live
-    /// load's direction (always, but for the measurement of what the pyramid loses).
-    pub(super) fn new(model: &Model3, align: bool) -> Result<Space> {
+    /// The program of `model`.
+    pub(super) fn new(model: &Model3) -> Result<Space> {
         let nb = model.n_blocks();
         let contacts = model.contacts();
         model.check_dry("limit analysis in 3D")?;
@@ -122,22 +87,21 @@ impl Space {
                 }
             }
         }
-        let mut lp = Lp::new(eq, n, ROWS3, NV3, None, dofs, f_dead, f_live, (force, length, live))?;
+        let mut lp = Lp::new(eq, n, ROWS3, CORNERS * 3, None, dofs, f_dead, f_live, (force, length, live))?;
+        lp.cone = 3;
         let centroids = model.centroids();
-        let mut generators = Vec::with_capacity(m);
-        let mut gens = Vec::with_capacity(SIDES * m);
+        let mut gens = Vec::with_capacity(3 * m);
         let mut arms = Vec::with_capacity(CORNERS * m);
         for (k, c) in contacts.iter().enumerate() {
-            let g = pyramid(c, model.law(k).friction, first_angle(c, model.live(), align));
-            gens.extend_from_slice(&g);
+            let mu = model.law(k).friction;
+            gens.extend_from_slice(&[c.n, c.t1.map(|v| mu * v), c.t2.map(|v| mu * v)]);
             for &p in &c.corners {
                 let arm = |i: usize| sub(p, centroids[i]).map(|v| v / length);
                 arms.push([arm(c.a), arm(c.b)]);
             }
-            generators.push(g);
         }
-        lp.corners = Some(Corners { corners: CORNERS, sides: SIDES, gens, arms });
-        Ok(Space { lp, generators })
+        lp.corners = Some(Corners { corners: CORNERS, sides: 3, gens, arms });
+        Ok(Space { lp })
     }
 
     /// Each contact's resultants in their own units: the force and moment (about the contact's
@@ -151,11 +115,13 @@ impl Space {
             .enumerate()
             .map(|(k, c)| {
                 let (mut force, mut moment) = ([0.0; 3], [0.0; 3]);
+                let cf = self.lp.corners.as_ref().expect("a program in corner form");
+                let (sides, nv) = (cf.sides, self.lp.nv);
                 for (q, &p) in c.corners.iter().enumerate() {
-                    let g = &self.generators[k];
+                    let g = &cf.gens[sides * k..sides * (k + 1)];
                     let mut fp = [0.0; 3];
                     for (j, gj) in g.iter().enumerate() {
-                        let r = x[NV3 * k + SIDES * q + j] * f;
+                        let r = x[nv * k + sides * q + j] * f;
                         (0..3).for_each(|i| fp[i] -= r * gj[i]);
                     }
                     let mp = cross(sub(p, c.centroid), fp);
@@ -286,25 +252,10 @@ pub fn limit_analysis_3d_with(
     opts: &LimitOptions,
     monitor: &mut dyn FnMut(&LimitProgress) -> bool,
 ) -> Result<Results<[f64; 6]>> {
-    limit_analysis_3d_aligned(model, opts, true, monitor)
-}
-
-/// Runs a limit analysis of a model in 3D (see [`limit_analysis_3d_with`]).
-pub fn limit_analysis_3d(model: &Model3, opts: &LimitOptions) -> Result<Results<[f64; 6]>> {
-    limit_analysis_3d_with(model, opts, &mut |_| true)
-}
-
-/// The analysis with the horizontal joints' pyramids turned to the load or not.
-pub(super) fn limit_analysis_3d_aligned(
-    model: &Model3,
-    opts: &LimitOptions,
-    align: bool,
-    monitor: &mut dyn FnMut(&LimitProgress) -> bool,
-) -> Result<Results<[f64; 6]>> {
     validate(opts)?;
     model.check_supports()?;
     let start = Instant::now();
-    let mut space = Space::new(model, align)?;
+    let mut space = Space::new(model)?;
     let sol = space.lp.solve(opts, 0, monitor)?;
     let non_assoc = (0..model.contacts().len()).any(|k| {
         let l = model.law(k);
@@ -331,16 +282,20 @@ pub(super) fn limit_analysis_3d_aligned(
     Ok(res)
 }
 
+/// Runs a limit analysis of a model in 3D (see [`limit_analysis_3d_with`]).
+pub fn limit_analysis_3d(model: &Model3, opts: &LimitOptions) -> Result<Results<[f64; 6]>> {
+    limit_analysis_3d_with(model, opts, &mut |_| true)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::joint::JointLaw;
     use crate::model::JointLaws;
-    use crate::space::{Box3, ModelSpec3};
+    use crate::space::{Box3, LiveLoad3, ModelSpec3};
 
-    /// A squat box of friction 0.3 pushed at `phi` in plan: its sliding multiplier with the
-    /// pyramids turned to the load or not.
-    fn sliding(phi: f64, align: bool) -> f64 {
+    /// A squat box of friction 0.3 pushed at `phi` in plan: its sliding multiplier.
+    fn sliding(phi: f64) -> f64 {
         let law = JointLaw { friction: 0.3, dilatancy: 0.3, ..JointLaw::default() };
         let model = Model3::new(&ModelSpec3 {
             blocks: vec![Box3::new(0.0, 0.0, 0.0, 1.0, 1.2, 0.5)],
@@ -349,18 +304,16 @@ mod tests {
             ..ModelSpec3::default()
         })
         .unwrap();
-        let r = limit_analysis_3d_aligned(&model, &LimitOptions::default(), align, &mut |_| true).unwrap();
-        r.collapse_multiplier
+        limit_analysis_3d(&model, &LimitOptions::default()).unwrap().collapse_multiplier
     }
 
     #[test]
-    fn the_pyramid_loses_cos_22_5_deg_midway_between_generators_unless_turned_to_the_load() {
-        // Coulomb's cone: 0.3 in every direction. The inscribed pyramid of eight sides along the
-        // axes gives 0.3 cos(22.5 deg) = 0.2772 at 22.5 deg; turned to the load, 0.3.
-        let cone = 0.3;
-        let loss = (22.5_f64).to_radians().cos();
-        assert!((sliding(22.5, false) - cone * loss).abs() <= 1e-6 * cone, "{}", sliding(22.5, false));
-        assert!((sliding(22.5, true) - cone).abs() <= 1e-6 * cone);
-        assert!((sliding(45.0, false) - cone).abs() <= 1e-6 * cone);
+    fn coulombs_cone_slides_at_mu_in_every_direction_in_plan() {
+        // overturning needs 1 / 0.5 = 2 at the least: the box slides, at mu whatever the
+        // direction (22.5 deg: midway between two sides of the eight-sided pyramid, which held
+        // 0.3 cos(22.5 deg) = 0.2772 there)
+        for phi in [0.0, 22.5, 45.0, 67.5, 100.0, 200.0] {
+            assert!((sliding(phi) - 0.3).abs() <= 1e-6 * 0.3, "{phi} deg: {}", sliding(phi));
+        }
     }
 }

@@ -206,20 +206,6 @@ impl Model3 {
         }
         Ok(())
     }
-    /// The same model with every joint's friction and dilatancy multiplied by `factor` (the
-    /// explicit solver's upper bound from limit analysis: the pyramid circumscribed about the cone).
-    pub fn with_friction_scaled(&self, factor: f64) -> Model3 {
-        let scale = |l: &JointLaw| JointLaw { friction: l.friction * factor, dilatancy: l.dilatancy * factor, ..*l };
-        let laws = &self.laws;
-        let laws = JointLaws {
-            default: scale(&laws.default),
-            bed: laws.bed.as_ref().map(scale),
-            head: laws.head.as_ref().map(scale),
-            base: laws.base.as_ref().map(scale),
-            top: laws.top.as_ref().map(scale),
-        };
-        Model3 { laws, ..self.clone() }
-    }
     /// Fixed dof flags, 6 per block (ux, uy, uz, rx, ry, rz): the base's all true.
     pub fn fixed(&self) -> &[bool] {
         &self.fixed
