@@ -206,54 +206,53 @@ impl Lp {
         }
     }
 
-    /// `sum_k A_k Theta_k A_k^T` for a program in corner form: per corner, the 3 x 3
-    /// `G Theta G^T` carried to the 12 rows of the two bodies. Theta: diagonal (`theta`), or
-    /// where each corner's variables are a second-order cone, `W^2` of its scaling in `nt`.
-    pub(super) fn assemble_corners(&mut self, cf: &Corners, theta: &[f64], nt: &[Nt]) {
+    /// `sum_k A_k Theta_k A_k^T` for a program in corner form, each corner's variables a
+    /// second-order cone: per corner, `M = G W^2 G^T` (G's columns the cone's generators)
+    /// carried to the 12 rows of the two bodies by `C = [I; Ra; -I; -Rb]` (`R v = r x v`),
+    /// block by block: `C M C^T` has the blocks M, `P^T = (Ra M)^T`, `Ra P^T`, and with
+    /// `Q = Rb M`, `Q^T`, `Ra Q^T`, `Rb Q^T` (a third of the products of the dense 12 x 3 form).
+    pub(super) fn assemble_corners(&mut self, cf: &Corners, nt: &[Nt]) {
         let vals = self.normal.values_mut();
         vals.fill(0.0);
+        // the 3 x 3 matrix whose column j is r x (column j of m), and r x (row j of m)
+        let cross_cols = |r: [f64; 3], m: &[[f64; 3]; 3]| -> [[f64; 3]; 3] {
+            let c: [[f64; 3]; 3] = std::array::from_fn(|j| cross(r, [m[0][j], m[1][j], m[2][j]]));
+            std::array::from_fn(|i| std::array::from_fn(|j| c[j][i]))
+        };
+        let cross_rows = |r: [f64; 3], m: &[[f64; 3]; 3]| -> [[f64; 3]; 3] {
+            let c: [[f64; 3]; 3] = std::array::from_fn(|j| cross(r, m[j]));
+            std::array::from_fn(|i| std::array::from_fn(|j| c[j][i]))
+        };
         for k in 0..self.m {
             let slots = &self.slots[144 * k..144 * (k + 1)];
             let g = &cf.gens[cf.sides * k..cf.sides * (k + 1)];
             let mut block = [[0.0; 12]; 12];
+            let mut add = |bi: usize, bj: usize, m: &[[f64; 3]; 3], sign: f64| {
+                for i in 0..3 {
+                    for j in 0..3 {
+                        block[3 * bi + i][3 * bj + j] += sign * m[i][j];
+                    }
+                }
+            };
             for q in 0..cf.corners {
-                let mut mq = [[0.0; 3]; 3];
-                if self.cone == 3 {
-                    // G W^2 G^T, G's columns the cone's three generators
-                    let th = nt[cf.var(self.nv, k, q) / 3].theta();
-                    let gt: [[f64; 3]; 3] =
-                        std::array::from_fn(|i| std::array::from_fn(|b| g[0][i] * th[0][b] + g[1][i] * th[1][b] + g[2][i] * th[2][b]));
-                    for i in 0..3 {
-                        for l in 0..3 {
-                            mq[i][l] = gt[i][0] * g[0][l] + gt[i][1] * g[1][l] + gt[i][2] * g[2][l];
-                        }
-                    }
-                } else {
-                    let th = &theta[cf.var(self.nv, k, q)..cf.var(self.nv, k, q) + cf.sides];
-                    for (gj, t) in g.iter().zip(th) {
-                        for i in 0..3 {
-                            for l in 0..3 {
-                                mq[i][l] += t * gj[i] * gj[l];
-                            }
-                        }
-                    }
-                }
-                // C_q: the 12 x 3 map of a corner force to the rows; column c is C_q e_c
+                let th = nt[cf.var(self.nv, k, q) / 3].theta();
+                let gt: [[f64; 3]; 3] =
+                    std::array::from_fn(|i| std::array::from_fn(|b| g[0][i] * th[0][b] + g[1][i] * th[1][b] + g[2][i] * th[2][b]));
+                let m: [[f64; 3]; 3] =
+                    std::array::from_fn(|i| std::array::from_fn(|l| gt[i][0] * g[0][l] + gt[i][1] * g[1][l] + gt[i][2] * g[2][l]));
                 let [ra, rb] = cf.arms[cf.corners * k + q];
-                let cols: [[f64; 12]; 3] = std::array::from_fn(|c| {
-                    let mut e = [0.0; 3];
-                    e[c] = 1.0;
-                    let (ma, mb) = (cross(ra, e), cross(rb, e));
-                    [e[0], e[1], e[2], ma[0], ma[1], ma[2], -e[0], -e[1], -e[2], -mb[0], -mb[1], -mb[2]]
-                });
-                // (C M)(r, l) = sum_c C(r, c) M(c, l)
-                let cm: [[f64; 3]; 12] =
-                    std::array::from_fn(|r| std::array::from_fn(|l| (0..3).map(|c| cols[c][r] * mq[c][l]).sum()));
-                for (r, cmr) in cm.iter().enumerate() {
-                    for s in r..12 {
-                        block[r][s] += cmr[0] * cols[0][s] + cmr[1] * cols[1][s] + cmr[2] * cols[2][s];
-                    }
-                }
+                let (p, qm) = (cross_cols(ra, &m), cross_cols(rb, &m));
+                let t = |a: &[[f64; 3]; 3]| -> [[f64; 3]; 3] { std::array::from_fn(|i| std::array::from_fn(|j| a[j][i])) };
+                add(0, 0, &m, 1.0);
+                add(0, 1, &t(&p), 1.0);
+                add(0, 2, &m, -1.0);
+                add(0, 3, &t(&qm), -1.0);
+                add(1, 1, &cross_rows(ra, &p), 1.0);
+                add(1, 2, &p, -1.0);
+                add(1, 3, &cross_rows(ra, &qm), -1.0);
+                add(2, 2, &m, 1.0);
+                add(2, 3, &t(&qm), 1.0);
+                add(3, 3, &cross_rows(rb, &qm), 1.0);
             }
             for r in 0..12 {
                 for s in r..12 {
