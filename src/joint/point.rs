@@ -12,10 +12,10 @@
 //!   the corners at zero). As in the plane, the opening is recoverable: a gap closes again
 //!   without resistance, so a block rocks back.
 //! - Shear: each corner a spring of `kT A / 4` on its slip, the shear vector within Coulomb's
-//!   cone of its normal force, `|T| <= -mu N` (the cone itself, not the pyramid of limit
-//!   analysis). Flow: slip along `T` (permanent), with the normal jump opening by `tan(psi)`
-//!   times it (non-associative unless `dilatancy == friction`), taken into the normal forces
-//!   at the next call. An open corner slips to `T = 0`.
+//!   cone of its normal force, `|T| <= -mu N` (the cone of limit analysis in 3D too). Flow:
+//!   slip along `T` (permanent), with the normal jump opening by `tan(psi)` times it
+//!   (non-associative unless `dilatancy == friction`), taken into the normal forces at the
+//!   next call. An open corner slips to `T = 0`.
 //!
 //! ```
 //! use masonry_dem::joint::{corner_map, CornerLaw, JointLaw, OPEN, SLIDING};
