@@ -50,7 +50,8 @@ fn main() {
     let built = start.elapsed().as_secs_f64();
     let r = limit_analysis_3d_with(&model, &LimitOptions::default(), &mut |p| {
         if std::env::var_os("VERBOSE").is_some() {
-            eprintln!("iteration {:3}  lambda {:.9}  residual {:.2e}", p.iteration, p.multiplier, p.residual);
+            let t = start.elapsed().as_secs_f64() - built;
+            eprintln!("iteration {:3}  lambda {:.9}  residual {:.2e}  {t:7.3} s", p.iteration, p.multiplier, p.residual);
         }
         true
     })
