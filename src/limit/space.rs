@@ -5,8 +5,8 @@
 //! The corner's variables are a second-order cone `z0 >= |(z1, z2)|` (the interior point's cones
 //! of three dimensions) and its force `z0 n + mu (z1 t1 + z2 t2)`: the cone itself, the same
 //! strength in every direction of sliding, as the explicit solver's joint law has it. (An
-//! inscribed pyramid of eight sides, which this form replaced, kept cos(22.5 deg) = 0.924 of it
-//! midway between two sides and took 32 variables per contact where the cones take 12.)
+//! inscribed pyramid of eight sides would keep cos(22.5 deg) = 0.924 of it midway between two
+//! sides, with 32 variables per contact against the cones' 12.)
 //!
 //! Dry joints only (no cohesion, no tensile strength): a corner's domain is then the cone
 //! alone, with no vertex to carry.
@@ -310,8 +310,8 @@ mod tests {
     #[test]
     fn coulombs_cone_slides_at_mu_in_every_direction_in_plan() {
         // overturning needs 1 / 0.5 = 2 at the least: the box slides, at mu whatever the
-        // direction (22.5 deg: midway between two sides of the eight-sided pyramid, which held
-        // 0.3 cos(22.5 deg) = 0.2772 there)
+        // direction (at 22.5 deg an eight-sided pyramid along x would hold 0.3 cos(22.5 deg) =
+        // 0.2772)
         for phi in [0.0, 22.5, 45.0, 67.5, 100.0, 200.0] {
             assert!((sliding(phi) - 0.3).abs() <= 1e-6 * 0.3, "{phi} deg: {}", sliding(phi));
         }
