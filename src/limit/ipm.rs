@@ -691,20 +691,7 @@ impl Lp {
         }
         // Theta xi, whose buffer then takes dx
         let mut dx: Vec<f64> = theta.iter().zip(&xi).map(|(t, x)| t * x).collect();
-        let mut q = vec![0.0; self.n];
-        self.apply(&dx, 0.0, &mut q);
-        for (q, r) in q.iter_mut().zip(&res.rb) {
-            *q += r;
-        }
-        self.solve_normal(&mut q)?;
-        // -f . (q + u dlam) = rl; q (finite after a solve) becomes dy
-        let dlam = -(res.rl + dot(&self.f_live, &q)) / fu;
-        if !dlam.is_finite() {
-            return None;
-        }
-        q.iter_mut().zip(u).for_each(|(q, u)| *q += dlam * u);
-        let dy = q;
-        self.apply_t(&dy, &mut dx);
+        let (dy, dlam) = self.dual_direction(res, &mut dx, u, fu)?;
         let mut ds = vec![0.0; nx];
         // per lane: the primal and dual step lengths, and a sum that is NaN if a value is not
         // finite
@@ -741,6 +728,27 @@ impl Lp {
         let ad = fold(ld).min(max_step(&p.v, &dv));
         let finite = nan.iter().sum::<f64>() == 0.0 && dv.iter().all(|v| v.is_finite());
         finite.then_some((Direction { dx, ds, dt, dv, dy, dlam }, (ap, ad)))
+    }
+
+    /// The direction's dy and dlam from `Theta xi` (in `txi`, which then takes `A^T dy`):
+    /// `M dy - f_live dlam = rb + A Theta xi` and lambda's dual row `-f_live . dy = rl`, so
+    /// `dy = q + u dlam` with `q = M^-1 (rb + A Theta xi)`; None if the solve fails or dlam is
+    /// not finite.
+    fn dual_direction(&mut self, res: &Residuals, txi: &mut [f64], u: &[f64], fu: f64) -> Option<(Vec<f64>, f64)> {
+        let mut q = vec![0.0; self.n];
+        self.apply(txi, 0.0, &mut q);
+        for (q, r) in q.iter_mut().zip(&res.rb) {
+            *q += r;
+        }
+        self.solve_normal(&mut q)?;
+        // -f . (q + u dlam) = rl; q (finite after a solve) becomes dy
+        let dlam = -(res.rl + dot(&self.f_live, &q)) / fu;
+        if !dlam.is_finite() {
+            return None;
+        }
+        q.iter_mut().zip(u).for_each(|(q, u)| *q += dlam * u);
+        self.apply_t(&q, txi);
+        Some((q, dlam))
     }
 
     /// Mehrotra's predictor and corrector where the variables are in second-order cones (see
@@ -795,19 +803,7 @@ impl Lp {
             h.extend_from_slice(&hc);
             dx.extend_from_slice(&w.theta_mul(x));
         }
-        let mut q = vec![0.0; self.n];
-        self.apply(&dx, 0.0, &mut q);
-        for (q, r) in q.iter_mut().zip(&res.rb) {
-            *q += r;
-        }
-        self.solve_normal(&mut q)?;
-        let dlam = -(res.rl + dot(&self.f_live, &q)) / fu;
-        if !dlam.is_finite() {
-            return None;
-        }
-        q.iter_mut().zip(u).for_each(|(q, u)| *q += dlam * u);
-        let dy = q;
-        self.apply_t(&dy, &mut dx);
+        let (dy, dlam) = self.dual_direction(res, &mut dx, u, fu)?;
         // one pass: dx = W^2 (A^T dy - xi), ds = W^-1 (h - W^-1 dx), the steps, finiteness
         let mut ds = Vec::with_capacity(nx);
         let (mut ap, mut ad, mut nan) = (1.0f64, 1.0f64, 0.0);
