@@ -137,8 +137,7 @@ impl Lp {
 /// moments), stored factored: `A_k = C_k G_k`, with `G_k` each corner's generators (the same at
 /// every corner of a contact) and `C_k` what a force at a corner does to the two bodies (minus
 /// it and its moment on b, plus on a). Per contact 33 numbers where `A_k` has 144: the interior
-/// point's products stream memory (with the eight-sided pyramids of an earlier form, 48 against
-/// 384, the dense form took a third of the time on a wall of a few thousand blocks).
+/// point's products stream memory.
 pub(super) struct Corners {
     /// Corners per contact and generators per corner.
     pub(super) corners: usize,
