@@ -417,7 +417,9 @@ impl Lp {
         if self.cone == 3 {
             let p = &ipm.p;
             let at = |v: &[f64], c: usize| [v[3 * c], v[3 * c + 1], v[3 * c + 2]];
-            ipm.nt = (0..p.x.len() / 3).map(|c| Nt::new(at(&p.x, c), at(&p.s, c))).collect();
+            // in place: the scalings' vector is as long at every iteration
+            ipm.nt.clear();
+            ipm.nt.extend((0..p.x.len() / 3).map(|c| Nt::new(at(&p.x, c), at(&p.s, c))));
             return self.assemble(&[], &ipm.nt);
         }
         let (p, theta) = (&ipm.p, &mut ipm.theta);

@@ -242,15 +242,16 @@ impl Lp {
                 let [ra, rb] = cf.arms[cf.corners * k + q];
                 let (p, qm) = (cross_cols(ra, &m), cross_cols(rb, &m));
                 let t = |a: &[[f64; 3]; 3]| -> [[f64; 3]; 3] { std::array::from_fn(|i| std::array::from_fn(|j| a[j][i])) };
+                let qt = t(&qm);
                 add(0, 0, &m, 1.0);
                 add(0, 1, &t(&p), 1.0);
                 add(0, 2, &m, -1.0);
-                add(0, 3, &t(&qm), -1.0);
+                add(0, 3, &qt, -1.0);
                 add(1, 1, &cross_rows(ra, &p), 1.0);
                 add(1, 2, &p, -1.0);
                 add(1, 3, &cross_rows(ra, &qm), -1.0);
                 add(2, 2, &m, 1.0);
-                add(2, 3, &t(&qm), 1.0);
+                add(2, 3, &qt, 1.0);
                 add(3, 3, &cross_rows(rb, &qm), 1.0);
             }
             for r in 0..12 {
