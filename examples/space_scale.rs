@@ -4,6 +4,8 @@
 //!
 //!     cargo run --release --example space_scale -- 3 2.5 1.5            # the 3 x 2.5 m U-wall, returns 1.5 m
 //!     cargo run --release --example space_scale -- 40 10 8 openings     # a facade of about 10^4 blocks
+//!
+//! `THREADS=n` runs it on n threads (default: all cores); `VERBOSE=1` prints each iteration.
 use masonry_dem::joint::JointLaw;
 use masonry_dem::limit::{limit_analysis_3d_with, LimitOptions};
 use masonry_dem::model::JointLaws;
@@ -48,7 +50,9 @@ fn main() {
     let start = std::time::Instant::now();
     let model = Model3::new(&spec).expect("model");
     let built = start.elapsed().as_secs_f64();
-    let r = limit_analysis_3d_with(&model, &LimitOptions::default(), &mut |p| {
+    let threads = std::env::var("THREADS").ok().and_then(|v| v.parse().ok()).unwrap_or(0);
+    let opts = LimitOptions { threads, ..LimitOptions::default() };
+    let r = limit_analysis_3d_with(&model, &opts, &mut |p| {
         if std::env::var_os("VERBOSE").is_some() {
             let t = start.elapsed().as_secs_f64() - built;
             eprintln!("iteration {:3}  lambda {:.9}  residual {:.2e}  {t:7.3} s", p.iteration, p.multiplier, p.residual);

@@ -6,7 +6,53 @@
 
 use super::cone::{cone_step_upto, jordan, max_cone_step, Nt};
 use super::*;
+use rayon::prelude::*;
 use std::ops::ControlFlow;
+
+/// Cones per task of the parallel passes over cones.
+const GRAIN_CONES: usize = 2048;
+
+/// A pass over the cones: `work(first cone, a, b)` on chunks of `a` (three values per cone) and
+/// of `b` (as many per cone in each chunk; `b` may be empty), on the program's threads where it
+/// has them, else at once; the chunks' results folded by `fold`, which must not depend on their
+/// order (a minimum, not a sum: the results are the same whatever the number of threads).
+fn cones<R: Send + Sync + Clone>(
+    par: Option<&Par>,
+    a: &mut [f64],
+    b: &mut [f64],
+    id: R,
+    fold: impl Fn(R, R) -> R + Sync + Send,
+    work: impl Fn(usize, &mut [f64], &mut [f64]) -> R + Sync + Send,
+) -> R {
+    let nc = a.len() / 3;
+    let per = b.len().checked_div(nc).unwrap_or(0);
+    let chunks = nc.div_ceil(GRAIN_CONES);
+    let bs: Vec<&mut [f64]> = if per == 0 { (0..chunks).map(|_| Default::default()).collect() } else { b.chunks_mut(per * GRAIN_CONES).collect() };
+    // one thread: the same chunks in order (the same results)
+    let Some(p) = par else {
+        let mut r = id;
+        for (c, (a, b)) in a.chunks_mut(3 * GRAIN_CONES).zip(bs).enumerate() {
+            r = fold(r, work(c * GRAIN_CONES, a, b));
+        }
+        return r;
+    };
+    p.pool.install(|| {
+        a.par_chunks_mut(3 * GRAIN_CONES)
+            .zip(bs.into_par_iter())
+            .enumerate()
+            .map(|(c, (a, b))| work(c * GRAIN_CONES, a, b))
+            .reduce(|| id.clone(), &fold)
+    })
+}
+
+/// [`max_cone_step`] on the program's threads where it has them.
+fn max_cone_step_on(par: Option<&Par>, v: &[f64], dv: &[f64]) -> f64 {
+    let g = 3 * GRAIN_CONES;
+    match par {
+        None => v.chunks(g).zip(dv.chunks(g)).map(|(v, d)| max_cone_step(v, d)).fold(1.0, f64::min),
+        Some(p) => p.pool.install(|| v.par_chunks(g).zip(dv.par_chunks(g)).map(|(v, d)| max_cone_step(v, d)).reduce(|| 1.0, f64::min)),
+    }
+}
 
 pub(super) fn norm_inf(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))
@@ -68,16 +114,16 @@ pub(super) struct Residuals {
 impl Iterate {
     /// The longest steps in (0, 1] along `d` that keep the primal variables (x, t) and the
     /// dual ones (s, v) in their cones (of dimension `cone`: 1, the orthant, or 3).
-    fn max_steps(&self, d: &Direction, cone: usize) -> (f64, f64) {
-        let along = |v: &[f64], dv: &[f64]| if cone == 3 { max_cone_step(v, dv) } else { max_step(v, dv) };
+    fn max_steps(&self, d: &Direction, cone: usize, par: Option<&Par>) -> (f64, f64) {
+        let along = |v: &[f64], dv: &[f64]| if cone == 3 { max_cone_step_on(par, v, dv) } else { max_step(v, dv) };
         (along(&self.x, &d.dx).min(max_step(&self.t, &d.dt)), along(&self.s, &d.ds).min(max_step(&self.v, &d.dv)))
     }
 
     /// Moves along `d`: the primal variables (x, t, lambda) and the dual ones (s, v, y) each by
     /// 0.995 of the longest step that keeps them in their cones, at most 1.
-    fn step(&mut self, d: &Direction, cone: usize) {
+    fn step(&mut self, d: &Direction, cone: usize, par: Option<&Par>) {
         let eta = 0.995;
-        let (ap, ad) = self.max_steps(d, cone);
+        let (ap, ad) = self.max_steps(d, cone, par);
         let (ap, ad) = ((eta * ap).min(1.0), (eta * ad).min(1.0));
         let step = |v: &mut [f64], dv: &[f64], a: f64| v.iter_mut().zip(dv).for_each(|(v, d)| *v += a * d);
         step(&mut self.x, &d.dx, ap);
@@ -87,6 +133,13 @@ impl Iterate {
         step(&mut self.v, &d.dv, ad);
         step(&mut self.y, &d.dy, ad);
     }
+}
+
+/// `u = M^-1 f_live` and `f_live . u` for a direction's bordered solve: known, or to be solved
+/// with the direction (the first of an iteration), one pass over the factor for both.
+pub(super) enum Live<'a> {
+    Known(&'a [f64], f64),
+    Solve(&'a mut [f64], &'a mut f64),
 }
 
 /// An iterate's distance from the optimum: the mean complementarity product, lambda (scaled),
@@ -116,7 +169,9 @@ struct Ipm {
     /// the scalings of the cones, where the variables are in second-order cones (`theta` then
     /// unused)
     nt: Vec<Nt>,
+    /// `u = M^-1 f_live` and `f_live . u`, solved with each iteration's predictor
     u: Vec<f64>,
+    fu: f64,
     aty: Vec<f64>,
     best: f64,
     since_best: usize,
@@ -317,6 +372,7 @@ impl Lp {
             theta: vec![0.0; nx],
             nt,
             u: vec![0.0; n],
+            fu: 0.0,
             aty: vec![0.0; nx],
             best: f64::INFINITY,
             since_best: 0,
@@ -397,16 +453,26 @@ impl Lp {
     /// One step of the predictor-corrector from the iterate: the normal matrix at its Theta,
     /// factorized, the predictor and the corrector, Gondzio's correctors, and the step along
     /// the direction; None where the normal equations cannot be factorized or solved.
+    ///
+    /// LDL^T on the Cholesky's analysis: the matrix is positive semi-definite, but near the
+    /// optimum Theta spans 1e-12 to 1e12 and rounding leaves pivots of either sign that a
+    /// Cholesky refuses (the direction's correction makes up for them); where the LDL^T fails
+    /// (non-finite entries) or the predictor's solve is not finite, LU with pivoting.
     fn newton_step(&mut self, ipm: &mut Ipm, mu: f64) -> Option<()> {
         self.normal_matrix(ipm);
-        if !self.factorize_normal(ipm) {
-            return None;
+        let mut first = None;
+        for lu in [false, true] {
+            let ok = if lu { self.normal.factorize().is_ok() } else { self.normal.factorize_ldlt().is_ok() };
+            first = if ok { self.predictor_corrector(ipm, mu) } else { None };
+            if first.is_some() {
+                break;
+            }
         }
-        let fu = dot(&self.f_live, &ipm.u);
-        let (d, rxs, rtv, steps, target) = self.predictor_corrector(ipm, mu, fu)?;
+        let (d, rxs, rtv, steps, target) = first?;
+        let fu = ipm.fu;
         let (mut d, rxs, rtv) = self.centrality_correctors(ipm, d, rxs, rtv, steps, target, fu);
         self.refine(ipm, &mut d, &rxs, &rtv, fu)?;
-        ipm.p.step(&d, self.cone);
+        ipm.p.step(&d, self.cone, self.par.as_ref());
         Some(())
     }
 
@@ -418,8 +484,12 @@ impl Lp {
             let p = &ipm.p;
             let at = |v: &[f64], c: usize| [v[3 * c], v[3 * c + 1], v[3 * c + 2]];
             // in place: the scalings' vector is as long at every iteration
-            ipm.nt.clear();
-            ipm.nt.extend((0..p.x.len() / 3).map(|c| Nt::new(at(&p.x, c), at(&p.s, c))));
+            ipm.nt.resize(p.x.len() / 3, Nt::default());
+            let fill = |c0: usize, nt: &mut [Nt]| nt.iter_mut().enumerate().for_each(|(j, w)| *w = Nt::new(at(&p.x, c0 + j), at(&p.s, c0 + j)));
+            match &self.par {
+                None => fill(0, &mut ipm.nt),
+                Some(par) => par.pool.install(|| ipm.nt.par_chunks_mut(GRAIN_CONES).enumerate().for_each(|(c, nt)| fill(c * GRAIN_CONES, nt))),
+            }
             return self.assemble(&[], &ipm.nt);
         }
         let (p, theta) = (&ipm.p, &mut ipm.theta);
@@ -433,46 +503,31 @@ impl Lp {
         self.assemble(theta, &[]);
     }
 
-    /// Factorizes the normal matrix and solves `u = M^-1 f_live` (into `ipm.u`): whether it
-    /// could. LDL^T on the Cholesky's analysis: the matrix is positive semi-definite, but near
-    /// the optimum Theta spans 1e-12 to 1e12 and rounding leaves pivots of either sign that a
-    /// Cholesky refuses (the direction's correction makes up for them); where the LDL^T fails
-    /// (non-finite entries) or a solve is not finite, LU with pivoting.
-    fn factorize_normal(&mut self, ipm: &mut Ipm) -> bool {
-        for lu in [false, true] {
-            let ok = if lu { self.normal.factorize().is_ok() } else { self.normal.factorize_ldlt().is_ok() };
-            ipm.u.copy_from_slice(&self.f_live);
-            if ok && self.solve_normal(&mut ipm.u).is_some() {
-                return true;
-            }
-        }
-        false
-    }
-
     /// Mehrotra's predictor (the affine direction) and corrector (centred at `sigma mu`, with
     /// sigma from the predictor's complementarity, at most [`SIGMA_MAX`]): the corrector's
     /// direction, its complementarity targets, the longest steps along it and `sigma mu`; None
-    /// if a solve fails.
+    /// if a solve fails. The predictor's solve also gives `u = M^-1 f_live` and `f_live . u`
+    /// (into `ipm.u`, `ipm.fu`).
     #[allow(clippy::type_complexity)]
-    fn predictor_corrector(&mut self, ipm: &Ipm, mu: f64, fu: f64) -> Option<(Direction, Vec<f64>, Vec<f64>, (f64, f64), f64)> {
+    fn predictor_corrector(&mut self, ipm: &mut Ipm, mu: f64) -> Option<(Direction, Vec<f64>, Vec<f64>, (f64, f64), f64)> {
         if self.cone == 3 {
-            return self.predictor_corrector_cones(ipm, mu, fu);
+            return self.predictor_corrector_cones(ipm, mu);
         }
-        let (p, res, theta, u) = (&ipm.p, &ipm.res, &ipm.theta, &ipm.u);
+        let Ipm { p, res, theta, u, fu, ncomp, .. } = ipm;
         let (m, nx) = (self.n_bounded(), theta.len());
         // predictor
         let rxs: Vec<f64> = p.x.iter().zip(&p.s).map(|(x, s)| -x * s).collect();
         let rtv: Vec<f64> = p.t.iter().zip(&p.v).map(|(t, v)| -t * v).collect();
-        let (aff, (ap, ad)) = self.direction(p, res, &rxs, &rtv, theta, u, fu)?;
+        let (aff, (ap, ad)) = self.direction(p, res, &rxs, &rtv, theta, Live::Solve(u, fu))?;
         let comp = |a: &[f64], da: &[f64], b: &[f64], db: &[f64]| {
             a.iter().zip(da).zip(b.iter().zip(db)).map(|((a, da), (b, db))| (a + ap * da) * (b + ad * db)).sum::<f64>()
         };
-        let mu_aff = (comp(&p.x, &aff.dx, &p.s, &aff.ds) + comp(&p.t, &aff.dt, &p.v, &aff.dv)) / ipm.ncomp;
+        let mu_aff = (comp(&p.x, &aff.dx, &p.s, &aff.ds) + comp(&p.t, &aff.dt, &p.v, &aff.dv)) / *ncomp;
         let sigma = (mu_aff / mu).powi(3).min(SIGMA_MAX);
         // corrector
         let rxs: Vec<f64> = (0..nx).map(|i| sigma * mu - p.x[i] * p.s[i] - aff.dx[i] * aff.ds[i]).collect();
         let rtv: Vec<f64> = (0..m).map(|i| sigma * mu - p.t[i] * p.v[i] - aff.dt[i] * aff.dv[i]).collect();
-        let (d, steps) = self.direction(p, res, &rxs, &rtv, theta, u, fu)?;
+        let (d, steps) = self.direction(p, res, &rxs, &rtv, theta, Live::Known(u, *fu))?;
         Some((d, rxs, rtv, steps, sigma * mu))
     }
 
@@ -517,24 +572,27 @@ impl Lp {
                 // in the scaled space, the trial point's product (lam + ap W^-1 dx) o (lam + ad W ds),
                 // its two eigenvalues (v0 +- |v1, v2|) each brought within the bounds
                 let mut rxs2 = rxs.clone();
-                for (c, w) in nt.iter().enumerate() {
-                    let (a, b) = (w.apply_inv(tri(&d.dx, c)), w.apply(tri(&d.ds, c)));
-                    let v = jordan(std::array::from_fn(|i| w.lam[i] + ap_t * a[i]), std::array::from_fn(|i| w.lam[i] + ad_t * b[i]));
-                    let r = (v[1] * v[1] + v[2] * v[2]).sqrt();
-                    let (f1, f2) = (fix(v[0] + r), fix(v[0] - r));
-                    let (u1, u2) = if r > 0.0 { (v[1] / r, v[2] / r) } else { (1.0, 0.0) };
-                    rxs2[3 * c] += 0.5 * (f1 + f2);
-                    rxs2[3 * c + 1] += 0.5 * (f1 - f2) * u1;
-                    rxs2[3 * c + 2] += 0.5 * (f1 - f2) * u2;
-                }
-                let next = self.direction_cones(p, res, &rxs2, nt, u, fu);
+                cones(self.par.as_ref(), &mut rxs2, &mut [], (), |_, _| (), |c0, rxs2, _| {
+                    for (j, t) in rxs2.chunks_exact_mut(3).enumerate() {
+                        let (c, w) = (c0 + j, &nt[c0 + j]);
+                        let (a, b) = (w.apply_inv(tri(&d.dx, c)), w.apply(tri(&d.ds, c)));
+                        let v = jordan(std::array::from_fn(|i| w.lam[i] + ap_t * a[i]), std::array::from_fn(|i| w.lam[i] + ad_t * b[i]));
+                        let r = (v[1] * v[1] + v[2] * v[2]).sqrt();
+                        let (f1, f2) = (fix(v[0] + r), fix(v[0] - r));
+                        let (u1, u2) = if r > 0.0 { (v[1] / r, v[2] / r) } else { (1.0, 0.0) };
+                        t[0] += 0.5 * (f1 + f2);
+                        t[1] += 0.5 * (f1 - f2) * u1;
+                        t[2] += 0.5 * (f1 - f2) * u2;
+                    }
+                });
+                let next = self.direction_cones(p, res, &rxs2, nt, Live::Known(u, fu));
                 (rxs2, vec![], next)
             } else {
                 let rxs2: Vec<f64> =
                     (0..nx).map(|i| rxs[i] + fix((p.x[i] + ap_t * d.dx[i]) * (p.s[i] + ad_t * d.ds[i]))).collect();
                 let rtv2: Vec<f64> =
                     (0..m).map(|i| rtv[i] + fix((p.t[i] + ap_t * d.dt[i]) * (p.v[i] + ad_t * d.dv[i]))).collect();
-                let next = self.direction(p, res, &rxs2, &rtv2, theta, u, fu);
+                let next = self.direction(p, res, &rxs2, &rtv2, theta, Live::Known(u, fu));
                 (rxs2, rtv2, next)
             };
             let Some((d2, (ap2, ad2))) = next else {
@@ -596,7 +654,8 @@ impl Lp {
 
     /// Corrects direction `d` (of complementarity targets `rxs`, `rtv`) until it meets the
     /// primal equation `A dx - f_live dlam = rb` and lambda's dual row `-f_live . dy = rl` to
-    /// [`DIRECTION_ACCURACY`], at most [`REFINEMENTS`] times: the bordered system solved for the
+    /// [`DIRECTION_ACCURACY`] (or [`DIRECTION_FRACTION`] of the residual), at most
+    /// [`REFINEMENTS`] times: the bordered system solved for the
     /// residuals `(r, r_l)` gives `(z, dl)`, and `dy += z`, `dlam += dl`, `dx += Theta A^T z`
     /// (which keeps the dual rows), with ds, dt and dv following dx. `fu = f_live . u`.
     ///
@@ -609,12 +668,13 @@ impl Lp {
         let (p, res, theta, u) = (&ipm.p, &ipm.res, &ipm.theta, &ipm.u);
         let mut r = vec![0.0; self.n];
         let mut c = vec![0.0; theta.len()];
-        let accuracy = DIRECTION_ACCURACY * (1.0 + ipm.b_norm);
+        let accuracy = (DIRECTION_ACCURACY * (1.0 + ipm.b_norm)).max(DIRECTION_FRACTION * norm_inf(&res.rb));
+        let acc_l = DIRECTION_ACCURACY.max(DIRECTION_FRACTION * res.rl.abs());
         let residual = |lp: &Self, d: &Direction, r: &mut [f64]| {
             lp.apply(&d.dx, d.dlam, r);
             r.iter_mut().zip(&res.rb).for_each(|(r, b)| *r = b - *r);
             let r_l = res.rl + dot(&lp.f_live, &d.dy);
-            ((norm_inf(r) / accuracy).max(r_l.abs() / DIRECTION_ACCURACY), r_l)
+            ((norm_inf(r) / accuracy).max(r_l.abs() / acc_l), r_l)
         };
         let (mut worst, mut r_l) = residual(self, d, &mut r);
         for _ in 0..REFINEMENTS {
@@ -629,10 +689,14 @@ impl Lp {
             d.dlam += dl;
             self.apply_t(&r, &mut c);
             if self.cone == 3 {
-                for (w, (dx, c)) in ipm.nt.iter().zip(d.dx.chunks_exact_mut(3).zip(c.chunks_exact(3))) {
-                    let wc = w.theta_mul([c[0], c[1], c[2]]);
-                    (0..3).for_each(|i| dx[i] += wc[i]);
-                }
+                let (nt, c) = (&ipm.nt, &c);
+                cones(self.par.as_ref(), &mut d.dx, &mut [], (), |_, _| (), |c0, dx, _| {
+                    for (j, dx) in dx.chunks_exact_mut(3).enumerate() {
+                        let k = 3 * (c0 + j);
+                        let wc = nt[c0 + j].theta_mul([c[k], c[k + 1], c[k + 2]]);
+                        (0..3).for_each(|i| dx[i] += wc[i]);
+                    }
+                });
             } else {
                 d.dx.iter_mut().zip(theta.iter().zip(&c)).for_each(|(dx, (t, c))| *dx += t * c);
             }
@@ -646,7 +710,7 @@ impl Lp {
             (worst, r_l) = (now, now_l);
         }
         (d.ds, d.dt, d.dv) = if self.cone == 3 {
-            (duals_of_cones(&ipm.nt, rxs, &d.dx), vec![], vec![])
+            (duals_of_cones(self.par.as_ref(), &ipm.nt, rxs, &d.dx), vec![], vec![])
         } else {
             self.duals_of(p, res, rxs, rtv, &d.dx)
         };
@@ -681,8 +745,7 @@ impl Lp {
         rxs: &[f64],
         rtv: &[f64],
         theta: &[f64],
-        u: &[f64],
-        fu: f64,
+        live: Live,
     ) -> Option<(Direction, (f64, f64))> {
         const LANES: usize = 8;
         let m = self.n_bounded();
@@ -693,7 +756,7 @@ impl Lp {
         }
         // Theta xi, whose buffer then takes dx
         let mut dx: Vec<f64> = theta.iter().zip(&xi).map(|(t, x)| t * x).collect();
-        let (dy, dlam) = self.dual_direction(res, &mut dx, u, fu)?;
+        let (dy, dlam) = self.dual_direction(res, &mut dx, live)?;
         let mut ds = vec![0.0; nx];
         // per lane: the primal and dual step lengths, and a sum that is NaN if a value is not
         // finite
@@ -736,13 +799,30 @@ impl Lp {
     /// `M dy - f_live dlam = rb + A Theta xi` and lambda's dual row `-f_live . dy = rl`, so
     /// `dy = q + u dlam` with `q = M^-1 (rb + A Theta xi)`; None if the solve fails or dlam is
     /// not finite.
-    fn dual_direction(&mut self, res: &Residuals, txi: &mut [f64], u: &[f64], fu: f64) -> Option<(Vec<f64>, f64)> {
-        let mut q = vec![0.0; self.n];
+    fn dual_direction(&mut self, res: &Residuals, txi: &mut [f64], live: Live) -> Option<(Vec<f64>, f64)> {
+        let n = self.n;
+        let mut q = vec![0.0; n];
         self.apply(txi, 0.0, &mut q);
         for (q, r) in q.iter_mut().zip(&res.rb) {
             *q += r;
         }
-        self.solve_normal(&mut q)?;
+        let (u, fu) = match live {
+            Live::Known(u, fu) => {
+                self.solve_normal(&mut q)?;
+                (u, fu)
+            }
+            Live::Solve(u, fu) => {
+                // f_live and q in one pass over the factor
+                let mut both = Vec::with_capacity(2 * n);
+                both.extend_from_slice(&self.f_live);
+                both.extend_from_slice(&q);
+                self.normal.solve_columns_in_place(&mut both, 2).ok()?;
+                u.copy_from_slice(&both[..n]);
+                q.copy_from_slice(&both[n..]);
+                *fu = dot(&self.f_live, u);
+                (&*u, *fu)
+            }
+        };
         // -f . (q + u dlam) = rl; q (finite after a solve) becomes dy
         let dlam = -(res.rl + dot(&self.f_live, &q)) / fu;
         if !dlam.is_finite() {
@@ -757,25 +837,30 @@ impl Lp {
     /// [`Self::predictor_corrector`]): the targets in the scaled space, `-lam o lam` and
     /// `sigma mu e - lam o lam - (W^-1 dx) o (W ds)` of the predictor's direction.
     #[allow(clippy::type_complexity)]
-    fn predictor_corrector_cones(&mut self, ipm: &Ipm, mu: f64, fu: f64) -> Option<(Direction, Vec<f64>, Vec<f64>, (f64, f64), f64)> {
-        let (p, res, u, nt) = (&ipm.p, &ipm.res, &ipm.u, &ipm.nt);
+    fn predictor_corrector_cones(&mut self, ipm: &mut Ipm, mu: f64) -> Option<(Direction, Vec<f64>, Vec<f64>, (f64, f64), f64)> {
+        let Ipm { p, res, u, fu, nt, ncomp, .. } = ipm;
         let mut r = vec![0.0; p.x.len()];
-        for (w, r) in nt.iter().zip(r.chunks_exact_mut(3)) {
-            let ll = jordan(w.lam, w.lam);
-            (0..3).for_each(|i| r[i] = -ll[i]);
-        }
-        let (aff, (ap, ad)) = self.direction_cones(p, res, &r, nt, u, fu)?;
+        cones(self.par.as_ref(), &mut r, &mut [], (), |_, _| (), |c0, r, _| {
+            for (w, r) in nt[c0..].iter().zip(r.chunks_exact_mut(3)) {
+                let ll = jordan(w.lam, w.lam);
+                (0..3).for_each(|i| r[i] = -ll[i]);
+            }
+        });
+        let (aff, (ap, ad)) = self.direction_cones(p, res, &r, nt, Live::Solve(u, fu))?;
         let comp = p.x.iter().zip(&aff.dx).zip(p.s.iter().zip(&aff.ds)).map(|((x, dx), (s, ds))| (x + ap * dx) * (s + ad * ds)).sum::<f64>();
-        let sigma = (comp / ipm.ncomp / mu).powi(3).min(SIGMA_MAX);
+        let sigma = (comp / *ncomp / mu).powi(3).min(SIGMA_MAX);
         let tri = |v: &[f64], c: usize| [v[3 * c], v[3 * c + 1], v[3 * c + 2]];
-        for (c, w) in nt.iter().enumerate() {
-            let so = jordan(w.apply_inv(tri(&aff.dx, c)), w.apply(tri(&aff.ds, c)));
-            let ll = jordan(w.lam, w.lam);
-            r[3 * c] = sigma * mu - ll[0] - so[0];
-            r[3 * c + 1] = -ll[1] - so[1];
-            r[3 * c + 2] = -ll[2] - so[2];
-        }
-        let (d, steps) = self.direction_cones(p, res, &r, nt, u, fu)?;
+        cones(self.par.as_ref(), &mut r, &mut [], (), |_, _| (), |c0, r, _| {
+            for (j, r) in r.chunks_exact_mut(3).enumerate() {
+                let (c, w) = (c0 + j, &nt[c0 + j]);
+                let so = jordan(w.apply_inv(tri(&aff.dx, c)), w.apply(tri(&aff.ds, c)));
+                let ll = jordan(w.lam, w.lam);
+                r[0] = sigma * mu - ll[0] - so[0];
+                r[1] = -ll[1] - so[1];
+                r[2] = -ll[2] - so[2];
+            }
+        });
+        let (d, steps) = self.direction_cones(p, res, &r, nt, Live::Known(u, *fu))?;
         Some((d, r, vec![], steps, sigma * mu))
     }
 
@@ -789,50 +874,59 @@ impl Lp {
         res: &Residuals,
         r: &[f64],
         nt: &[Nt],
-        u: &[f64],
-        fu: f64,
+        live: Live,
     ) -> Option<(Direction, (f64, f64))> {
         let nx = p.x.len();
         let tri = |v: &[f64], c: usize| [v[3 * c], v[3 * c + 1], v[3 * c + 2]];
-        // xi, then h = lam \ r (for ds), and W^2 xi, whose buffer then takes dx (pushed, not
-        // zeroed first: the zeroing of the work arrays took 4% of an analysis)
-        let (mut xi, mut h, mut dx) = (Vec::with_capacity(nx), Vec::with_capacity(nx), Vec::with_capacity(nx));
-        for (c, w) in nt.iter().enumerate() {
-            let hc = w.lam_div(tri(r, c));
-            let g = w.apply_inv(hc);
-            let x: [f64; 3] = std::array::from_fn(|i| res.rc[3 * c + i] - g[i]);
-            xi.extend_from_slice(&x);
-            h.extend_from_slice(&hc);
-            dx.extend_from_slice(&w.theta_mul(x));
-        }
-        let (dy, dlam) = self.dual_direction(res, &mut dx, u, fu)?;
+        // per cone xi and h = lam \ r (for ds), and W^2 xi, whose buffer then takes dx
+        let (mut dx, mut xh) = (vec![0.0; nx], vec![0.0; 2 * nx]);
+        cones(self.par.as_ref(), &mut dx, &mut xh, (), |_, _| (), |c0, dx, xh| {
+            for (j, (dx, xh)) in dx.chunks_exact_mut(3).zip(xh.chunks_exact_mut(6)).enumerate() {
+                let (c, w) = (c0 + j, &nt[c0 + j]);
+                let hc = w.lam_div(tri(r, c));
+                let g = w.apply_inv(hc);
+                let x: [f64; 3] = std::array::from_fn(|i| res.rc[3 * c + i] - g[i]);
+                xh[..3].copy_from_slice(&x);
+                xh[3..].copy_from_slice(&hc);
+                dx.copy_from_slice(&w.theta_mul(x));
+            }
+        });
+        let (dy, dlam) = self.dual_direction(res, &mut dx, live)?;
         // one pass: dx = W^2 (A^T dy - xi), ds = W^-1 (h - W^-1 dx), the steps, finiteness
-        let mut ds = Vec::with_capacity(nx);
-        let (mut ap, mut ad, mut nan) = (1.0f64, 1.0f64, 0.0);
-        for (c, w) in nt.iter().enumerate() {
-            let a = tri(&dx, c);
-            let d = w.theta_mul(std::array::from_fn(|i| a[i] - xi[3 * c + i]));
-            let v = w.apply_inv(d);
-            let e = w.apply_inv(std::array::from_fn(|i| h[3 * c + i] - v[i]));
-            ap = cone_step_upto(tri(&p.x, c), d, ap);
-            ad = cone_step_upto(tri(&p.s, c), e, ad);
-            dx[3 * c..3 * c + 3].copy_from_slice(&d);
-            ds.extend_from_slice(&e);
-            nan += 0.0 * (d[0] + d[1] + d[2] + e[0] + e[1] + e[2]);
-        }
+        let mut ds = vec![0.0; nx];
+        let xh = &xh;
+        let min3 = |a: (f64, f64, f64), b: (f64, f64, f64)| (a.0.min(b.0), a.1.min(b.1), a.2 + b.2);
+        let (ap, ad, nan) = cones(self.par.as_ref(), &mut dx, &mut ds, (1.0, 1.0, 0.0), min3, |c0, dx, ds| {
+            let (mut ap, mut ad, mut nan) = (1.0f64, 1.0f64, 0.0);
+            for (j, (dxc, dsc)) in dx.chunks_exact_mut(3).zip(ds.chunks_exact_mut(3)).enumerate() {
+                let (c, w) = (c0 + j, &nt[c0 + j]);
+                let d = w.theta_mul(std::array::from_fn(|i| dxc[i] - xh[6 * c + i]));
+                let v = w.apply_inv(d);
+                let e = w.apply_inv(std::array::from_fn(|i| xh[6 * c + 3 + i] - v[i]));
+                ap = cone_step_upto(tri(&p.x, c), d, ap);
+                ad = cone_step_upto(tri(&p.s, c), e, ad);
+                dxc.copy_from_slice(&d);
+                dsc.copy_from_slice(&e);
+                nan += 0.0 * (d[0] + d[1] + d[2] + e[0] + e[1] + e[2]);
+            }
+            (ap, ad, nan)
+        });
         let finite = nan == 0.0;
         finite.then_some((Direction { dx, ds, dt: vec![], dv: vec![], dy, dlam }, (ap, ad)))
     }
 }
 
 /// The dual direction of the cones' primal `dx` for the targets `r`: `ds = W^-1 (lam \ r - W^-1 dx)`.
-fn duals_of_cones(nt: &[Nt], r: &[f64], dx: &[f64]) -> Vec<f64> {
-    let mut ds = Vec::with_capacity(dx.len());
-    for (c, w) in nt.iter().enumerate() {
-        let h = w.lam_div([r[3 * c], r[3 * c + 1], r[3 * c + 2]]);
-        let v = w.apply_inv([dx[3 * c], dx[3 * c + 1], dx[3 * c + 2]]);
-        ds.extend_from_slice(&w.apply_inv(std::array::from_fn(|i| h[i] - v[i])));
-    }
+fn duals_of_cones(par: Option<&Par>, nt: &[Nt], r: &[f64], dx: &[f64]) -> Vec<f64> {
+    let mut ds = vec![0.0; dx.len()];
+    cones(par, &mut ds, &mut [], (), |_, _| (), |c0, ds, _| {
+        for (j, o) in ds.chunks_exact_mut(3).enumerate() {
+            let (c, w) = (c0 + j, &nt[c0 + j]);
+            let h = w.lam_div([r[3 * c], r[3 * c + 1], r[3 * c + 2]]);
+            let v = w.apply_inv([dx[3 * c], dx[3 * c + 1], dx[3 * c + 2]]);
+            o.copy_from_slice(&w.apply_inv(std::array::from_fn(|i| h[i] - v[i])));
+        }
+    });
     ds
 }
 

@@ -76,11 +76,15 @@ pub struct LimitOptions {
     /// The sequence has converged when lambda changes by less than this fraction between two
     /// programs.
     pub sequence_tolerance: f64,
+    /// Threads of the interior point's passes over contacts and cones in 3D, from 2,000
+    /// contacts (below, one); 0: all cores. The results are the same to the bit with any
+    /// number. The plane's program runs on one.
+    pub threads: usize,
 }
 
 impl Default for LimitOptions {
     fn default() -> Self {
-        LimitOptions { tolerance: 1e-8, max_iterations: 200, max_sequence: 50, sequence_tolerance: 1e-6 }
+        LimitOptions { tolerance: 1e-8, max_iterations: 200, max_sequence: 50, sequence_tolerance: 1e-6, threads: 0 }
     }
 }
 
@@ -132,8 +136,15 @@ const SIGMA_MAX: f64 = 0.2;
 const REFINEMENTS: usize = 2;
 
 /// A search direction meets the primal equation to this, relative to the right-hand side's
-/// scale, and lambda's dual row to this: far below the tolerance.
+/// scale, and lambda's dual row to this: far below the tolerance...
 const DIRECTION_ACCURACY: f64 = 1e-12;
+
+/// ... or to this fraction of the iterate's own residual in each, if that is larger: a step of
+/// length a along such a direction still removes at least 0.9 a of the residual, and where the
+/// residuals are large (the first half of the iterations) the direction's correction, a solve,
+/// is not needed. Iterations with it and without: in the plane 36 and 36 at 10^4 blocks, 59 and
+/// 58 at 10^5; in 3D 37 and 37 on the 9,331-block facade, 42 and 42 on the 10,047-block one.
+const DIRECTION_FRACTION: f64 = 0.1;
 
 /// The largest `max_iterations` accepted.
 pub const MAX_ITERATIONS: usize = 100_000;
@@ -253,6 +264,13 @@ fn validate(opts: &LimitOptions) -> Result<()> {
         return Err(Error::input(format!(
             "analysis.max_iterations must lie in 1..={MAX_ITERATIONS}, got {}",
             opts.max_iterations
+        )));
+    }
+    if opts.threads > crate::explicit::MAX_THREADS {
+        return Err(Error::input(format!(
+            "analysis.threads = {} is more than the limit of {}",
+            opts.threads,
+            crate::explicit::MAX_THREADS
         )));
     }
     if !(opts.sequence_tolerance.is_finite() && opts.sequence_tolerance > 0.0) {

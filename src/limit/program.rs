@@ -11,6 +11,7 @@
 
 use super::cone::Nt;
 use super::*;
+use rayon::prelude::*;
 
 /// A dof held by a support: no equation.
 pub(super) const NO_EQ: u32 = u32::MAX;
@@ -34,6 +35,8 @@ pub(super) struct Lp {
     pub(super) acols: Vec<f64>,
     /// The blocks `A_k` in factored form, where they are forces at contact points (3D).
     pub(super) corners: Option<Corners>,
+    /// The threads of the passes over contacts and cones, where there is more than one.
+    pub(super) par: Option<Par>,
     /// The dimension of the cones the variables lie in, in groups of that many: 1 (the
     /// orthant, `x >= 0`) or 3 (second-order cones `x0 >= |(x1, x2)|`).
     pub(super) cone: usize,
@@ -80,6 +83,7 @@ impl Lp {
             dofs,
             acols: vec![],
             corners: None,
+            par: None,
             cone: 1,
             pv: vec![0.0; m * rows],
             slots,
@@ -157,14 +161,85 @@ impl Corners {
     }
 }
 
+/// Contacts per task of the parallel passes over contacts.
+const GRAIN_CONTACTS: usize = 1024;
+
+/// From this many contacts the passes of a program in corner form run on several threads: below,
+/// an iteration takes about a millisecond, and the hand-offs to the threads would cost more than
+/// they save.
+const PAR_MIN_CONTACTS: usize = 2000;
+
+/// The threads of a program in corner form and how its passes split among them. The products
+/// `A x` and the normal matrix's assembly add each contact's part into the equations of its two
+/// bodies: the equations are cut into one range per thread, and each part adds, in the contacts'
+/// order, what its contacts put into its own range (a contact across a cut is computed by both
+/// parts). Each sum is then made in the same order as on one thread: the results are the same to
+/// the bit whatever the number of threads.
+pub(super) struct Par {
+    pub(super) pool: std::sync::Arc<rayon::ThreadPool>,
+    /// the parts' first equations, then the number of equations
+    eqs: Vec<usize>,
+    /// the parts' first value slots in the normal matrix (its values are stored by column), then
+    /// the number of values
+    slots: Vec<usize>,
+    /// per part, the contacts with an equation in its range, in order
+    contacts: Vec<Vec<u32>>,
+}
+
+impl Par {
+    /// `v` cut at `bounds` (the first 0, the last `v`'s length) into one slice per part.
+    fn cut<'a>(v: &'a mut [f64], bounds: &[usize]) -> Vec<&'a mut [f64]> {
+        let mut rest = v;
+        let mut parts = Vec::with_capacity(bounds.len() - 1);
+        for w in bounds.windows(2) {
+            let (part, tail) = rest.split_at_mut(w[1] - w[0]);
+            parts.push(part);
+            rest = tail;
+        }
+        parts
+    }
+}
+
+impl Lp {
+    /// Runs the passes of a program in corner form on `threads` threads (0: all cores), where it
+    /// has at least [`PAR_MIN_CONTACTS`] contacts; an error if the threads cannot be started.
+    pub(super) fn start_threads(&mut self, threads: usize) -> Result<()> {
+        if self.corners.is_none() || self.m < PAR_MIN_CONTACTS || threads == 1 {
+            return Ok(());
+        }
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| Error::input(format!("cannot start {threads} threads: {e}")))?;
+        let parts = pool.current_num_threads();
+        if parts < 2 {
+            return Ok(());
+        }
+        let eqs: Vec<usize> = (0..=parts).map(|i| i * self.n / parts).collect();
+        let slots = eqs.iter().map(|&e| self.normal.column_start(e)).collect();
+        let mut contacts = vec![vec![]; parts];
+        for (k, d) in self.dofs.chunks_exact(self.rows).enumerate() {
+            for (p, list) in contacts.iter_mut().enumerate() {
+                if d.iter().any(|&e| e != NO_EQ && (eqs[p]..eqs[p + 1]).contains(&(e as usize))) {
+                    list.push(k as u32);
+                }
+            }
+        }
+        self.par = Some(Par { pool: std::sync::Arc::new(pool), eqs, slots, contacts });
+        Ok(())
+    }
+}
+
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 impl Lp {
-    /// `out[dofs] += A_k x_k` for a program in corner form.
+    /// `out[dofs] += A_k x_k` for a program in corner form (on the threads, each part adding into
+    /// its own equations).
     pub(super) fn apply_corners(&self, cf: &Corners, x: &[f64], out: &mut [f64]) {
-        for k in 0..self.m {
+        // contact k's forces added into `out`, whose first equation is `e0`
+        let contact = |k: usize, out: &mut [f64], e0: usize| {
             let d = &self.dofs[12 * k..12 * k + 12];
             let g = &cf.gens[cf.sides * k..cf.sides * (k + 1)];
             for q in 0..cf.corners {
@@ -177,31 +252,52 @@ impl Lp {
                 let (ma, mb) = (cross(ra, f), cross(rb, f));
                 let rows = [f[0], f[1], f[2], ma[0], ma[1], ma[2], -f[0], -f[1], -f[2], -mb[0], -mb[1], -mb[2]];
                 for (&e, v) in d.iter().zip(rows) {
-                    if e != NO_EQ {
-                        out[e as usize] += v;
+                    // a support's NO_EQ wraps beyond every range
+                    if let Some(o) = out.get_mut((e as usize).wrapping_sub(e0)) {
+                        *o += v;
                     }
                 }
+            }
+        };
+        match &self.par {
+            None => (0..self.m).for_each(|k| contact(k, out, 0)),
+            Some(p) => {
+                let parts = Par::cut(out, &p.eqs);
+                p.pool.install(|| {
+                    parts.into_par_iter().zip(&p.contacts).zip(&p.eqs).for_each(|((o, ks), &e0)| ks.iter().for_each(|&k| contact(k as usize, o, e0)))
+                });
             }
         }
     }
 
     /// `A^T y` for a program in corner form: each generator's dot product with the velocity
-    /// jump at its corner.
+    /// jump at its corner (on the threads, in chunks of contacts).
     pub(super) fn apply_t_corners(&self, cf: &Corners, y: &[f64], out: &mut [f64]) {
-        for k in 0..self.m {
-            let d = &self.dofs[12 * k..12 * k + 12];
-            let yv: [f64; 12] = std::array::from_fn(|r| if d[r] == NO_EQ { 0.0 } else { y[d[r] as usize] });
-            let g = &cf.gens[cf.sides * k..cf.sides * (k + 1)];
-            for q in 0..cf.corners {
-                let [ra, rb] = cf.arms[cf.corners * k + q];
-                // (r x g) . w = g . (w x r)
-                let (wa, wb) = (cross([yv[3], yv[4], yv[5]], ra), cross([yv[9], yv[10], yv[11]], rb));
-                let jump: [f64; 3] = std::array::from_fn(|i| yv[i] + wa[i] - yv[6 + i] - wb[i]);
-                let o = cf.var(self.nv, k, q);
-                for (j, gj) in g.iter().enumerate() {
-                    out[o + j] = gj[0] * jump[0] + gj[1] * jump[1] + gj[2] * jump[2];
+        let nv = self.nv;
+        // contacts from k0 into their variables `out`
+        let contacts = |k0: usize, out: &mut [f64]| {
+            for (j, o) in out.chunks_exact_mut(nv).enumerate() {
+                let k = k0 + j;
+                let d = &self.dofs[12 * k..12 * k + 12];
+                let yv: [f64; 12] = std::array::from_fn(|r| if d[r] == NO_EQ { 0.0 } else { y[d[r] as usize] });
+                let g = &cf.gens[cf.sides * k..cf.sides * (k + 1)];
+                for q in 0..cf.corners {
+                    let [ra, rb] = cf.arms[cf.corners * k + q];
+                    // (r x g) . w = g . (w x r)
+                    let (wa, wb) = (cross([yv[3], yv[4], yv[5]], ra), cross([yv[9], yv[10], yv[11]], rb));
+                    let jump: [f64; 3] = std::array::from_fn(|i| yv[i] + wa[i] - yv[6 + i] - wb[i]);
+                    let o = &mut o[cf.sides * q..cf.sides * (q + 1)];
+                    for (o, gj) in o.iter_mut().zip(g) {
+                        *o = gj[0] * jump[0] + gj[1] * jump[1] + gj[2] * jump[2];
+                    }
                 }
             }
+        };
+        match &self.par {
+            None => contacts(0, out),
+            Some(p) => p.pool.install(|| {
+                out.par_chunks_mut(nv * GRAIN_CONTACTS).enumerate().for_each(|(c, o)| contacts(c * GRAIN_CONTACTS, o))
+            }),
         }
     }
 
@@ -211,8 +307,6 @@ impl Lp {
     /// block by block: `C M C^T` has the blocks M, `P^T = (Ra M)^T`, `Ra P^T`, and with
     /// `Q = Rb M`, `Q^T`, `Ra Q^T`, `Rb Q^T` (a third of the products of the dense 12 x 3 form).
     pub(super) fn assemble_corners(&mut self, cf: &Corners, nt: &[Nt]) {
-        let vals = self.normal.values_mut();
-        vals.fill(0.0);
         // the 3 x 3 matrix whose column j is r x (column j of m), and r x (row j of m)
         let cross_cols = |r: [f64; 3], m: &[[f64; 3]; 3]| -> [[f64; 3]; 3] {
             let c: [[f64; 3]; 3] = std::array::from_fn(|j| cross(r, [m[0][j], m[1][j], m[2][j]]));
@@ -222,8 +316,10 @@ impl Lp {
             let c: [[f64; 3]; 3] = std::array::from_fn(|j| cross(r, m[j]));
             std::array::from_fn(|i| std::array::from_fn(|j| c[j][i]))
         };
-        for k in 0..self.m {
-            let slots = &self.slots[144 * k..144 * (k + 1)];
+        let (all_slots, nv) = (&self.slots, self.nv);
+        // contact k's block added into `vals`, whose first slot is `s0`
+        let contact = |k: usize, vals: &mut [f64], s0: usize| {
+            let slots = &all_slots[144 * k..144 * (k + 1)];
             let g = &cf.gens[cf.sides * k..cf.sides * (k + 1)];
             let mut block = [[0.0; 12]; 12];
             let mut add = |bi: usize, bj: usize, m: &[[f64; 3]; 3], sign: f64| {
@@ -234,7 +330,7 @@ impl Lp {
                 }
             };
             for q in 0..cf.corners {
-                let th = nt[cf.var(self.nv, k, q) / 3].theta();
+                let th = nt[cf.var(nv, k, q) / 3].theta();
                 let gt: [[f64; 3]; 3] =
                     std::array::from_fn(|i| std::array::from_fn(|b| g[0][i] * th[0][b] + g[1][i] * th[1][b] + g[2][i] * th[2][b]));
                 let m: [[f64; 3]; 3] =
@@ -254,16 +350,38 @@ impl Lp {
                 add(2, 3, &qt, 1.0);
                 add(3, 3, &cross_rows(rb, &qm), 1.0);
             }
+            // a support's u32::MAX wraps beyond every range
+            let mut put = |slot: u32, v: f64| {
+                if let Some(o) = vals.get_mut((slot as usize).wrapping_sub(s0)) {
+                    *o += v;
+                }
+            };
             for r in 0..12 {
                 for s in r..12 {
                     let slot = slots[12 * r + s];
                     if slot != u32::MAX {
-                        vals[slot as usize] += block[r][s];
+                        put(slot, block[r][s]);
                         if s != r {
-                            vals[slots[12 * s + r] as usize] += block[r][s];
+                            put(slots[12 * s + r], block[r][s]);
                         }
                     }
                 }
+            }
+        };
+        let vals = self.normal.values_mut();
+        match &self.par {
+            None => {
+                vals.fill(0.0);
+                (0..self.m).for_each(|k| contact(k, vals, 0));
+            }
+            Some(p) => {
+                let parts = Par::cut(vals, &p.slots);
+                p.pool.install(|| {
+                    parts.into_par_iter().zip(&p.contacts).zip(&p.slots).for_each(|((v, ks), &s0)| {
+                        v.fill(0.0);
+                        ks.iter().for_each(|&k| contact(k as usize, v, s0));
+                    })
+                });
             }
         }
     }
