@@ -432,6 +432,7 @@ class Model3D:
         self,
         tolerance: Optional[float] = None,
         max_iterations: Optional[int] = None,
+        threads: Optional[int] = None,
         progress: Optional[Callable[[int, float, float, float], None]] = None,
     ) -> "Results":
         """Limit analysis in 3D (the static theorem): the largest lambda for which contact forces inside the joints'
@@ -448,6 +449,8 @@ class Model3D:
         collapse (N, T1, T2, M_n, M_t1, M_t2) in interface_forces, the crack pattern in interface_states; statuses as
         Model.solve_limit. Releases the GIL; Ctrl-C stops it between iterations and raises KeyboardInterrupt, whose
         `results` attribute is a Results with status "interrupted" (no multiplier, no certificate).
+        threads: threads of the interior point's passes over contacts from 2,000 contacts (below, one; default 0: all
+        cores); the results are the same to the bit with any number.
         progress: optional callable(iteration, multiplier, nan, nan) called after each interior-point iteration; an
         exception raised by it stops the analysis and is raised again."""
     def solve_dynamic(

@@ -141,6 +141,25 @@ def test_wrong_argument_types_are_input_errors() -> None:
         md.Model3D(boxes, joints={"default": {"cohesion": 1e5}}).solve_limit()
 
 
+def test_limit_analysis_on_threads_gives_the_same_results_to_the_bit(tmp_path: Path) -> None:
+    """From 2,000 contacts the interior point's passes run on the threads asked for (a U wall of 2,240 contacts, the
+    Rust test `the_threads_give_the_same_results_to_the_bit` checks the core): the same iterates whatever their
+    number; a case's analysis.threads reaches a 3D limit analysis."""
+    model = md.Model3D(md.u_wall(12.0, 5.0, 4.0, 0.25, 0.5, 0.25), joints=DRY, direction=90)
+    one, two = model.solve_limit(threads=1), model.solve_limit(threads=2)
+    assert one.status == "collapse" and one.iterations == two.iterations
+    assert one.collapse_multiplier == two.collapse_multiplier
+    assert np.array_equal(one.mechanism, two.mechanism) and np.array_equal(one.interface_forces, two.interface_forces)
+    with pytest.raises(md.InputError, match="threads must be >= 0"):
+        model.solve_limit(threads=-1)
+    path = tmp_path / "box.toml"
+    path.write_text('format = 1\ntitle = "box"\n[geometry]\nboxes = [[0, 0, 0, 0.3, 0.2, 0.9]]\n'
+                    "[joints]\nfriction = 0.7\ndilatancy = 0.7\n[loads]\ndirection = 90\n[analysis]\nthreads = 1\n")
+    case = md.load_case(path)
+    assert (case.dimension, case.method, case.solver_kwargs()) == (3, "limit", {"threads": 1})
+    assert abs(case.run().collapse_multiplier - 0.2 / 0.9) <= 1e-6 * 0.2 / 0.9
+
+
 def test_a_progress_callback_that_raises_stops_the_analysis() -> None:
     model = md.Model3D(md.running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175), joints=DRY, direction=90)
     calls = []

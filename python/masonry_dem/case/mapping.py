@@ -33,8 +33,11 @@ METHODS = ("static", "dynamic", "limit")
 INCREMENTAL_OPTIONS = ("control", "steps", "max_displacement", "control_block", "tolerance")
 #: The options of the explicit solver only (``solve_dynamic``); the static solver ignores them.
 EXPLICIT_OPTIONS = ("damping", "damping_coefficient", "time_step", "unbalanced_ratio", "threads")
-#: The options each method takes from a case: limit analysis has no load path and takes none.
+#: The options each method takes from a case: limit analysis has no load path and takes none of the load
+#: path's; in 3D it takes ``threads`` (:data:`LIMIT_3D_OPTIONS`).
 SOLVER_OPTIONS = {"static": INCREMENTAL_OPTIONS, "dynamic": INCREMENTAL_OPTIONS + EXPLICIT_OPTIONS, "limit": ()}
+#: The options limit analysis in 3D takes from a case (``Model3D.solve_limit``).
+LIMIT_3D_OPTIONS = ("threads",)
 
 #: The core's defaults (``ModelSpec::default()``; ``StaticOptions`` / ``ExplicitOptions::default()``) of
 #: the parameters Python shows when a case leaves them out (:attr:`Case.model_kwargs`,
@@ -100,7 +103,8 @@ class AnalysisParameters:
 
     :data:`INCREMENTAL_OPTIONS` (control, steps, max_displacement [m], control_block, tolerance) are those
     of both incremental solvers, :data:`EXPLICIT_OPTIONS` (damping, damping_coefficient, time_step [s],
-    unbalanced_ratio, threads) the explicit solver's only; limit analysis takes none of them.
+    unbalanced_ratio, threads) the explicit solver's only; limit analysis takes none of them, but in 3D
+    threads (:data:`LIMIT_3D_OPTIONS`).
     """
 
     control: Optional[str] = None
@@ -114,8 +118,10 @@ class AnalysisParameters:
     unbalanced_ratio: Optional[float] = None
     threads: Optional[int] = None
 
-    def arguments(self, method: str) -> Dict[str, Any]:
-        """The keyword arguments of the solver of ``method``: the options given that it takes."""
+    def arguments(self, method: str, dimension: int = 2) -> Dict[str, Any]:
+        """The keyword arguments of the solver of ``method`` in ``dimension``: the options given that it takes."""
+        if method == "limit" and dimension == 3:
+            return _given(self, LIMIT_3D_OPTIONS)
         return _given(self, SOLVER_OPTIONS[method])
 
 
@@ -337,12 +343,12 @@ class Case:
         :attr:`analysis_kwargs` shows them (and :attr:`dynamic_kwargs` for "dynamic"); a max_displacement
         left out is left out.
 
-        Limit analysis takes none of the case's [analysis] keys (they describe a load path: control,
+        Limit analysis takes none of the case's [analysis] keys that describe a load path (control,
         steps, max_displacement, and tolerance, the precision of the incremental solvers' multiplier);
-        ``Model.solve_limit`` runs with its own defaults."""
+        ``Model.solve_limit`` runs with its own defaults, in 3D on the case's ``threads`` if it gives them."""
         method = self.check_method(method)
         if method == "limit":
-            return {}
+            return self.analysis.arguments(method, self.dimension)
         kwargs = {k: v for k, v in self.analysis_kwargs.items() if not (k == "max_displacement" and v is None)}
         if method == "dynamic":
             kwargs.update(self.dynamic_kwargs)
@@ -362,7 +368,7 @@ class Case:
         above the stability limit) are re-raised with the file name in front.
         """
         method = self.check_method(method)
-        kwargs = self.analysis.arguments(method)
+        kwargs = self.analysis.arguments(method, self.dimension)
         if progress is not None:
             kwargs["progress"] = progress
         if self.dimension == 3:  # limit analysis or the explicit solver (check_method refuses the static one)

@@ -93,7 +93,7 @@ def load_case(path: PathLike) -> Case:
     ``unbalanced_ratio``      explicit solver, 0 < x < 1: a load level is in equilibrium when
                               |unbalanced forces| <= x |applied forces| (default 1e-5).
     ``threads``               explicit solver, integer >= 0: threads of the interface loop
-                              (0, the default: all cores).
+                              (0, the default: all cores); in 3D limit analysis's too.
     ========================  ===================================================================
 
     The static solver ignores the explicit solver's keys, so one case runs with either method

@@ -67,7 +67,9 @@ def solve(study: Study, item: Item) -> Any:
     """Build and solve one analysis: (results, model)."""
     if callable(study.base):
         model = study.base(**item.values)
-        options = {"threads": 1} if item.method == "dynamic" else {}  # one thread per worker
+        # one thread per worker: the explicit solver, and limit analysis in 3D
+        one_thread = item.method == "dynamic" or (item.method == "limit" and model.dimension == 3)
+        options = {"threads": 1} if one_thread else {}
         return getattr(model, f"solve_{item.method}")(**options), model
     case = study.case(item)
     model = case.build_model()
