@@ -191,7 +191,11 @@ impl Ipm {
     fn verdict(&mut self, opts: &LimitOptions, q: &Measures, failed: Outcome, iter: usize) -> Option<Solution> {
         let range = LAMBDA_RANGE;
         if q.lam > range * range || (q.lam > range && q.primal <= opts.tolerance) {
-            return Some(self.solution(Outcome::Unbounded, q, iter));
+            // after an iterate near the optimum, lambda running away is rounding's breakdown,
+            // not a program without a bound (a near-optimal point bounds it): that iterate stands
+            // (a single sliding block near its optimum, its normal matrix singular to rounding,
+            // was sent to lambda = 1e13 and said unbounded)
+            return Some(self.near_solution().unwrap_or_else(|| self.solution(Outcome::Unbounded, q, iter)));
         }
         if q.worst <= opts.tolerance {
             return Some(self.solution(Outcome::Optimal, q, iter));
@@ -680,8 +684,10 @@ impl Lp {
         let (p, res, theta, u) = (&ipm.p, &ipm.res, &ipm.theta, &ipm.u);
         let mut r = vec![0.0; self.n];
         let mut c = vec![0.0; theta.len()];
-        let accuracy = (DIRECTION_ACCURACY * (1.0 + ipm.b_norm)).max(DIRECTION_FRACTION * norm_inf(&res.rb));
-        let acc_l = DIRECTION_ACCURACY.max(DIRECTION_FRACTION * res.rl.abs());
+        // a fraction of the residual where it is far above the tolerance
+        let fraction = |r: f64, scale: f64| if r > DIRECTION_FRACTION_ABOVE * scale { DIRECTION_FRACTION * r } else { 0.0 };
+        let accuracy = (DIRECTION_ACCURACY * (1.0 + ipm.b_norm)).max(fraction(norm_inf(&res.rb), 1.0 + ipm.b_norm));
+        let acc_l = DIRECTION_ACCURACY.max(fraction(res.rl.abs(), 1.0));
         let residual = |lp: &Self, d: &Direction, r: &mut [f64]| {
             lp.apply(&d.dx, d.dlam, r);
             r.iter_mut().zip(&res.rb).for_each(|(r, b)| *r = b - *r);

@@ -107,6 +107,19 @@ def check_limit_against_lp(model, mu):
     assert abs(lam - exact) <= 1e-6 * exact, f"{model.n_blocks} blocks: {lam} against the limit load {exact}"
 
 
+def test_rounding_after_a_near_optimum_is_not_called_unbounded():
+    """One block sliding on its base at lambda = mu (examples/single-block-sliding.toml with this friction): near
+    its optimum the normal matrix is singular to rounding, and the iterations after a near-optimal one once sent
+    lambda to 1e13, said "unbounded". The near-optimal iterate stands, and its certificate says how near."""
+    mu = 0.39758711488893983
+    case = md.load_case(Path(__file__).resolve().parents[2] / "examples" / "single-block-sliding.toml")
+    kwargs = dict(case.model_kwargs)
+    kwargs["joints"] = {"default": {**kwargs["joints"]["default"], "friction": mu, "dilatancy": mu}}
+    res = md.Model(**kwargs).solve_limit()
+    assert res.status == "collapse", res.error
+    assert abs(res.collapse_multiplier - mu) <= 1e-6 * mu
+
+
 @pytest.mark.parametrize("number", [1, 2, 3, 4, 5, 6])
 def test_solve_limit_on_ferris_tinloi_walls(number):
     check_limit_against_lp(*ferris_tinloi_wall(number))
