@@ -147,8 +147,8 @@ const DIRECTION_ACCURACY: f64 = 1e-12;
 const DIRECTION_FRACTION: f64 = 0.1;
 
 /// The residual (scaled as the tolerance is) above which a direction may miss by
-/// [`DIRECTION_FRACTION`] of it. Near the optimum every direction is corrected in full: a fraction
-/// there had sent a sliding block's iterations, near its optimum, to lambda = 1e13.
+/// [`DIRECTION_FRACTION`] of it. Near the optimum every direction is corrected in full: the last
+/// iterations, which make the certificate, are as accurate as the solves allow.
 const DIRECTION_FRACTION_ABOVE: f64 = 1e-6;
 
 /// The largest `max_iterations` accepted.
