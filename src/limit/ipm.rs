@@ -45,6 +45,12 @@ fn cones<R: Send + Sync + Clone>(
     })
 }
 
+/// Cone `c`'s three values in `v`.
+#[inline]
+fn tri(v: &[f64], c: usize) -> [f64; 3] {
+    [v[3 * c], v[3 * c + 1], v[3 * c + 2]]
+}
+
 /// [`max_cone_step`] on the program's threads where it has them.
 fn max_cone_step_on(par: Option<&Par>, v: &[f64], dv: &[f64]) -> f64 {
     let g = 3 * GRAIN_CONES;
@@ -498,10 +504,9 @@ impl Lp {
     fn normal_matrix(&mut self, ipm: &mut Ipm) {
         if self.cone == 3 {
             let p = &ipm.p;
-            let at = |v: &[f64], c: usize| [v[3 * c], v[3 * c + 1], v[3 * c + 2]];
             // in place: the scalings' vector is as long at every iteration
             ipm.nt.resize(p.x.len() / 3, Nt::default());
-            let fill = |c0: usize, nt: &mut [Nt]| nt.iter_mut().enumerate().for_each(|(j, w)| *w = Nt::new(at(&p.x, c0 + j), at(&p.s, c0 + j)));
+            let fill = |c0: usize, nt: &mut [Nt]| nt.iter_mut().enumerate().for_each(|(j, w)| *w = Nt::new(tri(&p.x, c0 + j), tri(&p.s, c0 + j)));
             match &self.par {
                 None => fill(0, &mut ipm.nt),
                 Some(par) => par.pool.install(|| ipm.nt.par_chunks_mut(GRAIN_CONES).enumerate().for_each(|(c, nt)| fill(c * GRAIN_CONES, nt))),
@@ -568,7 +573,6 @@ impl Lp {
         let (m, nx) = (self.n_bounded(), p.x.len());
         let (mut d, mut rxs, mut rtv, mut steps) = (d, rxs, rtv, steps);
         let most = if self.n < CORRECTORS_FROM { 1 } else { CORRECTORS };
-        let tri = |v: &[f64], c: usize| [v[3 * c], v[3 * c + 1], v[3 * c + 2]];
         for _ in 0..most {
             let (ap, ad) = steps;
             if ap.min(ad) >= 0.9 {
@@ -710,8 +714,7 @@ impl Lp {
                 let (nt, c) = (&ipm.nt, &c);
                 cones(self.par.as_ref(), &mut d.dx, &mut [], (), |_, _| (), |c0, dx, _| {
                     for (j, dx) in dx.chunks_exact_mut(3).enumerate() {
-                        let k = 3 * (c0 + j);
-                        let wc = nt[c0 + j].theta_mul([c[k], c[k + 1], c[k + 2]]);
+                        let wc = nt[c0 + j].theta_mul(tri(c, c0 + j));
                         (0..3).for_each(|i| dx[i] += wc[i]);
                     }
                 });
@@ -867,7 +870,6 @@ impl Lp {
         let (aff, (ap, ad)) = self.direction_cones(p, res, &r, nt, Live::Solve(u, fu))?;
         let comp = p.x.iter().zip(&aff.dx).zip(p.s.iter().zip(&aff.ds)).map(|((x, dx), (s, ds))| (x + ap * dx) * (s + ad * ds)).sum::<f64>();
         let sigma = (comp / *ncomp / mu).powi(3).min(SIGMA_MAX);
-        let tri = |v: &[f64], c: usize| [v[3 * c], v[3 * c + 1], v[3 * c + 2]];
         cones(self.par.as_ref(), &mut r, &mut [], (), |_, _| (), |c0, r, _| {
             for (j, r) in r.chunks_exact_mut(3).enumerate() {
                 let (c, w) = (c0 + j, &nt[c0 + j]);
@@ -895,7 +897,6 @@ impl Lp {
         live: Live,
     ) -> Option<(Direction, (f64, f64))> {
         let nx = p.x.len();
-        let tri = |v: &[f64], c: usize| [v[3 * c], v[3 * c + 1], v[3 * c + 2]];
         // per cone xi and h = lam \ r (for ds), and W^2 xi, whose buffer then takes dx
         let (mut dx, mut xh) = (vec![0.0; nx], vec![0.0; 2 * nx]);
         cones(self.par.as_ref(), &mut dx, &mut xh, (), |_, _| (), |c0, dx, xh| {
@@ -940,8 +941,8 @@ fn duals_of_cones(par: Option<&Par>, nt: &[Nt], r: &[f64], dx: &[f64]) -> Vec<f6
     cones(par, &mut ds, &mut [], (), |_, _| (), |c0, ds, _| {
         for (j, o) in ds.chunks_exact_mut(3).enumerate() {
             let (c, w) = (c0 + j, &nt[c0 + j]);
-            let h = w.lam_div([r[3 * c], r[3 * c + 1], r[3 * c + 2]]);
-            let v = w.apply_inv([dx[3 * c], dx[3 * c + 1], dx[3 * c + 2]]);
+            let h = w.lam_div(tri(r, c));
+            let v = w.apply_inv(tri(dx, c));
             o.copy_from_slice(&w.apply_inv(std::array::from_fn(|i| h[i] - v[i])));
         }
     });
