@@ -135,7 +135,8 @@ pub(crate) fn check_displacement_range(model: &Model, control: Control) -> Resul
 }
 
 /// The control block: `given`, or the model's default ([`Model::default_control_block`]),
-/// checked to exist.
+/// checked to exist and to move along x (the curve follows it there: a block held along x, the
+/// base, would give a curve of zeros).
 pub(crate) fn control_block(model: &Model, given: Option<usize>) -> Result<usize> {
     let nb = model.n_blocks();
     let block = given.unwrap_or_else(|| model.default_control_block());
@@ -145,5 +146,15 @@ pub(crate) fn control_block(model: &Model, given: Option<usize>) -> Result<usize
             format!("control block {block} does not exist (the model has {nb} blocks)"),
         ));
     }
+    if model.fixed()[3 * block] {
+        return Err(Error::input_at("analysis.control_point", held_control_block(block, &model.block_name(block), "x")));
+    }
     Ok(block)
+}
+
+/// The refusal of control block `block` (`name`), held along `axis`, the axis its curve follows.
+pub(crate) fn held_control_block(block: usize, name: &str, axis: &str) -> String {
+    format!(
+        "control block {block} ({name}) is held along {axis}, the axis its curve follows: the curve would be zeros; give a block free to move (left out: the default, a wall block at the top)"
+    )
 }

@@ -86,6 +86,24 @@ pub(crate) fn non_negative(what: &str, value: f64) -> Result<f64> {
     }
 }
 
+/// The smallest weight of a wall \[N\] the solvers compute with: the square root of the smallest
+/// normal `f64`. The explicit solver's norms and the static solver's work are products of forces
+/// (and of forces and displacements); below this weight they underflow, and the solvers would
+/// fail or see no load at all (limit analysis, which scales its program, would still answer).
+pub const MIN_WEIGHT: f64 = 1.4916681462400413e-154;
+
+/// Refuses a wall whose total `weight` \[N\] (`density` \[kg/m3\] times `gravity` \[m/s2\]
+/// times its volume) is above zero but below [`MIN_WEIGHT`], naming the density, so that every
+/// method refuses it alike. A weight of zero (no gravity) is not refused here.
+pub(crate) fn check_weight(weight: f64, density: f64, gravity: f64) -> Result<()> {
+    if weight > 0.0 && weight < MIN_WEIGHT {
+        return Err(Error::input_at("geometry.density", format!(
+            "geometry.density = {density:e} kg/m3 (with loads.gravity = {gravity} m/s2) gives the wall a weight of {weight:.3e} N, below the {MIN_WEIGHT:.1e} N the solvers compute with (their products of forces would underflow): give the density in kg/m3 (masonry: about 2000)"
+        )));
+    }
+    Ok(())
+}
+
 /// The largest number of increments (`analysis.steps`) a solver accepts. Each step stores a point
 /// of the curve and costs at least one solve; larger requests are refused before anything is
 /// allocated.

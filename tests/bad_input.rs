@@ -367,3 +367,36 @@ fn driving_an_unloaded_top_beam_is_refused() {
     .unwrap();
     assert!(solve(&loaded, &opts).is_ok());
 }
+
+/// A wall whose weight is too small for the solvers' products of forces is refused by its density
+/// before any method runs: the static solver used to fail with "the live load does no work", the
+/// explicit one with "no collapse bracket", where limit analysis answered.
+#[test]
+fn a_weight_below_the_solvers_range_is_refused_by_its_density() {
+    for density in [1e-300, 1e-160] {
+        let spec = ModelSpec { density, ..one(vec![Rect::new(0.0, 0.0, 0.4, 1.0)]) };
+        match Model::new(spec) {
+            Err(Error::Input { key, reason }) => {
+                assert_eq!(key.as_deref(), Some("geometry.density"), "{reason}");
+                assert!(reason.starts_with(&format!("geometry.density = {density:e} kg/m3")), "{reason}");
+            }
+            other => panic!("expected the density refused, got {other:?}"),
+        }
+    }
+}
+
+/// The solvers refuse a control block whose horizontal displacement is held (the base): the curve
+/// they follow on it would be zeros.
+#[test]
+fn a_held_control_block_is_refused() {
+    use masonry_dem::analysis::Control;
+    use masonry_dem::explicit::{self, ExplicitOptions};
+    let m = a_model();
+    let base = m.base().unwrap();
+    let msg = input_message(explicit::solve(&m, &ExplicitOptions { control_block: Some(base), ..ExplicitOptions::default() }));
+    assert!(msg.contains("control block 1 (the base) is held along x"), "{msg}");
+    for control in [Control::Load, Control::Displacement { max_displacement: 1e-3 }] {
+        let msg = input_message(solve(&m, &StaticOptions { control, control_block: Some(base), ..StaticOptions::default() }));
+        assert!(msg.contains("is held along x"), "{msg}");
+    }
+}

@@ -214,3 +214,91 @@ fn openings_remove_exactly_their_volume() {
     let (_, msg) = input_message(cut_openings(wall, &[[1.0, 0.5, 0.9, 1.3]]));
     assert!(msg.starts_with("openings[0]"), "{msg}");
 }
+
+/// An opening wholly outside the facade (or only touching its edge) is refused by its index and
+/// coordinates, where it used to be dropped without a word; one partly outside cuts the part
+/// within, as the 2D running bond does (the same wall's faces); openings that remove every
+/// block are refused by the openings' name.
+#[test]
+fn openings_outside_the_wall_are_refused_and_partly_outside_cut_the_part_within() {
+    let (length, height, t) = (2.0, 1.0, 0.1);
+    let wall = running_bond_3d(length, height, t, 0.4, 0.2, 0.2).unwrap();
+    for outside in [[5.0, 0.2, 6.0, 0.5], [-1.0, 0.2, 0.0, 0.5], [0.5, 1.0, 1.5, 2.0], [0.5, -2.0, 1.5, -1.0]] {
+        let (key, msg) = input_message(cut_openings(wall.clone(), &[[0.2, 0.2, 0.6, 0.6], outside]));
+        assert_eq!(key.as_deref(), Some("openings[1]"), "{msg}");
+        assert!(msg.starts_with("openings[1] [x0, z0, x1, z1] = [") && msg.contains("lies outside the wall"), "{msg}");
+        assert!(msg.contains("x from 0 to 2 m, z from 0 to 1 m"), "{msg}");
+    }
+    // a door from below the ground and a notch past the end: the parts within are cut, as in 2D
+    let openings = [[0.5, -1.0, 0.9, 0.6], [1.7, 0.4, 3.0, 0.8]];
+    let cut = cut_openings(wall, &openings).unwrap();
+    let removed = (0.4 * 0.6 + 0.3 * 0.4) * t;
+    assert!(close(volume(&cut), length * height * t - removed, 1e-13));
+    let plane = running_bond(&RunningBond {
+        block_length: 0.4,
+        block_height: 0.2,
+        courses: 5,
+        height: None,
+        length,
+        first_course: FirstCourse::Half,
+        openings: openings.iter().map(|o| masonry_dem::geometry::Rect::new(o[0], o[1], o[2], o[3])).collect(),
+    })
+    .unwrap();
+    let key = |x0: f64, z0: f64| ((z0 * 1e6).round() as i64, (x0 * 1e6).round() as i64);
+    let mut faces: Vec<_> = cut.iter().map(|b| (key(b.min[0], b.min[2]), key(b.max[0], b.max[2]))).collect();
+    let mut rects: Vec<_> = plane.iter().map(|r| (key(r.x0, r.y0), key(r.x1, r.y1))).collect();
+    faces.sort_unstable();
+    rects.sort_unstable();
+    assert_eq!(faces, rects);
+    // over the whole leaf
+    let (key, msg) = input_message(cut_openings(running_bond_3d(length, height, t, 0.4, 0.2, 0.2).unwrap(), &[[-1.0, -1.0, 3.0, 3.0]]));
+    assert_eq!(key.as_deref(), Some("openings"));
+    assert!(msg.contains("remove every block of the wall"), "{msg}");
+    // an opening's own size, in the facade's coordinates
+    let (_, msg) = input_message(cut_openings(running_bond_3d(length, height, t, 0.4, 0.2, 0.2).unwrap(), &[[0.5, 0.6, 0.9, 0.6]]));
+    assert!(msg.contains("need x0 < x1 and z0 < z1"), "{msg}");
+}
+
+/// A lone box without a base touches nothing because nothing holds it: the refusal says so, as it
+/// does for two boxes without a base.
+#[test]
+fn a_wall_without_a_base_has_no_support_whatever_its_blocks() {
+    for blocks in [vec![Box3::new(0.0, 0.0, 0.0, 0.4, 0.6, 1.0)], vec![Box3::new(0.0, 0.0, 0.0, 0.4, 0.6, 1.0), Box3::new(0.0, 0.0, 1.0, 0.4, 0.6, 2.0)]] {
+        let spec = ModelSpec3 { blocks, base: false, ..ModelSpec3::default() };
+        let (_, msg) = input_message(Model3::new(&spec).and_then(|m| m.check_supports()));
+        assert!(msg.starts_with("the wall has no support"), "{msg}");
+    }
+}
+
+/// A wall whose weight is too small for the solvers' products of forces is refused by its
+/// density before any method runs (limit analysis alone used to answer, the explicit solver to
+/// fail with "no collapse bracket").
+#[test]
+fn a_weight_below_the_solvers_range_is_refused_by_its_density() {
+    use masonry_dem::error::MIN_WEIGHT;
+    let blocks = vec![Box3::new(0.0, 0.0, 0.0, 0.4, 0.6, 1.0)];
+    for density in [1e-300, 1e-160] {
+        let (key, msg) = input_message(Model3::new(&ModelSpec3 { blocks: blocks.clone(), density, ..ModelSpec3::default() }));
+        assert_eq!(key.as_deref(), Some("geometry.density"), "{msg}");
+        assert!(msg.contains("below the 1.5e-154 N"), "{msg}");
+    }
+    // the weight just above the limit builds (0.24 m3 at 9.81 m/s2)
+    let density = 1.01 * MIN_WEIGHT / (0.24 * 9.81);
+    Model3::new(&ModelSpec3 { blocks, density, ..ModelSpec3::default() }).unwrap();
+}
+
+/// The explicit solver refuses a control block held along the axis its curve follows (the base):
+/// its curve would be zeros.
+#[test]
+fn a_held_control_block_is_refused_in_3d() {
+    use masonry_dem::explicit::{solve_3d, ExplicitOptions};
+    let model = Model3::new(&ModelSpec3 {
+        blocks: vec![Box3::new(0.0, 0.0, 0.0, 0.4, 0.6, 1.0)],
+        live: LiveLoad3::HorizontalWeight { direction: 90.0 },
+        ..ModelSpec3::default()
+    })
+    .unwrap();
+    let base = model.base().unwrap();
+    let (_, msg) = input_message(solve_3d(&model, &ExplicitOptions { control_block: Some(base), ..ExplicitOptions::default() }));
+    assert!(msg.contains("control block 1 (the base) is held along y"), "{msg}");
+}

@@ -593,17 +593,20 @@ pub fn solve_3d_with(model: &Model3, opts: &ExplicitOptions, monitor: &mut dyn F
     if model.n_wall() == 0 {
         return Err(Error::input("the model has no wall blocks"));
     }
-    let control_block = match opts.control_block {
-        Some(i) if i >= model.n_blocks() => return Err(Error::input(format!("control_block {i} is out of range (the model has {} blocks)", model.n_blocks()))),
-        Some(i) => i,
-        None => highest_block(model),
-    };
-    let s = Integrator3::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
     // the curve follows the control block along the horizontal axis nearer the load's direction
     let offset = match model.live() {
         crate::space::LiveLoad3::HorizontalWeight { direction } if direction.to_radians().sin().abs() > direction.to_radians().cos().abs() => 1,
         _ => 0,
     };
+    let control_block = match opts.control_block {
+        Some(i) if i >= model.n_blocks() => return Err(Error::input(format!("control_block {i} is out of range (the model has {} blocks)", model.n_blocks()))),
+        Some(i) if model.fixed()[6 * i + offset] => {
+            return Err(Error::input(crate::analysis::held_control_block(i, &model.block_name(i), ["x", "y"][offset])))
+        }
+        Some(i) => i,
+        None => highest_block(model),
+    };
+    let s = Integrator3::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
     let setting = Setting { fd: model.dead_load().to_vec(), fl: model.live_load().to_vec(), size: model.size(), scale: 1.0, offset };
     let mut run = QuasiStatic::new(s, setting, opts, control_block, start);
     let end = match run.settle_dead_loads(monitor) {

@@ -46,6 +46,7 @@ impl Model {
             .collect();
         check_masses(&mass, &inertia, |i| frame.name(i))?;
         let weight = weights(&frame, &mass, spec.gravity)?;
+        crate::error::check_weight(weight.iter().sum(), spec.density, spec.gravity)?;
         let sections = interfaces.iter().map(|it| Section::new(it.l, s)).collect();
         let nb = frame.rects.len();
         let mut model = Model {

@@ -90,7 +90,7 @@ impl Box3 {
 
 /// A coordinate for messages: as written for ordinary numbers, in exponent notation beyond 1e15
 /// or below 1e-4 (as the 2D [`crate::geometry::Rect::label`]).
-fn coord(v: f64) -> String {
+pub(crate) fn coord(v: f64) -> String {
     if v == 0.0 || !v.is_finite() || (1e-4..1e15).contains(&v.abs()) {
         format!("{v}")
     } else {

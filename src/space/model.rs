@@ -47,7 +47,7 @@ impl Model3 {
         let n_wall = spec.blocks.len();
         let name = |i: usize| block_name(i, n_wall, base, top, &boxes);
         let contacts = detect(&boxes, &kinds, name, poll)?;
-        check_touched(&contacts, boxes.len(), n_wall, top, name)?;
+        check_touched(&contacts, boxes.len(), n_wall, base, top, name)?;
         let mass: Vec<f64> = boxes.iter().map(|b| spec.density * b.volume()).collect();
         let inertia: Vec<[f64; 3]> = boxes
             .iter()
@@ -72,6 +72,8 @@ impl Model3 {
                 )));
             }
         }
+        let weight: f64 = (0..n_wall).chain(top).map(|i| mass[i] * spec.gravity).sum();
+        crate::error::check_weight(weight, spec.density, spec.gravity)?;
         let nb = boxes.len();
         let centroids = boxes.iter().map(Box3::centroid).collect();
         let mut model = Model3 {
@@ -190,9 +192,7 @@ impl Model3 {
         let nb = self.n_blocks();
         let held: Vec<bool> = (0..nb).map(|i| self.fixed[6 * i..6 * i + 6].iter().any(|&f| f)).collect();
         if !held.iter().any(|&s| s) {
-            return Err(Error::input(
-                "the wall has no support: no base ([base] kind = \"none\", base=False): nothing carries its weight",
-            ));
+            return Err(Error::input(NO_SUPPORT));
         }
         let loose = crate::model::unsupported(held, self.contacts.iter().map(|c| (c.a, c.b)));
         if let Some(&first) = loose.first() {
@@ -331,11 +331,17 @@ fn frame(spec: &ModelSpec3) -> (Vec<Box3>, Vec<BlockKind>, Option<usize>, Option
     (boxes, kinds, base, top)
 }
 
-/// Refuses a wall block, or the top beam, that no contact reaches.
+/// The refusal of a wall without a base: nothing holds it.
+const NO_SUPPORT: &str =
+    "the wall has no support: no base ([base] kind = \"none\", base=False): nothing carries its weight";
+
+/// Refuses a wall block, or the top beam, that no contact reaches; without a base, the wall
+/// itself (a lone block touches nothing because nothing holds it: the support is what is missing).
 fn check_touched(
     contacts: &[Contact],
     nb: usize,
     n_wall: usize,
+    base: Option<usize>,
     top: Option<usize>,
     name: impl Fn(usize) -> String,
 ) -> Result<()> {
@@ -345,6 +351,9 @@ fn check_touched(
         touched[c.b] = true;
     }
     if let Some(i) = (0..n_wall).chain(top).find(|&i| !touched[i]) {
+        if base.is_none() {
+            return Err(Error::input(NO_SUPPORT));
+        }
         return Err(Error::input(format!("{} touches no other block", name(i))));
     }
     Ok(())

@@ -8,7 +8,7 @@
 //! that end is longer by as much (at most `block_length` + [`MIN_PART`] of it; at a bonded
 //! corner, by the wall's thickness more).
 
-use super::Box3;
+use super::{coord, Box3};
 use crate::error::{positive, Error, Result};
 use crate::geometry::{courses_for_height, too_many_blocks, Rect, MAX_BLOCKS, MIN_PART, REL_TOL};
 
@@ -220,8 +220,12 @@ fn check_count(what: &str, estimate: f64) -> Result<()> {
 /// or cut off (the opening's edge is snapped onto the block's there). Exactly the opening's
 /// volume is removed where no edge was snapped.
 ///
-/// An opening that reaches a block deeper in y than the facade (a return wall's block running
-/// over a corner) is refused: openings belong in the facade, clear of the corners.
+/// An opening partly outside the facade cuts the part of it that lies within, as in 2D (a door
+/// from below the ground, a notch at an end of the wall); one that lies wholly outside the facade
+/// (the box around its blocks in x and z), or only touches its edge, is refused, naming it by its
+/// index and coordinates: it would remove nothing. So are openings that remove every block, and
+/// an opening that reaches a block deeper in y than the facade (a return wall's block running
+/// over a corner): openings belong in the facade, clear of the corners.
 ///
 /// ```
 /// use masonry_dem::space::{cut_openings, running_bond_3d};
@@ -233,7 +237,7 @@ fn check_count(what: &str, estimate: f64) -> Result<()> {
 pub fn cut_openings(blocks: Vec<Box3>, openings: &[[f64; 4]]) -> Result<Vec<Box3>> {
     let rects: Vec<Rect> = openings.iter().map(|o| Rect::new(o[0], o[1], o[2], o[3])).collect();
     for (i, r) in rects.iter().enumerate() {
-        r.validate(&format!("openings[{i}]"))?;
+        check_opening(i, r)?;
     }
     if rects.is_empty() || blocks.is_empty() {
         return Ok(blocks);
@@ -245,6 +249,22 @@ pub fn cut_openings(blocks: Vec<Box3>, openings: &[[f64; 4]]) -> Result<Vec<Box3
     }
     let tol = REL_TOL * scale.max(1.0);
     let on_facade = |b: &Box3| (b.min[1] - ymin).abs() <= tol;
+    // the facade's extent in (x, z): an opening must overlap it
+    let facade = blocks.iter().filter(|b| on_facade(b)).fold([f64::MAX, f64::MAX, f64::MIN, f64::MIN], |e, b| {
+        [e[0].min(b.min[0]), e[1].min(b.min[2]), e[2].max(b.max[0]), e[3].max(b.max[2])]
+    });
+    for (i, r) in rects.iter().enumerate() {
+        if r.x1.min(facade[2]) - r.x0.max(facade[0]) <= tol || r.y1.min(facade[3]) - r.y0.max(facade[1]) <= tol {
+            return Err(Error::input_at(format!("openings[{i}]"), format!(
+                "openings[{i}] [x0, z0, x1, z1] = {} lies outside the wall (its facade spans x from {} to {} m, z from {} to {} m): an opening must overlap the wall",
+                r.label(),
+                rounded(facade[0]),
+                rounded(facade[2]),
+                rounded(facade[1]),
+                rounded(facade[3])
+            )));
+        }
+    }
     let depth = blocks.iter().filter(|b| on_facade(b)).map(|b| b.max[1] - b.min[1]).fold(f64::MAX, f64::min);
     let mut out = Vec::with_capacity(blocks.len() + 8 * rects.len());
     for (i, b) in blocks.into_iter().enumerate() {
@@ -268,5 +288,28 @@ pub fn cut_openings(blocks: Vec<Box3>, openings: &[[f64; 4]]) -> Result<Vec<Box3
         }
         out.extend(parts.into_iter().map(|p| Box3::new(p.x0, b.min[1], p.y0, p.x1, b.max[1], p.y1)));
     }
+    if out.is_empty() {
+        return Err(Error::input_at("openings", "openings: the openings remove every block of the wall: keep some wall around them"));
+    }
     Ok(out)
+}
+
+/// A coordinate summed from blocks (1.0499999999999998) for messages, to 10 significant digits.
+fn rounded(v: f64) -> String {
+    coord(format!("{v:.9e}").parse().unwrap_or(v))
+}
+
+/// Checks opening `i` `[x0, z0, x1, z1]` alone: finite, with x1 > x0 and z1 > z0.
+fn check_opening(i: usize, r: &Rect) -> Result<()> {
+    let what = format!("openings[{i}] [x0, z0, x1, z1] = {}", r.label());
+    if [r.x0, r.y0, r.x1, r.y1].iter().any(|v| !v.is_finite()) {
+        return Err(Error::input_at(format!("openings[{i}]"), format!("{what}: a coordinate is not finite")));
+    }
+    if r.x1 <= r.x0 || r.y1 <= r.y0 {
+        return Err(Error::input_at(
+            format!("openings[{i}]"),
+            format!("{what} has zero or negative size (need x0 < x1 and z0 < z1)"),
+        ));
+    }
+    Ok(())
 }
