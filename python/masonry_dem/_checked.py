@@ -14,7 +14,7 @@ import functools
 import inspect
 import re
 import reprlib
-from typing import Any, Callable, TypeVar
+from typing import Any, Callable, Optional, Tuple, TypeVar
 
 import numpy as np
 
@@ -67,12 +67,69 @@ def _real_arrays(name: str, func: Callable[..., Any], args: Any, kwargs: Any) ->
                 raise InputError(f"{name}: {where}expected real numbers, got an array of {part.dtype}")
 
 
+#: The arguments of the core's entry points that take a boolean; a boolean given to any other is refused (the core
+#: would take True for the number 1).
+BOOLEAN_ARGUMENTS = frozenset({"base", "large_rotations", "time_history"})
+
+
+def _boolean_in(value: Any, path: str = "") -> Optional[Tuple[str, Any]]:
+    """Where a boolean sits in ``value`` (itself, or an entry of its lists, tuples and arrays), and the boolean:
+    ("", True) for the value itself, ("[0][2]", True) for an entry; None when there is none. Dicts are not searched
+    (the joints: the core names a boolean law parameter itself)."""
+    if isinstance(value, (bool, np.bool_)):
+        return path, value
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind == "b" and value.size:
+            return path + "[0]" * value.ndim, value.flat[0]
+        if value.dtype != object:
+            return None
+        for index, item in np.ndenumerate(value):
+            if isinstance(item, (bool, np.bool_)):
+                return path + "".join(f"[{k}]" for k in index), item
+        return None
+    if isinstance(value, (list, tuple)):
+        for k, item in enumerate(value):
+            found = _boolean_in(item, f"{path}[{k}]")
+            if found is not None:
+                return found
+    return None
+
+
+def refuse_booleans(name: str, signature: Optional[inspect.Signature], args: Any, kwargs: Any) -> None:
+    """Refuse a boolean given where numbers belong (any argument but those of :data:`BOOLEAN_ARGUMENTS`), alone or
+    in a list of rows, with InputError naming ``name``, the argument and the entry."""
+    if signature is None:
+        return
+    try:
+        arguments = signature.bind(*args, **kwargs).arguments
+    except TypeError:  # a missing or unknown argument: the core says which
+        return
+    for key, value in arguments.items():
+        if key in BOOLEAN_ARGUMENTS:
+            continue
+        found = _boolean_in(value)
+        if found is not None:
+            where, flag = found
+            raise InputError(f"{name}: '{key}'{where} = {bool(flag)}: a boolean, which '{key}' does not take (it would "
+                             f"count as the number {int(bool(flag))})")
+
+
+def _signature(func: Callable[..., Any]) -> Optional[inspect.Signature]:
+    try:
+        return inspect.signature(func)
+    except (TypeError, ValueError):
+        return None
+
+
 def input_errors(func: F, name: str) -> F:
-    """``func`` with TypeError / OverflowError of its arguments raised as InputError naming ``name``."""
+    """``func`` with TypeError / OverflowError of its arguments raised as InputError naming ``name``, and booleans
+    given where numbers belong refused (:func:`refuse_booleans`)."""
+    signature = _signature(func)
 
     @functools.wraps(func)
     def checked(*args: Any, **kwargs: Any) -> Any:
         _real_arrays(name, func, args, kwargs)
+        refuse_booleans(name, signature, args, kwargs)
         try:
             return func(*args, **kwargs)
         except RuntimeError as exc:
@@ -102,6 +159,7 @@ class Model(_core.Model):
 
     def __new__(cls, *args: Any, **kwargs: Any) -> "Model":
         _real_blocks("Model", args[0] if args else kwargs.get("blocks"))
+        refuse_booleans("Model", _MODEL_SIGNATURE, args, kwargs)
         return input_errors(_core.Model.__new__, "Model")(cls, *args, **kwargs)  # type: ignore[no-any-return]
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:  # built by __new__ (the core's constructor)
@@ -110,7 +168,8 @@ class Model(_core.Model):
 
 # The constructor's signature as help(), Jupyter and inspect show it: the core's (its text signature, each
 # argument but blocks defaulting to None, the core's default), not the (*args, **kwargs) __new__ passes on.
-Model.__signature__ = inspect.signature(_core.Model)  # type: ignore[attr-defined]
+_MODEL_SIGNATURE = inspect.signature(_core.Model)
+Model.__signature__ = _MODEL_SIGNATURE  # type: ignore[attr-defined]
 
 for _name in ("fix", "solve_static", "solve_limit", "solve_dynamic", "simulate"):
     setattr(Model, _name, input_errors(getattr(_core.Model, _name), f"Model.{_name}"))

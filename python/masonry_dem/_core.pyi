@@ -198,8 +198,8 @@ class Model:
         control="load": raise lambda until collapse, following the equilibrium path in steps of
         the live load's work; the collapse multiplier is the peak or the plateau of lambda, to
         `tolerance` (relative). control="displacement": drive the horizontal displacement of
-        control_block (default: the top beam if any, else the highest block at the right end)
-        to max_displacement [m] in `steps` increments, through the peak and after it; without
+        control_block (default: the top beam if any, else the highest block at the right end;
+        one held along x, the base, is refused) to max_displacement [m] in `steps` increments, through the peak and after it; without
         max_displacement (None), from 2 mm on by as much again, `steps` increments each time,
         until a peak or a plateau of lambda.
         Returns Results with status "collapse" (with its evidence: a peak, a plateau with no
@@ -477,7 +477,7 @@ class Model3D:
         (Results.bracket: the highest level that settled, the lowest that ran away); control="displacement" is
         refused (InputError), and so are cohesion or tensile_strength (dry joints only) and a wall that nothing holds.
         The curve follows control_block (default: the highest wall block) along x, or along y when the live load's
-        direction is nearer y. damping, damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in
+        direction is nearer y; a control block held along that axis (the base) is refused. damping, damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in
         Model.solve_dynamic (Model3D.critical_time_step gives the stability limit). Releases the GIL; Ctrl-C raises
         KeyboardInterrupt with the partial Results as its `results` attribute. progress: as in Model.solve_dynamic."""
     def simulate(

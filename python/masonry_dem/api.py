@@ -222,7 +222,7 @@ def _dimension(obj: Any) -> int:
     return int(getattr(obj, "dimension", 2))
 
 
-def _check_model(func: str, results: Any, model: Any) -> None:
+def check_model(func: str, results: Any, model: Any) -> None:
     """InputError when ``model`` does not match ``results`` (dimension, numbers of blocks and interfaces)."""
     if _dimension(model) != _dimension(results):
         raise InputError(f"{func}: model does not match results: a {_dimension(model)}D model and "
@@ -287,7 +287,7 @@ def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dic
         "certificate": certificate_dict(getattr(results, "certificate", None)),
     })
     if model is not None:
-        _check_model("to_dict", results, model)
+        check_model("to_dict", results, model)
         space = _dimension(model) == 3
         out.update({
             "blocks": int(model.n_blocks),
@@ -349,7 +349,7 @@ def interface_columns(results: Any, model: Any) -> Dict[str, np.ndarray]:
     Of a 3D wall (:class:`masonry_dem.Model3D`), the columns of :data:`INTERFACE_COLUMNS_3D`: a, b, family, x, y, z
     (centroid [m]), nx, ny, nz (normal), area_m2 [m2], N_N, T1_N, T2_N [N] and Mn_Nm, Mt1_Nm, Mt2_Nm [N m] (the
     force and moment of block b on block a in the contact's axes: normal, t1, t2; tension > 0), state, broken."""
-    _check_model("interface_columns", results, model)
+    check_model("interface_columns", results, model)
     m = int(model.n_interfaces)
     if _dimension(model) == 3:
         ab = np.asarray(model.interface_blocks, dtype=np.int64).reshape(m, 2)
@@ -402,7 +402,7 @@ def to_dataframe(results: Any, model: Any = None) -> Any:
         "collapse_multiplier": _float(results.collapse_multiplier),
     })
     if model is not None:
-        _check_model("to_dataframe", results, model)
+        check_model("to_dataframe", results, model)
         df.attrs.update({"blocks": int(model.n_blocks), "interfaces": int(model.n_interfaces)})
     return df
 

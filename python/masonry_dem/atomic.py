@@ -71,6 +71,18 @@ def check_target(path: PathLike, inputs: Iterable[PathLike] = ()) -> Path:
     return target
 
 
+def prefix_problem(prefix: PathLike) -> Optional[str]:
+    """Why ``prefix`` cannot name a set of files (``PREFIX-blocks.vtu`` ...): it is empty, or it is a folder (an
+    existing one, or a name ending with a separator, whose files would be ``FOLDER/-blocks.vtu``); None when it
+    can."""
+    name = os.fspath(prefix)
+    if name == "":
+        return "an empty prefix"
+    if name.endswith(("/", os.sep)) or os.path.isdir(name):
+        return f"{name} is a folder: give a prefix such as {os.path.join(name, 'wall')}"
+    return None
+
+
 def check_writable(path: PathLike) -> None:
     """Refuse (:class:`InputError`, one line naming ``path``) an output whose folder cannot be written: the
     folder, or the nearest one that exists when it is to be created, is tried with a file created and

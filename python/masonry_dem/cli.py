@@ -4,7 +4,7 @@
                     [--vtk PREFIX] [--csv OUT.csv] [--quiet]
     masonry-dem compare CASE.toml [--json OUT.json] [--plot OUT.png] [--quiet]
     masonry-dem demo [--plot OUT.png] [--json OUT.json] [--vtk PREFIX] [--csv OUT.csv] [--quiet]
-    masonry-dem validate [DIR] [--method static|dynamic|limit|both|all] [--quiet]
+    masonry-dem validate [DIR | CASE.toml] [--method static|dynamic|limit|both|all] [--quiet]
     masonry-dem study STUDY.toml [--scheduler ADDRESS] [--workers N] [--out OUT.parquet] [--resume]
                       [--csv OUT.csv] [--plot OUT.png] [--quiet]
     masonry-dem simulate CASE.toml [--scale F] [--duration S] [--json OUT.json] [--plot OUT.png]
@@ -20,9 +20,9 @@ analysis to a Parquet file as they finish (see :mod:`masonry_dem.study`); ``--re
 that was stopped, computing only the rows missing. It exits 0 once every row is written (the rows of
 failed analyses included, with their error), 130 when interrupted (the rows done are kept).
 
-``validate`` runs every case file of DIR (default: the examples shipped with the package, whatever the current
-directory; in the repository, its examples/; the first line names the folder) that carries a [reference]
-table and prints a table of its collapse multipliers against the reference (see :mod:`masonry_dem.validate`);
+``validate`` runs every case file of DIR, or the one case file given (default: the examples shipped with the
+package, whatever the current directory; in the repository, its examples/; the first line names the folder), that
+carries a [reference] table and prints a table of its collapse multipliers against the reference (see :mod:`masonry_dem.validate`);
 it exits 1 if any is outside its tolerance or failed.
 
 ``compare`` runs the static solver, the explicit (dynamic) one and limit analysis on one case and prints
@@ -493,8 +493,8 @@ def _validate(directory: Optional[str], method: str, quiet: bool = False) -> int
     from .validate import default_folder, validate_folder
 
     folder = Path(directory) if directory else default_folder()
-    if not folder.is_dir():
-        what = "no such folder" if not folder.exists() else "not a folder"
+    if not (folder.is_dir() or (directory and folder.is_file())):
+        what = "no such folder or case file" if not folder.exists() else "not a folder or a case file"
         hint = "" if directory else " (the default, the examples shipped with masonry-dem: is the package complete? give DIR)"
         return _error(f"{what}: {folder}{hint}", EXIT_INPUT)
 
@@ -508,7 +508,8 @@ def _validate(directory: Optional[str], method: str, quiet: bool = False) -> int
 
     cases, _skipped = collect(folder)  # reads and checks every case file before running any
     if not cases:
-        return _error(f"no case file with a [reference] table in {folder}", EXIT_INPUT)
+        why = f"no case file with a [reference] table in {folder}" if folder.is_dir() else f"{folder} has no [reference] table"
+        return _error(why, EXIT_INPUT)
     if not directory:
         echo(f"cases of {folder} (the examples shipped with masonry-dem)")
     rows, _ = validate_folder(folder, method, solve=solve, echo=echo)

@@ -10,6 +10,7 @@ import textwrap
 from typing import Any, NoReturn, Optional
 
 from ._core import __version__
+from .atomic import prefix_problem
 from .case import DEFAULT_REFERENCE_TOLERANCE, METHODS
 from .validate import METHOD_CHOICES, default_folder
 
@@ -152,10 +153,11 @@ def _add_validate(sub: Any) -> None:
         "validate",
         help="run every case with a reference value and check it",
         description=(
-            "Run every case file (*.toml) of DIR that carries a [reference] table with the static solver, the\n"
-            "explicit one and/or limit analysis, and print a table: case, reference (with its relative\n"
-            "tolerance), static, explicit and limit collapse multipliers, error (the largest relative error),\n"
-            "time of each method, verdict. Case files without a [reference] table are skipped and listed."
+            "Run every case file (*.toml) of DIR, or the one case file given, that carries a [reference]\n"
+            "table with the static solver, the explicit one and/or limit analysis, and print a table: case,\n"
+            "reference (with its relative tolerance), static, explicit and limit collapse multipliers, error\n"
+            "(the largest relative error), time of each method, verdict. Case files without a [reference]\n"
+            "table are skipped and listed."
         ),
         epilog=f"""\
             examples:
@@ -163,6 +165,7 @@ def _add_validate(sub: Any) -> None:
               masonry-dem validate --method static       the static solver only (a second or so)
               masonry-dem validate --method both         the static and the explicit solver
               masonry-dem validate my-cases/ --method dynamic
+              masonry-dem validate examples/leaf-out-of-plane.toml   one case file
 
             [reference] table of a case file:
               collapse_multiplier = 0.6429   # a force in N with live = "top_horizontal"
@@ -174,7 +177,7 @@ def _add_validate(sub: Any) -> None:
         "directory",
         metavar="DIR",
         nargs="?",
-        help=f"folder of case files (default: the examples shipped with masonry-dem, {default_folder()})",
+        help=f"folder of case files, or one case file (default: the examples shipped with masonry-dem, {default_folder()})",
     )
     validate.add_argument(
         "--method",
@@ -281,10 +284,9 @@ def _output_file(name: str) -> str:
 def _output_prefix(name: str) -> str:
     """An output prefix (PREFIX-blocks.vtu ...): not empty, not a folder (files inside a folder are named
     FOLDER/NAME)."""
-    if name == "":
-        raise argparse.ArgumentTypeError("an empty prefix")
-    if name.endswith(("/", os.sep)) or os.path.isdir(name):
-        raise argparse.ArgumentTypeError(f"{name} is a folder: give a prefix such as {os.path.join(name, 'wall')}")
+    problem = prefix_problem(name)
+    if problem:
+        raise argparse.ArgumentTypeError(problem)
     return name
 
 

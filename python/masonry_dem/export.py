@@ -40,7 +40,9 @@ from typing import Any, Dict, Iterable, List, Tuple, Union
 import numpy as np
 
 from ._vtk import FAMILY_CODES as FAMILY_CODES, write_meshes as _write_meshes
-from .atomic import atomic_file, check_target
+from ._core import InputError
+from .api import check_model
+from .atomic import atomic_file, check_target, prefix_problem
 from .history import ENERGIES, check_plane, control_response, is_time_history, largest_translation, record
 
 __all__ = [
@@ -185,6 +187,9 @@ def write_vtk(
             ``.vtu`` (or ``.pvd``) is dropped. The folder is created if missing.
         inputs: files that must not be overwritten (the case file): a target that is one of them, or
             that is not a regular file, is refused with InputError before any file is written.
+    Raises:
+        InputError: results of another model (another dimension, or other numbers of blocks and
+            interfaces), or a prefix that is a folder (``"out/"``: give ``"out/wall"``).
     Returns:
         The paths of the blocks file and of the interfaces file; of a time history, the path of the
         ``.pvd`` file and the list of the blocks files, in the order of the records.
@@ -193,8 +198,13 @@ def write_vtk(
     for ending in (".vtu", ".pvd"):
         if prefix.endswith(ending):
             prefix = prefix[: -len(ending)]
+    problem = prefix_problem(prefix)
+    if problem:
+        raise InputError(f"write_vtk: path_prefix: {problem}")
     if is_time_history(results):
         check_plane(model, "write_vtk")
+    else:
+        check_model("write_vtk", results, model)
     if int(getattr(model, "dimension", 2)) == 3:  # a wall of boxes: hexahedra and contact quads
         from .space.export import write_vtk as write_vtk_3d
 

@@ -151,20 +151,19 @@ def default_folder() -> Path:
 
 
 def collect(directory: PathLike) -> Tuple[List[Tuple[Path, Case]], List[Path]]:
-    """The case files (``*.toml``, sorted by name) of ``directory``: those with a [reference], and the others.
+    """The case files (``*.toml``, sorted by name) of ``directory``, or the case file ``directory`` itself: those
+    with a [reference], and the others.
 
     Raises:
-        FileNotFoundError / NotADirectoryError: no such folder.
+        FileNotFoundError: no such folder or file.
         masonry_dem.InputError: a case file is invalid (the message names the file and the key).
     """
     folder = Path(directory)
     if not folder.exists():
-        raise FileNotFoundError(f"no such folder: {folder}")
-    if not folder.is_dir():
-        raise NotADirectoryError(f"not a folder: {folder}")
+        raise FileNotFoundError(f"no such folder or case file: {folder}")
     with_reference: List[Tuple[Path, Case]] = []
     without: List[Path] = []
-    for path in sorted(folder.glob("*.toml")):
+    for path in sorted(folder.glob("*.toml")) if folder.is_dir() else [folder]:
         case = load_case(path)
         if case.reference is None:
             without.append(path)
@@ -318,7 +317,8 @@ def validate_folder(
     solve: Optional[Solve] = None,
     echo: Optional[Callable[[str], None]] = None,
 ) -> Tuple[List[ValidationRow], List[Path]]:
-    """Validate every case of ``directory`` that has a [reference]; return the rows and the skipped files.
+    """Validate every case of ``directory`` (a folder, or one case file) that has a [reference]; return the rows
+    and the skipped files.
 
     ``method``: "static", "dynamic", "limit", "both" (static and dynamic) or "all". ``echo`` (e.g. ``print``) receives the table line by line
     as the cases run.

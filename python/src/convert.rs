@@ -4,14 +4,21 @@
 
 use crate::*;
 
+/// Rectangles [x0, y0, x1, y1] from an (n, 4) array or a list of rows; `what` names them.
 pub(crate) fn rects_from(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Rect>> {
+    rects_named(obj, what, "[x0, y0, x1, y1]")
+}
+
+/// Rectangles from an (n, 4) array or a list of rows, whose coordinates the messages call
+/// `names` (`"[x0, z0, x1, z1]"` for a facade's openings in 3D); `what` names them.
+pub(crate) fn rects_named(obj: &Bound<'_, PyAny>, what: &str, names: &str) -> PyResult<Vec<Rect>> {
     let rows: Vec<Vec<f64>> = if let Ok(a) = obj.extract::<PyReadonlyArray2<f64>>() {
         let a = a.as_array();
         a.rows().into_iter().map(|r| r.to_vec()).collect()
     } else {
         obj.extract::<Vec<Vec<f64>>>().map_err(|_| {
             InputError::new_err(format!(
-                "{what}: expected a list of [x0, y0, x1, y1] rows of numbers"
+                "{what}: expected a list of {names} rows of numbers"
             ))
         })?
     };
@@ -20,7 +27,7 @@ pub(crate) fn rects_from(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Rec
         .map(|(i, r)| {
             if r.len() != 4 {
                 Err(InputError::new_err(format!(
-                    "{what}[{i}]: expected 4 numbers [x0, y0, x1, y1], got {}",
+                    "{what}[{i}]: expected 4 numbers {names}, got {}",
                     r.len()
                 )))
             } else {

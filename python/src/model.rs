@@ -166,8 +166,8 @@ impl PyModel {
     /// control="load": raise lambda until collapse, following the equilibrium path in steps of
     /// the live load's work; the collapse multiplier is the peak or the plateau of lambda, to
     /// `tolerance` (relative). control="displacement": drive the horizontal displacement of
-    /// control_block (default: the top beam if any, else the highest block at the right end)
-    /// to max_displacement [m] in `steps` increments, through the peak and after it; without
+    /// control_block (default: the top beam if any, else the highest block at the right end;
+    /// one held along x, the base, is refused) to max_displacement [m] in `steps` increments, through the peak and after it; without
     /// max_displacement (None), from 2 mm on by as much again, `steps` increments each time,
     /// until a peak or a plateau of lambda.
     /// Returns Results with status "collapse" (with its evidence: a peak, a plateau with no

@@ -22,8 +22,17 @@ pub(crate) const SIGNAL_POLL: Duration = Duration::from_millis(50);
 pub(crate) const GRACE: Duration = Duration::from_millis(300);
 
 impl Run {
-    pub(crate) fn new(progress: Option<Py<PyAny>>) -> Arc<Run> {
-        Arc::new(Run { progress, raised: Mutex::new(None), stop: AtomicBool::new(false) })
+    /// A run reporting to `progress`, refused (InputError naming it) unless it is a callable: it is
+    /// checked before the run starts rather than failing at its first report.
+    pub(crate) fn new(py: Python<'_>, progress: Option<Py<PyAny>>) -> PyResult<Arc<Run>> {
+        if let Some(p) = progress.as_ref().map(|p| p.bind(py)).filter(|p| !p.is_none() && !p.is_callable()) {
+            let kind = p.get_type().name().map(|n| n.to_string()).unwrap_or_else(|_| "object".into());
+            return Err(InputError::new_err(format!(
+                "progress: expected a callable, progress(step, multiplier, displacement, fraction), or None, got {kind} {}",
+                p.repr().map(|r| r.to_string()).unwrap_or_default()
+            )));
+        }
+        Ok(Arc::new(Run { progress, raised: Mutex::new(None), stop: AtomicBool::new(false) }))
     }
 
     /// Keeps the first exception that stops the run.
@@ -133,7 +142,7 @@ where
     T: pyo3::PyClass + Into<pyo3::PyClassInitializer<T>> + Send + 'static,
 {
     let model = Arc::clone(model);
-    let run = Run::new(progress);
+    let run = Run::new(py, progress)?;
     let res = run.execute(py, move |run| {
         guarded(|| {
             let mut monitor = |p: &masonry_dem::analysis::Progress| run.report(p.step, if p.time.is_nan() { p.multiplier } else { p.time }, p.displacement, p.fraction, p.poll);
@@ -161,7 +170,7 @@ where
     PyResults: From<Results<V>>,
 {
     let model = Arc::clone(model);
-    let run = Run::new(progress);
+    let run = Run::new(py, progress)?;
     let start = Instant::now();
     let res = run.execute(py, move |run| {
         guarded(|| {

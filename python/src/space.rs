@@ -35,17 +35,34 @@ fn boxes_to_py<'py>(py: Python<'py>, boxes: &[Box3]) -> Bound<'py, PyArray2<f64>
     rows_of(py, &rows)
 }
 
-/// Openings [x0, z0, x1, z1] of a facade (None: none); `what` names them.
+/// Openings [x0, z0, x1, z1] of a facade (None: none); `what` names them (`running_bond_3d.openings`).
 fn openings_from(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Vec<[f64; 4]>> {
     match obj {
-        Some(o) if !o.is_none() => Ok(rects_from(o, what)?.iter().map(|r| [r.x0, r.y0, r.x1, r.y1]).collect()),
+        Some(o) if !o.is_none() => {
+            Ok(rects_named(o, what, "[x0, z0, x1, z1]")?.iter().map(|r| [r.x0, r.y0, r.x1, r.y1]).collect())
+        }
         _ => Ok(vec![]),
     }
 }
 
-/// `blocks` with `openings` cut out of the facade, as an (n, 6) array.
-fn with_openings<'py>(py: Python<'py>, blocks: Vec<Box3>, openings: &[[f64; 4]]) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let cut = guarded(|| space::cut_openings(blocks, openings))?;
+/// `blocks` with `openings` cut out of the facade, as an (n, 6) array; the core's refusals, which
+/// name `openings`, name them as `what` does (`running_bond_3d.openings[2]`).
+fn with_openings<'py>(
+    py: Python<'py>,
+    blocks: Vec<Box3>,
+    openings: &[[f64; 4]],
+    what: &str,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let named = |text: String| match text.strip_prefix("openings") {
+        Some(rest) => format!("{what}{rest}"),
+        None => text,
+    };
+    let cut = guarded(|| {
+        space::cut_openings(blocks, openings).map_err(|e| match e {
+            Error::Input { key, reason } => Error::Input { key: key.map(named), reason: named(reason) },
+            e => e,
+        })
+    })?;
     Ok(boxes_to_py(py, &cut))
 }
 
@@ -90,9 +107,10 @@ pub(crate) fn running_bond_3d<'py>(
             })?,
         },
     };
-    let openings = openings_from(openings, "running_bond_3d.openings")?;
+    let what = "running_bond_3d.openings";
+    let openings = openings_from(openings, what)?;
     let blocks = guarded(|| space::running_bond_3d(length, height, thickness, block_length, block_height, offset))?;
-    with_openings(py, blocks, &openings)
+    with_openings(py, blocks, &openings, what)
 }
 
 /// Boxes [x0, y0, z0, x1, y1, z1] (shape (n, 6), m) of a U of three walls one block thick: a facade along x (x in
@@ -115,9 +133,10 @@ pub(crate) fn u_wall<'py>(
     block_height: f64,
     openings: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let openings = openings_from(openings, "u_wall.openings")?;
+    let what = "u_wall.openings";
+    let openings = openings_from(openings, what)?;
     let blocks = guarded(|| space::u_wall(facade, height, returns, thickness, block_length, block_height))?;
-    with_openings(py, blocks, &openings)
+    with_openings(py, blocks, &openings, what)
 }
 
 /// Boxes [x0, y0, z0, x1, y1, z1] (shape (n, 6), m) of an L of two walls one block thick: a facade along x (x in
@@ -137,9 +156,10 @@ pub(crate) fn corner_wall<'py>(
     block_height: f64,
     openings: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let openings = openings_from(openings, "corner.openings")?;
+    let what = "corner.openings";
+    let openings = openings_from(openings, what)?;
     let blocks = guarded(|| space::corner(facade, height, returns, thickness, block_length, block_height))?;
-    with_openings(py, blocks, &openings)
+    with_openings(py, blocks, &openings, what)
 }
 
 /// `boxes` [x0, y0, z0, x1, y1, z1] (m) with `openings` [x0, z0, x1, z1] (m) cut through the facade (the blocks of
@@ -154,7 +174,7 @@ pub(crate) fn cut_openings_3d<'py>(
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let blocks = boxes_from(boxes, "boxes")?;
     let openings = openings_from(Some(openings), "openings")?;
-    with_openings(py, blocks, &openings)
+    with_openings(py, blocks, &openings, "openings")
 }
 
 /// A wall of rigid axis-aligned boxes in 3D, z up, joined by dry Mohr-Coulomb contacts (limit analysis, the explicit
@@ -416,7 +436,7 @@ impl PyModel3D {
     /// (Results.bracket: the highest level that settled, the lowest that ran away); control="displacement" is
     /// refused (InputError), and so are cohesion or tensile_strength (dry joints only) and a wall that nothing holds.
     /// The curve follows control_block (default: the highest wall block) along x, or along y when the live load's
-    /// direction is nearer y. damping, damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in
+    /// direction is nearer y; a control block held along that axis (the base) is refused. damping, damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in
     /// Model.solve_dynamic (Model3D.critical_time_step gives the stability limit). Releases the GIL; Ctrl-C raises
     /// KeyboardInterrupt with the partial Results as its `results` attribute. progress: as in Model.solve_dynamic.
     #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, progress=None))]

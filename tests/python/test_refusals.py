@@ -324,3 +324,181 @@ def test_a_limit_estimate_is_written_as_one(tmp_path: Path) -> None:
     assert math.isclose(data["last_equilibrium"], 1 / 3, rel_tol=1e-4)
     assert "neither a lower nor an upper bound" in data["note"]
     assert "estimate" in proc.stdout and "collapse multiplier: none" in proc.stdout
+
+
+# --------------------------------------------------------------------------------------------------
+# Inputs that were changed without a word, or refused with a message that blamed the wrong thing
+# --------------------------------------------------------------------------------------------------
+
+LEAF_CASE = EXAMPLES / "leaf-out-of-plane.toml"
+DRY_3D = {"default": {"friction": 0.7, "dilatancy": 0.7}}
+OUTSIDE = [5.0, 0.2, 6.0, 0.5]  # right of a facade 2 or 3 m long
+
+
+@pytest.mark.parametrize(
+    "make, name, span, depth",
+    [
+        (lambda o: md.running_bond_3d(2.0, 1.0, 0.1, 0.4, 0.2, openings=o), "running_bond_3d.openings", "x from 0 to 2 m", 0.1),
+        (lambda o: md.u_wall(3.0, 1.0, 1.5, 0.2, 0.4, 0.2, openings=o), "u_wall.openings", "x from 0 to 3 m", 0.2),
+        (lambda o: md.corner_wall(3.0, 1.0, 1.5, 0.2, 0.4, 0.2, openings=o), "corner.openings", "x from 0 to 3 m", 0.2),
+        (lambda o: md.space.cut_openings(md.running_bond_3d(2.0, 1.0, 0.1, 0.4, 0.2), o), "openings", "x from 0 to 2 m", 0.1),
+    ],
+)
+def test_an_opening_outside_the_wall_is_refused_by_its_index(make: Any, name: str, span: str, depth: float) -> None:
+    """It was dropped without a word; one partly outside still cuts the part within (as in 2D)."""
+    with pytest.raises(md.InputError) as info:
+        make([[0.6, 0.2, 1.0, 0.6], OUTSIDE])
+    message = str(info.value)
+    assert message.startswith(f"{name}[1] [x0, z0, x1, z1] = [5, 0.2, 6, 0.5] lies outside the wall"), message
+    assert f"(its facade spans {span}, z from 0 to 1 m)" in message, message
+    assert info.value.key == f"{name}[1]"
+
+    def volume(boxes: Any) -> float:
+        b = np.asarray(boxes)
+        return float(np.prod(b[:, 3:] - b[:, :3], axis=1).sum())
+
+    # a door from below the ground: the 0.4 x 0.4 m of it within the facade are cut, through its depth
+    removed = volume(make([])) - volume(make([[1.0, -1.0, 1.4, 0.4]]))
+    assert removed == pytest.approx(0.4 * 0.4 * depth, rel=1e-12)
+
+
+def test_an_opening_over_the_whole_leaf_names_the_openings() -> None:
+    with pytest.raises(md.InputError, match=r"^running_bond_3d\.openings: the openings remove every block of the wall"):
+        md.running_bond_3d(2.0, 1.0, 0.1, 0.4, 0.2, openings=[[-1.0, -1.0, 3.0, 3.0]])
+
+
+def test_an_opening_of_three_numbers_is_asked_for_in_the_facade_coordinates() -> None:
+    with pytest.raises(md.InputError, match=r"running_bond_3d\.openings\[0\]: expected 4 numbers \[x0, z0, x1, z1\], got 3"):
+        md.running_bond_3d(2.0, 1.0, 0.1, 0.4, 0.2, openings=[[0.5, 0.2, 1.0]])
+
+
+def _plane() -> md.Model:
+    return md.Model([[0.0, 0.0, 0.2, 0.6]], joints={"default": {"friction": 0.65}})
+
+
+def _box() -> md.Model3D:
+    return md.Model3D([[0.0, 0.0, 0.0, 0.4, 0.6, 1.0]], joints=DRY_3D, direction=90.0)
+
+
+@pytest.mark.parametrize(
+    "call, needle",
+    [
+        (lambda: md.Model3D([[0, 0, 0, 0.4, 0.6, 1.0]], direction=True), "Model3D: 'direction' = True"),
+        (lambda: md.Model3D([[0, 0, np.True_, 0.4, 0.6, 1.0]]), "Model3D: 'boxes'[0][2] = True"),
+        (lambda: md.running_bond_3d(True, 1.0, 0.1, 0.4, 0.2), "running_bond_3d: 'length' = True"),
+        (lambda: md.u_wall(3.0, 1.0, 1.5, 0.2, 0.4, 0.2, openings=[[1, 0.2, True, 0.6]]), "u_wall: 'openings'[0][2] = True"),
+        (lambda: _box().solve_dynamic(steps=True), "Model3D.solve_dynamic: 'steps' = True"),
+        (lambda: md.Model([[0, 0, True, 0.6]]), "Model: 'blocks'[0][2] = True"),
+        (lambda: md.Model([[0, 0, 0.2, 0.6]], density=False), "Model: 'density' = False"),
+        (lambda: md.running_bond(True, 0.2, 5, 2.0), "running_bond: 'block_length' = True"),
+        (lambda: _plane().solve_static(steps=True), "Model.solve_static: 'steps' = True"),
+        (lambda: _plane().solve_dynamic(control_block=True), "Model.solve_dynamic: 'control_block' = True"),
+        (lambda: _plane().fix(True, 0), "Model.fix: 'block' = True"),
+        (lambda: _plane().simulate(0.01, base_acceleration=([0.0, True], [0.0, 1.0])), "'base_acceleration'[0][1] = True"),
+        (lambda: md.modes(_plane(), True), "modes: 'n' = True"),
+    ],
+)
+def test_a_boolean_where_a_number_belongs_is_refused(call: Any, needle: str) -> None:
+    """The core took True as the number 1 (a direction of 1 degree, a wall 1 m long)."""
+    with pytest.raises(md.InputError) as info:
+        call()
+    assert needle in str(info.value) and "a boolean" in str(info.value), str(info.value)
+
+
+def test_the_boolean_arguments_still_take_booleans() -> None:
+    assert md.Model3D([[0.0, 0.0, 0.0, 0.4, 0.6, 1.0]], base=True).base_index == 1
+    assert md.Model([[0.0, 0.0, 0.2, 0.6]], base=np.True_).base_index == 1
+    assert _plane().simulate(0.001, large_rotations=False).status == "completed"
+    assert _box().critical_time_step(time_history=True) > 0
+
+
+def test_write_vtk_refuses_the_results_of_another_model_and_a_folder(tmp_path: Path) -> None:
+    """The 3D export wrote NaN-filled files; a folder given as the prefix wrote FOLDER/-blocks.vtu."""
+    box, leaf = _box(), md.Model3D(md.running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175), joints=DRY_3D, direction=90.0)
+    plane, wall = _plane(), md.Model(md.running_bond(0.4, 0.175, 6, 2.0))
+    for model, results in [(box, leaf.solve_limit()), (plane, wall.solve_limit()), (plane, box.solve_limit())]:
+        with pytest.raises(md.InputError, match="^write_vtk: model does not match results"):
+            md.write_vtk(model, results, tmp_path / "w")
+    for model in (box, plane):
+        with pytest.raises(md.InputError, match=r"^write_vtk: path_prefix: .*out/ is a folder: give a prefix such as .*out/wall"):
+            md.write_vtk(model, model.solve_limit(), f"{tmp_path}/out/")
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("solver", ["solve_dynamic", "solve_static"])
+def test_a_fixed_control_block_is_refused(solver: str) -> None:
+    """Its curve was all zeros."""
+    for model in [_plane(), _box()]:
+        if not hasattr(model, solver):
+            continue
+        with pytest.raises(md.InputError, match=r"control block 1 \(the base\) is held along [xy]"):
+            getattr(model, solver)(control_block=model.base_index)
+
+
+@pytest.mark.parametrize(
+    "model, solver",
+    [(_plane, "solve_static"), (_plane, "solve_dynamic"), (_plane, "solve_limit"), (_plane, "simulate"),
+     (_box, "solve_limit"), (_box, "solve_dynamic"), (_box, "simulate")],
+)
+def test_a_progress_that_is_not_callable_is_refused_before_the_run(model: Any, solver: str) -> None:
+    """It raised TypeError ('int' object is not callable) at the first report, mid-run."""
+    args = (0.01,) if solver == "simulate" else ()
+    with pytest.raises(md.InputError, match=r"progress: expected a callable, .* got int 5"):
+        getattr(model(), solver)(*args, progress=5)
+
+
+def test_a_case_run_with_a_progress_that_is_not_callable_is_refused() -> None:
+    case = md.load_case(LEAF_CASE)
+    with pytest.raises(md.InputError, match="progress: expected a callable"):
+        case.solve(case.build_model(), progress="bar")
+
+
+def test_plot_mechanism_3d_asks_for_3d_axes() -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    from masonry_dem.space.plot import plot_mechanism_3d
+
+    box = _box()
+    with pytest.raises(md.InputError, match=r'plot_mechanism_3d: ax must be a 3D axes \(fig.add_subplot\(projection="3d"\)\), got Axes'):
+        plot_mechanism_3d(Figure().add_subplot(), box, box.solve_limit())
+
+
+def test_a_study_whose_case_is_a_study_file_says_so(tmp_path: Path) -> None:
+    """It said "unknown key 'case'"; so did `run` on a study file."""
+    study = tmp_path / "s.toml"
+    study.write_text('format = 1\ncase = "s.toml"\n[study]\nmethods = ["limit"]\n[vary.friction]\nvalues = [0.3, 0.5]\n')
+    line = one_error_line(masonry_dem("study", str(study), "--workers", "1", cwd=tmp_path))
+    assert 'case: "s.toml" is a study file: the base case must be a case file' in line, line
+    line = one_error_line(masonry_dem("run", str(study), cwd=tmp_path))
+    assert "a study file (its keys case, study, vary), not a case file: run it with masonry-dem study" in line, line
+
+
+@pytest.mark.parametrize("density", [1e-300, 1e-160])
+def test_a_weight_too_small_to_compute_with_is_refused_by_its_density_in_every_method(density: float) -> None:
+    """The static solver failed ("the live load does no work"), the explicit one found "no collapse bracket" after
+    21,000 levels, while limit analysis answered."""
+    for build in (lambda: md.Model([[0.0, 0.0, 0.4, 1.0]], density=density),
+                  lambda: md.Model3D([[0.0, 0.0, 0.0, 0.4, 0.6, 1.0]], density=density)):
+        with pytest.raises(md.InputError, match=rf"^geometry.density = {density:.0e} kg/m3 .* below the 1.5e-154 N") as info:
+            build()
+        assert info.value.key == "geometry.density"
+
+
+def test_the_3d_refusals_on_the_command_line(tmp_path: Path) -> None:
+    text = LEAF_CASE.read_text()
+    cases = {
+        "outside.toml": (text.replace('first_course = "half"', "openings = [[0.4, 0.35, 0.8, 0.7], [5, 0.2, 6, 0.5]]"),
+                         "geometry.leaf.openings[1] [x0, z0, x1, z1] = [5, 0.2, 6, 0.5] lies outside the wall"),
+        "whole.toml": (text.replace('first_course = "half"', "openings = [[-1, -1, 3, 3]]"),
+                       "geometry.leaf.openings: the openings remove every block of the wall"),
+        "light.toml": (text.replace("density = 2000.0", "density = 1e-300"), "geometry.density = 1e-300 kg/m3"),
+        "lone.toml": ('format = 1\n[geometry]\nboxes = [[0, 0, 0, 0.4, 0.6, 1.0]]\n[base]\nkind = "none"\n',
+                      "the wall has no support"),
+    }
+    for name, (content, words) in cases.items():
+        (tmp_path / name).write_text(content)
+        line = one_error_line(masonry_dem("run", name, cwd=tmp_path))
+        assert words in line, line

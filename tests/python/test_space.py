@@ -389,6 +389,18 @@ def test_the_boxes_key_and_the_3d_keys_of_other_tables() -> None:
         ("[geometry]\nboxes = [[0, 0, 0, true, 1, 1]]\n", "geometry.boxes[0][3]", "expected a number"),
         ("[geometry]\nboxes = [[0, 0, 0, 1, 1, 1]]\nblocks = [[0, 0, 1, 1]]\n", None, "blocks and boxes are both given"),
         ('[geometry]\nboxes = [[0, 0, 0, 1, 1, 1], [0, 0, 1, 1, 1, 2]]\n[base]\nkind = "none"\n', None, "no support"),
+        # one box without a base touches nothing because nothing holds it: the support is what is missing
+        ('[geometry]\nboxes = [[0, 0, 0, 1, 1, 1]]\n[base]\nkind = "none"\n', None, "the wall has no support"),
+        # openings outside the wall, or over all of it, were dropped without a word or blamed on the blocks
+        (LEAF_TABLE + "openings = [[0.4, 0.35, 0.8, 0.7], [5, 0.2, 6, 0.5]]\n", "geometry.leaf.openings[1]",
+         "geometry.leaf.openings[1] [x0, z0, x1, z1] = [5, 0.2, 6, 0.5] lies outside the wall (its facade spans x from "
+         "0 to 2 m, z from 0 to 1.05 m)"),
+        (LEAF_TABLE + "openings = [[-1, -1, 3, 3]]\n", "geometry.leaf.openings",
+         "geometry.leaf.openings: the openings remove every block of the wall"),
+        ("[geometry.u_wall]\nfacade = 3\nheight = 1\nreturns = 1.5\nthickness = 0.2\nblock_length = 0.4\n"
+         "block_height = 0.2\nopenings = [[1, 1.2, 2, 1.5]]\n", "geometry.u_wall.openings[0]", "lies outside the wall"),
+        ("[geometry.corner]\nfacade = 3\nheight = 1\nreturns = 1.5\nthickness = 0.2\nblock_length = 0.4\n"
+         "block_height = 0.2\nopenings = [[-2, 0.2, -1, 0.5]]\n", "geometry.corner.openings[0]", "lies outside the wall"),
         ("[geometry.u_wall]\nfacade = 3\nheight = 2.5\nreturns = 1.5\nthickness = 0.5\nblock_length = 0.5\n"
          "block_height = 0.25\n", "geometry.u_wall.thickness", "a corner block must reach past the corner"),
         # the 2D side refuses the 3D keys by name
@@ -404,6 +416,37 @@ def test_refusals_name_the_key(text: str, key, words: str) -> None:
     assert message.startswith("w.toml: ") and "\n" not in message and words in message, message
     if key is not None:
         assert info.value.key == key, message
+
+
+@pytest.mark.parametrize(
+    "boxes, volume, centroid_z, hinge, words",
+    [
+        # a box 0.4 x 0.6 x 1 m under a beam 1000 m high: they turn as one about the base's edge y = 0.6 m
+        ([[0.0, 0.0, 0.0, 0.4, 0.6, 1.0]], 0.24, 0.5, "y = 0.60, z = 0.00 m",
+         "1 of 1 block and the top beam move as one part, {hinge}; the crack runs through 1 contact: 1 rock (1 base)"),
+        # the leaf 2 x 1.05 x 0.1 m of 33 blocks under a beam 1000 m high: about the base's edge y = 0.1 m
+        (md.running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175), 0.21, 0.525, "y = 0.10, z = 0.00 m",
+         "33 of 33 blocks and the top beam move as one part, {hinge}; the crack runs through 6 contacts: 6 rock (6 base)"),
+    ],
+)
+def test_the_mechanism_under_a_very_tall_beam_is_the_hand_calculation(boxes, volume, centroid_z, hinge, words) -> None:
+    """A beam 1000 m high on the wall, pushed out of the wall's plane (+y): wall and beam overturn as one rigid body
+    about the leeward edge of the base (a hinge at z = 0), at lambda = (W_w + W_b) (t / 2) / (W_w z_w + W_b z_b), the
+    weights in proportion to the volumes (the wall's; the beam's, 1000 m over the wall's plan, its centroid at the
+    wall's height plus 500 m). The description said "only the top beam moves" with no crack: the beam's top corners,
+    a kilometre up, made the wall's motion and its rocking base look like rest."""
+    b = np.asarray(boxes)
+    t, height, plan = b[:, 4].max(), b[:, 5].max(), (b[:, 3].max() - b[:, 0].min()) * b[:, 4].max()
+    beam = 1000.0
+    w_wall, w_beam = volume, plan * beam
+    expected = (w_wall + w_beam) * (t / 2) / (w_wall * centroid_z + w_beam * (height + beam / 2))
+    model = md.Model3D(boxes, joints=DRY, direction=90.0, top=beam)
+    r = model.solve_limit()
+    # within the interior point's duality gap (some 3e-10 here, a relative 3e-6 of a multiplier of 1e-4)
+    assert r.status == "collapse" and r.collapse_multiplier == pytest.approx(expected, rel=0, abs=r.certificate["duality_gap"])
+    from masonry_dem.space.report import describe_mechanism
+
+    assert describe_mechanism(model, r) == words.format(hinge=f"turning about an axis along x through {hinge}")
 
 
 def test_a_2d_case_keeps_its_meaning() -> None:

@@ -178,6 +178,15 @@ def parse_case(
     return case_from_dict(data, source=source, default_title=default_title, base_dir=base_dir)
 
 
+#: The top-level keys of a study file that a case file does not have (docs/study-format.md).
+STUDY_KEYS = ("case", "study", "vary")
+
+
+def is_study(data: Mapping[str, Any]) -> bool:
+    """Whether parsed TOML ``data`` is a study file rather than a case file: a study's keys, and no [geometry]."""
+    return "geometry" not in data and any(key in data for key in STUDY_KEYS)
+
+
 def case_from_dict(
     data: Mapping[str, Any],
     source: str = "<case>",
@@ -191,6 +200,9 @@ def case_from_dict(
     :class:`AnalysisParameters`): the core's default applies. The record files of [ground_motion] are read
     here, relative to ``base_dir`` (default: the current folder).
     """
+    if is_study(data):
+        raise InputError(f"{source}: a study file (its keys case, study, vary), not a case file: run it with "
+                         "masonry-dem study (docs/study-format.md)", "case")
     top = _Table(data, "", source, TOP_KEYS)
     title = _title(top, default_title)
     kind, geometry, wall = _geometry(top, base_dir)

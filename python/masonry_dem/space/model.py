@@ -22,7 +22,7 @@ from typing import Any, ClassVar, Dict, Mapping, Optional
 import numpy as np
 
 from .. import _core
-from .._checked import input_errors
+from .._checked import input_errors, refuse_booleans
 from .._core import InputError
 
 __all__ = ["Model3D", "running_bond_3d", "u_wall", "corner_wall", "cut_openings"]
@@ -71,6 +71,7 @@ class Model3D(_core.Model3D):
 
     def __new__(cls, *args: Any, **kwargs: Any) -> "Model3D":
         _real_boxes("Model3D", args[0] if args else kwargs.get("boxes"))
+        refuse_booleans("Model3D", _MODEL3D_SIGNATURE, args, kwargs)
         return input_errors(_core.Model3D.__new__, "Model3D")(cls, *args, **kwargs)  # type: ignore[no-any-return]
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:  # built by __new__ (the core's constructor)
@@ -78,7 +79,8 @@ class Model3D(_core.Model3D):
 
 
 # The constructor's signature as help() and inspect show it: the core's, not (*args, **kwargs).
-Model3D.__signature__ = inspect.signature(_core.Model3D)  # type: ignore[attr-defined]
+_MODEL3D_SIGNATURE = inspect.signature(_core.Model3D)
+Model3D.__signature__ = _MODEL3D_SIGNATURE  # type: ignore[attr-defined]
 for _name in ("solve_limit", "solve_dynamic", "simulate"):
     setattr(Model3D, _name, input_errors(getattr(_core.Model3D, _name), f"Model3D.{_name}"))
 del _name

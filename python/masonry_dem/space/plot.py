@@ -26,6 +26,7 @@ from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
+from .._core import InputError
 from ..plot.canvas import _finish, _new_figure
 from ..report import format_multiplier
 from .report import box_corners, corner_motion, direction_text, moved_corners
@@ -67,7 +68,10 @@ def plot_mechanism_3d(ax: Any, model: Any, results: Any, scale: Optional[float] 
     """Draw the collapse mechanism of a 3D wall on the 3D axes ``ax`` (see the module docstring); ``scale``: the
     factor on the mechanism [m per unit] (default: its largest corner motion drawn as
     :data:`MECHANISM_FRACTION_3D` of the wall's height). Returns the ScalarMappable of the colours (for a colour
-    bar; drawn on ``ax``'s figure when ``colorbar``)."""
+    bar; drawn on ``ax``'s figure when ``colorbar``). Raises InputError when ``ax`` is not a 3D axes."""
+    if not hasattr(ax, "add_collection3d"):
+        raise InputError(f"plot_mechanism_3d: ax must be a 3D axes (fig.add_subplot(projection=\"3d\")), got "
+                         f"{type(ax).__name__}")
     boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
     n_wall = int(model.n_blocks)
     mech, rel, peak = _mechanism(model, results)

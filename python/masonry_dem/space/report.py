@@ -7,13 +7,14 @@ plan in degrees from +x towards +y.
 from __future__ import annotations
 
 import math
-from typing import Any, Optional, Sequence
+from typing import Any, List, Optional, Sequence, Tuple
 
 import numpy as np
 
 from .._mechanism import CRACK_TOLERANCE, MOVING_FRACTION, connected_parts as _connected_parts, mechanism_text
 
-__all__ = ["box_corners", "corner_motion", "moved_corners", "contact_jumps", "describe_mechanism", "direction_text"]
+__all__ = ["box_corners", "corner_motion", "contact_motion", "moved_corners", "contact_jumps", "describe_mechanism",
+           "direction_text"]
 
 
 def box_corners(boxes: np.ndarray) -> np.ndarray:
@@ -39,6 +40,24 @@ def corner_motion(boxes: np.ndarray, motion: np.ndarray) -> np.ndarray:
     m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
     u = m[:, None, :3] + np.cross(m[:, None, 3:], r)
     return np.linalg.norm(u, axis=-1).max(axis=1)  # type: ignore[no-any-return]
+
+
+def contact_motion(model: Any, motion: np.ndarray) -> np.ndarray:
+    """(n_all,) largest motion [m] of each block at the corners of its contacts, where it touches the others, for
+    the small motion (ux, uy, uz, rx, ry, rz) at its centroid (0 for a block without contacts). Unlike
+    :func:`corner_motion`, a block's far corners do not count: a tall top beam turning with the wall moves its top
+    corners far more than it moves where it rests on the wall, and would make the wall's own motion look like rest."""
+    boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
+    centroid = _centroids(boxes)
+    m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
+    pairs = np.asarray(model.interface_blocks, dtype=np.int64).reshape(-1, 2)
+    corners = np.asarray(model.interface_corners, dtype=np.float64).reshape(-1, 4, 3)
+    out = np.zeros(len(boxes))
+    for side in (0, 1):
+        i = pairs[:, side]
+        u = m[i, None, :3] + np.cross(m[i, None, 3:], corners - centroid[i, None, :])
+        np.maximum.at(out, i, np.linalg.norm(u, axis=-1).max(axis=1, initial=0.0))
+    return out
 
 
 def contact_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
@@ -136,12 +155,24 @@ def _describe_part(boxes: np.ndarray, motion: np.ndarray, part: Sequence[int]) -
     return f"turning about an axis along {named} through {where}"
 
 
+def _crack(jumps: np.ndarray, tol: float) -> Tuple[List[int], List[int], List[int]]:
+    """The contacts that open (a gap beyond ``tol`` at every corner), slide (a slip beyond it, closed) and rock (a
+    gap beyond it at some corners only), from :func:`contact_jumps`."""
+    opens = [k for k, (_, _, g_min) in enumerate(jumps) if g_min > tol]
+    slips = [k for k, (slip, _, g_min) in enumerate(jumps) if slip > tol and g_min <= tol]
+    rocks = [k for k, (_, g_max, g_min) in enumerate(jumps) if g_max > tol >= g_min]
+    return opens, slips, rocks
+
+
 def describe_mechanism(model: Any, results: Any) -> str:
     """One line on the collapse mechanism of a 3D wall (``Results.mechanism``: the collapse velocities): how many
     wall blocks move, the parts they form (blocks held together by contacts the crack does not cross), each sliding
     or turning about an axis, and the crack: the contacts across which the mechanism opens (a gap at every corner),
     slides (a slip, closed) or rocks (a gap at some corners only), counted by family (:func:`contact_jumps`,
-    jumps beyond 5% of the largest corner motion)."""
+    jumps beyond 5% of the largest corner motion). A block moves when its largest corner motion exceeds 1% of the
+    largest; the top beam's motion is taken where it rests on the wall (:func:`contact_motion`), not at its top
+    corners, so that a tall, heavy beam turning with the wall does not make the wall's motion and cracks look like
+    rest."""
     boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
     n = int(model.n_blocks)
     mech = np.asarray(results.mechanism, dtype=np.float64)
@@ -150,6 +181,8 @@ def describe_mechanism(model: Any, results: Any) -> str:
     top = model.top_index
     bodies = list(range(n)) + ([int(top)] if top is not None else [])
     cm = corner_motion(boxes, mech)
+    if top is not None:  # the top beam's motion where it rests on the wall: its top corners may be far above it
+        cm[int(top)] = contact_motion(model, mech)[int(top)]
     peak = float(max(cm[i] for i in bodies))
     if not peak > 0:
         return "none (no collapse)"
@@ -160,10 +193,13 @@ def describe_mechanism(model: Any, results: Any) -> str:
     # the crack: the contacts across which the mechanism has a jump (a slip, or a gap at some corners)
     families = list(model.interface_family)
     jumps = contact_jumps(model, mech)
-    tol = CRACK_TOLERANCE * peak
-    opens = [k for k, (_, _, g_min) in enumerate(jumps) if g_min > tol]
-    slips = [k for k, (slip, _, g_min) in enumerate(jumps) if slip > tol and g_min <= tol]
-    rocks = [k for k, (_, g_max, g_min) in enumerate(jumps) if g_max > tol >= g_min]
+    opens, slips, rocks = _crack(jumps, CRACK_TOLERANCE * peak)
+    if not (opens or slips or rocks):
+        # blocks move, so some contact must crack: the mechanism is spread thinner than the tolerance over many
+        # contacts (a mechanism within the solver's tolerance of several others, as under a beam thousands of
+        # times taller than the wall, whose hinge height hardly changes the multiplier): its largest jumps are it
+        largest = float(np.max(jumps[:, :2], initial=0.0))
+        opens, slips, rocks = _crack(jumps, CRACK_TOLERANCE * largest)
     cracked = np.zeros(len(jumps), dtype=bool)
     cracked[opens + slips + rocks] = True
     parts = _connected_parts(moving, np.asarray(model.interface_blocks).reshape(-1, 2), list(cracked))

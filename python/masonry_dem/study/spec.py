@@ -18,7 +18,7 @@ from typing import Any, Dict, List, Mapping, Optional, Tuple, Union
 
 from .._core import InputError
 from ..case import METHODS, case_from_dict, parse_case
-from ..case.reader import FAMILIES, LAW_KEYS, read_text
+from ..case.reader import FAMILIES, LAW_KEYS, is_study, read_text
 from ..case.table import REQUIRED, _got, _non_negative, _positive, _quote, _Table
 from .model import (
     DIRECTIONS,
@@ -143,6 +143,9 @@ def _base_case(top: _Table, base_dir: Path) -> Tuple[Any, Tuple[str, ...]]:
         path = base_dir / value
         try:
             text = read_text(path)
+            if _is_study_text(text):
+                raise top.key_error("case", f"{_quote(value)} is a study file: the base case must be a case file "
+                                            "(docs/case-format.md), not a study")
             case = parse_case(text, source=str(path), default_title=path.stem)  # every check of a case file
             data = tomllib.loads(text)
         except OSError as exc:
@@ -155,6 +158,15 @@ def _base_case(top: _Table, base_dir: Path) -> Tuple[Any, Tuple[str, ...]]:
     data.setdefault("format", STUDY_FORMAT)
     _in_the_plane(top, case_from_dict(data, source=f"{top.source}: [case]", default_title="case"))
     return data, ()
+
+
+def _is_study_text(text: str) -> bool:
+    """Whether TOML ``text`` is a study file (:func:`masonry_dem.case.reader.is_study`); False when it is not TOML
+    (parse_case says so)."""
+    try:
+        return is_study(tomllib.loads(text))
+    except (tomllib.TOMLDecodeError, ValueError, RecursionError):
+        return False
 
 
 def _in_the_plane(top: Any, case: Any) -> None:
