@@ -1,5 +1,6 @@
 """Every ```python block of README.md runs (in a fresh namespace, from the repository root), and prints what the
-README says it prints.
+README says it prints; every command of its ```sh blocks is run here, or (when it takes longer than the suite
+affords, or needs a cluster) named with the test that runs it on a smaller input.
 
 A ``print(...)`` statement with a trailing comment states its output: ``print(x)   # collapse 0.6429`` must print
 exactly ``collapse 0.6429``; a comment holding "about NUMBER" (``# first impact, about 0.36 s``) is a statement
@@ -138,3 +139,118 @@ def test_checker_attributes_output_to_its_line() -> None:
     assert run_block(code, "lines") == []   # 'inside' is printed from line 6, not by the print of line 7
     assert run_block(code.replace("# a b", "# a  b"), "lines") == ["line 3: prints 'a b', the README says 'a  b'"]
     assert stated_outputs(code) == [(3, 4, "a b"), (7, 7, "None")]
+
+
+# --------------------------------------------------------------------------------------------------
+# The commands of the ```sh blocks
+# --------------------------------------------------------------------------------------------------
+
+SH_FENCE = re.compile(r"^```sh[ \t]*\n(.*?)^```[ \t]*$", re.S | re.M)
+MASONRY_DEM = ".venv/bin/masonry-dem "
+WALL1 = "examples/ferris-tinloi-wall1.toml"
+
+
+def shell_commands(text: Optional[str] = None) -> List[str]:
+    """The commands of README.md's ```sh blocks, each without its comment, spaces collapsed."""
+    blocks = SH_FENCE.findall(README.read_text(encoding="utf-8") if text is None else text)
+    commands = (" ".join(line.split("#", 1)[0].split()) for block in blocks for line in block.splitlines())
+    return [c for c in commands if c]
+
+
+#: README commands of masonry-dem run here as written (in this process, from the repository root, out/ in a
+#: temporary folder), with words their output must hold and the files they must write. The simulation of the El
+#: Centro record gets --duration 0.3: its 31 s take a minute.
+RUN_HERE: Dict[str, Tuple[Tuple[str, ...], Tuple[str, ...]]] = {
+    f"run {WALL1} --json out/wall1.json --plot out/wall1.png": (("collapse multiplier: 0.6429",), ("wall1.json", "wall1.png")),
+    f"run {WALL1} --method dynamic": (("method:              dynamic", "status:              collapse"), ()),
+    f"run {WALL1} --method limit": (("collapse multiplier: 0.6429", "certificate:"), ()),
+    "compare examples/single-block-rocking.toml --plot out/compare.png": (("static", "dynamic", "limit"), ("compare.png",)),
+    f"run {WALL1} --vtk out/wall1 --csv out/wall1.csv": ((), ("wall1-blocks.vtu", "wall1-interfaces.vtu", "wall1.csv")),
+    "simulate examples/ferris-tinloi-wall1-elcentro.toml --scale 3 --plot out/ec.png --gif out/ec.gif":
+        (("status:              completed",), ("ec.png", "ec.gif")),
+    "run examples/u-wall.toml --plot out/u-wall.png --vtk out/u-wall":
+        (("collapse multiplier: 0.2960",), ("u-wall.png", "u-wall-blocks.vtu", "u-wall-interfaces.vtu")),
+    "validate examples/leaf-out-of-plane.toml": (("leaf-out-of-plane", "pass", "1 case with a reference: 1 passed"), ()),
+}
+
+#: README commands that take longer than the suite affords (the studies of 1,000 walls, J4D's explicit run, the
+#: U's explicit pushover, every example by the three methods, the El Centro ladder of 8 minutes), need a cluster
+#: (HOST), or are the suite itself: the test that runs each (the same command on a smaller input), "file::test".
+ELSEWHERE: Dict[str, str] = {
+    "make demo": "tests/python/test_cli.py::test_demo_outputs",  # masonry-dem demo, which make demo runs once built
+    "make test": "Makefile::test",  # the suite itself, run by CI
+    ".venv/bin/masonry-dem validate": "tests/python/test_validate.py::test_validate_examples_static",
+    ".venv/bin/masonry-dem compare examples/j4d-shear-wall.toml --plot out/j4d.png":
+        "tests/python/test_cli.py::test_compare",
+    ".venv/bin/masonry-dem run examples/u-wall.toml --method dynamic":
+        "tests/python/test_space.py::test_the_explicit_solver_finds_the_limit_analysis_multiplier_of_a_u_wall",
+    ".venv/bin/python examples/u_wall_3d.py": "tests/python/test_space.py::test_the_script_example_in_3d",
+    ".venv/bin/masonry-dem study examples/studies/wall1-fragility.toml --plot out/wall1-fragility.png":
+        "tests/python/test_study.py::test_example_study_reads",
+    ".venv/bin/masonry-dem study examples/studies/wall1-fragility.toml --resume": "tests/python/test_study.py::test_command_line",
+    ".venv/bin/masonry-dem study STUDY.toml --scheduler tcp://HOST:8786 --out out/s.parquet --csv out/s.csv":
+        "tests/python/test_study.py::test_command_line",
+}
+
+#: The El Centro script, run here on 0.3 s of the record at scale 1 (test_the_el_centro_script_runs).
+EL_CENTRO_SCRIPT = "python examples/elcentro_wall1.py"
+
+
+def test_every_readme_command_is_tested() -> None:
+    """A command added to the README must be run here or named with its test; a test named must exist."""
+    here = {MASONRY_DEM + c for c in RUN_HERE}
+    for command in shell_commands():
+        assert command in here or command in ELSEWHERE or command == EL_CENTRO_SCRIPT, f"README command not tested: {command}"
+    for command, where in ELSEWHERE.items():
+        assert command in shell_commands(), f"no longer in the README: {command}"
+        path, name = where.split("::")
+        text = (ROOT / path).read_text(encoding="utf-8")
+        assert re.search(rf"^(def {name}\(|{name}:)", text, re.M), f"{where} (for {command}) does not exist"
+    assert all(MASONRY_DEM + c in shell_commands() for c in RUN_HERE)
+
+
+@pytest.mark.parametrize("command", list(RUN_HERE))
+def test_a_readme_command_runs(command: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                               capsys: pytest.CaptureFixture[str]) -> None:
+    from masonry_dem import cli
+
+    monkeypatch.chdir(ROOT)
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    args = [str(tmp_path / a) if a.startswith("out/") else a for a in command.split()]
+    if args[0] == "simulate":
+        args += ["--duration", "0.3"]
+    status = cli.main(args)
+    printed = capsys.readouterr()
+    assert status == 0, (command, printed.out, printed.err)
+    words, files = RUN_HERE[command]
+    for word in words:
+        assert word in printed.out, (command, word, printed.out)
+    for name in files:
+        assert (tmp_path / "out" / name).stat().st_size > 0, (command, name)
+
+
+def test_the_el_centro_script_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                   capsys: pytest.CaptureFixture[str]) -> None:
+    """examples/elcentro_wall1.py, its ladder cut to scale 1 and each run to 0.3 s of the record: the table, and no
+    collapse (its figure and animation are those of masonry-dem simulate, run above)."""
+    import importlib.util
+
+    from masonry_dem.case import Case
+
+    monkeypatch.chdir(ROOT)
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    simulate = Case.simulate
+    monkeypatch.setattr(Case, "simulate", lambda self, model=None, scale=None, duration=None:
+                        simulate(self, model=model, scale=scale, duration=min(duration or 0.3, 0.3)))
+    spec = importlib.util.spec_from_file_location("elcentro_wall1", ROOT / "examples" / "elcentro_wall1.py")
+    assert spec is not None and spec.loader is not None
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    assert script.main(["--scales", "1", "--out", str(tmp_path)]) == 0
+    printed = capsys.readouterr().out
+    assert "PGA [g]" in printed and "stands" in printed and "no collapse up to the largest scale tried" in printed
+
+
+def test_shell_commands_are_read_without_their_comments() -> None:
+    text = "```sh\nmake demo   # sets up\n\n.venv/bin/masonry-dem  validate   # a table\n```\n```python\nx = 1\n```\n"
+    assert shell_commands(text) == ["make demo", ".venv/bin/masonry-dem validate"]
