@@ -68,8 +68,9 @@ def _real_arrays(name: str, func: Callable[..., Any], args: Any, kwargs: Any) ->
 
 
 #: The arguments of the core's entry points that take a boolean; a boolean given to any other is refused (the core
-#: would take True for the number 1).
+#: would take True for the number 1), but for those that take no number, whose refusal of it the core words itself.
 BOOLEAN_ARGUMENTS = frozenset({"base", "large_rotations", "time_history"})
+_NO_NUMBER = frozenset({"progress", "first_course"})
 
 
 def _boolean_in(value: Any, path: str = "") -> Optional[Tuple[str, Any]]:
@@ -105,7 +106,7 @@ def refuse_booleans(name: str, signature: Optional[inspect.Signature], args: Any
     except TypeError:  # a missing or unknown argument: the core says which
         return
     for key, value in arguments.items():
-        if key in BOOLEAN_ARGUMENTS:
+        if key in BOOLEAN_ARGUMENTS or key in _NO_NUMBER:
             continue
         found = _boolean_in(value)
         if found is not None:

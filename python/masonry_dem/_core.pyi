@@ -199,9 +199,9 @@ class Model:
         the live load's work; the collapse multiplier is the peak or the plateau of lambda, to
         `tolerance` (relative). control="displacement": drive the horizontal displacement of
         control_block (default: the top beam if any, else the highest block at the right end;
-        one held along x, the base, is refused) to max_displacement [m] in `steps` increments, through the peak and after it; without
-        max_displacement (None), from 2 mm on by as much again, `steps` increments each time,
-        until a peak or a plateau of lambda.
+        one held along x, the base, is refused) to max_displacement [m] in `steps` increments,
+        through the peak and after it; without max_displacement (None), from 2 mm on by as much
+        again, `steps` increments each time, until a peak or a plateau of lambda.
         Returns Results with status "collapse" (with its evidence: a peak, a plateau with no
         equilibrium just above, and on associative dry joints the limit-analysis multiplier),
         "completed" (the requested displacement reached, lambda still rising), "stalled" (load
@@ -477,9 +477,10 @@ class Model3D:
         (Results.bracket: the highest level that settled, the lowest that ran away); control="displacement" is
         refused (InputError), and so are cohesion or tensile_strength (dry joints only) and a wall that nothing holds.
         The curve follows control_block (default: the highest wall block) along x, or along y when the live load's
-        direction is nearer y; a control block held along that axis (the base) is refused. damping, damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in
-        Model.solve_dynamic (Model3D.critical_time_step gives the stability limit). Releases the GIL; Ctrl-C raises
-        KeyboardInterrupt with the partial Results as its `results` attribute. progress: as in Model.solve_dynamic."""
+        direction is nearer y; a control block held along that axis (the base) is refused. damping,
+        damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in Model.solve_dynamic
+        (Model3D.critical_time_step gives the stability limit). Releases the GIL; Ctrl-C raises KeyboardInterrupt with
+        the partial Results as its `results` attribute. progress: as in Model.solve_dynamic."""
     def simulate(
         self,
         duration: float,

@@ -22,8 +22,8 @@ failed analyses included, with their error), 130 when interrupted (the rows done
 
 ``validate`` runs every case file of DIR, or the one case file given (default: the examples shipped with the
 package, whatever the current directory; in the repository, its examples/; the first line names the folder), that
-carries a [reference] table and prints a table of its collapse multipliers against the reference (see :mod:`masonry_dem.validate`);
-it exits 1 if any is outside its tolerance or failed.
+carries a [reference] table and prints a table of its collapse multipliers against the reference (see
+:mod:`masonry_dem.validate`); it exits 1 if any is outside its tolerance or failed.
 
 ``compare`` runs the static solver, the explicit (dynamic) one and limit analysis on one case and prints
 them side by side (see :mod:`masonry_dem.compare`).

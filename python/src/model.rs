@@ -167,9 +167,9 @@ impl PyModel {
     /// the live load's work; the collapse multiplier is the peak or the plateau of lambda, to
     /// `tolerance` (relative). control="displacement": drive the horizontal displacement of
     /// control_block (default: the top beam if any, else the highest block at the right end;
-    /// one held along x, the base, is refused) to max_displacement [m] in `steps` increments, through the peak and after it; without
-    /// max_displacement (None), from 2 mm on by as much again, `steps` increments each time,
-    /// until a peak or a plateau of lambda.
+    /// one held along x, the base, is refused) to max_displacement [m] in `steps` increments,
+    /// through the peak and after it; without max_displacement (None), from 2 mm on by as much
+    /// again, `steps` increments each time, until a peak or a plateau of lambda.
     /// Returns Results with status "collapse" (with its evidence: a peak, a plateau with no
     /// equilibrium just above, and on associative dry joints the limit-analysis multiplier),
     /// "completed" (the requested displacement reached, lambda still rising), "stalled" (load

@@ -436,9 +436,10 @@ impl PyModel3D {
     /// (Results.bracket: the highest level that settled, the lowest that ran away); control="displacement" is
     /// refused (InputError), and so are cohesion or tensile_strength (dry joints only) and a wall that nothing holds.
     /// The curve follows control_block (default: the highest wall block) along x, or along y when the live load's
-    /// direction is nearer y; a control block held along that axis (the base) is refused. damping, damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in
-    /// Model.solve_dynamic (Model3D.critical_time_step gives the stability limit). Releases the GIL; Ctrl-C raises
-    /// KeyboardInterrupt with the partial Results as its `results` attribute. progress: as in Model.solve_dynamic.
+    /// direction is nearer y; a control block held along that axis (the base) is refused. damping,
+    /// damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in Model.solve_dynamic
+    /// (Model3D.critical_time_step gives the stability limit). Releases the GIL; Ctrl-C raises KeyboardInterrupt with
+    /// the partial Results as its `results` attribute. progress: as in Model.solve_dynamic.
     #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_dynamic(
