@@ -165,3 +165,130 @@ def test_spectrum_parameters_out_of_range_refused_by_name(build: Dict[str, Any],
     assert info.value.key == key
     with pytest.raises(md.InputError, match="periods must be finite and >= 0"):
         sa.ec8_spectrum(2.0).acceleration(-0.1)
+
+
+# -- the linear kinematic check --------------------------------------------------------------------------------------
+
+def _dry(friction: float = 1.0) -> Dict[str, Any]:
+    return {"default": md.dry_joint(friction, dilatancy=friction)}
+
+
+def _site(**parameters: Any) -> sa.AssessmentParameters:
+    return sa.AssessmentParameters(spectrum=sa.ec8_spectrum(0.25 * G, "B"), **parameters)
+
+
+@pytest.mark.parametrize("b, h", [(0.4, 1.2), (0.5, 0.8)])
+def test_single_block_at_ground_level(b: float, h: float) -> None:
+    thickness, density, g = 0.5, 1800.0, 9.81
+    model = md.Model([[0.0, 0.0, b, h]], thickness=thickness, density=density, joints=_dry(), gravity=g)
+    results = model.solve_limit(tolerance=1e-11)
+    check = sa.linear_check(model, results, _site(), gravity=g)
+    mass = b * h * thickness * density
+    assert close(check.alpha0, b / h, 1e-9)
+    assert close(check.mass_fraction, 1.0, 1e-9) and close(check.participating_mass, mass, 1e-9)
+    assert close(check.a0_star, (b / h) * g / 1.35, 1e-9)
+    # demand at ground level: a_g S / q, type 1 ground B
+    assert close(check.demand_ground, 0.25 * G * 1.2 / 2.0) and check.demand == check.demand_ground
+    assert close(check.ratio, check.a0_star / check.demand) and check.verdict == ("pass" if check.ratio >= 1 else "fail")
+    assert math.isnan(check.demand_height) and check.moving_blocks == 1
+
+
+@pytest.mark.parametrize("n", [2, 5])
+def test_stack_turning_as_one_about_the_toe(n: int) -> None:
+    # n equal blocks in a column: the base joint is the weakest (lambda = b / (height above a joint)), so the
+    # column turns as one about the toe of its base; weights lumped at the blocks' centroids y_i
+    b, hb, g = 0.3, 0.25, 9.81
+    blocks = [[0.0, i * hb, b, (i + 1) * hb] for i in range(n)]
+    model = md.Model(blocks, thickness=1.0, density=2000.0, joints=_dry(), gravity=g)
+    results = model.solve_limit(tolerance=1e-11)
+    check = sa.linear_check(model, results, _site(q=1.5, confidence_factor=1.2), gravity=g)
+    y = (np.arange(n) + 0.5) * hb
+    e_star = y.sum() ** 2 / (n * (y**2).sum())
+    m = b * hb * 2000.0
+    assert close(check.alpha0, b / (n * hb), 1e-9)
+    assert close(check.mass_fraction, e_star, 1e-9)
+    assert close(check.participating_mass, e_star * n * m, 1e-9)
+    assert close(check.a0_star, b / (n * hb) * g / (e_star * 1.2), 1e-9)
+    assert close(check.demand, 0.25 * G * 1.2 / 1.5) and check.moving_blocks == n
+
+
+def test_facade_hand_check_of_the_formulas() -> None:
+    # the facade of the shared benchmark (section 4): t = 0.5 m, h = 6 m, the wall's 100 kN at (t/2, h/2) from the
+    # hinge, a floor's 20 kN at height h, 0.25 m from it; a rotation about the hinge moves them by h/2 and h
+    # (its a0* is written with g = 9.81 m/s2)
+    weights, dx, g = [100e3, 20e3], [3.0, 6.0], 9.81
+    alpha0 = (100 * 0.25 + 20 * 0.25) / (100 * 3.0 + 20 * 6.0)  # 30 / 420
+    check = sa.linear_check_of(alpha0, weights, dx, g, _site())
+    assert close(alpha0, 0.071429, 1e-5)
+    assert close(check.participating_mass * g, 420e3**2 / 1620e3, 1e-12)  # 108.89 kN
+    assert close(check.mass_fraction, 420.0**2 / 1620.0 / 120.0, 1e-12)
+    assert round(check.mass_fraction, 4) == 0.9074
+    assert close(check.a0_star, alpha0 * g / (check.mass_fraction * 1.35), 1e-12)
+    assert round(check.a0_star, 4) == 0.5720 and round(check.a0_star / g, 4) == 0.0583
+
+
+def test_mechanism_at_height_circolare_2009() -> None:
+    # Z = 6 m in a building of H = 9 m and N = 3 storeys: T1 = 0.05 H^(3/4), psi = Z / H, gamma = 3N / (2N + 1); the
+    # demand is the larger of a_g S / q and S_e(T1) psi gamma / q
+    b, h, g = 0.4, 1.2, 9.81
+    model = md.Model([[0.0, 0.0, b, h]], thickness=0.5, density=1800.0, joints=_dry(), gravity=g)
+    results = model.solve_limit(tolerance=1e-11)
+    spectrum = sa.ec8_spectrum(0.25 * G, "B")
+    check = sa.linear_check(model, results, spectrum, mechanism_height=6.0, building_height=9.0, storeys=3, gravity=g)
+    T1 = 0.05 * 9.0**0.75
+    assert close(check.T1, T1) and close(check.psi, 6 / 9) and close(check.gamma, 9 / 7)
+    assert 0.15 < T1 < 0.5  # on the plateau: S_e(T1) = a_g S 2.5
+    assert close(check.demand_height, 0.25 * G * 1.2 * 2.5 * (6 / 9) * (9 / 7) / 2.0)
+    assert check.demand == max(check.demand_ground, check.demand_height) == check.demand_height
+
+
+@pytest.mark.parametrize("kwargs, key", [
+    (dict(confidence_factor=0.9), "confidence_factor"),
+    (dict(q=0.5), "q"),
+    (dict(mechanism_height=10.0, building_height=9.0, storeys=3), "mechanism_height"),
+    (dict(mechanism_height=-1.0), "mechanism_height"),
+    (dict(mechanism_height=3.0, storeys=3), "building_height"),
+    (dict(mechanism_height=3.0, building_height=9.0), "storeys"),
+    (dict(mechanism_height=3.0, building_height=9.0, storeys=0), "storeys"),
+])
+def test_check_parameters_refused_by_name(kwargs: Dict[str, Any], key: str) -> None:
+    with pytest.raises(md.InputError, match=rf"^{key}: ") as info:
+        _site(**kwargs)
+    assert info.value.key == key
+
+
+def test_mechanism_refusals() -> None:
+    model = md.Model([[0.0, 0.0, 0.4, 1.2]], thickness=0.5, density=1800.0, joints=_dry(), gravity=9.81)
+    results = model.solve_limit()
+    with pytest.raises(md.InputError, match="^gravity: "):
+        sa.linear_check(model, results, sa.ec8_spectrum(2.0))
+
+    class Still:  # a collapse whose mechanism moves no block
+        status, collapse_multiplier = "collapse", 0.3
+        mechanism = np.zeros((2, 3))
+
+    with pytest.raises(md.InputError, match="^mechanism: no block moves"):
+        sa.linear_check(model, Still(), sa.ec8_spectrum(2.0), gravity=9.81)
+    # no collapse: a displacement-controlled path that ends before the peak ("completed")
+    short = model.solve_static(control="displacement", steps=2, max_displacement=1e-9)
+    assert short.status == "completed"
+    with pytest.raises(md.InputError, match="^mechanism: no collapse mechanism"):
+        sa.linear_check(model, short, sa.ec8_spectrum(2.0), gravity=9.81)
+    # a multiplier that is a force, not a fraction of the weights
+    beam = md.Model([[0.0, 0.0, 0.4, 1.2]], top_rotation="free", live="top_horizontal", joints=_dry())
+    with pytest.raises(md.InputError, match="^loads.live: "):
+        sa.linear_check(beam, beam.solve_limit(), sa.ec8_spectrum(2.0), gravity=9.81)
+
+
+def test_wall1_static_explicit_and_limit_mechanisms_agree() -> None:
+    case = md.load_case(EXAMPLES / "ferris-tinloi-wall1.toml")
+    model = case.build_model()
+    checks = {m: sa.linear_check(model, case.solve(model, m), _site(), gravity=10.0)
+              for m in ("limit", "static", "dynamic")}
+    ref = checks["limit"]
+    # the wedge of 12 blocks turning about its toe: e* well below 1 (the blocks are weights at their centroids)
+    assert ref.moving_blocks == 12 and 0.5 < ref.mass_fraction < 0.9
+    for method, check in checks.items():
+        for name in ("alpha0", "participating_mass", "mass_fraction", "a0_star"):
+            assert abs(getattr(check, name) / getattr(ref, name) - 1) < 0.02, (method, name)
+        assert check.verdict == ref.verdict

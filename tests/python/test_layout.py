@@ -39,11 +39,11 @@ STAGES: Tuple[Tuple[str, Tuple[str, ...]], ...] = (
     # what makes a model and its analysis: case files (a Case builds the model and runs the analysis), ground
     # motions, drawings
     ("input", ("dxf", "ground_motion", "case.table", "case.mapping", "case.common", "case.reader", "space.case",
-               "default_case", "assessment.spectra")),
+               "default_case", "assessment.spectra", "assessment.parameters")),
     # what an analysis returns, read: time histories, response peaks, the result file and dicts, the reports in
     # words, comparisons
     ("results", ("history", "response", "case.result_file", "api", "_mechanism", "report", "space.report",
-                 "compare")),
+                 "compare", "assessment.kinematic")),
     # figures and files: plots, VTK and CSV, progress bars
     ("output", ("_vtk", "export", "space.export", "plot.canvas", "plot.panels", "plot.time_panels", "plot.animation",
                 "plot.figures", "plot.modes", "space.plot", "progress")),

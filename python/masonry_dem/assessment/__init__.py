@@ -4,6 +4,11 @@
   NTC 2018 (:func:`ntc2018_spectrum`), or a tabulated one (:func:`tabulated_spectrum`, :func:`read_spectrum`), in
   acceleration and displacement (:class:`Spectrum`); :func:`elastic_spectrum` and :func:`displacement_spectrum`
   give S_e(T) and S_De(T) of a code's parameters.
+* :mod:`.parameters` (the input): :class:`AssessmentParameters`, the spectrum with q, FC and the mechanism's height in
+  the building, checked; :func:`read_assessment` reads them from a case file's [assessment] table.
+* :mod:`.kinematic` (the results): :func:`linear_check`, the linear kinematic check of a collapse mechanism (alpha0,
+  M*, e*, a0*, the demand, the ratio and the verdict); :func:`mechanism_weights` and :func:`participating_mass` the
+  steps of it, :func:`linear_check_of` the same from weights and virtual displacements given directly.
 
 >>> from masonry_dem import assessment
 >>> round(assessment.elastic_spectrum(0.3, code="ec8", ag=2.5, ground_type="B", spectrum_type=1), 6)
@@ -17,6 +22,8 @@ from typing import TYPE_CHECKING
 from .._lazy import lazy_package
 
 if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); imported on first use at run time
+    from .kinematic import LinearCheck, MechanismWeights, linear_check, linear_check_of, mechanism_weights, participating_mass
+    from .parameters import AssessmentParameters, read_assessment
     from .spectra import (
         Spectrum,
         displacement_spectrum,
@@ -29,6 +36,14 @@ if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); impo
     )
 
 __all__ = [
+    "AssessmentParameters",
+    "read_assessment",
+    "LinearCheck",
+    "MechanismWeights",
+    "linear_check",
+    "linear_check_of",
+    "mechanism_weights",
+    "participating_mass",
     "Spectrum",
     "spectrum",
     "ec8_spectrum",
@@ -42,6 +57,9 @@ __all__ = [
 # Where each name lives, imported when first asked for (masonry_dem._lazy): the package imports none of its modules,
 # so that the case reader (input) imports the spectra without the checks (results) or the plots (output).
 _LAZY = {
+    **dict.fromkeys(("AssessmentParameters", "read_assessment"), ".parameters"),
+    **dict.fromkeys(("LinearCheck", "MechanismWeights", "linear_check", "linear_check_of", "mechanism_weights",
+                     "participating_mass"), ".kinematic"),
     **dict.fromkeys(("Spectrum", "spectrum", "ec8_spectrum", "ntc2018_spectrum", "tabulated_spectrum",
                      "read_spectrum", "elastic_spectrum", "displacement_spectrum"), ".spectra"),
 }
