@@ -292,3 +292,117 @@ def test_wall1_static_explicit_and_limit_mechanisms_agree() -> None:
         for name in ("alpha0", "participating_mass", "mass_fraction", "a0_star"):
             assert abs(getattr(check, name) / getattr(ref, name) - 1) < 0.02, (method, name)
         assert check.verdict == ref.verdict
+
+
+# -- N2 (EN 1998-1 Annex B) ------------------------------------------------------------------------------------------
+
+def _epp(F_y: float, d_y: float, d_u: float) -> Any:
+    """An elastic-perfectly plastic curve: (0, 0), (d_y, F_y), (d_u, F_y)."""
+    return np.array([0.0, d_y, d_u]), np.array([0.0, F_y, F_y])
+
+
+def _n2_by_hand(m_star: float, F_y: float, d_y: float, gamma: float, ag: float, S: float, TB: float, TC: float,
+                TD: float) -> Dict[str, float]:
+    """Annex B's formulas on an elastic-perfectly plastic system (its F*_y, d*_y), a type 1 spectrum at 5%."""
+    T = 2 * math.pi * math.sqrt(m_star * d_y / F_y)
+    plateau = ag * S * 2.5
+    Se = (ag * S * (1 + T / TB * 1.5) if T < TB else plateau if T < TC else plateau * TC / T if T < TD
+          else plateau * TC * TD / T**2)
+    d_et = Se * (T / (2 * math.pi)) ** 2
+    q_u = Se * m_star / F_y
+    if T >= TC or F_y / m_star >= Se:
+        d_t = d_et
+    else:
+        d_t = max(d_et / q_u * (1 + (q_u - 1) * TC / T), d_et)
+    d_t = min(d_t, 3 * d_et)
+    return dict(T_star=T, Se=Se, d_et=d_et, q_u=q_u, d_t_star=d_t, d_t=gamma * d_t)
+
+
+def test_n2_hand_check_short_period() -> None:
+    # the shared benchmark (section 5): m* = 100 t, F*_y = 200 kN, d*_y = 0.010 m, type 1 ground B, a_g = 0.25 g
+    # (written with g = 9.81 m/s2): T* = 0.4443 s, S_e = 7.3575 m/s2, d*_et = 0.03679 m, q_u = 3.679, d*_t = 0.04015 m
+    spectrum = sa.ec8_spectrum(0.25 * 9.81, "B")
+    d, F = _epp(200e3, 0.010, 0.08)
+    check = sa.n2(d, F, [100e3], [1.0], spectrum)
+    hand = _n2_by_hand(100e3, 200e3, 0.010, 1.0, 0.25 * 9.81, 1.2, 0.15, 0.5, 2.0)
+    for name, value in hand.items():
+        assert close(getattr(check, name), value), name
+    assert close(check.gamma, 1.0) and close(check.m_star, 100e3) and close(check.d_y, 0.010)
+    assert close(check.F_y, 200e3) and close(check.d_m, 0.010) and close(check.E_m, 0.5 * 200e3 * 0.010)
+    assert check.branch == "short period, inelastic" and not check.capped
+    assert (round(check.T_star, 4), round(check.Se, 4), round(check.d_et, 5), round(check.q_u, 3),
+            round(check.d_t_star, 5)) == (0.4443, 7.3575, 0.03679, 3.679, 0.04015)
+    assert close(check.d_u, 0.08) and close(check.ratio, 0.08 / check.d_t) and check.verdict == "pass"
+
+
+def test_n2_gamma_and_the_other_branches() -> None:
+    ag, spectrum = 0.25 * 9.81, sa.ec8_spectrum(0.25 * 9.81, "B")
+    # two masses of 50 t with Phi = (0.5, 1): m* = 75 t, Gamma = 75 / (12.5 + 50) = 1.2; the curve in d_n, F_b is
+    # Gamma times the system's: F*_y = 150 kN, d*_y = 0.2 m: T* = 2 pi sqrt(0.1) > T_C, the long-period branch
+    d, F = _epp(1.2 * 150e3, 1.2 * 0.2, 1.2 * 0.6)
+    check = sa.n2(d, F, [50e3, 50e3], [0.5, 1.0], spectrum)
+    assert close(check.gamma, 1.2) and close(check.m_star, 75e3)
+    hand = _n2_by_hand(75e3, 150e3, 0.2, 1.2, ag, 1.2, 0.15, 0.5, 2.0)
+    for name, value in hand.items():
+        assert close(getattr(check, name), value), name
+    assert check.branch == "long period" and close(check.d_t_star, check.d_et)
+    # short period, strong: F*_y / m* = 10 m/s2 >= S_e(T*): the elastic displacement
+    check = sa.n2(*_epp(1000e3, 0.01, 0.05), [100e3], [1.0], spectrum)
+    assert check.branch == "short period, elastic" and close(check.d_t_star, check.d_et)
+    for name, value in _n2_by_hand(100e3, 1000e3, 0.01, 1.0, ag, 1.2, 0.15, 0.5, 2.0).items():
+        assert close(getattr(check, name), value), name
+    # very short period, weak: the cap d*_t <= 3 d*_et
+    d_y = 200e3 * 0.05**2 / (4 * math.pi**2 * 100e3)  # T* = 0.05 s
+    check = sa.n2(*_epp(200e3, d_y, 0.05), [100e3], [1.0], spectrum)
+    assert check.capped and close(check.d_t_star, 3 * check.d_et) and close(check.T_star, 0.05)
+    for name, value in _n2_by_hand(100e3, 200e3, d_y, 1.0, ag, 1.2, 0.15, 0.5, 2.0).items():
+        assert close(getattr(check, name), value), name
+    # the ultimate displacement where the force has fallen to 80% of its peak after it
+    d = np.array([0.0, 0.01, 0.02, 0.03, 0.04])
+    F = np.array([0.0, 100.0, 100.0, 90.0, 70.0])
+    assert close(sa.n2(d, F, [1.0], [1.0], spectrum).d_u, 0.03 + 0.01 * (90 - 80) / (90 - 70))
+
+
+def test_n2_of_wall1_static_pushover() -> None:
+    case = md.load_case(EXAMPLES / "ferris-tinloi-wall1.toml")
+    model = case.build_model()
+    results = model.solve_static(control="displacement", max_displacement=0.02, steps=100)
+    spectrum = sa.ntc2018_spectrum(0.2 * G, 2.5, 0.3, soil="C")
+    g = 10.0
+    check = sa.pushover_n2(model, results, spectrum, gravity=g)
+    # every number again, from the results
+    W = np.asarray(model.weights)
+    u = np.asarray(results.displacements)[:, 0]
+    c = results.control_block
+    blocks = range(model.n_blocks)
+    m = [W[i] / g for i in blocks]
+    phi = [u[i] / u[c] for i in blocks]
+    m_star = sum(mi * p for mi, p in zip(m, phi))
+    gamma = m_star / sum(mi * p * p for mi, p in zip(m, phi))
+    d_n = list(results.curve_displacement)
+    F_b = [lam * sum(W[i] for i in blocks) for lam in results.curve_multiplier]
+    k = max(range(len(F_b)), key=lambda j: (F_b[j], -j))  # the first peak
+    F_y, d_m = F_b[k] / gamma, d_n[k] / gamma
+    E_m = sum((F_b[j] + F_b[j - 1]) / 2 / gamma * (d_n[j] - d_n[j - 1]) / gamma for j in range(1, k + 1))
+    d_y = 2 * (d_m - E_m / F_y)
+    assert close(check.gamma, gamma, 1e-12) and close(check.m_star, m_star, 1e-12)
+    assert close(check.F_y, F_y, 1e-12) and close(check.d_m, d_m, 1e-12) and close(check.E_m, E_m, 1e-9)
+    assert close(check.d_y, d_y, 1e-9)
+    T = 2 * math.pi * math.sqrt(m_star * d_y / F_y)
+    Se = spectrum.acceleration(T)
+    assert T < spectrum.TB  # a stiff wall of rigid blocks: on the rising branch
+    assert close(Se, spectrum.ag * spectrum.S * (2.5 * T / spectrum.TB + (1 - T / spectrum.TB)), 1e-12)
+    d_et = Se * (T / (2 * math.pi)) ** 2
+    q_u = Se * m_star / F_y
+    assert close(check.T_star, T, 1e-9) and close(check.d_et, d_et, 1e-9) and close(check.q_u, q_u, 1e-9)
+    if F_y / m_star >= Se:
+        d_t = d_et
+    else:
+        d_t = min(max(d_et / q_u * (1 + (q_u - 1) * spectrum.TC / T), d_et), 3 * d_et)
+    assert close(check.d_t_star, d_t, 1e-9) and close(check.d_t, gamma * d_t, 1e-9)
+    # the curve does not fall to 80% of its peak by 2 cm: its last point is the ultimate displacement
+    assert min(F_b[k:]) > 0.8 * F_b[k] and close(check.d_u, d_n[-1])
+    assert check.verdict == ("pass" if check.d_t <= d_n[-1] else "fail")
+    # limit analysis has no curve
+    with pytest.raises(md.InputError, match="^method: "):
+        sa.pushover_n2(model, model.solve_limit(), spectrum, gravity=g)

@@ -9,6 +9,8 @@
 * :mod:`.kinematic` (the results): :func:`linear_check`, the linear kinematic check of a collapse mechanism (alpha0,
   M*, e*, a0*, the demand, the ratio and the verdict); :func:`mechanism_weights` and :func:`participating_mass` the
   steps of it, :func:`linear_check_of` the same from weights and virtual displacements given directly.
+* :mod:`.n2` (the results): the N2 method of EN 1998-1 Annex B on a capacity curve given directly (:func:`n2`) or
+  on a static or explicit pushover (:func:`pushover_n2`).
 
 >>> from masonry_dem import assessment
 >>> round(assessment.elastic_spectrum(0.3, code="ec8", ag=2.5, ground_type="B", spectrum_type=1), 6)
@@ -23,6 +25,7 @@ from .._lazy import lazy_package
 
 if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); imported on first use at run time
     from .kinematic import LinearCheck, MechanismWeights, linear_check, linear_check_of, mechanism_weights, participating_mass
+    from .n2 import N2Check, n2, pushover_n2
     from .parameters import AssessmentParameters, read_assessment
     from .spectra import (
         Spectrum,
@@ -44,6 +47,9 @@ __all__ = [
     "linear_check_of",
     "mechanism_weights",
     "participating_mass",
+    "N2Check",
+    "n2",
+    "pushover_n2",
     "Spectrum",
     "spectrum",
     "ec8_spectrum",
@@ -60,6 +66,7 @@ _LAZY = {
     **dict.fromkeys(("AssessmentParameters", "read_assessment"), ".parameters"),
     **dict.fromkeys(("LinearCheck", "MechanismWeights", "linear_check", "linear_check_of", "mechanism_weights",
                      "participating_mass"), ".kinematic"),
+    **dict.fromkeys(("N2Check", "n2", "pushover_n2"), ".n2"),
     **dict.fromkeys(("Spectrum", "spectrum", "ec8_spectrum", "ntc2018_spectrum", "tabulated_spectrum",
                      "read_spectrum", "elastic_spectrum", "displacement_spectrum"), ".spectra"),
 }
