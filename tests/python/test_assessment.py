@@ -406,3 +406,105 @@ def test_n2_of_wall1_static_pushover() -> None:
     # limit analysis has no curve
     with pytest.raises(md.InputError, match="^method: "):
         sa.pushover_n2(model, model.solve_limit(), spectrum, gravity=g)
+
+
+# -- the case file's [assessment], the command line, the result file, the table and the figure ----------------------
+
+WALL1 = (EXAMPLES / "ferris-tinloi-wall1.toml").read_text().split("[assessment]")[0]
+
+
+def _case(tmp_path: Path, table: str, name: str = "case.toml") -> Path:
+    path = tmp_path / name
+    path.write_text(WALL1 + "\n[assessment]\n" + table)
+    return path
+
+
+def test_case_table_read_with_units_and_defaults(tmp_path: Path) -> None:
+    case = md.load_case(_case(tmp_path, 'spectrum = "ec8"\nag = "0.3 g"\nground_type = "C"\nspectrum_type = 2\n'
+                                        'importance = 1.2\ndamping = 0.1\n'))
+    p = case.assessment
+    assert p.spectrum.code == "ec8" and close(p.spectrum.ag, 0.3 * G * 1.2) and p.spectrum.S == 1.5
+    assert close(p.spectrum.eta, math.sqrt(10 / 15))
+    assert (p.q, p.confidence_factor, p.mechanism_height, p.building_height, p.storeys) == (2.0, 1.35, 0.0, None, None)
+    case = md.load_case(_case(tmp_path, 'spectrum = "ntc2018"\nag = "2.0 m/s2"\nF0 = 2.4\nTc_star = "300 ms"\n'
+                                        'q = 1.5\nconfidence_factor = 1.2\nmechanism_height = "6 m"\n'
+                                        'building_height = 9.0\nstoreys = 3\n'))
+    p = case.assessment
+    assert p.spectrum.ag == 2.0 and close(p.spectrum.parameters["Tc_star"], 0.3) and p.storeys == 3
+    assert (p.q, p.confidence_factor, p.mechanism_height, p.building_height) == (1.5, 1.2, 6.0, 9.0)
+    # a spectrum file, relative to the case file
+    (tmp_path / "site.csv").write_text("0 0.3\n0.5 0.75\n4 0.1\n")
+    case = md.load_case(_case(tmp_path, 'spectrum = "site.csv"\nspectrum_units = "g"\nTc = 0.5\n'))
+    assert case.assessment.spectrum.code == "file" and close(case.assessment.spectrum.acceleration(0.25), 0.525 * G)
+    # no table: no assessment
+    assert md.load_case(EXAMPLES / "ferris-tinloi-wall2.toml").assessment is None
+
+
+@pytest.mark.parametrize("table, key, words", [
+    ('spectrum = "ntc2018"\nag = "0.25 g"\nF0 = 2.1\nTc_star = 0.3\n', "F0", "must be >= 2.2"),
+    ('spectrum = "ec8"\nag = 0\n', "ag", "must be > 0"),
+    ('spectrum = "ec8"\nag = 2.0\nground_type = "S1"\n', "ground_type", "study of their own"),
+    ('spectrum = "ec8"\nag = 2.0\ndamping = 5\n', "damping", "0.05 for 5%"),
+    ('spectrum = "ec8"\nag = 2.0\nconfidence_factor = 0.9\n', "confidence_factor", "must be >= 1"),
+    ('spectrum = "ec8"\nag = 2.0\nmechanism_height = 12.0\nbuilding_height = 9.0\nstoreys = 3\n', "mechanism_height",
+     "above the building"),
+    ('spectrum = "ec8"\nag = 2.0\nmechanism_height = 3.0\nstoreys = 3\n', "building_height", "needs the building"),
+    ('spectrum = "ec8"\nag = 2.0\nF0 = 2.5\n', "F0", 'does not apply to spectrum = "ec8"'),
+    ('spectrum = "ec8"\nag = "0.25 MPa"\n', "ag", "is a stress"),
+    ('spectrum = "site.csv"\n', "spectrum_units", "missing key"),
+    ('spectrum = "missing.csv"\nspectrum_units = "g"\n', "spectrum", "cannot read"),
+    ('spectrum = "ec8"\nag = 2.0\nqq = 2\n', "qq", "unknown key"),
+])
+def test_case_table_refusals_name_the_key(tmp_path: Path, table: str, key: str, words: str) -> None:
+    (tmp_path / "site.csv").write_text("0 0.3\n1 0.5\n")
+    with pytest.raises(md.InputError) as info:
+        md.load_case(_case(tmp_path, table))
+    message = str(info.value)
+    assert message.startswith(f"{tmp_path / 'case.toml'}: ") and words in message and "\n" not in message, message
+    assert info.value.key == f"assessment.{key}" and (f"assessment.{key}" in message or f"'{key}'" in message)
+
+
+def test_assess_command_line(tmp_path: Path, capsys: Any) -> None:
+    from masonry_dem.cli import main
+
+    out_json, out_png = tmp_path / "a.json", tmp_path / "a.png"
+    assert main(["assess", str(EXAMPLES / "ferris-tinloi-wall1.toml"), "-q", "--json", str(out_json), "--plot",
+                 str(out_png)]) == 0
+    text = capsys.readouterr().out
+    for quantity, unit, clause in (("participating mass M*", "kg", "C8A.4.1"), ("a0* = alpha0 g / (e* FC)", "m/s2",
+                                                                               "C8A.4.1"),
+                                   ("demand at ground level a_g S / q", "m/s2", "C8A.4.2.3"),
+                                   ("a_g", "m/s2", "NTC 2018 3.2.3.2.1")):
+        line = next(line for line in text.splitlines() if line.strip().startswith(quantity))
+        assert unit in line.split() and clause in line, line
+    data = __import__("json").loads(out_json.read_text())
+    a = data["assessment"]
+    assert data["method"] == "limit" and a["n2"] is None
+    # the result file's numbers are the check's, from Python
+    case = md.load_case(EXAMPLES / "ferris-tinloi-wall1.toml")
+    model = case.build_model()
+    check = sa.linear_check(model, model.solve_limit(), case.assessment, gravity=10.0)
+    for key in ("alpha0", "participating_mass", "mass_fraction", "a0_star", "demand", "ratio"):
+        assert close(a[key], getattr(check, key), 1e-9), key
+    assert a["verdict"] == check.verdict == "pass" and a["spectrum"]["code"] == "ntc2018"
+    assert out_png.stat().st_size > 10_000
+    # a static pushover: the N2 method too
+    assert main(["assess", str(EXAMPLES / "ferris-tinloi-wall1.toml"), "-q", "--method", "static", "--json",
+                 str(out_json)]) == 0
+    assert __import__("json").loads(out_json.read_text())["assessment"]["n2"]["branch"].startswith("short period")
+
+
+def test_assess_command_line_refusals(tmp_path: Path, capsys: Any) -> None:
+    from masonry_dem.cli import main
+
+    # no [assessment]
+    assert main(["assess", str(EXAMPLES / "ferris-tinloi-wall2.toml"), "-q"]) == 2
+    err = capsys.readouterr().err
+    assert "no [assessment] table" in err and len(err.strip().splitlines()) == 1
+    # a height above the building, FC below 1: refused by name, before any analysis
+    path = _case(tmp_path, 'spectrum = "ec8"\nag = 2.0\nmechanism_height = 10\nbuilding_height = 6\nstoreys = 2\n')
+    assert main(["assess", str(path), "-q"]) == 2
+    assert "assessment.mechanism_height" in capsys.readouterr().err
+    path = _case(tmp_path, 'spectrum = "ec8"\nag = 2.0\nconfidence_factor = 0.5\n')
+    assert main(["assess", str(path), "-q"]) == 2
+    assert "assessment.confidence_factor" in capsys.readouterr().err

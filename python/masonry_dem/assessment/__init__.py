@@ -11,6 +11,13 @@
   steps of it, :func:`linear_check_of` the same from weights and virtual displacements given directly.
 * :mod:`.n2` (the results): the N2 method of EN 1998-1 Annex B on a capacity curve given directly (:func:`n2`) or
   on a static or explicit pushover (:func:`pushover_n2`).
+* :mod:`.verdict` (the results): :func:`assess`, the checks that apply to an analysis's results; the result file's
+  ``assessment`` object (:func:`assessment_dict`) and the plain-text table of a calculation report
+  (:func:`assessment_table`).
+* :mod:`.plot` (the output, matplotlib): the ADRS figure and the displaced shape used for M*
+  (:func:`assessment_figure`, :func:`plot_adrs`, :func:`plot_displaced_shape`).
+
+From a case file: its [assessment] table (docs/case-format.md) and ``masonry-dem assess CASE``.
 
 >>> from masonry_dem import assessment
 >>> round(assessment.elastic_spectrum(0.3, code="ec8", ag=2.5, ground_type="B", spectrum_type=1), 6)
@@ -27,6 +34,7 @@ if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); impo
     from .kinematic import LinearCheck, MechanismWeights, linear_check, linear_check_of, mechanism_weights, participating_mass
     from .n2 import N2Check, n2, pushover_n2
     from .parameters import AssessmentParameters, read_assessment
+    from .plot import assessment_figure, plot_adrs, plot_displaced_shape
     from .spectra import (
         Spectrum,
         displacement_spectrum,
@@ -37,6 +45,7 @@ if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); impo
         spectrum,
         tabulated_spectrum,
     )
+    from .verdict import Assessment, assess, assessment_dict, assessment_table
 
 __all__ = [
     "AssessmentParameters",
@@ -50,6 +59,13 @@ __all__ = [
     "N2Check",
     "n2",
     "pushover_n2",
+    "Assessment",
+    "assess",
+    "assessment_dict",
+    "assessment_table",
+    "assessment_figure",
+    "plot_adrs",
+    "plot_displaced_shape",
     "Spectrum",
     "spectrum",
     "ec8_spectrum",
@@ -67,6 +83,8 @@ _LAZY = {
     **dict.fromkeys(("LinearCheck", "MechanismWeights", "linear_check", "linear_check_of", "mechanism_weights",
                      "participating_mass"), ".kinematic"),
     **dict.fromkeys(("N2Check", "n2", "pushover_n2"), ".n2"),
+    **dict.fromkeys(("Assessment", "assess", "assessment_dict", "assessment_table"), ".verdict"),
+    **dict.fromkeys(("assessment_figure", "plot_adrs", "plot_displaced_shape"), ".plot"),
     **dict.fromkeys(("Spectrum", "spectrum", "ec8_spectrum", "ntc2018_spectrum", "tabulated_spectrum",
                      "read_spectrum", "elastic_spectrum", "displacement_spectrum"), ".spectra"),
 }

@@ -17,7 +17,7 @@ convention of the Italian code for masonry buildings), else the curve's last poi
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Optional
 
 import numpy as np
@@ -51,6 +51,7 @@ class N2Check:
         d_t: d_t = Gamma d*_t [m], the target displacement of the control point (B.6).
         d_u: the curve's ultimate displacement of the control point [m].
         ratio: d_u / d_t (capacity over demand); verdict: "pass" when d_t <= d_u, else "fail".
+        curve_displacement, curve_force: the capacity curve as given, d_n [m] and F_b [N] (for the plots).
     """
 
     gamma: float
@@ -71,6 +72,8 @@ class N2Check:
     d_u: float
     ratio: float
     verdict: str
+    curve_displacement: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    curve_force: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
 
 
 def ultimate_displacement(displacement: Any, force: Any) -> float:
@@ -143,7 +146,7 @@ def n2(displacement: Any, force: Any, masses: Any, shape: Any, spectrum: Spectru
     ratio = d_u / target
     return N2Check(gamma=gamma, m_star=m_star, F_y=F_y, d_m=d_m, E_m=E_m, d_y=d_y, T_star=T_star, Se=Se, TC=TC,
                    d_et=d_et, q_u=q_u, branch=branch, d_t_star=d_t, capped=capped, d_t=target, d_u=d_u, ratio=ratio,
-                   verdict="pass" if ratio >= 1.0 else "fail")
+                   verdict="pass" if ratio >= 1.0 else "fail", curve_displacement=d, curve_force=f)
 
 
 def pushover_n2(model: Any, results: Any, spectrum: Spectrum, gravity: Optional[float] = None) -> N2Check:
