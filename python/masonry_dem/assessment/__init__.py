@@ -9,7 +9,7 @@
 * :mod:`.kinematic` (the results): :func:`linear_check`, the linear kinematic check of a collapse mechanism (alpha0,
   M*, e*, a0*, the demand, the ratio and the verdict); :func:`mechanism_weights` and :func:`participating_mass` the
   steps of it, :func:`linear_check_of` the same from weights and virtual displacements given directly.
-* :mod:`.n2` (the results): the N2 method of EN 1998-1 Annex B on a capacity curve given directly (:func:`n2`) or
+* :mod:`.pushover` (the results): the N2 method of EN 1998-1 Annex B on a capacity curve given directly (:func:`n2`) or
   on a static or explicit pushover (:func:`pushover_n2`).
 * :mod:`.verdict` (the results): :func:`assess`, the checks that apply to an analysis's results; the result file's
   ``assessment`` object (:func:`assessment_dict`) and the plain-text table of a calculation report
@@ -32,7 +32,7 @@ from .._lazy import lazy_package
 
 if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); imported on first use at run time
     from .kinematic import LinearCheck, MechanismWeights, linear_check, linear_check_of, mechanism_weights, participating_mass
-    from .n2 import N2Check, n2, pushover_n2
+    from .pushover import N2Check, n2, pushover_n2
     from .parameters import AssessmentParameters, read_assessment
     from .plot import assessment_figure, plot_adrs, plot_displaced_shape
     from .spectra import (
@@ -82,7 +82,7 @@ _LAZY = {
     **dict.fromkeys(("AssessmentParameters", "read_assessment"), ".parameters"),
     **dict.fromkeys(("LinearCheck", "MechanismWeights", "linear_check", "linear_check_of", "mechanism_weights",
                      "participating_mass"), ".kinematic"),
-    **dict.fromkeys(("N2Check", "n2", "pushover_n2"), ".n2"),
+    **dict.fromkeys(("N2Check", "n2", "pushover_n2"), ".pushover"),
     **dict.fromkeys(("Assessment", "assess", "assessment_dict", "assessment_table"), ".verdict"),
     **dict.fromkeys(("assessment_figure", "plot_adrs", "plot_displaced_shape"), ".plot"),
     **dict.fromkeys(("Spectrum", "spectrum", "ec8_spectrum", "ntc2018_spectrum", "tabulated_spectrum",

@@ -15,7 +15,7 @@ from typing import Any, Dict, List, Optional, Tuple
 from ..case.result_file import json_float
 from ..units import STANDARD_GRAVITY
 from .kinematic import LinearCheck, MechanismWeights, linear_check_of, mechanism_weights
-from .n2 import N2Check, pushover_n2
+from .pushover import N2Check, pushover_n2
 from .parameters import AssessmentParameters
 
 #: The texts the checks follow, as the table names them.
