@@ -508,3 +508,67 @@ def test_assess_command_line_refusals(tmp_path: Path, capsys: Any) -> None:
     path = _case(tmp_path, 'spectrum = "ec8"\nag = 2.0\nconfidence_factor = 0.5\n')
     assert main(["assess", str(path), "-q"]) == 2
     assert "assessment.confidence_factor" in capsys.readouterr().err
+
+
+# -- the nonlinear kinematic check of one rigid body ----------------------------------------------------------------
+
+@pytest.mark.parametrize("b, h, n", [(0.4, 1.2, 1), (0.5, 0.8, 1), (0.3, 0.25, 4)])
+def test_nonlinear_check_of_a_body_turning_about_its_toe(b: float, h: float, n: int) -> None:
+    # n equal blocks of b x h in a column turn as one about the toe (b, 0): alpha(theta) = tan(atan(b / H) - theta)
+    # with H = n h; the weights' centroid G = (b/2, H/2) stands over the toe at theta_0 = atan(b / H), having moved
+    # by b / 2; d* = d_G sum P dx^2 / (dx_G sum P dx) with dx_i = y_i per unit rotation
+    g, H = 9.81, n * h
+    model = md.Model([[0.0, i * h, b, (i + 1) * h] for i in range(n)], thickness=0.5, density=1800.0, joints=_dry(),
+                     gravity=g)
+    results = model.solve_limit(tolerance=1e-11)
+    params = _site()
+    check = sa.nonlinear_check(model, results, params, gravity=g)
+    assert check.sense == -1 and close(check.hinge[0], b, 1e-9) and abs(check.hinge[1]) < 1e-9
+    lam = np.tan(math.atan(b / H) - check.theta)
+    y = (np.arange(n) + 0.5) * h
+    e_star = y.sum() ** 2 / (n * (y**2).sum())
+    assert np.allclose(check.a_star * e_star * 1.35 / g, lam, rtol=0, atol=1e-9)
+    # the same from the weights directly, at any rotation
+    theta = np.array([0.0, 0.05, 0.2])
+    points = np.column_stack((np.full(n, b / 2), y))
+    assert np.allclose(sa.alpha_of_rotation(np.ones(n), points, (b, 0.0), -1, theta),
+                       np.tan(math.atan(b / H) - theta), rtol=0, atol=1e-12)
+    to_star = (y**2).sum() / ((H / 2) * y.sum())
+    assert close(check.theta0, math.atan(b / H), 1e-9)
+    assert close(check.d0_star, b / 2 * to_star, 1e-9)
+    assert close(check.du_star, 0.4 * b / 2 * to_star, 1e-9) and close(check.ds_star, 0.16 * b / 2 * to_star, 1e-9)
+    # d*_s: the centroid at R (cos(beta - theta), ...) from the toe, beta = pi - atan(H / b), has moved by d*_s
+    R, beta = math.hypot(b, H) / 2, math.pi - math.atan(H / b)
+    theta_s = beta - math.acos(math.cos(beta) + 0.16 * b / 2 / R)
+    a_s = math.tan(math.atan(b / H) - theta_s) * g / (e_star * 1.35)
+    assert close(check.as_star, a_s, 1e-9)
+    Ts = 2 * math.pi * math.sqrt(check.ds_star / a_s)
+    assert close(check.Ts, Ts, 1e-9)
+    assert close(check.demand, params.spectrum.displacement(Ts), 1e-9)
+    assert close(check.ratio, check.du_star / check.demand) and check.verdict == ("pass" if check.ratio >= 1 else "fail")
+
+
+def test_nonlinear_check_at_height_and_refusals() -> None:
+    b, h, g = 0.4, 1.2, 9.81
+    model = md.Model([[0.0, 0.0, b, h]], thickness=0.5, density=1800.0, joints=_dry(), gravity=g)
+    results = model.solve_limit(tolerance=1e-11)
+    params = _site(mechanism_height=6.0, building_height=9.0, storeys=3)
+    check = sa.nonlinear_check(model, results, params, gravity=g)
+    T1 = 0.05 * 9.0**0.75
+    top = params.spectrum.displacement(T1) * (6 / 9) * (9 / 7)
+    r = check.Ts / T1
+    expected = top if check.Ts >= 1.5 * T1 else top * r**2 / math.sqrt((1 - r) ** 2 + 0.02 * r)
+    assert close(check.demand_height, expected, 1e-12) and check.demand == max(check.demand_ground, expected)
+    # wall 1's mechanism is a wedge that slides and a part that turns: not one body
+    case = md.load_case(EXAMPLES / "ferris-tinloi-wall1.toml")
+    wall = case.build_model()
+    with pytest.raises(md.InputError, match="^mechanism: .*one body turning about a hinge"):
+        sa.nonlinear_check(wall, wall.solve_limit(), params, gravity=10.0)
+    # and the assessment says why it is not made
+    assessed = sa.assess(wall, wall.solve_limit(), case.assessment, gravity=10.0)
+    assert assessed.nonlinear is None and "several bodies" in assessed.nonlinear_note
+    assert "nonlinear kinematic check of the mechanism: not made" in sa.assessment_table(assessed)
+    # a sliding block: refused
+    squat = md.Model([[0.0, 0.0, 1.0, 0.3]], joints=_dry(0.2), gravity=g)
+    with pytest.raises(md.InputError, match="^mechanism: it slides"):
+        sa.nonlinear_check(squat, squat.solve_limit(), params, gravity=g)

@@ -43,7 +43,8 @@ STAGES: Tuple[Tuple[str, Tuple[str, ...]], ...] = (
     # what an analysis returns, read: time histories, response peaks, the result file and dicts, the reports in
     # words, comparisons
     ("results", ("history", "response", "case.result_file", "api", "_mechanism", "report", "space.report",
-                 "compare", "assessment.kinematic", "assessment.pushover", "assessment.verdict")),
+                 "compare", "assessment.kinematic", "assessment.nonlinear", "assessment.pushover",
+                 "assessment.verdict")),
     # figures and files: plots, VTK and CSV, progress bars
     ("output", ("_vtk", "export", "space.export", "plot.canvas", "plot.panels", "plot.time_panels", "plot.animation",
                 "plot.figures", "plot.modes", "space.plot", "progress", "assessment.plot")),

@@ -9,6 +9,8 @@
 * :mod:`.kinematic` (the results): :func:`linear_check`, the linear kinematic check of a collapse mechanism (alpha0,
   M*, e*, a0*, the demand, the ratio and the verdict); :func:`mechanism_weights` and :func:`participating_mass` the
   steps of it, :func:`linear_check_of` the same from weights and virtual displacements given directly.
+* :mod:`.nonlinear` (the results): :func:`nonlinear_check`, the nonlinear kinematic check of a mechanism of one
+  rigid body turning about a hinge (alpha(theta) at finite rotation, d*_0, d*_u, T_s, the displacement demand).
 * :mod:`.pushover` (the results): the N2 method of EN 1998-1 Annex B on a capacity curve given directly (:func:`n2`) or
   on a static or explicit pushover (:func:`pushover_n2`).
 * :mod:`.verdict` (the results): :func:`assess`, the checks that apply to an analysis's results; the result file's
@@ -33,6 +35,7 @@ from .._lazy import lazy_package
 if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); imported on first use at run time
     from .kinematic import LinearCheck, MechanismWeights, linear_check, linear_check_of, mechanism_weights, participating_mass
     from .pushover import N2Check, n2, pushover_n2
+    from .nonlinear import NonlinearCheck, alpha_of_rotation, nonlinear_check
     from .parameters import AssessmentParameters, read_assessment
     from .plot import assessment_figure, plot_adrs, plot_displaced_shape
     from .spectra import (
@@ -56,6 +59,9 @@ __all__ = [
     "linear_check_of",
     "mechanism_weights",
     "participating_mass",
+    "NonlinearCheck",
+    "nonlinear_check",
+    "alpha_of_rotation",
     "N2Check",
     "n2",
     "pushover_n2",
@@ -83,6 +89,7 @@ _LAZY = {
     **dict.fromkeys(("LinearCheck", "MechanismWeights", "linear_check", "linear_check_of", "mechanism_weights",
                      "participating_mass"), ".kinematic"),
     **dict.fromkeys(("N2Check", "n2", "pushover_n2"), ".pushover"),
+    **dict.fromkeys(("NonlinearCheck", "nonlinear_check", "alpha_of_rotation"), ".nonlinear"),
     **dict.fromkeys(("Assessment", "assess", "assessment_dict", "assessment_table"), ".verdict"),
     **dict.fromkeys(("assessment_figure", "plot_adrs", "plot_displaced_shape"), ".plot"),
     **dict.fromkeys(("Spectrum", "spectrum", "ec8_spectrum", "ntc2018_spectrum", "tabulated_spectrum",

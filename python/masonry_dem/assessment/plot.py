@@ -41,6 +41,12 @@ def plot_adrs(ax: Any, assessment: Assessment, periods: Optional[np.ndarray] = N
         ax.plot([1e3 * n2.d_t_star], [at_target], "o", color="C3",
                 label=f"performance point d*_t = {1e3 * n2.d_t_star:.3g} mm")
         ax.plot([1e3 * n2.d_et], [n2.Se], "x", color="C3", label="elastic demand at T*")
+    nl = assessment.nonlinear
+    if nl is not None:
+        ax.plot(1e3 * nl.d_star, nl.a_star, color="C4", lw=1.2, label="mechanism's curve a*(d*) (finite rotation)")
+        ax.axvline(1e3 * nl.du_star, color="C4", ls="--", lw=0.8, label=f"d*_u = {1e3 * nl.du_star:.3g} mm")
+        ax.plot([1e3 * nl.demand_ground], [float(s.acceleration(nl.Ts))], "s", color="C4",
+                label=f"demand S_De(T_s), T_s = {nl.Ts:.3g} s")
     lin = assessment.linear
     if lin is not None:
         ax.axhline(lin.a0_star, color="C2", ls="--", lw=1.2, label=f"a0* = {lin.a0_star:.3g} m/s2 (mechanism)")
@@ -89,13 +95,14 @@ def plot_displaced_shape(ax: Any, model: Any, assessment: Assessment) -> None:
         pad = 0.05 * size
         ax.set_xlim(lo[0] - pad, hi[0] + pad)
         ax.set_ylim(lo[1] - pad, hi[1] + pad)
-        ax.set_aspect("equal")
+        ax.set_aspect("equal", adjustable="box")
         ax.figure.colorbar(patches, ax=ax, shrink=0.7, label="dx_i (largest 1)")
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
     lin = assessment.linear
-    extra = f": e* = {lin.mass_fraction:.3f}, M* = {lin.participating_mass:.4g} kg" if lin is not None else ""
-    ax.set_title(f"displaced shape used for M* ({len(m.blocks)} blocks){extra}", fontsize=10)
+    extra = f"\ne* = {lin.mass_fraction:.3f}, M* = {lin.participating_mass:.4g} kg" if lin is not None else ""
+    count = f"{len(m.blocks)} block{'s' if len(m.blocks) > 1 else ''}"
+    ax.set_title(f"displaced shape used for M* ({count}){extra}", fontsize=10)
 
 
 def assessment_figure(model: Any, assessment: Assessment, title: str = "",

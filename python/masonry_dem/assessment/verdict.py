@@ -3,7 +3,8 @@
 (:func:`assessment_table`: each quantity with its value, its unit and the clause it comes from).
 
 The linear kinematic check applies to a collapse with a mechanism (limit analysis, or a static or explicit
-collapse); the N2 method to a pushover's capacity curve (a static or explicit analysis of a wall in the plane).
+collapse); the nonlinear kinematic check to a mechanism of one rigid body turning about a hinge in a wall in the
+plane; the N2 method to a pushover's capacity curve (a static or explicit analysis of a wall in the plane).
 """
 
 from __future__ import annotations
@@ -12,9 +13,11 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Any, Dict, List, Optional, Tuple
 
+from .._core import InputError
 from ..case.result_file import json_float
 from ..units import STANDARD_GRAVITY
 from .kinematic import LinearCheck, MechanismWeights, linear_check_of, mechanism_weights
+from .nonlinear import NonlinearCheck, nonlinear_check
 from .pushover import N2Check, pushover_n2
 from .parameters import AssessmentParameters
 
@@ -33,6 +36,8 @@ class Assessment:
         mechanism: the mechanism's moving blocks, weights and virtual displacements (None without a collapse).
         linear: the linear kinematic check (None without a collapse).
         n2: the N2 method on the pushover's curve (None without one: limit analysis, or a 3D wall).
+        nonlinear: the nonlinear kinematic check (None unless the mechanism is one rigid body turning about a hinge
+            in a wall in the plane); nonlinear_note: why it is None ("" when it is made).
     """
 
     parameters: AssessmentParameters
@@ -40,17 +45,20 @@ class Assessment:
     mechanism: Optional[MechanismWeights]
     linear: Optional[LinearCheck]
     n2: Optional[N2Check]
+    nonlinear: Optional[NonlinearCheck] = None
+    nonlinear_note: str = ""
 
     @property
     def verdict(self) -> str:
         """"fail" if a check fails, else "pass"."""
-        checks = [c for c in (self.linear, self.n2) if c is not None]
+        checks = [c for c in (self.linear, self.nonlinear, self.n2) if c is not None]
         return "fail" if any(c.verdict == "fail" for c in checks) else "pass"
 
 
 def assess(model: Any, results: Any, parameters: AssessmentParameters, gravity: Optional[float] = None) -> Assessment:
     """The checks that apply to ``results`` of ``model`` (``gravity``: the model's, needed for a wall in the plane):
-    the linear kinematic check of the collapse mechanism, and the N2 method on a pushover's curve.
+    the linear kinematic check of the collapse mechanism, the nonlinear one when the mechanism is one rigid body
+    turning about a hinge, and the N2 method on a pushover's curve.
 
     Raises InputError when neither applies (no collapse and no curve), or what the checks refuse (a mechanism with
     no moving block, a spectrum without T_C for N2, ...), naming it."""
@@ -60,12 +68,21 @@ def assess(model: Any, results: Any, parameters: AssessmentParameters, gravity: 
         mechanism = mechanism_weights(model, results, gravity)
         linear = linear_check_of(float(results.collapse_multiplier), mechanism.weights, mechanism.dx,
                                  mechanism.gravity, parameters)
+    nonlinear, note = None, "no collapse mechanism"
+    if mechanism is not None:
+        try:
+            nonlinear, note = nonlinear_check(model, results, parameters, gravity), ""
+        except InputError as exc:  # several bodies, sliding, 3D: said in the table
+            if getattr(exc, "key", None) != "mechanism":
+                raise
+            note = str(exc)[len("mechanism: "):]
     n2 = None
     if method != "limit" and int(getattr(model, "dimension", 2)) == 2 and len(results.curve_displacement) > 1:
         n2 = pushover_n2(model, results, parameters.spectrum, gravity)
     if linear is None and n2 is None:
         mechanism_weights(model, results, gravity)  # refuses, saying why there is no mechanism
-    return Assessment(parameters=parameters, method=method, mechanism=mechanism, linear=linear, n2=n2)
+    return Assessment(parameters=parameters, method=method, mechanism=mechanism, linear=linear, n2=n2,
+                      nonlinear=nonlinear, nonlinear_note=note)
 
 
 def _floats(data: Dict[str, Any]) -> Dict[str, Any]:
@@ -92,6 +109,12 @@ def assessment_dict(assessment: Assessment) -> Dict[str, Any]:
         out["n2"] = _floats(n2)
     else:
         out["n2"] = None
+    if assessment.nonlinear is not None:
+        kept = {k: v for k, v in asdict(assessment.nonlinear).items() if k not in ("theta", "d_star", "a_star")}
+        kept["hinge"] = list(assessment.nonlinear.hinge)
+        out["nonlinear"] = _floats(kept)
+    else:
+        out["nonlinear"] = None
     return out
 
 
@@ -160,6 +183,27 @@ def linear_rows(assessment: Assessment) -> List[Row]:
     return rows
 
 
+def nonlinear_rows(assessment: Assessment) -> List[Row]:
+    """The nonlinear kinematic check's rows of the table (none when it is not made: the table says why)."""
+    c = assessment.nonlinear
+    if c is None:
+        return []
+    q = f"{CIRCOLARE_2009} C8A.4.2"
+    rows: List[Row] = [
+        ("hinge (x, y)", f"{c.hinge[0]:.4g}, {c.hinge[1]:.4g}", "m", "one rigid body"),
+        ("rotation to alpha = 0, theta_0", _value(c.theta0), "rad", f"{q}.1 (finite rotation)"),
+        ("d*_0", _value(c.d0_star), "m", f"{q}.1"),
+        ("d*_u = 0.4 d*_0", _value(c.du_star), "m", f"{q}.2"),
+        ("d*_s = 0.4 d*_u, a*_s", f"{_value(c.ds_star)} m, {_value(c.as_star)} m/s2", "", f"{q}.3"),
+        ("secant period T_s", _value(c.Ts), "s", f"{q}.3"),
+        ("demand at ground level S_De(T_s)", _value(c.demand_ground), "m", f"{q}.3"),
+    ]
+    if math.isfinite(c.demand_height):
+        rows.append(("demand at height", _value(c.demand_height), "m", f"{q}.3"))
+    rows += [("ratio d*_u / demand", _value(c.ratio), "-", f"{q}.3"), ("verdict", c.verdict, "", f"{q}.3")]
+    return rows
+
+
 def n2_rows(assessment: Assessment) -> List[Row]:
     """The N2 method's rows of the table."""
     c = assessment.n2
@@ -189,12 +233,15 @@ def assessment_table(assessment: Assessment, title: str = "") -> str:
     """The plain-text table of the assessment (quantity, value, unit, clause), to paste in a calculation report."""
     sections = [("demand spectrum", spectrum_rows(assessment)),
                 ("linear kinematic check of the mechanism", linear_rows(assessment)),
+                ("nonlinear kinematic check of the mechanism", nonlinear_rows(assessment)),
                 ("N2 method on the capacity curve", n2_rows(assessment))]
     rows = [r for _, rs in sections for r in rs] + [("quantity", "value", "unit", "clause")]
     widths = [max(len(r[k]) for r in rows) for k in range(3)]
     lines = [f"Seismic assessment{': ' + title if title else ''} (verdict: {assessment.verdict})"]
     for name, section in sections:
         if not section:
+            if section is sections[2][1] and assessment.mechanism is not None:
+                lines.append(f"  {name}: not made ({assessment.nonlinear_note})")
             continue
         lines.append(f"  {name}")
         lines.append("    " + "  ".join(h.ljust(w) for h, w in zip(("quantity", "value", "unit"), widths)) + "  clause")
