@@ -13,8 +13,9 @@
 
 ``assess`` runs the case's analysis (limit analysis by default) and checks it against the demand spectrum of its
 [assessment] table (:mod:`masonry_dem.assessment`): the linear kinematic check of the mechanism, the nonlinear one
-of a mechanism of one rigid body, and on a pushover's curve the N2 method; it prints the summary and a table of the checks (each quantity with its unit and clause), and
-exits 0 whatever the verdict, 1 when the analysis gives nothing to check.
+of a mechanism of one rigid body, and on a pushover's curve the N2 method; it prints the summary and a table of
+the checks (each quantity with its unit and clause), and exits 0 whatever the verdict, 1 when the analysis gives
+nothing to check.
 
 ``simulate`` runs the time history of a case under its ground motion ([ground_motion], [time_history]; see
 :mod:`masonry_dem.ground_motion`) and prints the peaks of the response (:mod:`masonry_dem.response`); it exits 1

@@ -33,7 +33,14 @@ from typing import TYPE_CHECKING
 from .._lazy import lazy_package
 
 if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); imported on first use at run time
-    from .kinematic import LinearCheck, MechanismWeights, linear_check, linear_check_of, mechanism_weights, participating_mass
+    from .kinematic import (
+        LinearCheck,
+        MechanismWeights,
+        linear_check,
+        linear_check_of,
+        mechanism_weights,
+        participating_mass,
+    )
     from .pushover import N2Check, n2, pushover_n2
     from .nonlinear import NonlinearCheck, alpha_of_rotation, nonlinear_check
     from .parameters import AssessmentParameters, read_assessment

@@ -98,7 +98,8 @@ class AssessmentParameters:
         return MASONRY_C1 * self.building_height ** 0.75 if self.building_height is not None else math.nan
 
     def modal_shape(self) -> float:
-        """psi(Z) = Z / H (Circolare 617/2009 C8A.4.2.3), the first mode normalised to 1 at the top; 0 at ground level."""
+        """psi(Z) = Z / H (Circolare 617/2009 C8A.4.2.3), the first mode normalised to 1 at the top; 0 at ground
+        level."""
         return self.mechanism_height / self.building_height if self.building_height else 0.0
 
     def participation(self) -> float:

@@ -109,7 +109,8 @@ def n2(displacement: Any, force: Any, masses: Any, shape: Any, spectrum: Spectru
     m = np.asarray(masses, dtype=np.float64).reshape(-1)
     phi = np.asarray(shape, dtype=np.float64).reshape(-1)
     if len(d) != len(f) or len(d) < 2 or not (np.all(np.isfinite(d)) and np.all(np.isfinite(f))):
-        raise _refuse("curve", f"expected at least 2 finite points of displacement and force, got {len(d)} and {len(f)}")
+        raise _refuse("curve", f"expected at least 2 finite points of displacement and force, got {len(d)} and "
+                               f"{len(f)}")
     if not np.max(f) > 0:
         raise _refuse("curve", "the base shear never rises above 0")
     if len(m) != len(phi) or not len(m):
@@ -166,10 +167,12 @@ def pushover_n2(model: Any, results: Any, spectrum: Spectrum, gravity: Optional[
     d = np.asarray(results.curve_displacement, dtype=np.float64)
     lam = np.asarray(results.curve_multiplier, dtype=np.float64)
     if len(d) < 2:
-        raise _refuse("method", f"the N2 method needs a pushover's capacity curve; the {results.method!r} analysis has none")
+        raise _refuse("method", f"the N2 method needs a pushover's capacity curve; the {results.method!r} analysis "
+                                "has none")
     g = getattr(model, "gravity", None) if gravity is None else gravity
     if g is None or not float(g) > 0:
-        raise _refuse("gravity", "a wall in the plane's Model does not tell its gravity: give the one it was built with")
+        raise _refuse("gravity", "a wall in the plane's Model does not tell its gravity: give the one it was built "
+                                 "with")
     weights = np.asarray(model.weights, dtype=np.float64)
     u = np.asarray(results.displacements, dtype=np.float64)[:, 0]
     control = int(results.control_block)

@@ -207,7 +207,8 @@ class Spectrum:
             return f"tabulated spectrum ({source}), S_e(0) = {self.peak_ground_acceleration:.4g} m/s2"
         p = self.parameters
         head = (f"EN 1998-1 type {p['spectrum_type']}, ground {p['ground_type']}" if self.code == "ec8" else
-                f"NTC 2018, soil {p['soil']}, topography {p['topography']}, F0 = {self.F0:g}, T*_C = {p['Tc_star']:g} s")
+                f"NTC 2018, soil {p['soil']}, topography {p['topography']}, F0 = {self.F0:g}, "
+                f"T*_C = {p['Tc_star']:g} s")
         return (f"{head}, a_g = {self.ag:.4g} m/s2 ({self.ag / g:.3f} g), S = {self.S:.4g}, eta = {self.eta:.4g}, "
                 f"T_B = {self.TB:.4g} s, T_C = {self.TC:.4g} s, T_D = {self.TD:.4g} s")
 
