@@ -9,6 +9,13 @@
                       [--csv OUT.csv] [--plot OUT.png] [--quiet]
     masonry-dem simulate CASE.toml [--scale F] [--duration S] [--json OUT.json] [--plot OUT.png]
                          [--csv OUT.csv] [--vtk PREFIX] [--gif OUT.gif] [--quiet]
+    masonry-dem assess CASE.toml [--method static|dynamic|limit] [--json OUT.json] [--plot OUT.png] [--quiet]
+
+``assess`` runs the case's analysis (limit analysis by default) and checks it against the demand spectrum of its
+[assessment] table (:mod:`masonry_dem.assessment`): the linear kinematic check of the mechanism, the nonlinear one
+of a mechanism of one rigid body, and on a pushover's curve the N2 method; it prints the summary and a table of
+the checks (each quantity with its unit and clause), and exits 0 whatever the verdict, 1 when the analysis gives
+nothing to check.
 
 ``simulate`` runs the time history of a case under its ground motion ([ground_motion], [time_history]; see
 :mod:`masonry_dem.ground_motion`) and prints the peaks of the response (:mod:`masonry_dem.response`); it exits 1
@@ -213,6 +220,57 @@ def _simulate(args: Any) -> int:
     if history.status == "failed":
         return _error(f"the time history failed: {history.error or 'unknown reason'}", EXIT_FAILURE)
     return EXIT_OK
+
+
+def _assess(args: Any) -> int:
+    """``masonry-dem assess``: run the case's analysis, check it against its [assessment], write the outputs, print
+    the summary and the table of the checks."""
+    from .assessment.verdict import assess, assessment_dict, assessment_table
+
+    try:
+        case = load_case(args.case)
+    except OSError as exc:
+        return _error(f"cannot read {args.case}: {exc.strerror or exc}", EXIT_INPUT)
+    if case.assessment is None:
+        raise InputError(f"{args.case}: no [assessment] table: assess needs the site's demand spectrum "
+                         "(docs/case-format.md, \"[assessment]\")", "assessment")
+    method = case.check_method(args.method or "limit")
+    spectrum = case.assessment.spectrum
+    inputs = [args.case] + ([spectrum.parameters["file"]] if spectrum.code == "file" else [])
+    targets, plot_file = _output_targets(args.json, args.plot)
+    _check_outputs(targets, inputs)
+    model = case.build_model()
+    results, interrupted = _interruptible(lambda: _solve(case, model, method, args.quiet))
+    report = summary(case.title, model, results, case.live_load(model))
+    if interrupted:
+        _print(report)
+        return _error("interrupted (nothing checked, nothing written)", EXIT_INTERRUPTED)
+    has_curve = method != "limit" and case.dimension == 2 and len(results.curve_displacement) > 1
+    if results.status != "collapse" and not has_curve:
+        _print(report)
+        return _error(f"no collapse mechanism to check ({results.status}): {results.error or 'no collapse'}",
+                      EXIT_FAILURE)
+    checked = assess(model, results, case.assessment, gravity=case.model_kwargs["gravity"])
+
+    def outputs() -> Iterator[Any]:
+        if args.json:
+            from .case.result_file import result_dict, write_json
+
+            data = result_dict(results, model, case.title)
+            data["assessment"] = assessment_dict(checked)
+            _prepare(args.json)
+            write_json(args.json, data, inputs=inputs)
+            yield args.json
+        if plot_file is not None:
+            from .assessment.plot import assessment_figure
+
+            _prepare(plot_file)
+            assessment_figure(model, checked, title=case.title, path=plot_file)
+            yield plot_file
+
+    wrote, write_error = _write_outputs(outputs())
+    failed_to_write = _print_report(report + "\n" + assessment_table(checked, case.title), wrote, write_error)
+    return failed_to_write if failed_to_write is not None else EXIT_OK
 
 
 def _show_progress(quiet: bool) -> bool:
@@ -559,6 +617,8 @@ def _main(argv: Optional[Sequence[str]]) -> int:
             return _study(args)
         if args.command == "simulate":
             return _simulate(args)
+        if args.command == "assess":
+            return _assess(args)
         from .default_case import default_case
 
         return _execute(default_case(), None, args.json, args.plot, args.quiet, args.vtk, args.csv)

@@ -27,8 +27,8 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of ``masonry-dem`` (subcommands ``run``, ``compare``, ``demo``, ``validate``, ``study``
-    and ``simulate``)."""
+    """The argument parser of ``masonry-dem`` (subcommands ``run``, ``compare``, ``demo``, ``validate``, ``study``,
+    ``simulate`` and ``assess``)."""
     parser = _Parser(
         prog=PROG,
         description="Nonlinear in-plane analysis of masonry walls of rigid blocks with Mohr-Coulomb joints.",
@@ -45,6 +45,7 @@ def build_parser() -> argparse.ArgumentParser:
               masonry-dem validate --method static              check examples/ against their reference values
               masonry-dem study examples/studies/wall1-fragility.toml --plot out/fragility.png   1,000 analyses on Dask
               masonry-dem simulate examples/ferris-tinloi-wall1-elcentro.toml --plot out/ec.png   a ground motion
+              masonry-dem assess examples/ferris-tinloi-wall1.toml --plot out/a.png   a seismic check
 
             Case files are TOML (format 1, SI units); see examples/*.toml.
             exit status: 0 ok, 1 analysis failed or other error, 2 bad input (case file, arguments)."""
@@ -58,6 +59,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_validate(sub)
     _add_study(sub)
     _add_simulate(sub)
+    _add_assess(sub)
     return parser
 
 
@@ -270,6 +272,34 @@ def _add_simulate(sub: Any) -> None:
     simulate.add_argument("--gif", type=_output_file, metavar="OUT.gif", help="write an animation of the blocks over time (GIF; "
                           "an .mp4 name writes an MP4 where ffmpeg is installed)")
     _add_quiet(simulate)
+
+
+def _add_assess(sub: Any) -> None:
+    what = (
+        "Run the analysis of a case file (limit analysis unless --method says otherwise) and check it against the\n"
+        "site's demand spectrum of its [assessment] table (docs/assessment.md): the linear kinematic check of the\n"
+        "collapse mechanism (alpha0, M*, e*, a0*, the demand, the ratio and the verdict), the nonlinear one when\n"
+        "the mechanism is one rigid body turning about a hinge, and on a static or explicit pushover's curve the\n"
+        "N2 method of EN 1998-1 Annex B; print a table of each quantity with its unit and clause."
+    )
+    examples = """\
+            examples:
+              masonry-dem assess examples/ferris-tinloi-wall1.toml
+              masonry-dem assess examples/ferris-tinloi-wall1.toml --json out/a.json --plot out/a.png
+              masonry-dem assess CASE.toml --method static      the collapse's mechanism and the N2 method
+
+            --json writes the result file with an "assessment" object (docs/case-format.md, "Result file").
+            exit status: 0 checked (whatever the verdict), 1 the analysis failed or found no collapse to check,
+            2 bad input (no [assessment] table, a parameter out of range, a mechanism in which no block moves)."""
+    assess = _subcommand(sub, "assess", "check a case's collapse against a seismic demand spectrum", what, examples)
+    assess.add_argument("case", metavar="CASE.toml", help="case file (TOML, format 1) with an [assessment] table")
+    assess.add_argument("--method", choices=METHODS, help="the analysis (default: limit): limit, static or dynamic; "
+                        "a static or explicit one also gives the N2 method on its curve")
+    assess.add_argument("--json", type=_output_file, metavar="OUT.json", help="write the results with the assessment "
+                        "(JSON, format 1)")
+    assess.add_argument("--plot", type=_output_file, metavar="OUT.png", help="write the capacity against the demand "
+                        "spectrum in ADRS form, and the displaced shape used for M* (PNG)")
+    _add_quiet(assess)
 
 
 def _output_file(name: str) -> str:

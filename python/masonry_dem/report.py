@@ -68,11 +68,14 @@ def _centroid(rect: Sequence[float]) -> np.ndarray:
 
 def corner_motion(rects: np.ndarray, motion: np.ndarray) -> np.ndarray:
     """(n,) largest corner displacement [m] of each block for the small motion (u1, u2, phi) at its centroid."""
-    out = np.zeros(len(rects))
-    for i, (rect, (u1, u2, phi)) in enumerate(zip(rects, motion)):
-        r = _corners(rect) - _centroid(rect)
-        out[i] = float(np.max(np.hypot(u1 - phi * r[:, 1], u2 + phi * r[:, 0])))
-    return out
+    r = np.asarray(rects, dtype=np.float64).reshape(-1, 4)
+    m = np.asarray(motion, dtype=np.float64).reshape(-1, 3)
+    # the corners relative to the centroid: (+-half width, +-half height); the largest of the four motions
+    hx, hy = 0.5 * (r[:, 2] - r[:, 0]), 0.5 * (r[:, 3] - r[:, 1])
+    sx, sy = np.array([-1.0, 1.0, 1.0, -1.0]), np.array([-1.0, -1.0, 1.0, 1.0])
+    u1 = m[:, :1] - m[:, 2:] * (hy[:, None] * sy)
+    u2 = m[:, 1:2] + m[:, 2:] * (hx[:, None] * sx)
+    return np.hypot(u1, u2).max(axis=1)  # type: ignore[no-any-return]
 
 
 def deformed_corners(rect: Sequence[float], motion: Sequence[float], scale: float) -> np.ndarray:

@@ -43,7 +43,7 @@ from ._core import InputError
 __all__ = [
     "m", "cm", "mm", "km", "s", "ms", "kg", "N", "kN", "MN", "Pa", "kPa", "MPa", "GPa",
     "N_per_m3", "kN_per_m3", "MN_per_m3", "N_per_mm3", "N_per_m", "N_per_mm", "J_per_m2",
-    "kg_per_m3", "t_per_m3", "m_per_s2",
+    "kg_per_m3", "t_per_m3", "m_per_s2", "STANDARD_GRAVITY",
     "KINDS", "UNITS", "parse_quantity", "unit_names",
 ]
 
@@ -73,6 +73,9 @@ J_per_m2 = 1.0  #: fracture energy [N/m]
 kg_per_m3 = 1.0  #: mass density [kg/m3]
 t_per_m3 = 1.0e3  #: mass density, tonnes per cubic metre [kg/m3]
 m_per_s2 = 1.0  #: acceleration [m/s2]
+#: The standard acceleration of gravity [m/s2], the unit "g" of an acceleration written with its unit ("0.25 g"), as
+#: the seismic codes write ground accelerations. (A model's own gravity is its ``gravity``, 9.81 by default.)
+STANDARD_GRAVITY = 9.80665
 
 # -- the kinds of quantity and the units of each, with their exact SI factors ------------------------------
 
@@ -104,6 +107,7 @@ UNITS: Dict[str, Tuple[str, Fraction]] = {
     "kN/m": ("fracture_energy", _F(1000)),
     "kg/m3": ("density", _F(1)), "t/m3": ("density", _F(1000)),
     "m/s2": ("acceleration", _F(1)), "mm/s2": ("acceleration", _F(1, 1000)), "cm/s2": ("acceleration", _F(1, 100)),
+    "g": ("acceleration", _F("9.80665")),
     "s": ("time", _F(1)), "ms": ("time", _F(1, 1000)),
 }
 
@@ -115,7 +119,7 @@ _SHOWN = {
     "stiffness": ("N/m3", "N/mm3", "MN/m3", "GN/m3"),
     "fracture_energy": ("N/m", "N/mm", "J/m2"),
     "density": ("kg/m3", "t/m3"),
-    "acceleration": ("m/s2",),
+    "acceleration": ("m/s2", "g"),
     "time": ("s", "ms"),
 }
 

@@ -39,14 +39,15 @@ STAGES: Tuple[Tuple[str, Tuple[str, ...]], ...] = (
     # what makes a model and its analysis: case files (a Case builds the model and runs the analysis), ground
     # motions, drawings
     ("input", ("dxf", "ground_motion", "case.table", "case.mapping", "case.common", "case.reader", "space.case",
-               "default_case")),
+               "default_case", "assessment.spectra", "assessment.parameters")),
     # what an analysis returns, read: time histories, response peaks, the result file and dicts, the reports in
     # words, comparisons
     ("results", ("history", "response", "case.result_file", "api", "_mechanism", "report", "space.report",
-                 "compare")),
+                 "compare", "assessment.kinematic", "assessment.nonlinear", "assessment.pushover",
+                 "assessment.verdict")),
     # figures and files: plots, VTK and CSV, progress bars
     ("output", ("_vtk", "export", "space.export", "plot.canvas", "plot.panels", "plot.time_panels", "plot.animation",
-                "plot.figures", "plot.modes", "space.plot", "progress")),
+                "plot.figures", "plot.modes", "space.plot", "progress", "assessment.plot")),
     # what runs the rest: validation, studies, the command line
     ("drivers", ("validate", "study", "study.*", "cli_parser", "cli", "__main__")),
 )
@@ -54,7 +55,7 @@ STAGES: Tuple[Tuple[str, Tuple[str, ...]], ...] = (
 #: The lazy packages: their ``__init__`` imports nothing of theirs at run time but the core stage's (the root:
 #: the model), and names the rest for first use; any stage may import a name from them (the edge then goes to
 #: the module the name comes from, which the stages check).
-FACADES = ("", "case", "plot", "space")
+FACADES = ("", "case", "plot", "space", "assessment")
 
 
 def _modules() -> Dict[str, Path]:

@@ -60,6 +60,7 @@ def test_constants_are_si() -> None:
         ("1.9 t/m3", "density", 1900.0),
         ("9.81 m/s2", "acceleration", 9.81),
         ("9.81 m/s^2", "acceleration", 9.81),
+        ("0.25 g", "acceleration", 2.4516625),  # the standard gravity, 9.80665 m/s2
         ("0.5 s", "time", 0.5),
         ("20 ms", "time", 0.02),
         (3, "length", 3.0),

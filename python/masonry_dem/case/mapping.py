@@ -22,6 +22,7 @@ import numpy as np
 
 from .. import _core
 from .._core import InputError, MasonryError
+from ..assessment.parameters import AssessmentParameters
 from ..ground_motion import GroundMotion, simulate_arguments
 from ..space.model import CORE_DEFAULTS_3D, IN_3D, LOAD_CONTROL_3D, METHODS_3D, NO_CASE_HISTORY_3D, ModelParameters3D
 from .table import _quote
@@ -261,6 +262,8 @@ class Case:
         ground_motion: the optional [ground_motion] (:class:`GroundMotionParameters`, the records read), or
             None; ``masonry-dem simulate`` and :meth:`simulate` run the wall under it.
         time_history: the [time_history] options (:class:`TimeHistoryParameters`; all None when left out).
+        assessment: the optional [assessment] (:class:`masonry_dem.assessment.AssessmentParameters`: the demand
+            spectrum and the check's parameters), or None; ``masonry-dem assess`` checks the analysis against it.
 
     The same parameters as dicts of keyword arguments: :attr:`model_kwargs`, :attr:`analysis_kwargs`,
     :attr:`dynamic_kwargs` and :meth:`solver_kwargs`.
@@ -274,6 +277,7 @@ class Case:
     reference: Optional[Dict[str, Any]] = None
     ground_motion: Optional[GroundMotionParameters] = None
     time_history: TimeHistoryParameters = field(default_factory=TimeHistoryParameters)
+    assessment: Optional[AssessmentParameters] = None
 
     @property
     def dimension(self) -> int:

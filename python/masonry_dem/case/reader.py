@@ -16,6 +16,7 @@ from .. import _core
 from .._core import InputError
 from .._files import read_bytes
 from .. import ground_motion as _gm
+from ..assessment.parameters import ASSESSMENT_KEYS, read_assessment
 from .common import (
     ANALYSIS_KEYS as ANALYSIS_KEYS,
     DAMPINGS,
@@ -49,7 +50,7 @@ PathLike = Union[str, "os.PathLike[str]"]
 
 TOP_KEYS = (
     "format", "title", "geometry", "base", "top", "joints", "loads", "analysis", "reference", "ground_motion",
-    "time_history",
+    "time_history", "assessment",
 )
 GEOMETRY_KINDS = ("running_bond", "pattern", "blocks", "dxf")
 # The [geometry] forms of a 3D wall (masonry_dem.space.case): any of them makes the case 3D
@@ -206,10 +207,14 @@ def case_from_dict(
     top = _Table(data, "", source, TOP_KEYS)
     title = _title(top, default_title)
     kind, geometry, wall = _geometry(top, base_dir)
+    table = top.table("assessment", ASSESSMENT_KEYS)
+    assessment = read_assessment(table, base_dir) if table is not None else None
     if kind in GEOMETRY_KINDS_3D:  # a wall of boxes: its tables read by masonry_dem.space.case
         from ..space.case import case_from_tables
 
-        return case_from_tables(top, title, kind, geometry, wall["density"])  # type: ignore[no-any-return]
+        case = case_from_tables(top, title, kind, geometry, wall["density"])
+        case.assessment = assessment
+        return case  # type: ignore[no-any-return]
     wall.update(base=_base(top), **_top_beam(top))
     wall.update(joints=_joints(top), **_loads(top, beam=wall["top_rotation"] is not None))
     method, analysis = _analysis(top)
@@ -228,6 +233,7 @@ def case_from_dict(
         reference=reference,
         ground_motion=motion,
         time_history=time_history,
+        assessment=assessment,
     )
 
 
