@@ -137,7 +137,7 @@ docs: develop $(VENV)/.extra-docs
 	NO_MKDOCS_2_WARNING=1 $(VENV)/bin/mkdocs build --strict -d out/site
 
 bench:
-	cargo bench --features bench-internals
+	cargo bench
 
 clean:
 	rm -rf $(VENV) target out
