@@ -1,8 +1,8 @@
 //! Interface detection (every shared stretch of boundary between two blocks) and the
 //! kinematics of an interface: generalized jumps `e = (dN, dT, dphi) = B q`.
 //!
-//! Detection hashes the blocks into a uniform grid and tests only pairs that share a cell,
-//! so it costs O(n) for walls of similar blocks, never O(n^2).
+//! Detection hands the blocks' boxes to the shape layer's grid, which tests only pairs that
+//! share a cell, so it costs O(n) for walls of similar blocks, never O(n^2).
 //!
 //! ```
 //! use masonry_dem::geometry::Rect;
@@ -18,7 +18,8 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::{Rect, REL_TOL};
-use std::collections::HashMap;
+use crate::shape::grid::for_each_pair;
+use crate::shape::Aabb;
 
 /// Which kind of joint an interface is; each family may have its own joint law.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -215,8 +216,7 @@ pub enum BlockKind {
     Top,
 }
 
-/// Blocks (or grid cells) between two polls of [`detect`]: about 10 ms of work.
-pub(crate) const POLL_EVERY: usize = 16_384;
+pub(crate) use crate::shape::grid::POLL_EVERY;
 
 /// Finds every pair of blocks that share a stretch of boundary of positive length, and refuses
 /// overlapping blocks (naming both). `names` gives the label of a block for messages; `poll` is
@@ -228,147 +228,71 @@ pub fn detect(
     name: impl Fn(usize) -> String,
     poll: &mut dyn FnMut() -> bool,
 ) -> Result<Vec<Interface>> {
-    if rects.is_empty() {
-        return Ok(vec![]);
-    }
-    let grid = Grid::new(rects, poll)?;
+    let boxes: Vec<Aabb<2>> = rects.iter().map(|r| Aabb { min: [r.x0, r.y0], max: [r.x1, r.y1] }).collect();
+    let scale = boxes.iter().fold(Aabb::around(&[]), |a, b| a.union(b)).size();
+    let tol = REL_TOL * scale.max(1.0) * 10.0;
     let mut out = Vec::new();
-    let mut keys: Vec<_> = grid.cells.keys().copied().collect();
-    keys.sort_unstable();
-    for (visited, key) in keys.into_iter().enumerate() {
-        if visited % POLL_EVERY == POLL_EVERY - 1 && !poll() {
-            return Err(Error::Interrupted);
-        }
-        let members = &grid.cells[&key];
-        for (p, &i) in members.iter().enumerate() {
-            for &j in &members[p + 1..] {
-                match grid.pair(rects, kinds, i, j, key) {
-                    Pair::None => {}
-                    Pair::Joint(it) => out.push(it),
-                    Pair::Overlap(w, h) => {
-                        return Err(Error::input(format!(
-                            "{} and {} overlap (intersection {:.6} x {:.6} m)",
-                            name(i.min(j)),
-                            name(i.max(j)),
-                            w,
-                            h
-                        )))
-                    }
-                }
+    for_each_pair(&boxes, tol, poll, |i, j| {
+        match pair(rects, kinds, i, j, tol) {
+            Pair::None => {}
+            Pair::Joint(it) => out.push(it),
+            Pair::Overlap(w, h) => {
+                return Err(Error::input(format!(
+                    "{} and {} overlap (intersection {:.6} x {:.6} m)",
+                    name(i),
+                    name(j),
+                    w,
+                    h
+                )))
             }
         }
-    }
+        Ok(())
+    })?;
     out.sort_by_key(|p| (p.a, p.b));
     Ok(out)
 }
 
-/// What two blocks of a cell are to each other.
+/// What two blocks are to each other.
 enum Pair {
-    /// Apart, touching at a corner, seen in another cell, or base against top beam.
+    /// Apart, touching at a corner, or base against top beam.
     None,
     /// Their intersection \[m\] x \[m\]: refused.
     Overlap(f64, f64),
     Joint(Interface),
 }
 
-/// A uniform grid of square cells over the blocks, each cell listing the blocks within `tol`
-/// of it.
-struct Grid {
-    xmin: f64,
-    ymin: f64,
-    cell: f64,
-    tol: f64,
-    cells: HashMap<(i64, i64), Vec<usize>>,
-}
-
-impl Grid {
-    fn new(rects: &[Rect], poll: &mut dyn FnMut() -> bool) -> Result<Grid> {
-        let (mut xmin, mut ymin, mut xmax, mut ymax) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
-        let (mut sw, mut sh) = (0.0, 0.0);
-        for r in rects {
-            xmin = xmin.min(r.x0);
-            ymin = ymin.min(r.y0);
-            xmax = xmax.max(r.x1);
-            ymax = ymax.max(r.y1);
-            sw += r.width();
-            sh += r.height();
-        }
-        let scale = (xmax - xmin).max(ymax - ymin);
-        let tol = REL_TOL * scale.max(1.0) * 10.0;
-        let nb = rects.len() as f64;
-        // Cells about twice the mean block size: a few blocks a cell.
-        let mut cell = (2.0 * (sw / nb).max(sh / nb)).max(tol * 10.0);
-        // A few blocks much larger than the mean (a long lintel over thousands of small blocks)
-        // would each cover millions of cells: coarsen the grid until it holds O(n) entries, so
-        // that memory stays linear in the number of blocks whatever their sizes.
-        let entries = |cell: f64| -> f64 {
-            let span = |a: f64, b: f64| ((b + tol) / cell).floor() - ((a - tol) / cell).floor() + 1.0;
-            rects
-                .iter()
-                .map(|r| span(r.x0 - xmin, r.x1 - xmin) * span(r.y0 - ymin, r.y1 - ymin))
-                .sum()
-        };
-        while entries(cell) > 16.0 * nb + 1024.0 {
-            cell *= 2.0;
-        }
-        let mut grid = Grid { xmin, ymin, cell, tol, cells: HashMap::with_capacity(rects.len()) };
-        for (i, r) in rects.iter().enumerate() {
-            if i % POLL_EVERY == POLL_EVERY - 1 && !poll() {
-                return Err(Error::Interrupted);
-            }
-            for cx in grid.cell_of(r.x0 - tol, xmin)..=grid.cell_of(r.x1 + tol, xmin) {
-                for cy in grid.cell_of(r.y0 - tol, ymin)..=grid.cell_of(r.y1 + tol, ymin) {
-                    grid.cells.entry((cx, cy)).or_default().push(i);
-                }
-            }
-        }
-        Ok(grid)
+/// Blocks `i` and `j`: their joint if they share a segment.
+fn pair(rects: &[Rect], kinds: &[BlockKind], i: usize, j: usize, tol: f64) -> Pair {
+    let (ri, rj) = (&rects[i], &rects[j]);
+    let ix0 = ri.x0.max(rj.x0);
+    let ix1 = ri.x1.min(rj.x1);
+    let iy0 = ri.y0.max(rj.y0);
+    let iy1 = ri.y1.min(rj.y1);
+    let (w, h) = (ix1 - ix0, iy1 - iy0);
+    if w < -tol || h < -tol {
+        return Pair::None; // apart
     }
-
-    fn cell_of(&self, x: f64, lo: f64) -> i64 {
-        ((x - lo) / self.cell).floor() as i64
+    if w > tol && h > tol {
+        return Pair::Overlap(w, h);
     }
-
-    /// Blocks `i` and `j`, both in cell `key`: their joint if they share a segment and this
-    /// cell holds the lower-left corner of their intersection (each pair is seen once).
-    fn pair(&self, rects: &[Rect], kinds: &[BlockKind], i: usize, j: usize, key: (i64, i64)) -> Pair {
-        let tol = self.tol;
-        let (ri, rj) = (&rects[i], &rects[j]);
-        let ix0 = ri.x0.max(rj.x0);
-        let ix1 = ri.x1.min(rj.x1);
-        let iy0 = ri.y0.max(rj.y0);
-        let iy1 = ri.y1.min(rj.y1);
-        let (w, h) = (ix1 - ix0, iy1 - iy0);
-        if w < -tol || h < -tol {
-            return Pair::None; // apart
-        }
-        // an overlap is refused in the first cell that sees it (before the test below: all the
-        // copies of one block would otherwise be paired in every cell they share)
-        if w > tol && h > tol {
-            return Pair::Overlap(w, h);
-        }
-        if (self.cell_of(ix0, self.xmin), self.cell_of(iy0, self.ymin)) != key {
-            return Pair::None;
-        }
-        let (lo, hi, c, n, l) = if w > tol {
-            // horizontal contact: the lower block is a
-            let (lo, hi) = if ri.y0 < rj.y0 { (i, j) } else { (j, i) };
-            (lo, hi, [0.5 * (ix0 + ix1), 0.5 * (rects[lo].y1 + rects[hi].y0)], [0.0, 1.0], w)
-        } else if h > tol {
-            let (lo, hi) = if ri.x0 < rj.x0 { (i, j) } else { (j, i) };
-            (lo, hi, [0.5 * (rects[lo].x1 + rects[hi].x0), 0.5 * (iy0 + iy1)], [1.0, 0.0], h)
-        } else {
-            return Pair::None; // corner touch only
-        };
-        let family = match (kinds[lo], kinds[hi]) {
-            (BlockKind::Base, _) | (_, BlockKind::Base) => Family::Base,
-            (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
-            _ if n[1] == 1.0 => Family::Bed,
-            _ => Family::Head,
-        };
-        if kinds[lo] != BlockKind::Wall && kinds[hi] != BlockKind::Wall {
-            return Pair::None; // base against top beam: not a joint of the wall
-        }
-        Pair::Joint(Interface::new(lo, hi, rects[lo].centroid(), rects[hi].centroid(), c, n, l, family))
+    let (lo, hi, c, n, l) = if w > tol {
+        // horizontal contact: the lower block is a
+        let (lo, hi) = if ri.y0 < rj.y0 { (i, j) } else { (j, i) };
+        (lo, hi, [0.5 * (ix0 + ix1), 0.5 * (rects[lo].y1 + rects[hi].y0)], [0.0, 1.0], w)
+    } else if h > tol {
+        let (lo, hi) = if ri.x0 < rj.x0 { (i, j) } else { (j, i) };
+        (lo, hi, [0.5 * (rects[lo].x1 + rects[hi].x0), 0.5 * (iy0 + iy1)], [1.0, 0.0], h)
+    } else {
+        return Pair::None; // corner touch only
+    };
+    let family = match (kinds[lo], kinds[hi]) {
+        (BlockKind::Base, _) | (_, BlockKind::Base) => Family::Base,
+        (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
+        _ if n[1] == 1.0 => Family::Bed,
+        _ => Family::Head,
+    };
+    if kinds[lo] != BlockKind::Wall && kinds[hi] != BlockKind::Wall {
+        return Pair::None; // base against top beam: not a joint of the wall
     }
+    Pair::Joint(Interface::new(lo, hi, rects[lo].centroid(), rects[hi].centroid(), c, n, l, family))
 }

@@ -48,6 +48,7 @@ pub(crate) mod linalg;
 pub mod modal;
 pub mod model;
 pub mod results;
+pub mod shape;
 pub mod space;
 pub mod static_solver;
 
