@@ -113,6 +113,11 @@ pub(crate) fn coord(v: f64) -> String {
     }
 }
 
+/// The rectangles as polygons, the blocks of a [`crate::model::ModelSpec`].
+pub fn polygons(rects: Vec<Rect>) -> Vec<crate::shape::Polygon> {
+    rects.into_iter().map(Into::into).collect()
+}
+
 /// Which block starts the lowest course of a running bond.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum FirstCourse {

@@ -1,34 +1,39 @@
 //! Interface detection (every shared stretch of boundary between two blocks) and the
 //! kinematics of an interface: generalized jumps `e = (dN, dT, dphi) = B q`.
 //!
-//! Detection hands the blocks' boxes to the shape layer's grid, which tests only pairs that
-//! share a cell, so it costs O(n) for walls of similar blocks, never O(n^2).
+//! Detection asks the shape layer ([`crate::shape`]) for the pairs of blocks that may touch (a
+//! grid over their bounding boxes, O(n) for walls of similar blocks, never O(n^2)) and for where
+//! they touch (facing collinear edges), then orients each interface and names its family.
 //!
 //! ```
 //! use masonry_dem::geometry::Rect;
 //! use masonry_dem::interface::{detect, BlockKind, Family};
+//! use masonry_dem::shape::Polygon;
 //! // two blocks side by side on a third
 //! let rects = [Rect::new(0.0, 0.0, 0.4, 0.2), Rect::new(0.4, 0.0, 0.8, 0.2), Rect::new(0.0, -0.2, 0.8, 0.0)];
+//! let polygons: Vec<Polygon> = rects.iter().map(|&r| Polygon::from(r)).collect();
+//! let centroids: Vec<[f64; 2]> = rects.iter().map(|r| r.centroid()).collect();
 //! let kinds = [BlockKind::Wall, BlockKind::Wall, BlockKind::Base];
-//! let found = detect(&rects, &kinds, |i| format!("block {i}"), &mut || true).unwrap();
+//! let found = detect(&polygons, &centroids, &kinds, [0.0, -1.0], 1e-8, |i| format!("block {i}"), &mut || true).unwrap();
 //! let families: Vec<Family> = found.iter().map(|it| it.family).collect();
 //! assert_eq!(families, [Family::Head, Family::Base, Family::Base]);
 //! assert_eq!(found[0].l, 0.2); // the shared edge [m]
 //! ```
 
 use crate::error::{Error, Result};
-use crate::geometry::{Rect, REL_TOL};
 use crate::shape::grid::for_each_pair;
-use crate::shape::Aabb;
+use crate::shape::{contacts, penetration, Aabb, Polygon};
 
 /// Which kind of joint an interface is; each family may have its own joint law.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Family {
-    /// Horizontal joint between two wall blocks.
+    /// Joint between two wall blocks whose normal is within 45 degrees of the vertical (a
+    /// horizontal joint between rectangles).
     Bed,
-    /// Vertical joint between two wall blocks.
+    /// Joint between two wall blocks whose normal is more than 45 degrees from the vertical (a
+    /// vertical joint between rectangles).
     Head,
-    /// Joint between a wall block and the base.
+    /// Joint between a wall block and the base or a support.
     Base,
     /// Joint between a wall block and the top beam.
     Top,
@@ -49,13 +54,14 @@ impl Family {
 /// One interface: blocks `a` and `b`, the normal `n` points from `a` to `b`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Interface {
-    /// The first block (below, or to the left).
+    /// The first block (below, or behind along the horizontal live load: to the left).
     pub a: usize,
-    /// The second block (above, or to the right).
+    /// The second block (above, or ahead: to the right).
     pub b: usize,
     /// Centroid of the shared segment \[m\].
     pub c: [f64; 2],
-    /// Unit normal from a to b: (0, 1) for a bed joint, (1, 0) for a head joint.
+    /// Unit normal from a to b: (0, 1) for a bed joint between rectangles, (1, 0) for a head
+    /// joint.
     pub n: [f64; 2],
     /// Length of the shared segment \[m\].
     pub l: f64,
@@ -210,41 +216,90 @@ impl LargeKinematics {
 pub enum BlockKind {
     /// A block of the wall.
     Wall,
+    /// A fixed block given by the user: an abutment, a springer, an inclined plane.
+    Support,
     /// The fixed foundation.
     Base,
     /// The rigid top beam.
     Top,
 }
 
+impl BlockKind {
+    /// The word for the kind in Python ("wall", "support", "base", "top").
+    pub fn name(self) -> &'static str {
+        match self {
+            BlockKind::Wall => "wall",
+            BlockKind::Support => "support",
+            BlockKind::Base => "base",
+            BlockKind::Top => "top",
+        }
+    }
+}
+
 pub(crate) use crate::shape::grid::POLL_EVERY;
 
-/// Finds every pair of blocks that share a stretch of boundary of positive length, and refuses
-/// overlapping blocks (naming both). `names` gives the label of a block for messages; `poll` is
-/// called every few thousand blocks or cells, and `false` stops the search
-/// ([`Error::Interrupted`]).
+/// Finds every stretch of boundary of positive length that two blocks share (an edge of each,
+/// facing on one line within `tol` \[m\], see [`contacts`]), and refuses blocks that overlap by
+/// more than `tol` (naming both). The blocks are checked polygons with their centroids
+/// (`centroids`, for the `B` matrices) and kinds; `gravity` is the direction of gravity (a unit
+/// vector), which says which way is up:
+///
+/// - each interface's normal points from `a` to `b`, `a` the block below (the normal has an
+///   upward component), or the one behind along the horizontal live load (`gravity` turned by
+///   +90 degrees: +x when gravity is -y) when the normal is horizontal;
+/// - its family is `Base` with the base or a support, `Top` with the top beam, else `Bed` when
+///   the normal is within 45 degrees of the vertical (a tie goes to bed) and `Head` otherwise;
+/// - two blocks neither of which is a wall block (a support on the base, the base against the
+///   top beam) make no interface.
+///
+/// `name` gives the label of a block for messages; `poll` is called every few thousand blocks
+/// or grid cells, and `false` stops the search ([`Error::Interrupted`]). The interfaces are
+/// sorted by their blocks (a, b).
+#[allow(clippy::too_many_arguments)]
 pub fn detect(
-    rects: &[Rect],
+    polygons: &[Polygon],
+    centroids: &[[f64; 2]],
     kinds: &[BlockKind],
+    gravity: [f64; 2],
+    tol: f64,
     name: impl Fn(usize) -> String,
     poll: &mut dyn FnMut() -> bool,
 ) -> Result<Vec<Interface>> {
-    let boxes: Vec<Aabb<2>> = rects.iter().map(|r| Aabb { min: [r.x0, r.y0], max: [r.x1, r.y1] }).collect();
-    let scale = boxes.iter().fold(Aabb::around(&[]), |a, b| a.union(b)).size();
-    let tol = REL_TOL * scale.max(1.0) * 10.0;
+    let boxes: Vec<Aabb<2>> = polygons.iter().map(Polygon::aabb).collect();
+    let up = [-gravity[0], -gravity[1]];
+    let side = [-gravity[1], gravity[0]];
     let mut out = Vec::new();
     for_each_pair(&boxes, tol, poll, |i, j| {
-        match pair(rects, kinds, i, j, tol) {
-            Pair::None => {}
-            Pair::Joint(it) => out.push(it),
-            Pair::Overlap(w, h) => {
+        let (pi, pj) = (&polygons[i], &polygons[j]);
+        if boxes[i].overlap(&boxes[j]).iter().all(|&w| w > tol) {
+            // an overlap is refused in the first cell that sees the pair, before anything else
+            let depth = penetration(pi, pj);
+            if depth > tol {
                 return Err(Error::input(format!(
-                    "{} and {} overlap (intersection {:.6} x {:.6} m)",
+                    "{} and {} overlap (by {depth:.6} m, more than the contact tolerance {tol:.1e} m)",
                     name(i),
-                    name(j),
-                    w,
-                    h
-                )))
+                    name(j)
+                )));
             }
+        }
+        if kinds[i] != BlockKind::Wall && kinds[j] != BlockKind::Wall {
+            return Ok(()); // base against top beam, a support on the base: not a joint of the wall
+        }
+        for c in contacts(pi, pj, tol) {
+            let (n_up, n_side) = (dot(c.n, up), dot(c.n, side));
+            let (a, b, n) = if n_up > 0.0 || (n_up == 0.0 && n_side > 0.0) {
+                (i, j, c.n)
+            } else {
+                (j, i, [-c.n[0], -c.n[1]])
+            };
+            let family = match (kinds[a], kinds[b]) {
+                (BlockKind::Base | BlockKind::Support, _) | (_, BlockKind::Base | BlockKind::Support) => Family::Base,
+                (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
+                _ if n_up.abs() >= n_side.abs() => Family::Bed,
+                _ => Family::Head,
+            };
+            let centre = [0.5 * (c.ends[0][0] + c.ends[1][0]), 0.5 * (c.ends[0][1] + c.ends[1][1])];
+            out.push(Interface::new(a, b, centroids[a], centroids[b], centre, n, c.length, family));
         }
         Ok(())
     })?;
@@ -252,47 +307,6 @@ pub fn detect(
     Ok(out)
 }
 
-/// What two blocks are to each other.
-enum Pair {
-    /// Apart, touching at a corner, or base against top beam.
-    None,
-    /// Their intersection \[m\] x \[m\]: refused.
-    Overlap(f64, f64),
-    Joint(Interface),
-}
-
-/// Blocks `i` and `j`: their joint if they share a segment.
-fn pair(rects: &[Rect], kinds: &[BlockKind], i: usize, j: usize, tol: f64) -> Pair {
-    let (ri, rj) = (&rects[i], &rects[j]);
-    let ix0 = ri.x0.max(rj.x0);
-    let ix1 = ri.x1.min(rj.x1);
-    let iy0 = ri.y0.max(rj.y0);
-    let iy1 = ri.y1.min(rj.y1);
-    let (w, h) = (ix1 - ix0, iy1 - iy0);
-    if w < -tol || h < -tol {
-        return Pair::None; // apart
-    }
-    if w > tol && h > tol {
-        return Pair::Overlap(w, h);
-    }
-    let (lo, hi, c, n, l) = if w > tol {
-        // horizontal contact: the lower block is a
-        let (lo, hi) = if ri.y0 < rj.y0 { (i, j) } else { (j, i) };
-        (lo, hi, [0.5 * (ix0 + ix1), 0.5 * (rects[lo].y1 + rects[hi].y0)], [0.0, 1.0], w)
-    } else if h > tol {
-        let (lo, hi) = if ri.x0 < rj.x0 { (i, j) } else { (j, i) };
-        (lo, hi, [0.5 * (rects[lo].x1 + rects[hi].x0), 0.5 * (iy0 + iy1)], [1.0, 0.0], h)
-    } else {
-        return Pair::None; // corner touch only
-    };
-    let family = match (kinds[lo], kinds[hi]) {
-        (BlockKind::Base, _) | (_, BlockKind::Base) => Family::Base,
-        (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
-        _ if n[1] == 1.0 => Family::Bed,
-        _ => Family::Head,
-    };
-    if kinds[lo] != BlockKind::Wall && kinds[hi] != BlockKind::Wall {
-        return Pair::None; // base against top beam: not a joint of the wall
-    }
-    Pair::Joint(Interface::new(lo, hi, rects[lo].centroid(), rects[hi].centroid(), c, n, l, family))
+fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
 }
