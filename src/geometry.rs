@@ -105,12 +105,17 @@ impl Rect {
 
 /// A coordinate for messages: as written for ordinary numbers (`0.175`), in exponent notation
 /// beyond 1e15 or below 1e-4 (`1e300`, not three hundred digits).
-fn coord(v: f64) -> String {
+pub(crate) fn coord(v: f64) -> String {
     if v == 0.0 || !v.is_finite() || (1e-4..1e15).contains(&v.abs()) {
         format!("{v}")
     } else {
         format!("{v:e}")
     }
+}
+
+/// The rectangles as polygons, the blocks of a [`crate::model::ModelSpec`].
+pub fn polygons(rects: Vec<Rect>) -> Vec<crate::shape::Polygon> {
+    rects.into_iter().map(Into::into).collect()
 }
 
 /// Which block starts the lowest course of a running bond.
@@ -148,8 +153,7 @@ pub struct RunningBond {
     pub openings: Vec<Rect>,
 }
 
-/// Relative tolerance on coordinates used by the generators and the contact search.
-pub(crate) const REL_TOL: f64 = 1e-9;
+pub(crate) use crate::shape::REL_TOL;
 
 /// The blocks of a running-bond wall standing on y = 0 and starting at x = 0.
 /// Courses alternate between a half-block start and a whole-block start; a block that

@@ -12,6 +12,7 @@ use masonry_dem::error::Error;
 use masonry_dem::geometry::{self, FirstCourse, Rect, RunningBond};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::model::{JointLaws, Model, ModelSpec, TopBeam};
+use masonry_dem::shape::Polygon;
 use masonry_dem::limit::{self, LimitOptions};
 use masonry_dem::results::{Results, Status};
 use masonry_dem::analysis::Control;
@@ -110,6 +111,8 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("thickness", spec.thickness)?;
     d.set_item("density", spec.density)?;
     d.set_item("base", spec.base)?;
+    d.set_item("supports", py.None())?;
+    d.set_item("gravity_direction", spec.gravity_direction.to_vec())?;
     d.set_item("top_rotation", py.None())?;
     d.set_item("top_force", TopBeam::DEFAULT_FORCE.to_vec())?;
     d.set_item("joints", py.None())?;
