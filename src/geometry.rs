@@ -1,5 +1,6 @@
 //! Axis-aligned rectangular blocks and the wall generators of the case format
-//! (running bond with openings, pattern rows, explicit lists).
+//! (running bond with openings, pattern rows, explicit lists), and the arches of voussoirs
+//! ([`arch`]: convex polygons).
 //!
 //! ```
 //! use masonry_dem::geometry::{running_bond, RunningBond, FirstCourse};
@@ -29,9 +30,11 @@
 
 use crate::error::{positive, Error, Result};
 
+mod arch;
 mod fit;
 mod openings;
 
+pub use arch::{arch, Arch, ArchGeometry, ArchKind, Springing, MAX_VOUSSOIRS};
 pub use fit::{courses_for_height, CourseFit, MIN_LAST_COURSE};
 pub use openings::{cut_openings, MIN_PART};
 

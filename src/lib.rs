@@ -7,7 +7,7 @@
 //!
 //! - [`shape`]: the shape layer: convex polygons, their mass properties and where they touch
 //!   (nothing above the model knows a block's shape);
-//! - [`geometry`]: rectangles and wall generators; [`interface`]:
+//! - [`geometry`]: rectangles and wall generators, and the arch generator; [`interface`]:
 //!   interfaces (their detection on the shapes, their kinematics);
 //! - [`joint`]: the joint law and its return mapping (shared by every solver);
 //! - [`model`]: blocks, interfaces, supports and loads;

@@ -51,6 +51,42 @@ def pattern(block_length: float, block_height: float, rows: Sequence[Sequence[fl
     """Blocks [x0, y0, x1, y1] (shape (n, 4), m) from courses listed bottom to top; each entry is a
     length in units of block_length, a negative entry is a gap of that length."""
 
+class _ArchGeometry(TypedDict):
+    blocks: list[list[list[float]]]
+    supports: list[list[list[float]]]
+    intrados: list[list[float]]
+    extrados: list[list[float]]
+
+def arch(
+    kind: Literal["semicircular", "segmental", "pointed", "elliptical"],
+    thickness: float,
+    voussoirs: int,
+    span: Optional[float] = None,
+    radius: Optional[float] = None,
+    rise: Optional[float] = None,
+    abutment_width: Optional[float] = None,
+    abutment_height: Optional[float] = None,
+    pier_width: Optional[float] = None,
+    pier_height: Optional[float] = None,
+    pier_courses: Optional[int] = None,
+) -> _ArchGeometry:
+    """An arch of voussoirs, as a dict: "blocks" (the voussoirs left to right, then the piers' blocks, each a list of
+    vertices [x, y] counter-clockwise, m), "supports" (the two abutments, left and right; empty on piers), "intrados"
+    and "extrados" (the joints' ends along each, left to right, m). Model(blocks, supports=supports) is the arch.
+
+    kind: "semicircular", "segmental", "pointed" or "elliptical". The intrados springs from y = 0, symmetric about
+    x = 0. span: the intrados's clear span [m], or radius: the centreline's radius [m] (semicircular and segmental
+    only). rise: the intrados's rise [m] (segmental: less than its radius; pointed: at least span / 2; elliptical:
+    the vertical semi-axis). thickness: the ring's, along the joints [m]; voussoirs: their number (even for a pointed
+    arch: a joint at its crown).
+    Joints: radial on circular arcs (a pointed arch's crown joint vertical), normal to the intrados of an elliptical
+    arch (at equal steps of its parametric angle, the extrados the intrados offset by the thickness); the intrados and
+    extrados of each voussoir are straight chords between its joints' ends.
+    Springings: abutments (fixed supports; the default) out to abutment_width [m] from the intrados's springing point
+    (default: the springing joint's extent) and abutment_height [m] below it (default: the thickness); or piers of
+    wall blocks, pier_width [m] wide from the intrados's springing point and pier_height [m] from the ground to it,
+    in pier_courses courses (default 1: a single block), standing on the base."""
+
 def running_bond_3d(
     length: float,
     height: float,

@@ -333,6 +333,26 @@ impl Model {
         m
     }
 
+    /// The same model with the live load lambda times the wall blocks' weights, along gravity:
+    /// lambda a factor on the self-weight (lambda = 0 the dead state, -1 no load at all). With dry
+    /// joints an equilibrium scales with its loads, so limit analysis of it says whether the wall
+    /// stands under its own weight: [`Status::Unbounded`](crate::results::Status::Unbounded)
+    /// (every multiple of the weight is carried) if it does, and
+    /// [`Status::NoEquilibrium`](crate::results::Status::NoEquilibrium) (lambda = -1, the
+    /// weight carried by nothing) if not. Near the least thickness of an arch that question is
+    /// better posed than the sign of the horizontal multiplier, whose program is infeasible, by
+    /// a hair, just below it (where the interior point may stall instead of proving it).
+    pub fn with_live_along_gravity(&self) -> Model {
+        let mut m = self.clone();
+        let g = self.gravity_direction;
+        m.f_live.fill(0.0);
+        for i in 0..self.n_wall {
+            m.f_live[3 * i] = self.weight[i] * g[0];
+            m.f_live[3 * i + 1] = self.weight[i] * g[1];
+        }
+        m
+    }
+
     /// The default control block: the top beam if there is one, else the highest wall block at
     /// the right end (the highest top, then the rightmost right end: largest y1, then largest
     /// x1 for rectangles; up and right as gravity and the live load point).
