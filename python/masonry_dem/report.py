@@ -15,6 +15,7 @@ from typing import Any, Dict, List, Sequence
 import numpy as np
 import numpy.typing as npt
 
+from ._shapes import Shapes, centroids as block_centroids, moved_vertices, rect_vertices, shapes
 from ._mechanism import CRACK_TOLERANCE, MOVING_FRACTION, connected_parts as _connected_parts, mechanism_text, plural as _plural
 
 __all__ = [
@@ -57,34 +58,26 @@ def interface_categories(states: npt.ArrayLike) -> List[str]:
     return out
 
 
-def _corners(rect: Sequence[float]) -> np.ndarray:
-    x0, y0, x1, y1 = (float(v) for v in rect)
-    return np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]])
+def _as_shapes(blocks: Any) -> Shapes:
+    """``blocks`` as :class:`masonry_dem._shapes.Shapes`: those themselves, or rectangles (n, 4) [x0, y0, x1, y1]."""
+    return blocks if isinstance(blocks, Shapes) else Shapes.from_rects(blocks)
 
 
-def _centroid(rect: Sequence[float]) -> np.ndarray:
-    return np.array([(rect[0] + rect[2]) / 2.0, (rect[1] + rect[3]) / 2.0])
+def corner_motion(blocks: Any, motion: np.ndarray) -> np.ndarray:
+    """(n,) largest vertex displacement [m] of each block for the small motion (u1, u2, phi) at its centroid.
+    ``blocks``: the blocks' :class:`masonry_dem._shapes.Shapes` (:func:`masonry_dem._shapes.shapes` of a model), or
+    rectangles (n, 4) [x0, y0, x1, y1]."""
+    return _as_shapes(blocks).vertex_motion(motion)
 
 
-def corner_motion(rects: np.ndarray, motion: np.ndarray) -> np.ndarray:
-    """(n,) largest corner displacement [m] of each block for the small motion (u1, u2, phi) at its centroid."""
-    out = np.zeros(len(rects))
-    for i, (rect, (u1, u2, phi)) in enumerate(zip(rects, motion)):
-        r = _corners(rect) - _centroid(rect)
-        out[i] = float(np.max(np.hypot(u1 - phi * r[:, 1], u2 + phi * r[:, 0])))
-    return out
-
-
-def deformed_corners(rect: Sequence[float], motion: Sequence[float], scale: float) -> np.ndarray:
-    """(4, 2) corners [m] of a block moved by ``scale`` * (u1, u2) [m] and turned by ``scale`` * phi [rad]
-    about its centroid. The rotation is applied exactly, so the drawn rectangle keeps its shape."""
-    p = _corners(rect)
-    c = _centroid(rect)
-    u1, u2, phi = (float(v) for v in motion)
-    a = scale * phi
-    rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
-    moved: np.ndarray = c + scale * np.array([u1, u2]) + (p - c) @ rot.T
-    return moved
+def deformed_corners(block: Sequence[Any], motion: Sequence[float], scale: float, centroid: Any = None) -> np.ndarray:
+    """(k, 2) vertices [m] of a block moved by ``scale`` * (u1, u2) [m] and turned by ``scale`` * phi [rad]
+    about its centroid. ``block``: a rectangle [x0, y0, x1, y1] (its 4 corners counter-clockwise from (x0, y0)) or
+    the vertices (k, 2) of a polygon; ``centroid``: the block's (by default the area's). The rotation is applied
+    exactly, so the drawn block keeps its shape."""
+    b = np.asarray(block, dtype=np.float64)
+    vertices = rect_vertices(b) if b.shape == (4,) else b
+    return moved_vertices(vertices, motion, scale, centroid)
 
 
 def interface_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
@@ -94,14 +87,14 @@ def interface_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
     With the interface normal n from block a to block b and ``[u] = u_b(c) - u_a(c)`` at the interface
     centroid c: slip = t.[u], gaps = n.[u] +/- (phi_b - phi_a) l / 2.
     """
-    rects = np.asarray(model.rects, dtype=np.float64)
+    cents = block_centroids(model)
     pairs = np.asarray(model.interface_blocks, dtype=np.int64).reshape(-1, 2)
     geom = np.asarray(model.interface_geometry, dtype=np.float64).reshape(-1, 5)
     out = np.zeros((len(pairs), 3))
     for k, ((a, b), (cx, cy, nx, ny, length)) in enumerate(zip(pairs, geom)):
         c = np.array([cx, cy])
-        ua = _transport(motion[a], _centroid(rects[a]), c)
-        ub = _transport(motion[b], _centroid(rects[b]), c)
+        ua = _transport(motion[a], cents[a], c)
+        ub = _transport(motion[b], cents[b], c)
         du = ub[:2] - ua[:2]
         dn, dt = nx * du[0] + ny * du[1], -ny * du[0] + nx * du[1]
         half = abs(ub[2] - ua[2]) * length / 2
@@ -116,16 +109,16 @@ def _transport(motion: np.ndarray, src: np.ndarray, dst: np.ndarray) -> np.ndarr
     return np.array([u1 - phi * d[1], u2 + phi * d[0], phi])
 
 
-def _describe_part(rects: np.ndarray, motion: np.ndarray, part: Sequence[int]) -> str:
+def _describe_part(blocks: Shapes, motion: np.ndarray, part: Sequence[int]) -> str:
     """'turning clockwise about (x, y) m' or 'sliding at +43 deg from +x': the area-weighted mean rigid
     motion of one part."""
-    areas = np.array([(rects[i][2] - rects[i][0]) * (rects[i][3] - rects[i][1]) for i in part])
-    cents = np.array([_centroid(rects[i]) for i in part])
+    areas = blocks.areas[list(part)]
+    cents = blocks.centroids[list(part)]
     r = (areas[:, None] * cents).sum(axis=0) / areas.sum()
     at_r = np.array([_transport(motion[i], cents[k], r) for k, i in enumerate(part)])
     u1, u2, phi = (areas[:, None] * at_r).sum(axis=0) / areas.sum()
-    lo = np.min([rects[i][:2] for i in part], axis=0)
-    hi = np.max([rects[i][2:] for i in part], axis=0)
+    box = blocks.bounds[list(part)]
+    lo, hi = box[:, :2].min(axis=0), box[:, 2:].max(axis=0)
     size = float(np.hypot(*(hi - lo)))
     speed = math.hypot(u1, u2)
     if abs(phi) * 5.0 * size < speed:  # the centre of rotation is far away: a translation
@@ -145,17 +138,17 @@ def describe_mechanism(model: Any, results: Any) -> str:
     [m]) or sliding; and the crack: the interfaces across which the mechanism slips, separates (a gap at
     both ends), or rocks (a gap at one end only), counted by family. An interface may both slip and
     separate. ("open" is kept for the joint states: an interface at its tension cut-off, carrying nothing.)"""
-    rects = np.asarray(model.rects, dtype=np.float64)
+    blocks = shapes(model)
     n = int(model.n_blocks)
     mech = np.asarray(results.mechanism, dtype=np.float64)
     # a limit analysis has no increments: its mechanism is the collapse velocities, zero without a collapse
     nothing = "none (no collapse)" if str(getattr(results, "method", "")) == "limit" else "none (no displacement increment)"
-    if mech.shape != (len(rects), 3) or not np.all(np.isfinite(mech)):
+    if mech.shape != (len(blocks), 3) or not np.all(np.isfinite(mech)):
         return nothing
-    # The bodies that may move: the wall blocks and the top beam (not the base).
+    # The bodies that may move: the wall blocks and the top beam (not the base, nor the supports).
     top = model.top_index
     bodies = list(range(n)) + ([int(top)] if top is not None else [])
-    cm = corner_motion(rects, mech)
+    cm = blocks.vertex_motion(mech)
     peak = float(max(cm[i] for i in bodies))
     if not peak > 0:
         return nothing
@@ -177,7 +170,7 @@ def describe_mechanism(model: Any, results: Any) -> str:
     parts = _connected_parts(moving, np.asarray(model.interface_blocks), list(cracked))
     parts.sort(key=len, reverse=True)
     crack = ((slips, "slip"), (opens, "separate"), (rocks, "rock"))
-    describe = lambda part: _describe_part(rects, mech, part)  # noqa: E731
+    describe = lambda part: _describe_part(blocks, mech, part)  # noqa: E731
     return mechanism_text(n_moving, n, beam, parts, describe, crack, families, "interface")
 
 

@@ -12,11 +12,12 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..history import check_plane, default_control_block, is_time_history, peak_record, record
-from ..report import _plural, corner_motion
+from .._shapes import shapes
+from ..report import _plural
+from ..response import wall_height
 from .canvas import _finish, _new_figure, figure_path as figure_path, save_figure as save_figure
 from .panels import (
     DEFORMED_FRACTION,
-    _wall_height,
     plot_wall,
     _draw_curve,
     _draw_curve_overlay,
@@ -185,9 +186,9 @@ def history_figure(
         which = "the time given"
     if len(times):
         shown = record(history, peak)
-        rects = np.asarray(model.rects, dtype=np.float64)
-        largest = float(corner_motion(rects, shown.displacements).max()) if len(rects) else 0.0
-        true_scale = largest >= DEFORMED_FRACTION * _wall_height(model)
+        blocks = shapes(model)
+        largest = float(blocks.vertex_motion(shown.displacements).max()) if len(blocks) else 0.0
+        true_scale = largest >= DEFORMED_FRACTION * wall_height(model)
         plot_deformed(ax_wall, model, shown, scale=1.0 if true_scale else None)
         if true_scale:
             _include_blocks(ax_wall, model, shown.displacements)
@@ -208,7 +209,7 @@ def _include_blocks(ax: Any, model: Any, disp: np.ndarray) -> None:
     from .animation import moved_extent
 
     (x_lo, x_hi), (y_lo, y_hi) = moved_extent(model, np.asarray(disp, dtype=np.float64)[None])
-    pad = 0.05 * _wall_height(model)
+    pad = 0.05 * wall_height(model)
     xl, xh = ax.get_xlim()
     yl, yh = ax.get_ylim()
     ax.set_xlim(min(xl, x_lo - pad), max(xh, x_hi + pad))
