@@ -240,3 +240,214 @@ def test_outlines_accepted() -> None:
     assert polygon_problem([[0, 0], [1, 1e-12], [2, 0], [2, 1], [0, 1]]) is None  # within the tolerance
     assert polygon_problem([[0, 0], [1, -1e-3], [2, 0], [2, 1], [0, 1]]) is None  # convex, barely
     assert polygon_problem([[0, 0], [1, 1e-3], [2, 0], [2, 1], [0, 1]]) is not None
+
+
+# --------------------------------------------------------------------------------------------------
+# Case files: [geometry] polygons and supports
+# --------------------------------------------------------------------------------------------------
+
+GABLE_CASE = """format = 1
+title = "gable"
+[geometry]
+thickness = 0.5
+blocks = [[0, 0, 1, 1]]
+polygons = [[[0, 1], [1, 1], ["500 mm", "1600 mm"]], [[2, 0], [2, 1], [1, 1], [1, 0.5], [1.5, 0]]]
+supports = [[[1, 0], [1.5, 0], [1, 0.5]]]
+[analysis]
+method = "limit"
+"""
+
+
+def test_case_polygons_and_supports_are_read(tmp_path: Path) -> None:
+    path = tmp_path / "gable.toml"
+    path.write_text(GABLE_CASE)
+    case = md.load_case(path)
+    assert case.model.blocks == [[0.0, 0.0, 1.0, 1.0], [[0.0, 1.0], [1.0, 1.0], [0.5, 1.6]],
+                                 [[2.0, 0.0], [2.0, 1.0], [1.0, 1.0], [1.0, 0.5], [1.5, 0.0]]]
+    assert case.model.supports == [[[1.0, 0.0], [1.5, 0.0], [1.0, 0.5]]]
+    assert case.model.base is False  # supports and no [base] table: no foundation
+    assert case.model_kwargs["supports"] == case.model.supports and case.model_kwargs["base"] is False
+    # a [base] table puts the foundation back under a wall on supports
+    path.write_text(GABLE_CASE + '[base]\nkind = "fixed"\n')
+    assert md.load_case(path).model.base is True
+    # polygons alone; a wall of rectangles keeps its array, no supports, and the core's base
+    path.write_text(GABLE_CASE.replace("blocks = [[0, 0, 1, 1]]\n", "").replace("supports", "# supports"))
+    case = md.load_case(path)
+    assert len(case.model.blocks) == 2 and case.model.supports is None and case.model.base is None
+    path.write_text("format = 1\n[geometry]\nblocks = [[0, 0, 1, 1]]\n")
+    case = md.load_case(path)
+    assert isinstance(case.model.blocks, np.ndarray) and case.model.blocks.tolist() == [[0.0, 0.0, 1.0, 1.0]]
+    assert "supports" not in case.model_kwargs
+
+
+#: A case file of one polygon block on the base; {geometry} replaces its [geometry] keys.
+POLYGON_CASE = """format = 1
+[geometry]
+{geometry}
+"""
+
+
+@pytest.mark.parametrize(
+    "geometry, key, message",
+    [
+        ("polygons = []", "geometry.polygons", "geometry.polygons: expected at least one block, each an array of "
+                                               "vertices [x, y] (or leave the key out)"),
+        ("polygons = [3]", "geometry.polygons[0]", "geometry.polygons[0]: expected an array of vertices [x, y], got "
+                                                   "integer"),
+        ("polygons = [[0, 0, 1, 1]]", "geometry.polygons[0][0]", "geometry.polygons[0][0]: expected an array of 2 "
+                                                                 "numbers [x, y], got integer"),
+        ("polygons = 3", "geometry.polygons", "geometry.polygons: expected an array, got integer"),
+        ("polygons = [[[0, 0], [1, 0], [1]]]", "geometry.polygons[0][2]",
+         "geometry.polygons[0][2]: expected 2 numbers [x, y], got 1"),
+        ('polygons = [[[0, 0], [1, 0], [1, "1 kN"]]]', "geometry.polygons[0][2][1]",
+         "'1 kN' is a force; geometry.polygons[0][2][1] is a length (m, cm, mm)"),
+        ("polygons = [[[0, 0], [1, 0], [0.5, 1]], [[0, 0], [1, 0]]]", "geometry.polygons[1]",
+         "geometry.polygons[1]: has 2 vertices: a block has at least 3"),
+        ("polygons = [[[0, 0], [1, 0], [1, 1], [0.9, 0.5], [0, 1]]]", "geometry.polygons[0]",
+         "geometry.polygons[0]: is not convex: it turns the other way at vertex 3 (0.9, 0.5) (a block is a convex "
+         "polygon)"),
+        ("polygons = [[[0, 0], [1, 1], [1, 0], [0, 1]]]", "geometry.polygons[0]", "geometry.polygons[0]: crosses itself"),
+        ("polygons = [[[0, 0], [1, 0], [2, 0]]]", "geometry.polygons[0]",
+         "geometry.polygons[0]: has all its vertices on a line"),
+        ("polygons = [[[0, 0], [1, 0], [1, 0], [0, 1]]]", "geometry.polygons[0]",
+         "geometry.polygons[0]: vertex 2 (1, 0) repeats vertex 1"),
+        ("polygons = [[[0, 0], [1, 0], [0, 1]]]\nsupports = []", "geometry.supports",
+         "geometry.supports: expected at least one support"),
+        ("blocks = [[0, 0, 1, 1]]\nsupports = [[[1, 0], [2, 0], [1.5, 0], [1.5, 1]]]", "geometry.supports[0]",
+         "geometry.supports[0]: turns back on itself at vertex 1 (2, 0)"),
+        ("boxes = [[0, 0, 0, 1, 1, 1]]\nsupports = [[[1, 0], [2, 0], [1.5, 1]]]", "geometry.supports",
+         "geometry.supports: are polygons of a wall in the plane"),
+        ("polygons = [[[0, 0], [1, 0], [0, 1]]]\ndxf = \"wall.dxf\"", None,
+         "[geometry] needs exactly one of running_bond, pattern, blocks, dxf, polygons (blocks and polygons may be "
+         "given together); dxf and polygons are both given"),
+        ("supports = [[[0, 0], [1, 0], [0, 1]]]", None,
+         "[geometry] needs exactly one of running_bond, pattern, blocks, dxf; none is given (polygons also make a "
+         "wall, alone or beside blocks"),
+    ],
+)
+def test_case_polygon_refusals(tmp_path: Path, capsys: pytest.CaptureFixture, geometry: str, key, message: str) -> None:
+    from masonry_dem import cli
+
+    path = tmp_path / "case.toml"
+    path.write_text(POLYGON_CASE.format(geometry=geometry))
+    with pytest.raises(md.InputError) as info:
+        md.load_case(path)
+    assert str(info.value).startswith(f"{path}: {message}") and info.value.key == key
+    assert "\n" not in str(info.value)
+    assert cli.main(["run", str(path), "--quiet"]) == 2  # the command line: status 2, the message on one line
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0] == f"masonry-dem: error: {info.value}"
+
+
+def test_a_polygon_refusal_from_the_command_line(tmp_path: Path) -> None:
+    import subprocess
+    import sys
+
+    path = tmp_path / "case.toml"
+    path.write_text(POLYGON_CASE.format(geometry="polygons = [[[0, 0], [2, 0], [2, 2], [1, 1], [0, 2]]]"))
+    proc = subprocess.run([sys.executable, "-m", "masonry_dem", "run", str(path)], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    assert proc.stderr.strip() == (f"masonry-dem: error: {path}: geometry.polygons[0]: is not convex: it turns the "
+                                   "other way at vertex 3 (1, 1) (a block is a convex polygon)")
+
+
+# --------------------------------------------------------------------------------------------------
+# Drawings: convex outlines
+# --------------------------------------------------------------------------------------------------
+
+
+def _drawing(tmp_path: Path, add, name: str = "arch.dxf") -> Path:
+    import ezdxf
+
+    doc = ezdxf.new(units=4)  # mm
+    add(doc.modelspace())
+    path = tmp_path / name
+    doc.saveas(path)
+    return path
+
+
+def test_convex_outlines_of_a_drawing_are_polygon_blocks(tmp_path: Path) -> None:
+    from masonry_dem.dxf import read_dxf, read_dxf_blocks, read_dxf_polygons
+
+    def add(msp) -> None:
+        msp.add_lwpolyline([(0, 0), (1000, 0), (1000, 1000), (0, 1000)], close=True)  # a rectangle, in mm
+        msp.add_lwpolyline([(0, 1000), (1000, 1000), (500, 1600), (0, 1000)])  # a triangle closed by its first vertex
+        msp.add_polyline2d([(2000, 0), (2000, 800), (1000, 1000), (1000, 500), (1500, 0)], close=True)  # clockwise
+        msp.add_solid([(1000, 0), (1500, 0), (1000, 500)])  # a triangle SOLID
+
+    path = _drawing(tmp_path, add)
+    polygons = read_dxf_polygons(path)
+    # bottom to top, left to right (by the lowest y, then the lowest x; a tie in the drawing's order); metres; the
+    # drawing's vertices in its order
+    assert [p.tolist() for p in polygons] == [
+        [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+        [[2.0, 0.0], [2.0, 0.8], [1.0, 1.0], [1.0, 0.5], [1.5, 0.0]],
+        [[1.0, 0.0], [1.5, 0.0], [1.0, 0.5]],
+        [[0.0, 1.0], [1.0, 1.0], [0.5, 1.6]],
+    ]
+    blocks = read_dxf_blocks(path)
+    assert blocks[0] == [0.0, 0.0, 1.0, 1.0] and blocks[1:] == [p.tolist() for p in polygons[1:]]
+    with pytest.raises(md.InputError, match=r"LWPOLYLINE \(handle \w+\) on layer '0' has 3 corners"):
+        read_dxf(path)  # a wall of rectangles only
+    rect_path = _drawing(tmp_path, lambda msp: msp.add_lwpolyline([(0, 0), (400, 0), (400, 175), (0, 175)], close=True),
+                         "wall.dxf")
+    assert isinstance(read_dxf_blocks(rect_path), np.ndarray)
+    assert read_dxf_blocks(rect_path).tolist() == read_dxf(rect_path).tolist() == [[0.0, 0.0, 0.4, 0.175]]
+    # a case reads the drawing's polygons
+    case = tmp_path / "case.toml"
+    case.write_text('format = 1\n[geometry]\ndxf = "arch.dxf"\n')
+    assert md.load_case(case).model.blocks == [[0.0, 0.0, 1.0, 1.0]] + [p.tolist() for p in polygons[1:]]
+
+
+@pytest.mark.parametrize(
+    "add, problem",
+    [
+        (lambda msp: msp.add_lwpolyline([(0, 0, 0), (400, 0, 0.4), (400, 175, 0), (0, 175, 0)], format="xyb",
+                                        close=True),
+         r"has arcs \(bulges\): a block has straight sides; explode its arcs to straight segments in CAD \[mm\]"),
+        (lambda msp: msp.add_polyline2d([(0, 0), (400, 0), (400, 175), (0, 175)], close=True,
+                                        dxfattribs={"layer": "0"}).vertices[1].dxf.set("bulge", 0.3),
+         r"has arcs \(bulges\)"),
+        (lambda msp: msp.add_lwpolyline([(0, 0), (400, 0), (400, 400), (200, 300), (0, 400)], close=True),
+         r"is not convex: it turns the other way at vertex 3 \(200, 300\) \(a block is a convex polygon\) \[mm\]"),
+        (lambda msp: msp.add_lwpolyline([(0, 0), (400, 175), (400, 0), (0, 175)], close=True), "crosses itself"),
+        (lambda msp: msp.add_lwpolyline([(0, 0), (400, 0), (400, 175), (0, 175)]), "is not closed"),
+    ],
+)
+def test_drawing_outlines_refused(tmp_path: Path, add, problem: str) -> None:
+    from masonry_dem.dxf import read_dxf_polygons
+
+    path = _drawing(tmp_path, add)
+    with pytest.raises(md.InputError, match=r"arch\.dxf: (LWPOLYLINE|POLYLINE) \(handle \w+\) on layer '0' " + problem):
+        read_dxf_polygons(path)
+    case = tmp_path / "case.toml"
+    case.write_text('format = 1\n[geometry]\ndxf = "arch.dxf"\n')
+    with pytest.raises(md.InputError, match=r"geometry\.dxf: .*arch\.dxf: (LWPOLYLINE|POLYLINE) \(handle \w+\)") as info:
+        md.load_case(case)
+    assert info.value.key == "geometry.dxf"
+
+
+def test_a_polygon_drawn_twice_is_refused(tmp_path: Path) -> None:
+    from masonry_dem.dxf import read_dxf_polygons
+
+    def add(msp) -> None:
+        msp.add_lwpolyline([(0, 0), (400, 0), (200, 300)], close=True)
+        msp.add_lwpolyline([(400, 0), (200, 300), (0, 0)], close=True)
+
+    with pytest.raises(md.InputError, match="is the same polygon as LWPOLYLINE .*: a block drawn twice"):
+        read_dxf_polygons(_drawing(tmp_path, add))
+
+
+def test_a_study_mirrors_polygons_and_supports() -> None:
+    from masonry_dem.case import ModelParameters
+    from masonry_dem.study.model import mirrored
+
+    model = ModelParameters(blocks=[[0.0, 0.0, 1.0, 1.0], [[0.0, 1.0], [1.0, 1.0], [0.5, 1.6]]],
+                            supports=[[[1.0, 0.0], [2.0, 0.0], [1.0, 0.5]]], top_force=[3.0, -4.0])
+    flipped = mirrored(model)  # x -> 2 - x (the extremes 0 and 2), each polygon still counter-clockwise
+    assert flipped.blocks == [[1.0, 0.0, 2.0, 1.0], [[1.5, 1.6], [1.0, 1.0], [2.0, 1.0]]]
+    assert flipped.supports == [[[1.0, 0.5], [0.0, 0.0], [1.0, 0.0]]]
+    assert flipped.top_force == [-3.0, -4.0]
+    assert all(polygon_problem(p) is None for p in flipped.blocks[1:] + flipped.supports)
+    assert Shapes.from_polygons(flipped.blocks[1:] + flipped.supports).areas.tolist() == pytest.approx([0.3, 0.25])

@@ -51,7 +51,12 @@ TOP_KEYS = (
     "format", "title", "geometry", "base", "top", "joints", "loads", "analysis", "reference", "ground_motion",
     "time_history",
 )
-GEOMETRY_KINDS = ("running_bond", "pattern", "blocks", "dxf")
+GEOMETRY_KINDS = ("running_bond", "pattern", "blocks", "dxf", "polygons")
+# The forms of a wall of rectangles, which the messages name first
+RECTANGLE_KINDS = GEOMETRY_KINDS[:4]
+# Keys of [geometry] that may stand beside a wall's form: the supports (fixed blocks: abutments, springers, an
+# inclined plane), as polygons
+SUPPORT_KEYS = ("supports",)
 # The [geometry] forms of a 3D wall (masonry_dem.space.case): any of them makes the case 3D
 GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner")
 # Keys of [geometry] besides its kinds: the wall's, and the options of a drawing (dxf)
@@ -198,7 +203,10 @@ def case_from_dict(
         from ..space.case import case_from_tables
 
         return case_from_tables(top, title, kind, geometry, wall["density"])  # type: ignore[no-any-return]
-    wall.update(base=_base(top), **_top_beam(top))
+    base = _base(top)
+    if base is None and wall["supports"] is not None:
+        base = False  # a wall on supports has no foundation unless a [base] table puts one
+    wall.update(base=base, **_top_beam(top))
     wall.update(joints=_joints(top), **_loads(top, beam=wall["top_rotation"] is not None))
     method, analysis = _analysis(top)
     reference = _reference(top.table("reference", REFERENCE_KEYS))
@@ -236,34 +244,41 @@ def _geometry(top: _Table, base_dir: Optional[PathLike]) -> Tuple[str, Dict[str,
     and density (None when left out). A drawing (dxf) is read here, relative to ``base_dir``, and becomes
     a block list (kind "blocks")."""
     every = GEOMETRY_KINDS + GEOMETRY_KINDS_3D
-    geo = top.table("geometry", ("thickness", "density") + every + DXF_KEYS, required=True)
+    geo = top.table("geometry", ("thickness", "density") + every + DXF_KEYS + SUPPORT_KEYS, required=True)
     assert geo is not None
     given = [k for k in every if k in geo]
-    if not given:
-        raise geo.error(f"[geometry] needs exactly one of {', '.join(GEOMETRY_KINDS)}; none is given (a 3D wall: "
-                        f"one of {', '.join(GEOMETRY_KINDS_3D)})")
-    if len(given) > 1:
-        # the forms of a wall in the plane, or with a 3D one given, all of them
-        kinds = ", ".join(GEOMETRY_KINDS if all(k in GEOMETRY_KINDS for k in given) else every)
+    forms = [k for k in given if not (k == "polygons" and "blocks" in given)]  # blocks and polygons: one list
+    if not forms:
+        raise geo.error(f"[geometry] needs exactly one of {', '.join(RECTANGLE_KINDS)}; none is given (polygons "
+                        f"also make a wall, alone or beside blocks; a 3D wall: one of {', '.join(GEOMETRY_KINDS_3D)})")
+    if len(forms) > 1:
+        # the forms of a wall of rectangles, of polygons too, or with a 3D one given, all of them
+        kinds = ", ".join(RECTANGLE_KINDS if all(k in RECTANGLE_KINDS for k in given) else GEOMETRY_KINDS
+                          if all(k in GEOMETRY_KINDS for k in given) else every)
         count = {3: "all three", 4: "all four"}.get(len(given), ", ".join(given))
         named = f"{' and '.join(given)} are both given" if len(given) == 2 else f"{count} are given"
-        raise geo.error(f"[geometry] needs exactly one of {kinds}; {named}")
-    kind = given[0]
+        both = " (blocks and polygons may be given together)" if "polygons" in given else ""
+        raise geo.error(f"[geometry] needs exactly one of {kinds}{both}; {named}")
+    kind = "blocks" if "blocks" in given else forms[0]
     for key in DXF_KEYS:
         if key in geo and kind != "dxf":
             raise geo.key_error(key, f"applies to a drawing (dxf), not to {kind}")
     if kind in GEOMETRY_KINDS_3D:
+        if "supports" in geo:
+            raise geo.key_error("supports", f"are polygons of a wall in the plane; a 3D wall ([geometry] {kind}) has "
+                                            "no supports in this version")
         from ..space.case import read_geometry
 
         return kind, read_geometry(geo, kind), {"density": geo.number("density", None, _positive, unit="density")}
     wall = {
         "thickness": geo.number("thickness", None, _positive, unit="length"),
         "density": geo.number("density", None, _positive, unit="density"),
+        "supports": geo.polygons("supports", "support"),
     }
     if kind == "dxf":
         return "blocks", _drawing(geo, base_dir), wall
-    read = {"running_bond": _running_bond, "pattern": _pattern, "blocks": _block_list}[kind]
-    return kind, read(geo), wall
+    read = {"running_bond": _running_bond, "pattern": _pattern, "blocks": _block_list, "polygons": _block_list}[kind]
+    return "blocks" if kind == "polygons" else kind, read(geo), wall
 
 
 def _running_bond(geo: _Table) -> Dict[str, Any]:
@@ -304,15 +319,17 @@ def _pattern(geo: _Table) -> Dict[str, Any]:
 
 
 def _block_list(geo: _Table) -> Dict[str, Any]:
-    rects = geo.rectangles("blocks")
-    assert rects is not None
-    if not rects:
+    """``blocks`` (rectangles) and ``polygons``, either or both: the rectangles first, then the polygons, in the
+    order given."""
+    rects = geo.rectangles("blocks", required="polygons" not in geo)
+    if rects is not None and not rects:
         raise geo.key_error("blocks", "expected at least one block [x0, y0, x1, y1]")
-    return dict(blocks=rects)
+    return dict(blocks=rects or [], polygons=geo.polygons("polygons"))
 
 
 def _drawing(geo: _Table, base_dir: Optional[PathLike]) -> Dict[str, Any]:
-    """``dxf``: the rectangles of a drawing (:func:`masonry_dem.dxf.read_dxf`), relative to ``base_dir``, on
+    """``dxf``: the blocks of a drawing (:func:`masonry_dem.dxf.read_dxf_blocks`: rectangles along x and y, and
+    convex polygons), relative to ``base_dir``, on
     the layer ``dxf_layer`` (all layers when left out) and in ``dxf_units`` (the drawing's $INSUNITS when left
     out); its errors name the key and the file."""
     from .. import dxf as _dxf  # ezdxf is imported when a case has a drawing only
@@ -326,11 +343,13 @@ def _drawing(geo: _Table, base_dir: Optional[PathLike]) -> Dict[str, Any]:
     if base_dir is not None and not path.is_absolute():
         path = Path(base_dir) / path
     try:
-        blocks = _dxf.read_dxf(path, layer=layer, units=units)
+        blocks = _dxf.read_dxf_blocks(path, layer=layer, units=units)
     except OSError as exc:
         raise geo.key_error("dxf", f"cannot read {path}: {exc.strerror or exc}") from None
     except (InputError, ImportError) as exc:
         raise geo.key_error("dxf", str(exc)) from None
+    if isinstance(blocks, list):  # polygons among them
+        return dict(blocks=[], polygons=blocks)
     return dict(blocks=blocks.tolist())
 
 
