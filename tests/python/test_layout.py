@@ -42,8 +42,8 @@ STAGES: Tuple[Tuple[str, Tuple[str, ...]], ...] = (
                "default_case")),
     # what an analysis returns, read: time histories, response peaks, the result file and dicts, the reports in
     # words, comparisons
-    ("results", ("history", "response", "case.result_file", "api", "_mechanism", "report", "space.report",
-                 "compare")),
+    ("results", ("history", "response", "case.result_file", "api", "_mechanism", "report", "thrust",
+                 "space.report", "compare")),
     # figures and files: plots, VTK and CSV, progress bars
     ("output", ("_vtk", "export", "space.export", "plot.canvas", "plot.panels", "plot.time_panels", "plot.animation",
                 "plot.figures", "plot.modes", "space.plot", "progress")),

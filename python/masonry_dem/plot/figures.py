@@ -86,6 +86,7 @@ def report_figure(
     path: Optional[Union[str, "os.PathLike[str]"]] = None,
     live: str = "horizontal_weight",
     dpi: int = 150,
+    thrust: bool = False,
 ) -> Figure:
     """A one-page report: the crack pattern, the collapse mechanism, the deformed shape and the load curve;
     of a time history, its response (:func:`history_figure`); of a 3D wall (a :class:`masonry_dem.Model3D`), its
@@ -100,6 +101,9 @@ def report_figure(
         path: output file (PNG), written with the Agg canvas; without it the figure goes through pyplot.
         live: the live load, "horizontal_weight" or "top_horizontal" (lambda in N, plotted in kN).
         dpi: resolution of the PNG.
+        thrust: draw the line of thrust (:func:`masonry_dem.plot.plot_thrust`: each joint's centre of pressure,
+            joined along the chains of blocks of an arch or a pier) over the crack pattern, from the forces of
+            ``results`` (at collapse, or at the last converged step). A wall in the plane's results only.
     Returns:
         The figure.
     """
@@ -123,7 +127,8 @@ def report_figure(
         fig = _new_figure((16.0, 7.0), path is not None)
         grid = fig.add_gridspec(1, 4, width_ratios=[a, a, a, 1.6])
         cells, columns = [grid[0, 0], grid[0, 1], grid[0, 2], grid[0, 3]], 2
-    plot_cracks(fig.add_subplot(cells[0]), model, results, legend_columns=columns)
+    ax_cracks = fig.add_subplot(cells[0])
+    plot_cracks(ax_cracks, model, results, legend_columns=columns, thrust=thrust)
     plot_mechanism(fig.add_subplot(cells[1]), model, results)
     plot_deformed(fig.add_subplot(cells[2]), model, results)
     ax_curve = fig.add_subplot(cells[3])

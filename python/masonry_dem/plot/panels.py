@@ -1,7 +1,7 @@
 """The panels of the figures, each drawn on a matplotlib ``Axes`` given by the caller: the wall
-(:func:`plot_wall`), its deformed shape (:func:`plot_deformed`), crack pattern (:func:`plot_cracks`) and
-collapse mechanism (:func:`plot_mechanism`), and the load curve (:func:`plot_curve`, several results
-overlaid). Geometry in m; displacements plotted in mm.
+(:func:`plot_wall`), its deformed shape (:func:`plot_deformed`), crack pattern (:func:`plot_cracks`),
+collapse mechanism (:func:`plot_mechanism`) and line of thrust (:func:`plot_thrust`), and the load curve
+(:func:`plot_curve`, several results overlaid). Geometry in m; displacements plotted in mm.
 """
 
 from __future__ import annotations
@@ -16,6 +16,7 @@ from matplotlib.patches import Patch, Polygon
 from .._shapes import fixed_blocks, shapes
 from ..history import default_control_block
 from ..response import wall_height
+from ..thrust import resultant_points, thrust_lines
 from ..report import (
     STATUS_NOTES,
     CRACK_TOLERANCE,
@@ -23,6 +24,7 @@ from ..report import (
     _plural,
     format_multiplier,
     interface_categories,
+    multiplier_symbol,
     interface_jumps,
 )
 
@@ -254,34 +256,83 @@ def _is_limit(results: Any) -> bool:
     return str(getattr(results, "method", "")) == "limit"
 
 
-def plot_cracks(ax: Any, model: Any, results: Any, legend: bool = True, legend_columns: int = 5) -> dict:
+def plot_cracks(
+    ax: Any, model: Any, results: Any, legend: bool = True, legend_columns: int = 5, thrust: bool = False
+) -> dict:
     """Draw the crack pattern on ``ax``: the undeformed wall with every interface coloured by its state at
     the last converged step (:data:`STATE_STYLES`: open, sliding, rocking, sliding + rocking, elastic);
     the interfaces that the mechanism cracks (a slip or a gap across them in ``Results.mechanism``) drawn
     wide, so the crack itself stands out among the joints merely at their limit. With ``legend`` a legend
-    with the count of each state under the panel. Returns the counts ({state: n, "cracked": n})."""
+    with the count of each state under the panel; with ``thrust`` the line of thrust over it (as
+    :func:`plot_thrust` draws it). Returns the counts ({state: n, "cracked": n})."""
     _draw_blocks(ax, model, None, 0.0, undeformed=False)
     mech, have, peak, _, _ = _mechanism(model, results)
     counts = _draw_interfaces(ax, model, results, _cracked(model, mech, have, peak), state_width=1.8)
+    if thrust:
+        _draw_thrust(ax, model, results)
     _wall_axes(ax, model)
     ax.set_title(
-        f"crack pattern (joint states)\nwide: cracked in the mechanism ({counts['cracked']})",
+        f"crack pattern (joint states{'; line of thrust' if thrust else ''})\nwide: cracked in the mechanism "
+        f"({counts['cracked']})",
         fontsize=10,
     )
     if legend:
         handles = [
             Line2D([], [], color=color, linewidth=3.0, label=f"{name} ({counts[name]})")
             for name, color, _ in STATE_STYLES
-        ]
+        ] + (_thrust_handles() if thrust else [])
         ax.legend(
             handles=handles,
             loc="upper center",
             bbox_to_anchor=(0.5, -0.15 if legend_columns >= 5 else -0.08),
-            ncol=legend_columns,
+            ncol=legend_columns + (1 if thrust and legend_columns >= 5 else 0),
             fontsize=8,
             frameon=False,
         )
     return counts
+
+
+#: The colour of the line of thrust and of the joints' centres of pressure.
+THRUST_COLOR = "#1a1a1a"
+
+
+def _draw_thrust(ax: Any, model: Any, results: Any) -> int:
+    """The line of thrust of ``results`` over a wall panel (:mod:`masonry_dem.thrust`): each joint's centre of
+    pressure a dot, the chains' lines through them. Returns the number of lines."""
+    points = resultant_points(model, results)
+    shown = points[np.all(np.isfinite(points), axis=1)]
+    ax.plot(shown[:, 0], shown[:, 1], "o", color=THRUST_COLOR, markersize=2.5, zorder=6)
+    lines = thrust_lines(model, results)
+    for line in lines:
+        ax.plot(line[:, 0], line[:, 1], "-", color=THRUST_COLOR, linewidth=1.6, zorder=6)
+    return len(lines)
+
+
+def _thrust_handles() -> List[Any]:
+    """Legend entries of the line of thrust."""
+    return [Line2D([], [], color=THRUST_COLOR, linewidth=1.6, marker="o", markersize=3, label="line of thrust")]
+
+
+def plot_thrust(ax: Any, model: Any, results: Any, live: str = "horizontal_weight") -> int:
+    """Draw the line of thrust on ``ax``: the undeformed wall, each joint's centre of pressure (where the resultant
+    of its forces crosses it, :func:`masonry_dem.thrust.resultant_points`) a dot, joined along the chains of blocks
+    (the voussoirs of an arch, the blocks of a pier: :func:`masonry_dem.thrust.thrust_lines`). The forces are those
+    of ``results``: at collapse of a limit analysis, at the last converged step of a static or explicit one (its
+    multiplier in the title; ``live`` as in :func:`plot_curve`). A joint that carries no normal force has no dot,
+    and a line is broken there. Returns the number of lines drawn (0: no chain of blocks, the dots alone)."""
+    _draw_blocks(ax, model, None, 0.0, undeformed=False)
+    geom = np.asarray(model.interface_geometry, dtype=np.float64).reshape(-1, 5)
+    ax.add_collection(LineCollection(_segments(geom), colors="#9a9a9a", linewidths=0.6, zorder=3))
+    count = _draw_thrust(ax, model, results)
+    _wall_axes(ax, model)
+    if _is_limit(results):
+        when = "at collapse" if str(results.status) == "collapse" else f"of the limit analysis ({results.status})"
+    else:
+        lam = float(getattr(results, "last_equilibrium", np.nan))
+        when = (f"at the last converged step, {multiplier_symbol(live)} = {format_multiplier(lam, live)}"
+                if np.isfinite(lam) else "(no equilibrium found)")
+    ax.set_title(f"line of thrust {when}\n{_plural(count, 'line')} through the chains of blocks", fontsize=10)
+    return count
 
 
 def plot_mechanism(ax: Any, model: Any, results: Any) -> bool:
