@@ -10,7 +10,7 @@ Lengths in m, rotations in rad; a positive rotation is counterclockwise.
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, List, Sequence
+from typing import Any, Dict, List, Mapping, NamedTuple, Optional, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -25,6 +25,8 @@ __all__ = [
     "corner_motion",
     "deformed_corners",
     "describe_mechanism",
+    "hinges",
+    "describe_hinges",
     "interface_categories",
     "interface_jumps",
     "format_multiplier",
@@ -87,6 +89,14 @@ def interface_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
     With the interface normal n from block a to block b and ``[u] = u_b(c) - u_a(c)`` at the interface
     centroid c: slip = t.[u], gaps = n.[u] +/- (phi_b - phi_a) l / 2.
     """
+    j = _end_jumps(model, motion)
+    return np.c_[j[:, 0], np.maximum(j[:, 1], j[:, 2]), np.minimum(j[:, 1], j[:, 2])]  # type: ignore[no-any-return]
+
+
+def _end_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
+    """(m, 3) jumps of a motion across each interface: slip [m] along the tangent t = (n_y, -n_x), and the normal
+    gaps [m] at the ends c - l/2 t and c + l/2 t, n.[u] - (phi_b - phi_a) l / 2 and n.[u] + (phi_b - phi_a) l / 2
+    (the jump of b over a at c + s t is [u](c) + (phi_b - phi_a) s k x t, and k x t = n)."""
     cents = block_centroids(model)
     pairs = np.asarray(model.interface_blocks, dtype=np.int64).reshape(-1, 2)
     geom = np.asarray(model.interface_geometry, dtype=np.float64).reshape(-1, 5)
@@ -97,8 +107,8 @@ def interface_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
         ub = _transport(motion[b], cents[b], c)
         du = ub[:2] - ua[:2]
         dn, dt = nx * du[0] + ny * du[1], -ny * du[0] + nx * du[1]
-        half = abs(ub[2] - ua[2]) * length / 2
-        out[k] = (dt, dn + half, dn - half)
+        turn = (ub[2] - ua[2]) * length / 2
+        out[k] = (dt, dn - turn, dn + turn)
     return out
 
 
@@ -172,6 +182,85 @@ def describe_mechanism(model: Any, results: Any) -> str:
     crack = ((slips, "slip"), (opens, "separate"), (rocks, "rock"))
     describe = lambda part: _describe_part(blocks, mech, part)  # noqa: E731
     return mechanism_text(n_moving, n, beam, parts, describe, crack, families, "interface")
+
+
+class Hinge(NamedTuple):
+    """A hinge of a mechanism: the interface ``interface`` opens by rotation about its end ``point`` [m] (x, y);
+    ``end``: which end, "intrados" or "extrados" on an arch's joint, else "left" or "right" on a joint within 45
+    degrees of the horizontal, "bottom" or "top" on a steeper one."""
+
+    interface: int
+    point: np.ndarray
+    end: str
+
+
+def hinges(model: Any, motion: np.ndarray, arch: Optional[Mapping[str, Any]] = None) -> List[Hinge]:
+    """The hinges of the mechanism ``motion`` ((n_all, 3): u1, u2, phi of each block): every interface that opens
+    by rotation, a gap at one end and none at the other (a "rock" of :func:`describe_mechanism`), with the end it
+    turns about, left to right (then bottom to top).
+
+    The gap at the end c + s t of an interface (s = +/- l/2 along its tangent t) is n.[u](c) + (phi_b - phi_a) s:
+    the interface turns about the end whose gap is the smaller. ``arch``: the arch's ``intrados`` and
+    ``extrados`` (the arch generator's curves, each a list of points [x, y] [m]): an end nearer the intrados than the
+    extrados is "intrados", else "extrados" (on an arch's joint, the end nearer its centre, or farther). Without it, an
+    end is named by its side."""
+    mech = np.asarray(motion, dtype=np.float64)
+    cm = shapes(model).vertex_motion(mech)
+    peak = float(cm.max()) if len(cm) else 0.0
+    if not peak > 0:
+        return []
+    tol = CRACK_TOLERANCE * peak
+    geom = np.asarray(model.interface_geometry, dtype=np.float64).reshape(-1, 5)
+    jumps = _end_jumps(model, mech)
+    gaps = np.sort(jumps[:, 1:], axis=1)
+    curves = None if arch is None else [np.asarray(arch[k], dtype=np.float64).reshape(-1, 2) for k in ("intrados",
+                                                                                                       "extrados")]
+    out = []
+    for k in np.flatnonzero((gaps[:, 1] > tol) & (gaps[:, 0] <= tol)):
+        cx, cy, nx, ny, length = geom[k]
+        ends = [np.array([cx + s * ny, cy - s * nx]) for s in (-length / 2, length / 2)]  # c + s t, t = (ny, -nx)
+        shut = 0 if jumps[k, 1] <= jumps[k, 2] else 1  # the end of the smaller gap: the hinge
+        point, other = ends[shut], ends[1 - shut]
+        if curves is not None:
+            end = "intrados" if _distance(point, curves[0]) < _distance(point, curves[1]) else "extrados"
+        elif abs(ny) >= abs(nx):
+            end = "left" if point[0] < other[0] else "right"
+        else:
+            end = "bottom" if point[1] < other[1] else "top"
+        out.append(Hinge(int(k), point, end))
+    out.sort(key=lambda h: (round(float(h.point[0]), 9), round(float(h.point[1]), 9)))
+    return out
+
+
+def _distance(point: np.ndarray, curve: np.ndarray) -> float:
+    """The distance [m] from a point to a polyline (its segments; a point alone for a curve of one point)."""
+    if len(curve) == 1:
+        return float(np.hypot(*(point - curve[0])))
+    a, d = curve[:-1], np.diff(curve, axis=0)
+    t = np.clip(((point - a) * d).sum(axis=1) / np.maximum((d * d).sum(axis=1), 1e-300), 0.0, 1.0)
+    return float(np.hypot(*(a + t[:, None] * d - point).T).min())
+
+
+#: The most hinges :func:`describe_hinges` lists one by one.
+HINGES_LISTED = 6
+
+
+def describe_hinges(model: Any, results: Any, arch: Optional[Mapping[str, Any]] = None) -> str:
+    """The hinges of the mechanism (``Results.mechanism``, :func:`hinges`) in a line: "4: the intrados of a bed joint
+    at (x, y) m, the extrados of a bed joint at (x, y) m, ..." (on a wall: "the right end of a base joint at ..."),
+    left to right, at most
+    :data:`HINGES_LISTED` of them; "none" when no interface opens by rotation. ``arch`` as in :func:`hinges`."""
+    mech = np.asarray(results.mechanism, dtype=np.float64)
+    if mech.shape != (len(block_centroids(model)), 3) or not np.all(np.isfinite(mech)):
+        return "none"
+    found = hinges(model, mech, arch)
+    if not found:
+        return "none"
+    families = list(model.interface_family)
+    shown = [f"the {h.end}{'' if arch is not None else ' end'} of a {families[h.interface]} joint at "
+             f"({h.point[0]:.2f}, {h.point[1]:.2f}) m" for h in found[:HINGES_LISTED]]
+    more = f", {len(found) - HINGES_LISTED} more" if len(found) > HINGES_LISTED else ""
+    return f"{len(found)}: " + ", ".join(shown) + more
 
 
 def multiplier_symbol(live: str = "horizontal_weight") -> str:
@@ -248,14 +337,18 @@ def certificate_text(results: Any, live: str = "horizontal_weight") -> List[str]
     return lines
 
 
-def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight") -> str:
+def summary(
+    title: str, model: Any, results: Any, live: str = "horizontal_weight", arch: Optional[Mapping[str, Any]] = None
+) -> str:
     """The short human summary printed by ``masonry-dem run`` (several lines, no trailing newline).
 
     A limit analysis (method "limit") has no load path: its joint states are those of the collapse
     mechanism, and a ``certificate`` line (or lines) replaces the count of steps. A static or explicit run checked
     against limit analysis (associative dry joints) gets a ``checked against`` line with the exact value (in 3D a
     lower bound). A 3D wall (a :class:`masonry_dem.Model3D`) gets a line with the live load's direction in plan, and
-    its mechanism is described in 3D (:func:`masonry_dem.space.report.describe_mechanism`)."""
+    its mechanism is described in 3D (:func:`masonry_dem.space.report.describe_mechanism`). A wall in the plane's
+    collapse mechanism that opens joints by rotation gets a ``hinges`` line (:func:`describe_hinges`; ``arch``: the
+    arch generator's intrados and extrados, ``Case.arch``, to name an arch's hinges by them)."""
     describe = describe_mechanism
     three_d = int(getattr(model, "dimension", 2)) == 3
     if three_d:
@@ -303,6 +396,10 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
         lines.append(f"  joint states:        {joint_text}; at the last equilibrium")
     # a mechanism is a claim of collapse too: none without one
     lines.append(f"  mechanism:           {describe(model, results) if collapse else 'none (no collapse)'}")
+    if collapse and not three_d:
+        hinge_text = describe_hinges(model, results, arch)
+        if hinge_text != "none":
+            lines.append(f"  hinges:              {hinge_text}")
     if limit:
         for k, text in enumerate(certificate_text(results, live)):
             lines.append(f"  {'certificate:' if k == 0 else '':<21}{text}")

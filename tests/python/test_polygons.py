@@ -451,3 +451,45 @@ def test_a_study_mirrors_polygons_and_supports() -> None:
     assert flipped.top_force == [-3.0, -4.0]
     assert all(polygon_problem(p) is None for p in flipped.blocks[1:] + flipped.supports)
     assert Shapes.from_polygons(flipped.blocks[1:] + flipped.supports).areas.tolist() == pytest.approx([0.3, 0.25])
+
+
+# --------------------------------------------------------------------------------------------------
+# The hinges of a mechanism
+# --------------------------------------------------------------------------------------------------
+
+
+def test_a_block_overturning_turns_about_its_toe() -> None:
+    from masonry_dem.report import describe_hinges, hinges, summary
+
+    b, h = 0.4, 1.2
+    model = md.Model([[0.0, 0.0, b, h]], joints={"default": md.dry_joint(0.65, dilatancy=0.65)})
+    results = model.solve_limit()
+    found = hinges(model, results.mechanism)
+    assert len(found) == 1 and found[0].end == "right" and found[0].point.tolist() == [b, 0.0]
+    assert describe_hinges(model, results) == "1: the right end of a base joint at (0.40, 0.00) m"
+    assert "\n  hinges:              1: the right end of a base joint at (0.40, 0.00) m\n" in summary("b", model, results)
+    # pushed the other way (the block's motion mirrored): the left end
+    mirrored = results.mechanism * [-1.0, 1.0, -1.0]
+    assert [(h.end, h.point.tolist()) for h in hinges(model, mirrored)] == [("left", [0.0, 0.0])]
+    # a head joint turns about its bottom or top end
+    pair = md.Model([[0.0, 0.0, 1.0, 1.0], [1.0, 0.0, 2.0, 1.0]], base=False)
+    motion = np.zeros((2, 3))
+    motion[1] = [0.5, 0.5, 1.0]  # the right block turning counter-clockwise about (1, 1): the head joint's top end
+    assert [(h.end, h.point.tolist()) for h in hinges(pair, motion)] == [("top", [1.0, 1.0])]
+    assert describe_hinges(pair, SimpleNamespace(mechanism=np.zeros((2, 3)))) == "none"
+
+
+def test_an_arch_s_hinges_are_named_by_its_intrados_and_extrados() -> None:
+    from masonry_dem.report import describe_hinges, hinges
+
+    model = gable()
+    results = rocking_gable_results(model)
+    # the gable turns about the right end (1, 1) of its bed joint
+    assert [(h.interface, h.end, h.point.tolist()) for h in hinges(model, results.mechanism)] == [(0, "right",
+                                                                                                  [1.0, 1.0])]
+    # as the joint of an arch whose intrados passes by (1, 1) and extrados by (0, 1)
+    arch = {"intrados": [[1.2, 0.0], [1.0, 1.05], [0.8, 2.0]], "extrados": [[0.0, 1.0]]}
+    assert [h.end for h in hinges(model, results.mechanism, arch)] == ["intrados"]
+    assert describe_hinges(model, results, arch) == "1: the intrados of a bed joint at (1.00, 1.00) m"
+    arch = {"intrados": arch["extrados"], "extrados": arch["intrados"]}
+    assert describe_hinges(model, results, arch) == "1: the extrados of a bed joint at (1.00, 1.00) m"

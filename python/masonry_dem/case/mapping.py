@@ -271,6 +271,8 @@ class Case:
         ground_motion: the optional [ground_motion] (:class:`GroundMotionParameters`, the records read), or
             None; ``masonry-dem simulate`` and :meth:`simulate` run the wall under it.
         time_history: the [time_history] options (:class:`TimeHistoryParameters`; all None when left out).
+        arch: of a [geometry.arch], what the arch generator gives besides the blocks (its ``intrados`` and
+            ``extrados``, lists of points [x, y] [m]), by which the report names an arch's hinges; else None.
 
     The same parameters as dicts of keyword arguments: :attr:`model_kwargs`, :attr:`analysis_kwargs`,
     :attr:`dynamic_kwargs` and :meth:`solver_kwargs`.
@@ -284,6 +286,7 @@ class Case:
     reference: Optional[Dict[str, Any]] = None
     ground_motion: Optional[GroundMotionParameters] = None
     time_history: TimeHistoryParameters = field(default_factory=TimeHistoryParameters)
+    arch: Optional[Dict[str, Any]] = None
 
     @property
     def dimension(self) -> int:
