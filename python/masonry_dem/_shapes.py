@@ -107,7 +107,7 @@ class Shapes:
 
     @property
     def bounds(self) -> np.ndarray:
-        """(n, 4) [x0, y0, x1, y1] [m]: each block's bounding box."""
+        """(n, 4) x0, y0, x1, y1 [m]: each block's bounding box."""
         if not len(self):
             return np.zeros((0, 4))
         lo = np.minimum.reduceat(self.points, self.starts[:-1], axis=0)

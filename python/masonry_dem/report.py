@@ -96,7 +96,7 @@ def interface_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
 def _end_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
     """(m, 3) jumps of a motion across each interface: slip [m] along the tangent t = (n_y, -n_x), and the normal
     gaps [m] at the ends c - l/2 t and c + l/2 t, n.[u] - (phi_b - phi_a) l / 2 and n.[u] + (phi_b - phi_a) l / 2
-    (the jump of b over a at c + s t is [u](c) + (phi_b - phi_a) s k x t, and k x t = n)."""
+    (the jump of b over a at c + s t is [u] at c + (phi_b - phi_a) s k x t, and k x t = n)."""
     cents = block_centroids(model)
     pairs = np.asarray(model.interface_blocks, dtype=np.int64).reshape(-1, 2)
     geom = np.asarray(model.interface_geometry, dtype=np.float64).reshape(-1, 5)
@@ -199,9 +199,9 @@ def hinges(model: Any, motion: np.ndarray, arch: Optional[Mapping[str, Any]] = N
     by rotation, a gap at one end and none at the other (a "rock" of :func:`describe_mechanism`), with the end it
     turns about, left to right (then bottom to top).
 
-    The gap at the end c + s t of an interface (s = +/- l/2 along its tangent t) is n.[u](c) + (phi_b - phi_a) s:
+    The gap at the end c + s t of an interface (s = +/- l/2 along its tangent t) is n.[u] at c + (phi_b - phi_a) s:
     the interface turns about the end whose gap is the smaller. ``arch``: the arch's ``intrados`` and
-    ``extrados`` (the arch generator's curves, each a list of points [x, y] [m]): an end nearer the intrados than the
+    ``extrados`` (the arch generator's curves, each a list of points (x, y) in m): an end nearer the intrados than the
     extrados is "intrados", else "extrados" (on an arch's joint, the end nearer its centre, or farther). Without it, an
     end is named by its side."""
     mech = np.asarray(motion, dtype=np.float64)

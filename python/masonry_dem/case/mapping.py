@@ -81,7 +81,7 @@ class ModelParameters:
     (:data:`Blocks`); the others are those the case gives, None when it leaves them out (the core's default; for
     top_rotation: no top beam; for joints: the default law everywhere; for supports: none): thickness [m], density
     [kg/m3], base, top_rotation, top_force [N], joints, gravity [m/s2], live, top_vertical, supports (polygons, each
-    an array of vertices [x, y] [m]: fixed blocks).
+    an array of vertices (x, y) in m: fixed blocks).
     """
 
     dimension: ClassVar[int] = 2
@@ -272,7 +272,7 @@ class Case:
             None; ``masonry-dem simulate`` and :meth:`simulate` run the wall under it.
         time_history: the [time_history] options (:class:`TimeHistoryParameters`; all None when left out).
         arch: of a [geometry.arch], what the arch generator gives besides the blocks (its ``intrados`` and
-            ``extrados``, lists of points [x, y] [m]), by which the report names an arch's hinges; else None.
+            ``extrados``, lists of points (x, y) in m), by which the report names an arch's hinges; else None.
 
     The same parameters as dicts of keyword arguments: :attr:`model_kwargs`, :attr:`analysis_kwargs`,
     :attr:`dynamic_kwargs` and :meth:`solver_kwargs`.
