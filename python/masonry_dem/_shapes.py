@@ -209,16 +209,22 @@ def polygon_problem(vertices: Sequence[Sequence[float]], tolerance: Optional[flo
     how far a vertex may lie from the line through its neighbours and still be on it (default :data:`REL_TOL` times
     the outline's size). Either orientation is a block."""
     p = np.asarray(vertices, dtype=np.float64).reshape(-1, 2)
-    size = float(np.ptp(p, axis=0).max()) if len(p) else 0.0
-    tol = REL_TOL * size if tolerance is None else float(tolerance)
-    if len(p) > 1 and np.all(np.abs(p[-1] - p[0]) <= tol):
-        p = p[:-1]
-    if len(p) < 3:
-        return f"has {len(p)} vertices: a block has at least 3"
-    for i in range(len(p)):
-        if np.all(np.abs(p[i] - p[i - 1]) <= tol):
-            return f"vertex {i} {_point(p[i])} repeats vertex {(i - 1) % len(p)}"
-    edges = np.roll(p, -1, axis=0) - p  # edge i from vertex i to vertex i + 1
+    # in units of the outline's size about its first vertex: the products below neither overflow nor underflow
+    with np.errstate(over="ignore"):
+        size = float(np.abs(p - p[0]).max()) if len(p) else 0.0
+    if not math.isfinite(size):
+        return f"spans more than a float holds: {_points(p)}"
+    scale = size if size > 0 else 1.0
+    q = (p - p[0]) / scale if len(p) else p
+    tol = REL_TOL if tolerance is None else float(tolerance) / scale
+    if len(q) > 1 and np.all(np.abs(q[-1] - q[0]) <= tol):
+        p, q = p[:-1], q[:-1]
+    if len(q) < 3:
+        return f"has {len(q)} vertices: a block has at least 3"
+    for i in range(len(q)):
+        if np.all(np.abs(q[i] - q[i - 1]) <= tol):
+            return f"vertex {i} {_point(p[i])} repeats vertex {(i - 1) % len(q)}"
+    edges = np.roll(q, -1, axis=0) - q  # edge i from vertex i to vertex i + 1
     before = np.roll(edges, 1, axis=0)  # the edge into vertex i
     cross = before[:, 0] * edges[:, 1] - before[:, 1] * edges[:, 0]
     chord = np.hypot(*(before + edges).T)
