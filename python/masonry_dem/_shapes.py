@@ -157,8 +157,10 @@ class Shapes:
         r, phi = self.arms(), d[:, 2]
         if exact:
             c, s = np.cos(phi) - 1.0, np.sin(phi)
-            return d[:, :2] + np.stack([c * r[:, 0] - s * r[:, 1], s * r[:, 0] + c * r[:, 1]], axis=-1)  # type: ignore[no-any-return]
-        return d[:, :2] + np.stack([-phi * r[:, 1], phi * r[:, 0]], axis=-1)  # type: ignore[no-any-return]
+            turn = np.stack([c * r[:, 0] - s * r[:, 1], s * r[:, 0] + c * r[:, 1]], axis=-1)
+        else:
+            turn = np.stack([-phi * r[:, 1], phi * r[:, 0]], axis=-1)
+        return d[:, :2] + turn  # type: ignore[no-any-return]
 
 
 def shapes(model: Any) -> Shapes:
@@ -243,7 +245,8 @@ def polygon_problem(vertices: Sequence[Sequence[float]], tolerance: Optional[flo
     sense = 1.0 if winding > 0 else -1.0
     for i in np.flatnonzero(turning):
         if cross[i] * sense < 0:
-            return f"is not convex: it turns the other way at vertex {int(i)} {_point(p[i])} (a block is a convex polygon)"
+            return (f"is not convex: it turns the other way at vertex {int(i)} {_point(p[i])} (a block is a convex "
+                    "polygon)")
     return None
 
 

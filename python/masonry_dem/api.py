@@ -251,8 +251,8 @@ def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dic
     :data:`masonry_dem.case.CERTIFICATE_KEYS`; None for the other methods); title when given. With ``model`` also: blocks and interfaces
     (counts, as in the result file), base_index, top_index, block_rects ((n_all, 4) [x0, y0, x1, y1] m: each
     block's bounding box, the block itself for a rectangle), block_polygons (every block's vertices [[x, y], ...] m,
-    counter-clockwise), weights [N], interface_blocks ((m, 2) a, b), interface_geometry ((m, 5) x, y [m], nx, ny, l [m]),
-    interface_family. Non-finite numbers become None.
+    counter-clockwise), weights [N], interface_blocks ((m, 2) a, b), interface_geometry ((m, 5) x, y [m], nx, ny,
+    l [m]), interface_family. Non-finite numbers become None.
 
     The results of a 3D wall (``Results.dimension`` 3, a :class:`masonry_dem.Model3D`) have the same keys with
     ``"dimension": 3``: displacements and mechanism (n_all, 6) ux, uy, uz [m], rx, ry, rz [rad] (the mechanism's

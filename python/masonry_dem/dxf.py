@@ -189,7 +189,9 @@ def _read(
     scale = UNITS[unit]
     layers = _layers(layer)
     noun = "rectangle" if shape is _rectangle else "polygon"
-    found, seen, skipped = [], {}, {}  # type: List[List[Tuple[float, float]]], Dict[Tuple[Any, ...], str], Dict[str, int]
+    found: List[List[Tuple[float, float]]] = []
+    seen: Dict[Tuple[Any, ...], str] = {}
+    skipped: Dict[str, int] = {}
     for entity in doc.modelspace():
         kind = entity.dxftype()
         if layers is not None and entity.dxf.layer.casefold() not in layers:

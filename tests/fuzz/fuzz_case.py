@@ -135,9 +135,10 @@ def structured_case(fdp: "atheris.FuzzedDataProvider") -> str:
             tables["geometry"]["blocks"] = blocks
             if fdp.ConsumeBool():  # polygons too: a gable on some blocks, or a wedge beside them
                 rise = fdp.PickValueInList([1.0, 0.5, 1e-9, 1e6, -0.5, 0.0])
+                on = blocks[: fdp.ConsumeIntInRange(1, 3)]
                 tables["geometry"]["polygons"] = [
                     [[x0, y1], [x1, y1], [(x0 + x1) / 2, y1 + rise]] if fdp.ConsumeBool()
-                    else [[x1, y0], [x1 + rise, y0], [x1, y1]] for x0, y0, x1, y1 in blocks[: fdp.ConsumeIntInRange(1, 3)]
+                    else [[x1, y0], [x1 + rise, y0], [x1, y1]] for x0, y0, x1, y1 in on
                 ]
     for _ in range(fdp.ConsumeIntInRange(0, 8)):
         path = fdp.PickValueInList(sorted(KEYS))

@@ -306,7 +306,8 @@ POLYGON_CASE = """format = 1
         ("polygons = [[[0, 0], [1, 0], [1, 1], [0.9, 0.5], [0, 1]]]", "geometry.polygons[0]",
          "geometry.polygons[0]: is not convex: it turns the other way at vertex 3 (0.9, 0.5) (a block is a convex "
          "polygon)"),
-        ("polygons = [[[0, 0], [1, 1], [1, 0], [0, 1]]]", "geometry.polygons[0]", "geometry.polygons[0]: crosses itself"),
+        ("polygons = [[[0, 0], [1, 1], [1, 0], [0, 1]]]", "geometry.polygons[0]",
+         "geometry.polygons[0]: crosses itself"),
         ("polygons = [[[0, 0], [1, 0], [2, 0]]]", "geometry.polygons[0]",
          "geometry.polygons[0]: has all its vertices on a line"),
         ("polygons = [[[0, 0], [1, 0], [1, 0], [0, 1]]]", "geometry.polygons[0]",
@@ -423,7 +424,8 @@ def test_drawing_outlines_refused(tmp_path: Path, add, problem: str) -> None:
         read_dxf_polygons(path)
     case = tmp_path / "case.toml"
     case.write_text('format = 1\n[geometry]\ndxf = "arch.dxf"\n')
-    with pytest.raises(md.InputError, match=r"geometry\.dxf: .*arch\.dxf: (LWPOLYLINE|POLYLINE) \(handle \w+\)") as info:
+    outline = r"geometry\.dxf: .*arch\.dxf: (LWPOLYLINE|POLYLINE) \(handle \w+\)"
+    with pytest.raises(md.InputError, match=outline) as info:
         md.load_case(case)
     assert info.value.key == "geometry.dxf"
 
@@ -467,7 +469,8 @@ def test_a_block_overturning_turns_about_its_toe() -> None:
     found = hinges(model, results.mechanism)
     assert len(found) == 1 and found[0].end == "right" and found[0].point.tolist() == [b, 0.0]
     assert describe_hinges(model, results) == "1: the right end of a base joint at (0.40, 0.00) m"
-    assert "\n  hinges:              1: the right end of a base joint at (0.40, 0.00) m\n" in summary("b", model, results)
+    line = "\n  hinges:              1: the right end of a base joint at (0.40, 0.00) m\n"
+    assert line in summary("b", model, results)
     # pushed the other way (the block's motion mirrored): the left end
     mirrored = results.mechanism * [-1.0, 1.0, -1.0]
     assert [(h.end, h.point.tolist()) for h in hinges(model, mirrored)] == [("left", [0.0, 0.0])]

@@ -101,9 +101,9 @@ def _draw_blocks(
     moving: Optional[np.ndarray] = None,
     undeformed: bool = True,
 ) -> None:
-    """The blocks moved by ``scale`` * ``motion`` ((n_all, 3): u1, u2 [m], phi [rad]; None: at rest), filled; the base and the
-    supports (the fixed blocks) hatched where they are; the top beam grey; wall blocks orange where ``moving`` is set,
-    else beige. With ``undeformed`` the undeformed outlines are drawn dashed over the fills."""
+    """The blocks moved by ``scale`` * ``motion`` ((n_all, 3): u1, u2 [m], phi [rad]; None: at rest), filled; the
+    base and the supports (the fixed blocks) hatched where they are; the top beam grey; wall blocks orange where
+    ``moving`` is set, else beige. With ``undeformed`` the undeformed outlines are drawn dashed over the fills."""
     blocks = shapes(model)
     beam = model.top_index
     fixed = set(fixed_blocks(model))
