@@ -12,7 +12,7 @@ Lengths in m, rotations in rad (counter-clockwise positive). No matplotlib, no m
 from __future__ import annotations
 
 import math
-from typing import Any, List, Optional, Sequence
+from typing import Any, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -205,49 +205,84 @@ def moved_vertices(vertices: Any, motion: Sequence[float], scale: float, centroi
 
 
 def polygon_problem(vertices: Sequence[Sequence[float]], tolerance: Optional[float] = None) -> Optional[str]:
-    """What is wrong with an outline as a block, or None: fewer than 3 vertices, a vertex repeating the one before,
-    all vertices on a line, an outline that crosses itself, or a concave one (the message names the vertex, from 0,
-    and its coordinates). A last vertex equal to the first closes the outline and is not counted. ``tolerance`` [m]:
-    how far a vertex may lie from the line through its neighbours and still be on it (default :data:`REL_TOL` times
-    the outline's size). Either orientation is a block."""
+    """What is wrong with an outline as a block, or None; the core's rules and words (its ``Polygon::checked``), for
+    the messages that name the block by its key or its drawing's handle before any model is built.
+
+    A vertex within ``tolerance`` [m] of the one before it is the same vertex (the last and the first too), and a
+    vertex within it of the line through its neighbours is on a straight side (default: :data:`REL_TOL` times the
+    outline's size). Refused: fewer than 3 vertices, or fewer than 3 distinct; all on one line; an outline that turns
+    back on itself, turns the other way at a corner (not convex) or winds round more than once (crosses itself); the
+    message names the vertex by its index as given (from 0) and its coordinates. Either orientation is a block."""
     p = np.asarray(vertices, dtype=np.float64).reshape(-1, 2)
+    if len(p) < 3:
+        return f"{len(p)} vertices: a block needs at least 3"
     # in units of the outline's size about its first vertex: the products below neither overflow nor underflow
     with np.errstate(over="ignore"):
-        size = float(np.abs(p - p[0]).max()) if len(p) else 0.0
+        size = float(np.abs(p - p[0]).max())
     if not math.isfinite(size):
         return f"spans more than a float holds: {_points(p)}"
     scale = size if size > 0 else 1.0
-    q = (p - p[0]) / scale if len(p) else p
+    q = [((x - p[0, 0]) / scale, (y - p[0, 1]) / scale) for x, y in p]
     tol = REL_TOL if tolerance is None else float(tolerance) / scale
-    if len(q) > 1 and np.all(np.abs(q[-1] - q[0]) <= tol):
-        p, q = p[:-1], q[:-1]
-    if len(q) < 3:
-        return f"has {len(q)} vertices: a block has at least 3"
-    for i in range(len(q)):
-        if np.all(np.abs(q[i] - q[i - 1]) <= tol):
-            return f"vertex {i} {_point(p[i])} repeats vertex {(i - 1) % len(q)}"
-    edges = np.roll(q, -1, axis=0) - q  # edge i from vertex i to vertex i + 1
-    before = np.roll(edges, 1, axis=0)  # the edge into vertex i
-    cross = before[:, 0] * edges[:, 1] - before[:, 1] * edges[:, 0]
-    chord = np.hypot(*(before + edges).T)
-    # the distance of vertex i from the line through its neighbours: |cross| / |chord|
-    turning = np.abs(cross) > tol * np.maximum(chord, 1e-300)
-    if not np.any(turning):
-        return f"has all its vertices on a line: {_points(p)}"
-    back = ~turning & ((before * edges).sum(axis=1) < 0)
-    if np.any(back):
-        i = int(np.flatnonzero(back)[0])
-        return f"turns back on itself at vertex {i} {_point(p[i])}"
-    angles = np.arctan2(cross, (before * edges).sum(axis=1))
-    winding = float(angles[turning].sum()) / (2.0 * math.pi)
-    if abs(abs(winding) - 1.0) > 1e-6:
-        return f"crosses itself: a block is a simple outline, got {_points(p)}"
-    sense = 1.0 if winding > 0 else -1.0
-    for i in np.flatnonzero(turning):
-        if cross[i] * sense < 0:
-            return (f"is not convex: it turns the other way at vertex {int(i)} {_point(p[i])} (a block is a convex "
-                    "polygon)")
+    idx: List[int] = []  # the distinct vertices, as indices into the vertices given
+    for k in range(len(q)):
+        if not idx or _dist(q[idx[-1]], q[k]) > tol:
+            idx.append(k)
+    while len(idx) > 1 and _dist(q[idx[0]], q[idx[-1]]) <= tol:
+        idx.pop()
+    if len(idx) < 3:
+        return f"fewer than 3 distinct vertices ({len(idx)} of the {len(q)} given)"
+    far = max(idx, key=lambda k: _dist(q[k], q[idx[0]]))
+    u, length = _sub(q[far], q[idx[0]]), _dist(q[far], q[idx[0]])
+    if all(abs(_cross(u, _sub(q[k], q[idx[0]]))) / length <= tol for k in idx):
+        return "all its vertices lie on one line: it has no area"
+    if sum(_cross(q[idx[k]], q[idx[(k + 1) % len(idx)]]) for k in range(len(idx))) < 0:
+        idx.reverse()  # counter-clockwise
+    at = lambda k: f"vertex {k} {_point(p[k])}"  # noqa: E731
+    # each vertex within tol of the line through its neighbours is on a straight side, unless the outline turns back
+    # there; a vertex where it turns clockwise is a re-entrant corner
+    pos = unchanged = 0
+    while unchanged < len(idx) and len(idx) >= 3:
+        m = len(idx)
+        a, b, c = q[idx[(pos + m - 1) % m]], q[idx[pos]], q[idx[(pos + 1) % m]]
+        off = _cross(_sub(b, a), _sub(c, a)) / _dist(c, a)
+        if abs(off) <= tol:
+            if _dot(_sub(b, a), _sub(c, b)) < 0:
+                return f"{at(idx[pos])} turns the outline back on itself"
+            idx.pop(pos)
+            pos %= len(idx)
+            unchanged = 0
+        elif off < 0:
+            return (f"{at(idx[pos])} is a re-entrant corner: the outline is not convex or crosses itself (a concave "
+                    "stone is given as convex parts)")
+        else:
+            pos = (pos + 1) % m
+            unchanged += 1
+    turned, m = 0.0, len(idx)
+    for pos in range(m):
+        a, b, c = q[idx[pos]], q[idx[(pos + 1) % m]], q[idx[(pos + 2) % m]]
+        e, f = _sub(b, a), _sub(c, b)
+        turned += math.atan2(_cross(e, f), _dot(e, f))
+        if turned > 2.0 * math.pi * (1.0 + 1e-9):
+            return (f"the outline winds round past its start at {at(idx[(pos + 1) % m])}: it crosses itself (a block "
+                    "is one convex polygon)")
     return None
+
+
+def _sub(a: Sequence[float], b: Sequence[float]) -> Tuple[float, float]:
+    return a[0] - b[0], a[1] - b[1]
+
+
+def _cross(a: Sequence[float], b: Sequence[float]) -> float:
+    return a[0] * b[1] - a[1] * b[0]
+
+
+def _dot(a: Sequence[float], b: Sequence[float]) -> float:
+    return a[0] * b[0] + a[1] * b[1]
+
+
+def _dist(a: Sequence[float], b: Sequence[float]) -> float:
+    return math.hypot(a[0] - b[0], a[1] - b[1])
 
 
 def _point(p: np.ndarray) -> str:

@@ -215,16 +215,20 @@ def test_to_dict_gives_every_block_s_polygon() -> None:
 @pytest.mark.parametrize(
     "vertices, problem",
     [
-        ([[0, 0], [1, 0]], "has 2 vertices: a block has at least 3"),
-        ([[0, 0], [1, 0], [1, 0], [0, 1]], "vertex 2 (1, 0) repeats vertex 1"),
-        ([[0, 0], [1, 0], [2, 0]], "has all its vertices on a line: (0, 0), (1, 0), (2, 0)"),
-        ([[0, 0], [2, 0], [1, 0], [1, 1]], "turns back on itself at vertex 1 (2, 0)"),
-        ([[0, 0], [1, 1], [1, 0], [0, 1]], "crosses itself"),
+        ([[0, 0], [1, 0]], "2 vertices: a block needs at least 3"),
+        ([[0, 0], [1, 0], [1, 1e-12], [0, 0]], "fewer than 3 distinct vertices (2 of the 4 given)"),
+        ([[0, 0], [1, 0], [2, 0]], "all its vertices lie on one line: it has no area"),
+        ([[0, 0], [2, 0], [1, 0], [1, 1]], "vertex 1 (2, 0) turns the outline back on itself"),
+        ([[0, 0], [1, 1], [1, 0], [0, 1]], "vertex 1 (1, 1) is a re-entrant corner: the outline is not convex or "
+                                           "crosses itself"),
         ([[0, 0], [2, 0], [2, 2], [1, 1], [0, 2]],
-         "is not convex: it turns the other way at vertex 3 (1, 1) (a block is a convex polygon)"),
-        ([[0, 2], [1, 1], [2, 2], [2, 0], [0, 0]], "is not convex: it turns the other way at vertex 1 (1, 1)"),
+         "vertex 3 (1, 1) is a re-entrant corner: the outline is not convex or crosses itself (a concave stone is "
+         "given as convex parts)"),
+        ([[0, 2], [1, 1], [2, 2], [2, 0], [0, 0]], "vertex 1 (1, 1) is a re-entrant corner"),
         # a pentagram: every turn the same way, twice round
-        ([[0, 1], [0.588, -0.809], [-0.951, 0.309], [0.951, 0.309], [-0.588, -0.809]], "crosses itself"),
+        ([[0, 1], [0.588, -0.809], [-0.951, 0.309], [0.951, 0.309], [-0.588, -0.809]],
+         "the outline winds round past its start at vertex 1 (0.588, -0.809): it crosses itself (a block is one convex "
+         "polygon)"),
     ],
 )
 def test_outlines_refused(vertices: list, problem: str) -> None:
@@ -236,6 +240,7 @@ def test_outlines_accepted() -> None:
     assert polygon_problem(TRAPEZOID) is None
     assert polygon_problem(TRAPEZOID[::-1]) is None  # clockwise
     assert polygon_problem(TRAPEZOID + TRAPEZOID[:1]) is None  # closed by its first vertex again
+    assert polygon_problem([[0, 0], [1, 0], [1, 0], [0, 1]]) is None  # a vertex given twice is one vertex
     assert polygon_problem([[0, 0], [1, 0], [2, 0], [2, 1], [0, 1]]) is None  # a vertex on an edge
     assert polygon_problem([[0, 0], [1, 1e-12], [2, 0], [2, 1], [0, 1]]) is None  # within the tolerance
     assert polygon_problem([[0, 0], [1, -1e-3], [2, 0], [2, 1], [0, 1]]) is None  # convex, barely
@@ -302,20 +307,20 @@ POLYGON_CASE = """format = 1
         ('polygons = [[[0, 0], [1, 0], [1, "1 kN"]]]', "geometry.polygons[0][2][1]",
          "'1 kN' is a force; geometry.polygons[0][2][1] is a length (m, cm, mm)"),
         ("polygons = [[[0, 0], [1, 0], [0.5, 1]], [[0, 0], [1, 0]]]", "geometry.polygons[1]",
-         "geometry.polygons[1]: has 2 vertices: a block has at least 3"),
+         "geometry.polygons[1]: 2 vertices: a block needs at least 3"),
         ("polygons = [[[0, 0], [1, 0], [1, 1], [0.9, 0.5], [0, 1]]]", "geometry.polygons[0]",
-         "geometry.polygons[0]: is not convex: it turns the other way at vertex 3 (0.9, 0.5) (a block is a convex "
-         "polygon)"),
+         "geometry.polygons[0]: vertex 3 (0.9, 0.5) is a re-entrant corner: the outline is not convex or crosses "
+         "itself (a concave stone is given as convex parts)"),
         ("polygons = [[[0, 0], [1, 1], [1, 0], [0, 1]]]", "geometry.polygons[0]",
-         "geometry.polygons[0]: crosses itself"),
+         "geometry.polygons[0]: vertex 1 (1, 1) is a re-entrant corner"),
         ("polygons = [[[0, 0], [1, 0], [2, 0]]]", "geometry.polygons[0]",
-         "geometry.polygons[0]: has all its vertices on a line"),
-        ("polygons = [[[0, 0], [1, 0], [1, 0], [0, 1]]]", "geometry.polygons[0]",
-         "geometry.polygons[0]: vertex 2 (1, 0) repeats vertex 1"),
+         "geometry.polygons[0]: all its vertices lie on one line: it has no area"),
+        ("polygons = [[[0, 0], [1, 0], [1, 0], [0, 0]]]", "geometry.polygons[0]",
+         "geometry.polygons[0]: fewer than 3 distinct vertices (2 of the 4 given)"),
         ("polygons = [[[0, 0], [1, 0], [0, 1]]]\nsupports = []", "geometry.supports",
          "geometry.supports: expected at least one support"),
         ("blocks = [[0, 0, 1, 1]]\nsupports = [[[1, 0], [2, 0], [1.5, 0], [1.5, 1]]]", "geometry.supports[0]",
-         "geometry.supports[0]: turns back on itself at vertex 1 (2, 0)"),
+         "geometry.supports[0]: vertex 1 (2, 0) turns the outline back on itself"),
         ("boxes = [[0, 0, 0, 1, 1, 1]]\nsupports = [[[1, 0], [2, 0], [1.5, 1]]]", "geometry.supports",
          "geometry.supports: are polygons of a wall in the plane"),
         ("polygons = [[[0, 0], [1, 0], [0, 1]]]\ndxf = \"wall.dxf\"", None,
@@ -349,8 +354,9 @@ def test_a_polygon_refusal_from_the_command_line(tmp_path: Path) -> None:
     proc = subprocess.run([sys.executable, "-m", "masonry_dem", "run", str(path)], capture_output=True, text=True,
                           timeout=120)
     assert proc.returncode == 2 and "Traceback" not in proc.stderr
-    assert proc.stderr.strip() == (f"masonry-dem: error: {path}: geometry.polygons[0]: is not convex: it turns the "
-                                   "other way at vertex 3 (1, 1) (a block is a convex polygon)")
+    assert proc.stderr.strip() == (f"masonry-dem: error: {path}: geometry.polygons[0]: vertex 3 (1, 1) is a "
+                                   "re-entrant corner: the outline is not convex or crosses itself (a concave stone is "
+                                   "given as convex parts)")
 
 
 # --------------------------------------------------------------------------------------------------
@@ -411,8 +417,10 @@ def test_convex_outlines_of_a_drawing_are_polygon_blocks(tmp_path: Path) -> None
                                         dxfattribs={"layer": "0"}).vertices[1].dxf.set("bulge", 0.3),
          r"has arcs \(bulges\)"),
         (lambda msp: msp.add_lwpolyline([(0, 0), (400, 0), (400, 400), (200, 300), (0, 400)], close=True),
-         r"is not convex: it turns the other way at vertex 3 \(200, 300\) \(a block is a convex polygon\) \[mm\]"),
-        (lambda msp: msp.add_lwpolyline([(0, 0), (400, 175), (400, 0), (0, 175)], close=True), "crosses itself"),
+         r"vertex 3 \(200, 300\) is a re-entrant corner: the outline is not convex or crosses itself \(a concave "
+         r"stone is given as convex parts\) \[mm\]"),
+        (lambda msp: msp.add_lwpolyline([(0, 0), (400, 175), (400, 0), (0, 175)], close=True),
+         r"vertex 1 \(400, 175\) is a re-entrant corner: the outline is not convex or crosses itself"),
         (lambda msp: msp.add_lwpolyline([(0, 0), (400, 0), (400, 175), (0, 175)]), "is not closed"),
     ],
 )
