@@ -251,6 +251,19 @@ def generate_blocks(kind: str, geometry: Mapping[str, Any], source: str) -> Bloc
         raise _in_file(exc, source) from exc  # the core names the key (geometry.<kind>.<key>)
 
 
+def generate_arch(arguments: Mapping[str, Any], source: str) -> Dict[str, Any]:
+    """The arch of a checked [geometry.arch] (the core's generator ``arch``, the arguments given; None: left out):
+    {"blocks": the voussoirs then the piers' blocks, "supports": the abutments, "intrados", "extrados": the joints'
+    ends along each}, each a list of vertices or points [x, y] [m]. The generator's refusals (of a rise that does not
+    fit the span, abutments and piers both, ...), which name the key, get the file name in front."""
+    try:
+        made = _core.arch(**{key: value for key, value in arguments.items() if value is not None})
+    except MasonryError as exc:
+        raise _in_file(exc, source) from exc
+    return {key: [np.asarray(p, dtype=np.float64).tolist() for p in made[key]] for key in
+            ("blocks", "supports", "intrados", "extrados")}
+
+
 @dataclass
 class Case:
     """One wall and one analysis, as read from a case file.

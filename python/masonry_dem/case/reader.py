@@ -36,6 +36,7 @@ from .mapping import (
     GroundMotionParameters,
     ModelParameters,
     TimeHistoryParameters,
+    generate_arch,
     generate_blocks,
 )
 from .table import FORMAT, _got, _non_negative, _positive, _short, _Table
@@ -51,7 +52,7 @@ TOP_KEYS = (
     "format", "title", "geometry", "base", "top", "joints", "loads", "analysis", "reference", "ground_motion",
     "time_history",
 )
-GEOMETRY_KINDS = ("running_bond", "pattern", "blocks", "dxf", "polygons")
+GEOMETRY_KINDS = ("running_bond", "pattern", "blocks", "dxf", "polygons", "arch")
 # The forms of a wall of rectangles, which the messages name first
 RECTANGLE_KINDS = GEOMETRY_KINDS[:4]
 # Keys of [geometry] that may stand beside a wall's form: the supports (fixed blocks: abutments, springers, an
@@ -62,6 +63,11 @@ GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner")
 # Keys of [geometry] besides its kinds: the wall's, and the options of a drawing (dxf)
 DXF_KEYS = ("dxf_layer", "dxf_units")
 RUNNING_BOND_KEYS = ("block_length", "block_height", "courses", "height", "length", "first_course", "openings")
+#: The kinds of arch of [geometry.arch] (the core's generator, ``masonry_dem.arch``).
+ARCH_KINDS = ("semicircular", "segmental", "pointed", "elliptical")
+# Keys of [geometry.arch]: its lengths [m], then its counts
+ARCH_LENGTHS = ("span", "radius", "rise", "thickness", "abutment_width", "abutment_height", "pier_width", "pier_height")
+ARCH_COUNTS = ("voussoirs", "pier_courses")
 # Keys of the optional [ground_motion] table: a record file (and a vertical one), or a built-in pulse.
 GROUND_MOTION_KEYS = (
     "file", "units", "scale", "vertical_file", "vertical_scale", "pulse", "amplitude", "amplitude_g", "period",
@@ -214,7 +220,16 @@ def case_from_dict(
     gravity = wall["gravity"] if wall["gravity"] is not None else float(CORE_DEFAULTS["gravity"])
     motion = _ground_motion(top.table("ground_motion", GROUND_MOTION_KEYS), gravity, base_dir)
     # All keys are valid: map them onto the core (the generators may still refuse a geometry).
-    blocks = generate_blocks(kind, geometry, source)
+    arch = None
+    if kind == "arch":
+        arch = generate_arch(geometry, source)
+        blocks: Any = arch.pop("blocks")
+        if arch["supports"]:  # the abutments, then the supports [geometry] gives
+            wall["supports"] = arch["supports"] + (wall["supports"] or [])
+            if wall["base"] is None:
+                wall["base"] = False
+    else:
+        blocks = generate_blocks(kind, geometry, source)
     return Case(
         title=title,
         model=ModelParameters(blocks=blocks, **wall),
@@ -224,6 +239,7 @@ def case_from_dict(
         reference=reference,
         ground_motion=motion,
         time_history=time_history,
+        arch=arch,
     )
 
 
@@ -250,7 +266,8 @@ def _geometry(top: _Table, base_dir: Optional[PathLike]) -> Tuple[str, Dict[str,
     forms = [k for k in given if not (k == "polygons" and "blocks" in given)]  # blocks and polygons: one list
     if not forms:
         raise geo.error(f"[geometry] needs exactly one of {', '.join(RECTANGLE_KINDS)}; none is given (polygons "
-                        f"also make a wall, alone or beside blocks; a 3D wall: one of {', '.join(GEOMETRY_KINDS_3D)})")
+                        "also make a wall, alone or beside blocks, and [geometry.arch] an arch; a 3D wall: one of "
+                        f"{', '.join(GEOMETRY_KINDS_3D)})")
     if len(forms) > 1:
         # the forms of a wall of rectangles, of polygons too, or with a 3D one given, all of them
         kinds = ", ".join(RECTANGLE_KINDS if all(k in RECTANGLE_KINDS for k in given) else GEOMETRY_KINDS
@@ -277,7 +294,8 @@ def _geometry(top: _Table, base_dir: Optional[PathLike]) -> Tuple[str, Dict[str,
     }
     if kind == "dxf":
         return "blocks", _drawing(geo, base_dir), wall
-    read = {"running_bond": _running_bond, "pattern": _pattern, "blocks": _block_list, "polygons": _block_list}[kind]
+    read = {"running_bond": _running_bond, "pattern": _pattern, "blocks": _block_list, "polygons": _block_list,
+            "arch": _arch}[kind]
     return "blocks" if kind == "polygons" else kind, read(geo), wall
 
 
@@ -298,6 +316,21 @@ def _running_bond(geo: _Table) -> Dict[str, Any]:
         first_course=rb.string("first_course", None, ("half", "full")),
         openings=rb.rectangles("openings", required=False),
     )
+
+
+def _arch(geo: _Table) -> Dict[str, Any]:
+    """[geometry.arch]: the arguments of the core's arch generator (``masonry_dem.arch``), each checked alone (a
+    length > 0, with its unit or not; a count >= 1; the kind); how they go together (span or radius, abutments or
+    piers, a rise that fits) is the generator's to check, its messages naming the key."""
+    table = geo.table("arch", ("kind",) + ARCH_LENGTHS + ARCH_COUNTS)
+    assert table is not None
+    args: Dict[str, Any] = {"kind": table.string("kind", choices=ARCH_KINDS)}
+    args.update({key: table.number(key, None, _positive, unit="length") for key in ARCH_LENGTHS})
+    args.update({key: table.integer(key, None, minimum=1) for key in ARCH_COUNTS})
+    for key in ("thickness", "voussoirs"):
+        if args[key] is None:
+            raise table.missing(key)
+    return args
 
 
 def _pattern(geo: _Table) -> Dict[str, Any]:
