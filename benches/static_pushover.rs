@@ -2,7 +2,7 @@
 //! joints, mu = 0.65), associative and non-associative. `cargo bench`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use masonry_dem::geometry::{running_bond, FirstCourse, RunningBond};
+use masonry_dem::geometry::{polygons, running_bond, FirstCourse, RunningBond};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::model::{JointLaws, Model, ModelSpec};
 use masonry_dem::static_solver::{solve, StaticOptions};
@@ -25,7 +25,7 @@ fn wall2(dilatancy: f64) -> Model {
         ..JointLaw::default()
     };
     Model::new(ModelSpec {
-        blocks,
+        blocks: polygons(blocks),
         gravity: 10.0,
         joints: JointLaws::uniform(law),
         ..ModelSpec::default()

@@ -8,7 +8,7 @@
 //!     cargo run --release --example static_targets -- 0 1       # dilatancy 0, 1 run each
 //!     cargo run --release --example static_targets -- 0 1 dynamic  # and the explicit solver beside it
 use masonry_dem::explicit::{self, ExplicitOptions};
-use masonry_dem::geometry::{pattern, running_bond, FirstCourse, Rect, RunningBond};
+use masonry_dem::geometry::{polygons, pattern, running_bond, FirstCourse, Rect, RunningBond};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::limit::{limit_analysis, LimitOptions};
 use masonry_dem::model::{JointLaws, Model, ModelSpec};
@@ -16,7 +16,7 @@ use masonry_dem::static_solver::{solve, StaticOptions};
 
 fn model(blocks: Vec<Rect>, mu: f64, psi: f64, g: f64) -> Model {
     let law = JointLaw { friction: mu, dilatancy: psi, normal_stiffness: 1e10, shear_stiffness: 1e10, ..JointLaw::default() };
-    Model::new(ModelSpec { blocks, gravity: g, joints: JointLaws::uniform(law), ..ModelSpec::default() }).expect("model")
+    Model::new(ModelSpec { blocks: polygons(blocks), gravity: g, joints: JointLaws::uniform(law), ..ModelSpec::default() }).expect("model")
 }
 
 fn ferris(courses: usize) -> Vec<Rect> {

@@ -6,7 +6,7 @@
 //! use masonry_dem::geometry::Rect;
 //! use masonry_dem::model::{Model, ModelSpec};
 //! // one block of 0.4 x 0.2 m on the base
-//! let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2)], ..ModelSpec::default() }).unwrap();
+//! let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2).into()], ..ModelSpec::default() }).unwrap();
 //! assert_eq!(lambda_scale(&model), 1.0); // lambda is a seismic coefficient
 //! let control = Control::from_keys(Some("displacement"), Some(0.01), Control::Load).unwrap();
 //! assert_eq!(control, Control::Displacement { max_displacement: 0.01 });

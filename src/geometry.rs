@@ -1,5 +1,6 @@
 //! Axis-aligned rectangular blocks and the wall generators of the case format
-//! (running bond with openings, pattern rows, explicit lists).
+//! (running bond with openings, pattern rows, explicit lists), and the arches of voussoirs
+//! ([`arch`]: convex polygons).
 //!
 //! ```
 //! use masonry_dem::geometry::{running_bond, RunningBond, FirstCourse};
@@ -29,9 +30,11 @@
 
 use crate::error::{positive, Error, Result};
 
+mod arch;
 mod fit;
 mod openings;
 
+pub use arch::{arch, Arch, ArchGeometry, ArchKind, Springing, MAX_VOUSSOIRS};
 pub use fit::{courses_for_height, CourseFit, MIN_LAST_COURSE};
 pub use openings::{cut_openings, MIN_PART};
 
@@ -105,12 +108,17 @@ impl Rect {
 
 /// A coordinate for messages: as written for ordinary numbers (`0.175`), in exponent notation
 /// beyond 1e15 or below 1e-4 (`1e300`, not three hundred digits).
-fn coord(v: f64) -> String {
+pub(crate) fn coord(v: f64) -> String {
     if v == 0.0 || !v.is_finite() || (1e-4..1e15).contains(&v.abs()) {
         format!("{v}")
     } else {
         format!("{v:e}")
     }
+}
+
+/// The rectangles as polygons, the blocks of a [`crate::model::ModelSpec`].
+pub fn polygons(rects: Vec<Rect>) -> Vec<crate::shape::Polygon> {
+    rects.into_iter().map(Into::into).collect()
 }
 
 /// Which block starts the lowest course of a running bond.
@@ -148,8 +156,7 @@ pub struct RunningBond {
     pub openings: Vec<Rect>,
 }
 
-/// Relative tolerance on coordinates used by the generators and the contact search.
-pub(crate) const REL_TOL: f64 = 1e-9;
+pub(crate) use crate::shape::REL_TOL;
 
 /// The blocks of a running-bond wall standing on y = 0 and starting at x = 0.
 /// Courses alternate between a half-block start and a whole-block start; a block that

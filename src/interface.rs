@@ -1,33 +1,39 @@
 //! Interface detection (every shared stretch of boundary between two blocks) and the
 //! kinematics of an interface: generalized jumps `e = (dN, dT, dphi) = B q`.
 //!
-//! Detection hashes the blocks into a uniform grid and tests only pairs that share a cell,
-//! so it costs O(n) for walls of similar blocks, never O(n^2).
+//! Detection asks the shape layer ([`crate::shape`]) for the pairs of blocks that may touch (a
+//! grid over their bounding boxes, O(n) for walls of similar blocks, never O(n^2)) and for where
+//! they touch (facing collinear edges), then orients each interface and names its family.
 //!
 //! ```
 //! use masonry_dem::geometry::Rect;
 //! use masonry_dem::interface::{detect, BlockKind, Family};
+//! use masonry_dem::shape::Polygon;
 //! // two blocks side by side on a third
 //! let rects = [Rect::new(0.0, 0.0, 0.4, 0.2), Rect::new(0.4, 0.0, 0.8, 0.2), Rect::new(0.0, -0.2, 0.8, 0.0)];
+//! let polygons: Vec<Polygon> = rects.iter().map(|&r| Polygon::from(r)).collect();
+//! let centroids: Vec<[f64; 2]> = rects.iter().map(|r| r.centroid()).collect();
 //! let kinds = [BlockKind::Wall, BlockKind::Wall, BlockKind::Base];
-//! let found = detect(&rects, &kinds, |i| format!("block {i}"), &mut || true).unwrap();
+//! let found = detect(&polygons, &centroids, &kinds, [0.0, -1.0], 1e-8, |i| format!("block {i}"), &mut || true).unwrap();
 //! let families: Vec<Family> = found.iter().map(|it| it.family).collect();
 //! assert_eq!(families, [Family::Head, Family::Base, Family::Base]);
 //! assert_eq!(found[0].l, 0.2); // the shared edge [m]
 //! ```
 
 use crate::error::{Error, Result};
-use crate::geometry::{Rect, REL_TOL};
-use std::collections::HashMap;
+use crate::shape::grid::for_each_pair;
+use crate::shape::{contacts, penetration, Aabb, Polygon};
 
 /// Which kind of joint an interface is; each family may have its own joint law.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Family {
-    /// Horizontal joint between two wall blocks.
+    /// Joint between two wall blocks whose normal is within 45 degrees of the vertical (a
+    /// horizontal joint between rectangles).
     Bed,
-    /// Vertical joint between two wall blocks.
+    /// Joint between two wall blocks whose normal is more than 45 degrees from the vertical (a
+    /// vertical joint between rectangles).
     Head,
-    /// Joint between a wall block and the base.
+    /// Joint between a wall block and the base or a support.
     Base,
     /// Joint between a wall block and the top beam.
     Top,
@@ -48,13 +54,14 @@ impl Family {
 /// One interface: blocks `a` and `b`, the normal `n` points from `a` to `b`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Interface {
-    /// The first block (below, or to the left).
+    /// The first block (below, or behind along the horizontal live load: to the left).
     pub a: usize,
-    /// The second block (above, or to the right).
+    /// The second block (above, or ahead: to the right).
     pub b: usize,
     /// Centroid of the shared segment \[m\].
     pub c: [f64; 2],
-    /// Unit normal from a to b: (0, 1) for a bed joint, (1, 0) for a head joint.
+    /// Unit normal from a to b: (0, 1) for a bed joint between rectangles, (1, 0) for a head
+    /// joint.
     pub n: [f64; 2],
     /// Length of the shared segment \[m\].
     pub l: f64,
@@ -209,166 +216,97 @@ impl LargeKinematics {
 pub enum BlockKind {
     /// A block of the wall.
     Wall,
+    /// A fixed block given by the user: an abutment, a springer, an inclined plane.
+    Support,
     /// The fixed foundation.
     Base,
     /// The rigid top beam.
     Top,
 }
 
-/// Blocks (or grid cells) between two polls of [`detect`]: about 10 ms of work.
-pub(crate) const POLL_EVERY: usize = 16_384;
+impl BlockKind {
+    /// The word for the kind in Python ("wall", "support", "base", "top").
+    pub fn name(self) -> &'static str {
+        match self {
+            BlockKind::Wall => "wall",
+            BlockKind::Support => "support",
+            BlockKind::Base => "base",
+            BlockKind::Top => "top",
+        }
+    }
+}
 
-/// Finds every pair of blocks that share a stretch of boundary of positive length, and refuses
-/// overlapping blocks (naming both). `names` gives the label of a block for messages; `poll` is
-/// called every few thousand blocks or cells, and `false` stops the search
-/// ([`Error::Interrupted`]).
+pub(crate) use crate::shape::grid::POLL_EVERY;
+
+/// Finds every stretch of boundary of positive length that two blocks share (an edge of each,
+/// facing on one line within `tol` \[m\], see [`contacts`]), and refuses blocks that overlap by
+/// more than `tol` (naming both). The blocks are checked polygons with their centroids
+/// (`centroids`, for the `B` matrices) and kinds; `gravity` is the direction of gravity (a unit
+/// vector), which says which way is up:
+///
+/// - each interface's normal points from `a` to `b`, `a` the block below (the normal has an
+///   upward component), or the one behind along the horizontal live load (`gravity` turned by
+///   +90 degrees: +x when gravity is -y) when the normal is horizontal;
+/// - its family is `Base` with the base or a support, `Top` with the top beam, else `Bed` when
+///   the normal is within 45 degrees of the vertical (a tie goes to bed) and `Head` otherwise;
+/// - two blocks neither of which is a wall block (a support on the base, the base against the
+///   top beam) make no interface.
+///
+/// `name` gives the label of a block for messages; `poll` is called every few thousand blocks
+/// or grid cells, and `false` stops the search ([`Error::Interrupted`]). The interfaces are
+/// sorted by their blocks (a, b).
+#[allow(clippy::too_many_arguments)]
 pub fn detect(
-    rects: &[Rect],
+    polygons: &[Polygon],
+    centroids: &[[f64; 2]],
     kinds: &[BlockKind],
+    gravity: [f64; 2],
+    tol: f64,
     name: impl Fn(usize) -> String,
     poll: &mut dyn FnMut() -> bool,
 ) -> Result<Vec<Interface>> {
-    if rects.is_empty() {
-        return Ok(vec![]);
-    }
-    let grid = Grid::new(rects, poll)?;
+    let boxes: Vec<Aabb<2>> = polygons.iter().map(Polygon::aabb).collect();
+    let up = [-gravity[0], -gravity[1]];
+    let side = [-gravity[1], gravity[0]];
     let mut out = Vec::new();
-    let mut keys: Vec<_> = grid.cells.keys().copied().collect();
-    keys.sort_unstable();
-    for (visited, key) in keys.into_iter().enumerate() {
-        if visited % POLL_EVERY == POLL_EVERY - 1 && !poll() {
-            return Err(Error::Interrupted);
-        }
-        let members = &grid.cells[&key];
-        for (p, &i) in members.iter().enumerate() {
-            for &j in &members[p + 1..] {
-                match grid.pair(rects, kinds, i, j, key) {
-                    Pair::None => {}
-                    Pair::Joint(it) => out.push(it),
-                    Pair::Overlap(w, h) => {
-                        return Err(Error::input(format!(
-                            "{} and {} overlap (intersection {:.6} x {:.6} m)",
-                            name(i.min(j)),
-                            name(i.max(j)),
-                            w,
-                            h
-                        )))
-                    }
-                }
+    for_each_pair(&boxes, tol, poll, |i, j| {
+        let (pi, pj) = (&polygons[i], &polygons[j]);
+        if boxes[i].overlap(&boxes[j]).iter().all(|&w| w > tol) {
+            // an overlap is refused in the first cell that sees the pair, before anything else
+            let depth = penetration(pi, pj);
+            if depth > tol {
+                return Err(Error::input(format!(
+                    "{} and {} overlap (by {depth:.6} m, more than the contact tolerance {tol:.1e} m)",
+                    name(i),
+                    name(j)
+                )));
             }
         }
-    }
+        if kinds[i] != BlockKind::Wall && kinds[j] != BlockKind::Wall {
+            return Ok(()); // base against top beam, a support on the base: not a joint of the wall
+        }
+        for c in contacts(pi, pj, tol) {
+            let (n_up, n_side) = (dot(c.n, up), dot(c.n, side));
+            let (a, b, n) = if n_up > 0.0 || (n_up == 0.0 && n_side > 0.0) {
+                (i, j, c.n)
+            } else {
+                (j, i, [-c.n[0], -c.n[1]])
+            };
+            let family = match (kinds[a], kinds[b]) {
+                (BlockKind::Base | BlockKind::Support, _) | (_, BlockKind::Base | BlockKind::Support) => Family::Base,
+                (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
+                _ if n_up.abs() >= n_side.abs() => Family::Bed,
+                _ => Family::Head,
+            };
+            let centre = [0.5 * (c.ends[0][0] + c.ends[1][0]), 0.5 * (c.ends[0][1] + c.ends[1][1])];
+            out.push(Interface::new(a, b, centroids[a], centroids[b], centre, n, c.length, family));
+        }
+        Ok(())
+    })?;
     out.sort_by_key(|p| (p.a, p.b));
     Ok(out)
 }
 
-/// What two blocks of a cell are to each other.
-enum Pair {
-    /// Apart, touching at a corner, seen in another cell, or base against top beam.
-    None,
-    /// Their intersection \[m\] x \[m\]: refused.
-    Overlap(f64, f64),
-    Joint(Interface),
-}
-
-/// A uniform grid of square cells over the blocks, each cell listing the blocks within `tol`
-/// of it.
-struct Grid {
-    xmin: f64,
-    ymin: f64,
-    cell: f64,
-    tol: f64,
-    cells: HashMap<(i64, i64), Vec<usize>>,
-}
-
-impl Grid {
-    fn new(rects: &[Rect], poll: &mut dyn FnMut() -> bool) -> Result<Grid> {
-        let (mut xmin, mut ymin, mut xmax, mut ymax) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
-        let (mut sw, mut sh) = (0.0, 0.0);
-        for r in rects {
-            xmin = xmin.min(r.x0);
-            ymin = ymin.min(r.y0);
-            xmax = xmax.max(r.x1);
-            ymax = ymax.max(r.y1);
-            sw += r.width();
-            sh += r.height();
-        }
-        let scale = (xmax - xmin).max(ymax - ymin);
-        let tol = REL_TOL * scale.max(1.0) * 10.0;
-        let nb = rects.len() as f64;
-        // Cells about twice the mean block size: a few blocks a cell.
-        let mut cell = (2.0 * (sw / nb).max(sh / nb)).max(tol * 10.0);
-        // A few blocks much larger than the mean (a long lintel over thousands of small blocks)
-        // would each cover millions of cells: coarsen the grid until it holds O(n) entries, so
-        // that memory stays linear in the number of blocks whatever their sizes.
-        let entries = |cell: f64| -> f64 {
-            let span = |a: f64, b: f64| ((b + tol) / cell).floor() - ((a - tol) / cell).floor() + 1.0;
-            rects
-                .iter()
-                .map(|r| span(r.x0 - xmin, r.x1 - xmin) * span(r.y0 - ymin, r.y1 - ymin))
-                .sum()
-        };
-        while entries(cell) > 16.0 * nb + 1024.0 {
-            cell *= 2.0;
-        }
-        let mut grid = Grid { xmin, ymin, cell, tol, cells: HashMap::with_capacity(rects.len()) };
-        for (i, r) in rects.iter().enumerate() {
-            if i % POLL_EVERY == POLL_EVERY - 1 && !poll() {
-                return Err(Error::Interrupted);
-            }
-            for cx in grid.cell_of(r.x0 - tol, xmin)..=grid.cell_of(r.x1 + tol, xmin) {
-                for cy in grid.cell_of(r.y0 - tol, ymin)..=grid.cell_of(r.y1 + tol, ymin) {
-                    grid.cells.entry((cx, cy)).or_default().push(i);
-                }
-            }
-        }
-        Ok(grid)
-    }
-
-    fn cell_of(&self, x: f64, lo: f64) -> i64 {
-        ((x - lo) / self.cell).floor() as i64
-    }
-
-    /// Blocks `i` and `j`, both in cell `key`: their joint if they share a segment and this
-    /// cell holds the lower-left corner of their intersection (each pair is seen once).
-    fn pair(&self, rects: &[Rect], kinds: &[BlockKind], i: usize, j: usize, key: (i64, i64)) -> Pair {
-        let tol = self.tol;
-        let (ri, rj) = (&rects[i], &rects[j]);
-        let ix0 = ri.x0.max(rj.x0);
-        let ix1 = ri.x1.min(rj.x1);
-        let iy0 = ri.y0.max(rj.y0);
-        let iy1 = ri.y1.min(rj.y1);
-        let (w, h) = (ix1 - ix0, iy1 - iy0);
-        if w < -tol || h < -tol {
-            return Pair::None; // apart
-        }
-        // an overlap is refused in the first cell that sees it (before the test below: all the
-        // copies of one block would otherwise be paired in every cell they share)
-        if w > tol && h > tol {
-            return Pair::Overlap(w, h);
-        }
-        if (self.cell_of(ix0, self.xmin), self.cell_of(iy0, self.ymin)) != key {
-            return Pair::None;
-        }
-        let (lo, hi, c, n, l) = if w > tol {
-            // horizontal contact: the lower block is a
-            let (lo, hi) = if ri.y0 < rj.y0 { (i, j) } else { (j, i) };
-            (lo, hi, [0.5 * (ix0 + ix1), 0.5 * (rects[lo].y1 + rects[hi].y0)], [0.0, 1.0], w)
-        } else if h > tol {
-            let (lo, hi) = if ri.x0 < rj.x0 { (i, j) } else { (j, i) };
-            (lo, hi, [0.5 * (rects[lo].x1 + rects[hi].x0), 0.5 * (iy0 + iy1)], [1.0, 0.0], h)
-        } else {
-            return Pair::None; // corner touch only
-        };
-        let family = match (kinds[lo], kinds[hi]) {
-            (BlockKind::Base, _) | (_, BlockKind::Base) => Family::Base,
-            (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
-            _ if n[1] == 1.0 => Family::Bed,
-            _ => Family::Head,
-        };
-        if kinds[lo] != BlockKind::Wall && kinds[hi] != BlockKind::Wall {
-            return Pair::None; // base against top beam: not a joint of the wall
-        }
-        Pair::Joint(Interface::new(lo, hi, rects[lo].centroid(), rects[hi].centroid(), c, n, l, family))
-    }
+fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
 }

@@ -29,7 +29,7 @@
 //! use masonry_dem::modal::modes;
 //! use masonry_dem::model::{Model, ModelSpec};
 //! // one block 0.4 x 1.0 m on its base (thickness 1 m, 1000 kg/m3, kN = 1e10 N/m3)
-//! let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 1.0)], ..ModelSpec::default() }).unwrap();
+//! let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 1.0).into()], ..ModelSpec::default() }).unwrap();
 //! let m = modes(&model, 3, None).unwrap();
 //! // the vertical mode: omega^2 = kN b s / m
 //! let vertical = (1e10 * 0.4 * 1.0 / 400.0_f64).sqrt();

@@ -8,7 +8,7 @@
 //! use masonry_dem::model::{JointLaws, Model, ModelSpec};
 //! // one block of 0.4 x 0.2 m on the base, its joint dry and associative
 //! let law = JointLaw { friction: 0.65, dilatancy: 0.65, ..JointLaw::default() };
-//! let blocks = vec![Rect::new(0.0, 0.0, 0.4, 0.2)];
+//! let blocks = vec![Rect::new(0.0, 0.0, 0.4, 0.2).into()];
 //! let model = Model::new(ModelSpec { blocks: blocks.clone(), joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
 //! let r = limit_analysis(&model, &LimitOptions::default()).unwrap();
 //! assert_eq!(r.status, Status::Collapse);

@@ -1,6 +1,6 @@
 //! Bad input is refused with a message that names the key or block.
 
-use masonry_dem::geometry::{pattern, running_bond, FirstCourse, Rect, RunningBond};
+use masonry_dem::geometry::{polygons, pattern, running_bond, FirstCourse, Rect, RunningBond};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::model::{JointLaws, LiveLoad, Model, ModelSpec};
 use masonry_dem::static_solver::{solve, StaticOptions};
@@ -17,7 +17,7 @@ fn refused(spec: ModelSpec, needle: &str) {
 
 fn one(blocks: Vec<Rect>) -> ModelSpec {
     ModelSpec {
-        blocks,
+        blocks: polygons(blocks),
         ..ModelSpec::default()
     }
 }
@@ -348,7 +348,7 @@ fn driving_an_unloaded_top_beam_is_refused() {
     use masonry_dem::model::TopBeam;
     use masonry_dem::static_solver::Control;
     let model = Model::new(ModelSpec {
-        blocks: vec![Rect::new(0.0, 0.0, 0.5, 0.5)],
+        blocks: vec![Rect::new(0.0, 0.0, 0.5, 0.5).into()],
         top: Some(TopBeam { rotation_fixed: false, force: [0.0, 0.0], vertical_held: false }),
         ..ModelSpec::default()
     })
@@ -360,7 +360,7 @@ fn driving_an_unloaded_top_beam_is_refused() {
     }
     // with a force on it the beam is tied to the wall by friction: accepted
     let loaded = Model::new(ModelSpec {
-        blocks: vec![Rect::new(0.0, 0.0, 0.5, 0.5)],
+        blocks: vec![Rect::new(0.0, 0.0, 0.5, 0.5).into()],
         top: Some(TopBeam { rotation_fixed: false, force: [0.0, -1000.0], vertical_held: false }),
         ..ModelSpec::default()
     })

@@ -6,6 +6,7 @@
 mod common;
 
 use common::{blocks_model, dry, ferris_wall5_blocks, lact3_blocks};
+use masonry_dem::geometry::polygons;
 use masonry_dem::limit::{limit_analysis, LimitOptions};
 use masonry_dem::model::{Model, ModelSpec, JointLaws};
 use masonry_dem::results::Status;
@@ -30,7 +31,7 @@ fn reaches_limit(model: &Model, rel: f64, what: &str) {
 fn lact3_associative_reaches_the_collapse() {
     let mu = 0.487733;
     let model = Model::new(ModelSpec {
-        blocks: lact3_blocks(),
+        blocks: polygons(lact3_blocks()),
         gravity: 9.81,
         joints: JointLaws::uniform(dry(mu, mu, 1e10)),
         ..ModelSpec::default()

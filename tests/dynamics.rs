@@ -23,7 +23,7 @@ fn block_slides_down_an_incline_at_g_sin_minus_mu_cos() {
     // load tan(beta) * W along it
     let (g, beta, mu) = (9.81_f64, 25f64.to_radians(), 0.3);
     let m = Model::new(ModelSpec {
-        blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175)],
+        blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175).into()],
         gravity: g * beta.cos(),
         joints: JointLaws::uniform(dry(mu, 0.0, 1e10)),
         ..ModelSpec::default()
@@ -40,7 +40,7 @@ fn housner_block_reaches_its_first_impact_at_0_3578_s() {
     // 0.4 x 1.0 m block released from rest at half its slenderness angle, tilted about its left toe
     let (b, hgt) = (0.4_f64, 1.0_f64);
     let m = Model::new(ModelSpec {
-        blocks: vec![Rect::new(0.0, 0.0, b, hgt)],
+        blocks: vec![Rect::new(0.0, 0.0, b, hgt).into()],
         gravity: 9.81,
         joints: JointLaws::uniform(JointLaw { friction: 2.0, dilatancy: 0.0, ..dry(2.0, 0.0, 1e10) }),
         ..ModelSpec::default()
@@ -97,7 +97,7 @@ fn base_acceleration_beyond_friction_makes_the_block_slide_back() {
     // block accelerates at -(a_g - mu g)
     let (g, mu, ag) = (9.81_f64, 0.3, 0.5 * 9.81);
     let m = Model::new(ModelSpec {
-        blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175)],
+        blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175).into()],
         gravity: g,
         joints: JointLaws::uniform(dry(mu, 0.0, 1e10)),
         ..ModelSpec::default()
@@ -121,7 +121,7 @@ fn rayleigh_damping_gives_its_damping_ratio_to_a_mode() {
     // omega and 3% at 3 omega: the logarithmic decrement of the vibration gives 5%
     let (g, k) = (9.81, 1e10);
     let law = JointLaw { restitution: 1.0, ..dry(0.65, 0.0, k) };
-    let m = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175)], gravity: g, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
+    let m = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175).into()], gravity: g, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
     let mass = 0.4 * 0.175 * 1000.0;
     let omega = (k * 0.4 / mass).sqrt();
     let (alpha, beta) = masonry_dem::modal::rayleigh_coefficients(omega, 3.0 * omega, 0.05, 0.03).unwrap();

@@ -7,7 +7,7 @@ mod common;
 use common::dry;
 use masonry_dem::error::Error;
 use masonry_dem::geometry::{
-    courses_for_height, cut_openings, running_bond, FirstCourse, Rect, RunningBond, MIN_PART,
+    courses_for_height, cut_openings, polygons, running_bond, FirstCourse, Rect, RunningBond, MIN_PART,
 };
 use masonry_dem::limit::{limit_analysis, LimitOptions};
 use masonry_dem::model::{JointLaws, Model, ModelSpec};
@@ -326,7 +326,7 @@ fn a_wall_with_a_window_has_its_interfaces_and_a_collapse_multiplier() {
     let blocks = running_bond(&wall(vec![WINDOW])).unwrap();
     let law = dry(0.6, 0.6, 1e9);
     let model = Model::new(ModelSpec {
-        blocks: blocks.clone(),
+        blocks: polygons(blocks.clone()),
         gravity: 10.0,
         joints: JointLaws::uniform(law),
         ..ModelSpec::default()
@@ -363,7 +363,7 @@ fn a_wall_with_a_window_has_its_interfaces_and_a_collapse_multiplier() {
     assert!(res.collapse_multiplier.is_finite() && res.collapse_multiplier > 0.0);
     // the window weakens the wall
     let solid = Model::new(ModelSpec {
-        blocks: running_bond(&wall(vec![])).unwrap(),
+        blocks: polygons(running_bond(&wall(vec![])).unwrap()),
         gravity: 10.0,
         joints: JointLaws::uniform(law),
         ..ModelSpec::default()

@@ -2,7 +2,7 @@
 //! monitor (at most every 0.1 s, `Progress::poll`), so a long step can be stopped; a stop is
 //! final, and polls are not steps.
 
-use masonry_dem::geometry::{running_bond, FirstCourse, RunningBond};
+use masonry_dem::geometry::{polygons, running_bond, FirstCourse, RunningBond};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::model::{JointLaws, Model, ModelSpec};
 use masonry_dem::results::Status;
@@ -23,7 +23,7 @@ fn a_poll_that_says_stop_stops_the_static_solver() {
     })
     .unwrap();
     let law = JointLaw { friction: 0.65, dilatancy: 0.65, ..JointLaw::default() };
-    let model = Model::new(ModelSpec { blocks, gravity: 10.0, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
+    let model = Model::new(ModelSpec { blocks: polygons(blocks), gravity: 10.0, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
     let (mut steps, mut polls) = (0, 0);
     let r = solve_with(&model, &StaticOptions::default(), &mut |p| {
         if p.poll {

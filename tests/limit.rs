@@ -93,7 +93,7 @@ fn a_block_wedged_under_a_held_beam_is_unbounded() {
     // sliding or rocking would lift the beam, held vertically: no mechanism at any lambda
     use masonry_dem::model::{JointLaws, Model, ModelSpec, TopBeam};
     let m = Model::new(ModelSpec {
-        blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175)],
+        blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175).into()],
         gravity: 10.0,
         joints: JointLaws::uniform(dry(0.65, 0.65, 1e10)),
         top: Some(TopBeam { rotation_fixed: true, force: [0.0, -1000.0], vertical_held: true }),

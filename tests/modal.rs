@@ -5,7 +5,7 @@
 
 mod common;
 use common::*;
-use masonry_dem::geometry::{running_bond, FirstCourse, Rect, RunningBond};
+use masonry_dem::geometry::{polygons, running_bond, FirstCourse, Rect, RunningBond};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::modal::{modes, rayleigh_coefficients, Modes};
 use masonry_dem::model::{JointLaws, Model, ModelSpec};
@@ -24,7 +24,7 @@ fn law() -> JointLaw {
 
 /// Blocks b x h stacked `count` high on a fixed base.
 fn stack(b: f64, h: f64, count: usize) -> Model {
-    let blocks = (0..count).map(|k| Rect::new(0.0, k as f64 * h, b, (k + 1) as f64 * h)).collect();
+    let blocks = (0..count).map(|k| Rect::new(0.0, k as f64 * h, b, (k + 1) as f64 * h)).map(Into::into).collect();
     Model::new(ModelSpec { blocks, thickness: THICKNESS, density: DENSITY, joints: JointLaws::uniform(law()), ..ModelSpec::default() }).unwrap()
 }
 
@@ -148,7 +148,7 @@ fn wall(courses: usize, length: f64) -> Model {
         openings: vec![],
     })
     .unwrap();
-    Model::new(ModelSpec { blocks, joints: JointLaws::uniform(law()), ..ModelSpec::default() }).unwrap()
+    Model::new(ModelSpec { blocks: polygons(blocks), joints: JointLaws::uniform(law()), ..ModelSpec::default() }).unwrap()
 }
 
 #[test]
@@ -189,7 +189,7 @@ fn two_identical_piers_give_each_frequency_twice() {
     // two separate piers of 8 stacked blocks on one base: every frequency is double; the 6
     // lowest from a basis smaller than the 48 dofs
     let pier = |x: f64| (0..8).map(move |k| Rect::new(x, 0.25 * k as f64, x + 0.4, 0.25 * (k + 1) as f64));
-    let blocks = pier(0.0).chain(pier(1.0)).collect();
+    let blocks = pier(0.0).chain(pier(1.0)).map(Into::into).collect();
     let model = Model::new(ModelSpec { blocks, joints: JointLaws::uniform(law()), ..ModelSpec::default() }).unwrap();
     let m = modes(&model, 6, None).unwrap();
     assert!(m.basis < 48, "basis {}", m.basis);
@@ -205,7 +205,7 @@ fn a_free_floating_pair_has_three_rigid_modes_and_the_relative_vertical_one() {
     // default shift, slightly negative, keeps K - shift M positive definite
     let (b, h) = (0.4, 0.5);
     let blocks = vec![Rect::new(0.0, 0.0, b, h), Rect::new(0.0, h, b, 2.0 * h)];
-    let model = Model::new(ModelSpec { blocks, base: false, joints: JointLaws::uniform(law()), ..ModelSpec::default() }).unwrap();
+    let model = Model::new(ModelSpec { blocks: polygons(blocks), base: false, joints: JointLaws::uniform(law()), ..ModelSpec::default() }).unwrap();
     let m = modes(&model, 6, None).unwrap();
     for k in 0..3 {
         assert!(m.angular[k] < 1e-4 * m.angular[3], "rigid mode {k}: omega = {:e} rad/s", m.angular[k]);

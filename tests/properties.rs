@@ -18,7 +18,7 @@
 mod common;
 
 use masonry_dem::explicit::{self, ExplicitOptions};
-use masonry_dem::geometry::{running_bond, FirstCourse, Rect, RunningBond};
+use masonry_dem::geometry::{polygons, running_bond, FirstCourse, Rect, RunningBond};
 use masonry_dem::joint::{admissible, return_map, JointLaw, MapOptions, JointState, Section, SLIDING};
 use masonry_dem::model::{JointLaws, Model, ModelSpec, TopBeam};
 use masonry_dem::results::{Results, Status};
@@ -393,7 +393,7 @@ struct WallCase {
 impl WallCase {
     fn model(&self) -> Model {
         Model::new(ModelSpec {
-            blocks: self.blocks.clone(),
+            blocks: polygons(self.blocks.clone()),
             gravity: 10.0,
             joints: JointLaws::uniform(self.law),
             top: self.top,

@@ -15,7 +15,7 @@ const H: f64 = 1.0;
 /// The 0.4 x 1.0 m block on a rigid base, friction high enough that it rocks without sliding.
 fn block(restitution: f64) -> Model {
     Model::new(ModelSpec {
-        blocks: vec![Rect::new(0.0, 0.0, B, H)],
+        blocks: vec![Rect::new(0.0, 0.0, B, H).into()],
         gravity: G,
         joints: JointLaws::uniform(JointLaw { friction: 2.0, restitution, ..JointLaw::default() }),
         ..ModelSpec::default()

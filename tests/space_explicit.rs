@@ -101,7 +101,7 @@ fn a_box_rocks_freely_about_its_edge_as_the_plane_block_does() {
     let r = [b / 2.0, h / 2.0];
     let (c, s) = (th0.cos(), th0.sin());
     let d = [c * r[0] - s * r[1] - r[0], s * r[0] + c * r[1] - r[1]];
-    let plane = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, b, h)], gravity: g, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
+    let plane = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, b, h).into()], gravity: g, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap();
     let opts = DynamicOptions { duration: 1.7, initial_displacement: Some(vec![[d[0], d[1], th0], [0.0; 3]]), record: Recording::Every(1), ..Default::default() };
     let h2 = simulate(&plane, &opts).unwrap();
     let phi: Vec<f64> = (0..h2.times.len()).map(|k| h2.displacement(k)[0][2]).collect();

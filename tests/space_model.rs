@@ -2,7 +2,7 @@
 //! corners, the contacts against the 2D detection of the same wall, the loads' totals and the
 //! openings.
 
-use masonry_dem::geometry::{running_bond, FirstCourse, RunningBond, MIN_PART};
+use masonry_dem::geometry::{polygons, running_bond, FirstCourse, RunningBond, MIN_PART};
 use masonry_dem::interface::Family;
 use masonry_dem::model::{Model, ModelSpec};
 use masonry_dem::space::{corner, cut_openings, running_bond_3d, u_wall, Box3, LiveLoad3, Model3, ModelSpec3};
@@ -68,7 +68,7 @@ fn a_leaf_has_the_contacts_of_its_2d_wall() {
         openings: vec![],
     })
     .unwrap();
-    let flat = Model::new(ModelSpec { blocks: rects.clone(), thickness: t, ..ModelSpec::default() }).unwrap();
+    let flat = Model::new(ModelSpec { blocks: polygons(rects.clone()), thickness: t, ..ModelSpec::default() }).unwrap();
     let blocks = running_bond_3d(length, courses as f64 * 0.175, t, 0.4, 0.175, 0.2).unwrap();
     assert_eq!(blocks.len(), rects.len());
     for (b, r) in blocks.iter().zip(&rects) {

@@ -4,7 +4,7 @@
 
 mod common;
 use common::*;
-use masonry_dem::geometry::Rect;
+use masonry_dem::geometry::{polygons, Rect};
 use masonry_dem::model::{JointLaws, LiveLoad, Model, ModelSpec, TopBeam};
 use masonry_dem::results::Status;
 use masonry_dem::static_solver::{solve, Control, StaticOptions};
@@ -12,7 +12,7 @@ use masonry_dem::static_solver::{solve, Control, StaticOptions};
 fn model() -> Model {
     let laws = JointLaws { default: dry(0.5, 0.0, 1e10), top: Some(dry(10.0, 0.0, 1e10)), ..JointLaws::default() };
     Model::new(ModelSpec {
-        blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2)],
+        blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2).into()],
         gravity: 10.0,
         top: Some(TopBeam { rotation_fixed: true, force: [0.0, -10_000.0], vertical_held: false }),
         live: LiveLoad::TopHorizontal,
@@ -50,7 +50,7 @@ fn displacement_control_of_the_beam() {
 fn dilatant(vertical_held: bool) -> Model {
     let laws = JointLaws { default: dry(0.5, 0.5, 1e10), top: Some(dry(10.0, 0.0, 1e10)), ..JointLaws::default() };
     Model::new(ModelSpec {
-        blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2)],
+        blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2).into()],
         gravity: 10.0,
         top: Some(TopBeam { rotation_fixed: true, force: [0.0, -10_000.0], vertical_held }),
         live: LiveLoad::TopHorizontal,
@@ -127,7 +127,7 @@ fn load_steps_grow_again_after_an_early_cut() {
         r(0.75, 1.0, 1.0, 1.5),
     ];
     let m = Model::new(ModelSpec {
-        blocks,
+        blocks: polygons(blocks),
         gravity: 9.81,
         top: Some(TopBeam { rotation_fixed: false, force: [0.0, -1.0], vertical_held: false }),
         joints: JointLaws::uniform(dry(0.5, 0.0, 1e10)),

@@ -3,7 +3,7 @@
 //! `#[path]` in each (a directory, so that cargo does not take it for a benchmark). Not every includer uses every function.
 #![allow(dead_code)]
 
-use masonry_dem::geometry::{running_bond, FirstCourse, RunningBond};
+use masonry_dem::geometry::{polygons, running_bond, FirstCourse, RunningBond};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::model::{JointLaws, ModelSpec};
 
@@ -20,7 +20,7 @@ pub fn spec(courses: usize, per_course: usize) -> ModelSpec {
         openings: vec![],
     })
     .expect("a valid running-bond wall");
-    ModelSpec { blocks, gravity: 10.0, ..ModelSpec::default() }
+    ModelSpec { blocks: polygons(blocks), gravity: 10.0, ..ModelSpec::default() }
 }
 
 /// A square wall (`courses` courses of `courses` blocks) of dry associative joints, mu = psi =

@@ -62,6 +62,7 @@ from ._core import (
     Results,
     TimeHistory,
     __version__,
+    arch,
 )
 from ._checked import Model, pattern, running_bond
 
@@ -121,6 +122,7 @@ __all__ = [
     "TimeHistory",
     "running_bond",
     "pattern",
+    "arch",
     "running_bond_3d",
     "u_wall",
     "corner_wall",

@@ -51,6 +51,42 @@ def pattern(block_length: float, block_height: float, rows: Sequence[Sequence[fl
     """Blocks [x0, y0, x1, y1] (shape (n, 4), m) from courses listed bottom to top; each entry is a
     length in units of block_length, a negative entry is a gap of that length."""
 
+class _ArchGeometry(TypedDict):
+    blocks: list[list[list[float]]]
+    supports: list[list[list[float]]]
+    intrados: list[list[float]]
+    extrados: list[list[float]]
+
+def arch(
+    kind: Literal["semicircular", "segmental", "pointed", "elliptical"],
+    thickness: float,
+    voussoirs: int,
+    span: Optional[float] = None,
+    radius: Optional[float] = None,
+    rise: Optional[float] = None,
+    abutment_width: Optional[float] = None,
+    abutment_height: Optional[float] = None,
+    pier_width: Optional[float] = None,
+    pier_height: Optional[float] = None,
+    pier_courses: Optional[int] = None,
+) -> _ArchGeometry:
+    """An arch of voussoirs, as a dict: "blocks" (the voussoirs left to right, then the piers' blocks, each a list of
+    vertices [x, y] counter-clockwise, m), "supports" (the two abutments, left and right; empty on piers), "intrados"
+    and "extrados" (the joints' ends along each, left to right, m). Model(blocks, supports=supports) is the arch.
+
+    kind: "semicircular", "segmental", "pointed" or "elliptical". The intrados springs from y = 0, symmetric about
+    x = 0. span: the intrados's clear span [m], or radius: the centreline's radius [m] (semicircular and segmental
+    only). rise: the intrados's rise [m] (segmental: less than its radius; pointed: at least span / 2; elliptical:
+    the vertical semi-axis). thickness: the ring's, along the joints [m]; voussoirs: their number (even for a pointed
+    arch: a joint at its crown).
+    Joints: radial on circular arcs (a pointed arch's crown joint vertical), normal to the intrados of an elliptical
+    arch (at equal steps of its parametric angle, the extrados the intrados offset by the thickness); the intrados and
+    extrados of each voussoir are straight chords between its joints' ends.
+    Springings: abutments (fixed supports; the default) out to abutment_width [m] from the intrados's springing point
+    (default: the springing joint's extent) and abutment_height [m] below it (default: the thickness); or piers of
+    wall blocks, pier_width [m] wide from the intrados's springing point and pier_height [m] from the ground to it,
+    in pier_courses courses (default 1: a single block), standing on the base."""
+
 def running_bond_3d(
     length: float,
     height: float,
@@ -110,9 +146,17 @@ def cut_openings_3d(boxes: npt.ArrayLike, openings: Sequence[Sequence[float]]) -
 class Model:
     """A wall of rigid blocks joined by zero-thickness Mohr-Coulomb interfaces.
 
-    blocks: (n, 4) array of axis-aligned rectangles [x0, y0, x1, y1] in m.
+    blocks: the wall's blocks [m]: an (n, 4) array of axis-aligned rectangles [x0, y0, x1, y1],
+        or a list whose items are each a rectangle [x0, y0, x1, y1] or a convex polygon (a list
+        of k >= 3 vertices [x, y], or a (k, 2) array, in either orientation). A concave stone is
+        given as convex parts.
     thickness: out-of-plane thickness [m]; density [kg/m3].
-    base: True puts a fixed rigid foundation under the lowest blocks, spanning the wall.
+    base: True puts a fixed rigid foundation under the lowest blocks, spanning the wall; None
+        (the default): True unless supports are given.
+    supports: fixed blocks (abutments, springers, an inclined plane) [m], as blocks: each a
+        polygon (or a rectangle); the wall's joints with them are of the "base" family.
+    gravity_direction: [gx, gy], the direction of gravity (made a unit vector), [0, -1] by
+        default; the horizontal live load acts along it turned by +90 degrees ([1, 0] by default).
     top_rotation: None (no top beam), "fixed" or "free": a rigid, weightless beam resting on the
         highest blocks and spanning the wall; top_force: dead force [Fx, Fy] on it [N].
     top_vertical: "free" (the vertical force on the beam stays top_force[1]; the beam may rise) or
@@ -125,7 +169,8 @@ class Model:
         first failure; both > 0: exponential softening). Missing keys of a family law fall back
         to "default"; missing keys of "default" fall back to 1e10, 1e10, 0.65, 0, 0, 0, 0, 0.
     gravity [m/s2]; live: "horizontal_weight" (lambda * W_i on every block towards +x) or
-        "top_horizontal" (lambda newtons on the top beam towards +x).
+        "top_horizontal" (lambda newtons on the top beam towards +x); +x: gravity_direction
+        turned by +90 degrees.
     Raises InputError naming the key, block or interface on bad input.
     """
 
@@ -141,6 +186,8 @@ class Model:
         gravity: Optional[float] = None,
         live: Optional[Literal["horizontal_weight", "top_horizontal"]] = None,
         top_vertical: Optional[Literal["free", "held"]] = None,
+        supports: Optional[Sequence[npt.ArrayLike]] = None,
+        gravity_direction: Optional[Sequence[float]] = None,
     ) -> None: ...
     @property
     def live(self) -> Literal["horizontal_weight", "top_horizontal"]:
@@ -152,7 +199,7 @@ class Model:
         """2: a wall in the plane (Model3D's is 3)."""
     @property
     def n_blocks(self) -> int:
-        """Number of wall blocks (base and top beam not counted)."""
+        """Number of wall blocks (supports, base and top beam not counted)."""
     @property
     def n_interfaces(self) -> int:
         """Number of interfaces (the joints between blocks, and with the base and the top beam)."""
@@ -167,10 +214,27 @@ class Model:
         """The block the solvers follow when no control block is given: the top beam if any, else the highest wall block at the right end."""
     @property
     def rects(self) -> FloatArray:
-        """(n_all, 4) rectangles of all blocks, wall blocks first, then base, then top beam."""
+        """(n_all, 4) bounding box [x0, y0, x1, y1] of every block [m] (a rectangle's is itself), wall
+        blocks first, then supports, then base, then top beam."""
+    @property
+    def polygons(self) -> list[FloatArray]:
+        """Every block's polygon [m], a (k_i, 2) array of vertices counter-clockwise from the lowest
+        (the leftmost of the lowest), in the order of rects: wall blocks, supports, base, top beam."""
+    @property
+    def centroids(self) -> FloatArray:
+        """(n_all, 2) centroid of every block [m], where its dofs are."""
+    @property
+    def block_kinds(self) -> list[Literal["wall", "support", "base", "top"]]:
+        """What each block is: "wall", "support", "base" or "top"."""
+    @property
+    def support_indices(self) -> list[int]:
+        """Indices of the supports (the fixed blocks given) among the blocks."""
+    @property
+    def gravity_direction(self) -> list[float]:
+        """[gx, gy]: the direction of gravity, a unit vector."""
     @property
     def weights(self) -> FloatArray:
-        """(n_all,) weight of each block [N] (0 for base and top beam)."""
+        """(n_all,) weight of each block [N] (0 for supports, base and top beam)."""
     @property
     def interface_blocks(self) -> IntArray:
         """(m, 2) block indices (a, b) of each interface; the normal points from a to b."""
@@ -179,7 +243,7 @@ class Model:
         """(m, 5): centroid x, y [m], normal nx, ny, length l [m]."""
     @property
     def interface_family(self) -> list[str]:
-        """Family of each interface: "bed", "head", "base" or "top"."""
+        """Family of each interface: "bed", "head", "base" (with the base or a support) or "top"."""
     def solve_static(
         self,
         control: Optional[Literal["load", "displacement"]] = None,

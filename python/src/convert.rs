@@ -1,8 +1,73 @@
-//! Conversions between Python values and the core's: rectangles, boxes, rows of three or six
-//! numbers (a block's dofs in the plane or in 3D), counts, damping and joint laws, each error
-//! naming the argument or key.
+//! Conversions between Python values and the core's: rectangles, polygons, boxes, rows of three
+//! or six numbers (a block's dofs in the plane or in 3D), counts, damping and joint laws, each
+//! error naming the argument or key.
 
 use crate::*;
+
+/// Blocks of the plane: an (n, 4) array of rectangles [x0, y0, x1, y1], or a list whose items
+/// are each a rectangle [x0, y0, x1, y1] or a polygon (k >= 3 vertices [x, y]: a list of rows
+/// or a (k, 2) array); a rectangle is checked as the core always has (x0 < x1, y0 < y1, named
+/// "block i [x0, y0, x1, y1]"), a polygon by the model. `what` names the argument.
+pub(crate) fn polygons_from(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Polygon>> {
+    let rect = |i: usize, r: &[f64]| -> PyResult<Polygon> {
+        let r = Rect::new(r[0], r[1], r[2], r[3]);
+        r.validate(&format!("block {i}")).map_err(to_py)?;
+        Ok(r.into())
+    };
+    if let Ok(a) = obj.extract::<PyReadonlyArray2<f64>>() {
+        let a = a.as_array();
+        if a.ncols() != 4 {
+            return Err(InputError::new_err(format!(
+                "{what}: an array of blocks has 4 columns [x0, y0, x1, y1], got shape ({}, {}) (give polygons as a list of vertex lists)",
+                a.nrows(),
+                a.ncols()
+            )));
+        }
+        return a.rows().into_iter().enumerate().map(|(i, r)| rect(i, &r.to_vec())).collect();
+    }
+    let items: Vec<Bound<'_, PyAny>> = obj
+        .extract()
+        .map_err(|_| InputError::new_err(format!("{what}: expected a list of blocks: [x0, y0, x1, y1] rows or lists of [x, y] vertices")))?;
+    items
+        .iter()
+        .enumerate()
+        .map(|(i, item)| {
+            if let Ok(r) = item.extract::<Vec<f64>>() {
+                return match r.len() {
+                    4 => rect(i, &r),
+                    n => Err(InputError::new_err(format!(
+                        "{what}[{i}]: expected 4 numbers [x0, y0, x1, y1] (or a list of [x, y] vertices), got {n}"
+                    ))),
+                };
+            }
+            let rows: Vec<Vec<f64>> = if let Ok(a) = item.extract::<PyReadonlyArray2<f64>>() {
+                a.as_array().rows().into_iter().map(|r| r.to_vec()).collect()
+            } else {
+                item.extract().map_err(|_| {
+                    InputError::new_err(format!(
+                        "{what}[{i}]: expected [x0, y0, x1, y1] or a list of [x, y] vertices of numbers"
+                    ))
+                })?
+            };
+            rows.iter()
+                .enumerate()
+                .map(|(k, v)| match v.as_slice() {
+                    &[x, y] => Ok([x, y]),
+                    _ => Err(InputError::new_err(format!(
+                        "{what}[{i}][{k}]: expected a vertex of 2 numbers [x, y], got {}",
+                        v.len()
+                    ))),
+                })
+                .collect::<PyResult<Vec<[f64; 2]>>>()
+                .map(Polygon::new)
+        })
+        .collect()
+}
+
+/// Each polygon's vertices as a (k, 2) array, in a list.
+pub(crate) fn polygons_to_py<'py>(py: Python<'py>, polygons: &[Polygon]) -> Vec<Bound<'py, PyArray2<f64>>> {
+    polygons.iter().map(|p| rows_of(py, p.vertices())).collect()
+}
 
 pub(crate) fn rects_from(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Rect>> {
     let rows: Vec<Vec<f64>> = if let Ok(a) = obj.extract::<PyReadonlyArray2<f64>>() {

@@ -3,15 +3,16 @@
 //! as KeyboardInterrupt with the partial results, panics caught.
 //!
 //! Here: the exceptions and the module. `convert` turns Python values into the core's, `walls`
-//! binds the wall generators, `model` the Model and its analyses, `space` the 3D Model3D with its
+//! binds the wall generators and the arch's, `model` the Model and its analyses, `space` the 3D Model3D with its
 //! generators and analyses (limit, explicit), `results` what they return (one Results and one
 //! TimeHistory for both dimensions),
 //! `run` runs an analysis in a thread of its own while Ctrl-C is watched.
 
 use masonry_dem::error::Error;
-use masonry_dem::geometry::{self, FirstCourse, Rect, RunningBond};
+use masonry_dem::geometry::{self, Arch, ArchKind, FirstCourse, Rect, RunningBond, Springing};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::model::{JointLaws, Model, ModelSpec, TopBeam};
+use masonry_dem::shape::Polygon;
 use masonry_dem::limit::{self, LimitOptions};
 use masonry_dem::results::{Results, Status};
 use masonry_dem::analysis::Control;
@@ -110,6 +111,8 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("thickness", spec.thickness)?;
     d.set_item("density", spec.density)?;
     d.set_item("base", spec.base)?;
+    d.set_item("supports", py.None())?;
+    d.set_item("gravity_direction", spec.gravity_direction.to_vec())?;
     d.set_item("top_rotation", py.None())?;
     d.set_item("top_force", TopBeam::DEFAULT_FORCE.to_vec())?;
     d.set_item("joints", py.None())?;
@@ -156,6 +159,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(running_bond, m)?)?;
     m.add_function(wrap_pyfunction!(pattern, m)?)?;
     m.add_function(wrap_pyfunction!(cut_openings, m)?)?;
+    m.add_function(wrap_pyfunction!(arch, m)?)?;
     m.add_function(wrap_pyfunction!(running_bond_3d, m)?)?;
     m.add_function(wrap_pyfunction!(u_wall, m)?)?;
     m.add_function(wrap_pyfunction!(corner_wall, m)?)?;

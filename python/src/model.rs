@@ -4,9 +4,17 @@ use crate::*;
 
 /// A wall of rigid blocks joined by zero-thickness Mohr-Coulomb interfaces.
 ///
-/// blocks: (n, 4) array of axis-aligned rectangles [x0, y0, x1, y1] in m.
+/// blocks: the wall's blocks [m]: an (n, 4) array of axis-aligned rectangles [x0, y0, x1, y1],
+///     or a list whose items are each a rectangle [x0, y0, x1, y1] or a convex polygon (a list
+///     of k >= 3 vertices [x, y], or a (k, 2) array, in either orientation). A concave stone is
+///     given as convex parts.
 /// thickness: out-of-plane thickness [m]; density [kg/m3].
-/// base: True puts a fixed rigid foundation under the lowest blocks, spanning the wall.
+/// base: True puts a fixed rigid foundation under the lowest blocks, spanning the wall; None
+///     (the default): True unless supports are given.
+/// supports: fixed blocks (abutments, springers, an inclined plane) [m], as blocks: each a
+///     polygon (or a rectangle); the wall's joints with them are of the "base" family.
+/// gravity_direction: [gx, gy], the direction of gravity (made a unit vector), [0, -1] by
+///     default; the horizontal live load acts along it turned by +90 degrees ([1, 0] by default).
 /// top_rotation: None (no top beam), "fixed" or "free": a rigid, weightless beam resting on the
 ///     highest blocks and spanning the wall; top_force: dead force [Fx, Fy] on it [N].
 /// top_vertical: "free" (the vertical force on the beam stays top_force[1]; the beam may rise) or
@@ -19,7 +27,8 @@ use crate::*;
 ///     first failure; both > 0: exponential softening). Missing keys of a family law fall back
 ///     to "default"; missing keys of "default" fall back to 1e10, 1e10, 0.65, 0, 0, 0, 0, 0.
 /// gravity [m/s2]; live: "horizontal_weight" (lambda * W_i on every block towards +x) or
-///     "top_horizontal" (lambda newtons on the top beam towards +x).
+///     "top_horizontal" (lambda newtons on the top beam towards +x); +x: gravity_direction
+///     turned by +90 degrees.
 /// Raises InputError naming the key, block or interface on bad input.
 #[pyclass(name = "Model", module = "masonry_dem._core", subclass)]
 pub(crate) struct PyModel {
@@ -29,7 +38,7 @@ pub(crate) struct PyModel {
 #[pymethods]
 impl PyModel {
     #[new]
-    #[pyo3(signature = (blocks, thickness=None, density=None, base=None, top_rotation=None, top_force=None, joints=None, gravity=None, live=None, top_vertical=None))]
+    #[pyo3(signature = (blocks, thickness=None, density=None, base=None, top_rotation=None, top_force=None, joints=None, gravity=None, live=None, top_vertical=None, supports=None, gravity_direction=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -43,17 +52,35 @@ impl PyModel {
         gravity: Option<f64>,
         live: Option<&str>,
         top_vertical: Option<&str>,
+        supports: Option<&Bound<'_, PyAny>>,
+        gravity_direction: Option<Vec<f64>>,
     ) -> PyResult<Self> {
         let d = ModelSpec::default();
         let top = TopBeam::from_keys(top_rotation, top_force.as_deref(), top_vertical).map_err(to_py)?;
+        let supports = match supports {
+            Some(s) if !s.is_none() => polygons_from(s, "supports")?,
+            _ => vec![],
+        };
+        let gravity_direction = match gravity_direction.as_deref() {
+            None => d.gravity_direction,
+            Some(&[x, y]) => [x, y],
+            Some(v) => {
+                return Err(InputError::new_err(format!(
+                    "gravity_direction: expected 2 numbers [gx, gy], got {}",
+                    v.len()
+                )))
+            }
+        };
         let spec = ModelSpec {
-            blocks: rects_from(blocks, "blocks")?,
+            blocks: polygons_from(blocks, "blocks")?,
+            base: base.unwrap_or(supports.is_empty()),
+            supports,
             thickness: thickness.unwrap_or(d.thickness),
             density: density.unwrap_or(d.density),
-            base: base.unwrap_or(d.base),
             top,
             joints: laws_from(joints)?,
             gravity: gravity.unwrap_or(d.gravity),
+            gravity_direction,
             live: live.map_or(Ok(d.live), str::parse).map_err(to_py)?,
         };
         // the GIL released (a million blocks take seconds), polling Ctrl-C in this thread
@@ -92,7 +119,7 @@ impl PyModel {
     fn dimension(&self) -> usize {
         2
     }
-    /// Number of wall blocks (base and top beam not counted).
+    /// Number of wall blocks (supports, base and top beam not counted).
     #[getter]
     fn n_blocks(&self) -> usize {
         self.inner.n_wall()
@@ -117,12 +144,39 @@ impl PyModel {
     fn default_control_block(&self) -> usize {
         self.inner.default_control_block()
     }
-    /// (n_all, 4) rectangles of all blocks, wall blocks first, then base, then top beam.
+    /// (n_all, 4) bounding box [x0, y0, x1, y1] of every block [m] (a rectangle's is itself), wall
+    /// blocks first, then supports, then base, then top beam.
     #[getter]
     fn rects<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        rects_to_py(py, self.inner.rects())
+        rects_to_py(py, &self.inner.rects())
     }
-    /// (n_all,) weight of each block [N] (0 for base and top beam).
+    /// Every block's polygon [m], a (k_i, 2) array of vertices counter-clockwise from the lowest
+    /// (the leftmost of the lowest), in the order of rects: wall blocks, supports, base, top beam.
+    #[getter]
+    fn polygons<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray2<f64>>> {
+        polygons_to_py(py, self.inner.polygons())
+    }
+    /// (n_all, 2) centroid of every block [m], where its dofs are.
+    #[getter]
+    fn centroids<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        rows_of(py, self.inner.centroids())
+    }
+    /// What each block is: "wall", "support", "base" or "top".
+    #[getter]
+    fn block_kinds(&self) -> Vec<&'static str> {
+        self.inner.kinds().iter().map(|k| k.name()).collect()
+    }
+    /// Indices of the supports (the fixed blocks given) among the blocks.
+    #[getter]
+    fn support_indices(&self) -> Vec<usize> {
+        self.inner.supports().collect()
+    }
+    /// [gx, gy]: the direction of gravity, a unit vector.
+    #[getter]
+    fn gravity_direction(&self) -> [f64; 2] {
+        self.inner.gravity_direction()
+    }
+    /// (n_all,) weight of each block [N] (0 for supports, base and top beam).
     #[getter]
     fn weights<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.weight().to_vec().into_pyarray(py)
@@ -148,7 +202,7 @@ impl PyModel {
             .unwrap()
             .into_pyarray(py)
     }
-    /// Family of each interface: "bed", "head", "base" or "top".
+    /// Family of each interface: "bed", "head", "base" (with the base or a support) or "top".
     #[getter]
     fn interface_family(&self) -> Vec<&'static str> {
         self.inner

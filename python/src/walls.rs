@@ -1,4 +1,4 @@
-//! The wall generators: `running_bond` and `pattern`.
+//! The wall generators: `running_bond` and `pattern`, and `arch`.
 
 use crate::*;
 
@@ -103,4 +103,63 @@ pub(crate) fn cut_openings<'py>(
     let snap = [geometry::MIN_PART * block_length, geometry::MIN_PART * block_height];
     let cut = guarded(|| geometry::cut_openings(blocks, &openings, snap, "geometry.running_bond.openings"))?;
     Ok(rects_to_py(py, &cut))
+}
+
+/// An arch of voussoirs, as a dict: "blocks" (the voussoirs left to right, then the piers' blocks, each a list of
+/// vertices [x, y] counter-clockwise, m), "supports" (the two abutments, left and right; empty on piers), "intrados"
+/// and "extrados" (the joints' ends along each, left to right, m). Model(blocks, supports=supports) is the arch.
+///
+/// kind: "semicircular", "segmental", "pointed" or "elliptical". The intrados springs from y = 0, symmetric about
+/// x = 0. span: the intrados's clear span [m], or radius: the centreline's radius [m] (semicircular and segmental
+/// only). rise: the intrados's rise [m] (segmental: less than its radius; pointed: at least span / 2; elliptical:
+/// the vertical semi-axis). thickness: the ring's, along the joints [m]; voussoirs: their number (even for a pointed
+/// arch: a joint at its crown).
+/// Joints: radial on circular arcs (a pointed arch's crown joint vertical), normal to the intrados of an elliptical
+/// arch (at equal steps of its parametric angle, the extrados the intrados offset by the thickness); the intrados and
+/// extrados of each voussoir are straight chords between its joints' ends.
+/// Springings: abutments (fixed supports; the default) out to abutment_width [m] from the intrados's springing point
+/// (default: the springing joint's extent) and abutment_height [m] below it (default: the thickness); or piers of
+/// wall blocks, pier_width [m] wide from the intrados's springing point and pier_height [m] from the ground to it,
+/// in pier_courses courses (default 1: a single block), standing on the base.
+#[pyfunction]
+#[pyo3(signature = (kind, thickness, voussoirs, span=None, radius=None, rise=None, abutment_width=None, abutment_height=None, pier_width=None, pier_height=None, pier_courses=None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn arch<'py>(
+    py: Python<'py>,
+    kind: &str,
+    thickness: f64,
+    voussoirs: i64,
+    span: Option<f64>,
+    radius: Option<f64>,
+    rise: Option<f64>,
+    abutment_width: Option<f64>,
+    abutment_height: Option<f64>,
+    pier_width: Option<f64>,
+    pier_height: Option<f64>,
+    pier_courses: Option<i64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let kind: ArchKind = kind.parse().map_err(to_py)?;
+    let voussoirs = count("geometry.arch.voussoirs", voussoirs, 1)?;
+    let piers = pier_width.is_some() || pier_height.is_some() || pier_courses.is_some();
+    let springing = match (piers, pier_width, pier_height) {
+        (false, _, _) => Springing::Abutments { width: abutment_width, height: abutment_height },
+        _ if abutment_width.is_some() || abutment_height.is_some() => {
+            return Err(InputError::new_err("geometry.arch: give abutment_width and abutment_height, or pier_width, pier_height and pier_courses, not both"))
+        }
+        (true, Some(width), Some(height)) => Springing::Piers {
+            width,
+            height,
+            courses: pier_courses.map_or(Ok(1), |c| count("geometry.arch.pier_courses", c, 1))?,
+        },
+        (true, None, _) => return Err(InputError::new_err("geometry.arch.pier_width is required for piers")),
+        (true, _, None) => return Err(InputError::new_err("geometry.arch.pier_height is required for piers")),
+    };
+    let made = guarded(|| geometry::arch(&Arch { kind, span, radius, rise, thickness, voussoirs, springing }))?;
+    let lists = |ps: &[Polygon]| -> Vec<Vec<[f64; 2]>> { ps.iter().map(|p| p.vertices().to_vec()).collect() };
+    let d = PyDict::new(py);
+    d.set_item("blocks", lists(&made.blocks))?;
+    d.set_item("supports", lists(&made.supports))?;
+    d.set_item("intrados", made.intrados)?;
+    d.set_item("extrados", made.extrados)?;
+    Ok(d)
 }

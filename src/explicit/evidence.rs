@@ -110,7 +110,7 @@ mod tests {
     fn levels_above_the_exact_multiplier_are_dropped() {
         // a block of 0.2 x 0.6 m rocks at lambda = 1/3; its explicit curve, with the exact multiplier put
         // between its last two levels: the last level is then no equilibrium
-        let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.2, 0.6)], ..ModelSpec::default() }).unwrap();
+        let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.2, 0.6).into()], ..ModelSpec::default() }).unwrap();
         let mut res = super::super::solve(&model, &ExplicitOptions { threads: 1, ..ExplicitOptions::default() }).unwrap();
         assert_eq!(res.status, Status::Collapse);
         let n = res.curve_multiplier.len();

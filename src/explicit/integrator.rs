@@ -141,7 +141,7 @@ impl<'a> Integrator<'a> {
         self.large = large;
         if large && self.cs.is_empty() {
             let nb = self.model.n_blocks();
-            self.centroids = self.model.rects().iter().map(|r| r.centroid()).collect();
+            self.centroids = self.model.centroids().to_vec();
             self.cs = vec![[1.0, 0.0]; nb];
         }
     }

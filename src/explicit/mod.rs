@@ -34,7 +34,7 @@
 //! use masonry_dem::geometry::Rect;
 //! use masonry_dem::model::{Model, ModelSpec};
 //! // one block of 0.4 x 0.2 m on the base
-//! let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2)], ..ModelSpec::default() }).unwrap();
+//! let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2).into()], ..ModelSpec::default() }).unwrap();
 //! // a tenth of a second at rest on its base, damped: the block settles and stays
 //! let opts = DynamicOptions { duration: 0.1, damping: Damping::Local(0.8), ..DynamicOptions::default() };
 //! let h = simulate(&model, &opts).unwrap();

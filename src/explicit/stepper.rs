@@ -31,7 +31,7 @@ fn run<K: Kernel>(s: &mut K, f: &[f64], k: usize) {
 /// use masonry_dem::explicit::{Damping, Stepper};
 /// use masonry_dem::geometry::Rect;
 /// use masonry_dem::model::{Model, ModelSpec};
-/// let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2)], ..ModelSpec::default() }).unwrap();
+/// let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2).into()], ..ModelSpec::default() }).unwrap();
 /// let mut s = Stepper::new(&model, 0.0, Damping::Local(0.8), false, 1).unwrap();
 /// s.run(10);
 /// assert_eq!(s.n_interfaces(), 1);

@@ -4,7 +4,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::*;
-use crate::geometry::{running_bond, FirstCourse, Rect, RunningBond};
+use crate::geometry::{polygons, running_bond, FirstCourse, Rect, RunningBond};
 use crate::model::ModelSpec;
 
 #[test]
@@ -27,7 +27,7 @@ fn prepared_kinds_change_no_result() {
     })
     .unwrap();
     for (blocks, overflow) in [(stack, true), (wall, false)] {
-        let model = Model::new(ModelSpec { blocks, ..ModelSpec::default() }).unwrap();
+        let model = Model::new(ModelSpec { blocks: polygons(blocks), ..ModelSpec::default() }).unwrap();
         for large in [false, true] {
             // under a horizontal load that makes joints slide and open
             let run = |prepared: bool| {
@@ -61,7 +61,7 @@ fn parts_change_no_result() {
         openings: vec![Rect::new(1.0, 0.4, 1.8, 1.0)],
     })
     .unwrap();
-    let model = Model::new(ModelSpec { blocks, ..ModelSpec::default() }).unwrap();
+    let model = Model::new(ModelSpec { blocks: polygons(blocks), ..ModelSpec::default() }).unwrap();
     for large in [false, true] {
         // the pass in `n_parts` parts, on the pool if `par` (whatever the wall's size)
         let run = |n_parts: usize, par: bool| {
@@ -93,7 +93,7 @@ fn packed_geometry_rebuilds_b_bit_for_bit() {
         openings: vec![],
     })
     .unwrap();
-    let model = Model::new(ModelSpec { blocks, ..ModelSpec::default() }).unwrap();
+    let model = Model::new(ModelSpec { blocks: polygons(blocks), ..ModelSpec::default() }).unwrap();
     for it in model.interfaces() {
         let b = Shape::new(it, 0).b_mat();
         for r in 0..3 {

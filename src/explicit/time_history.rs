@@ -77,8 +77,10 @@ impl Recorded for Integrator<'_> {
         [self.model.base().map_or(0.0, |i| -self.f_int[3 * i]), 0.0]
     }
     fn gravity_work(&self, u0: &[f64]) -> f64 {
-        let model = self.model;
-        (0..model.n_blocks()).map(|i| -model.weight()[i] * (self.u[3 * i + 1] - u0[3 * i + 1])).sum()
+        let (model, g) = (self.model, self.model.gravity_direction());
+        (0..model.n_blocks())
+            .map(|i| model.weight()[i] * (g[0] * (self.u[3 * i] - u0[3 * i]) + g[1] * (self.u[3 * i + 1] - u0[3 * i + 1])))
+            .sum()
     }
     fn elastic_energy(&self) -> f64 {
         Integrator::elastic_energy(self)
@@ -139,6 +141,13 @@ fn check_options(model: &Model, opts: &DynamicOptions) -> Result<(), Error> {
         return Err(Error::input("base_acceleration_y: a plane model moves in x and z; the base acceleration along y is for 3D models"));
     }
     model.check_supports()?;
+    let ground = opts.base_acceleration.is_some() || opts.vertical_acceleration.is_some();
+    if ground && model.gravity_direction() != [0.0, -1.0] {
+        return Err(Error::input_at(
+            "loads.gravity_direction",
+            "a ground motion acts along x and y: a time history under one takes gravity along -y (loads.gravity_direction = [0, -1]); turn the record, not the wall",
+        ));
+    }
     if !model.held_after_dead().is_empty() {
         return Err(Error::input(
             "top.vertical = \"held\" is for quasi-static analyses (held once the dead loads are on); a time history loads the beam with its force: use top.vertical = \"free\"",

@@ -30,7 +30,7 @@
 //! are the block velocities of the collapse mechanism.
 //!
 //! ```
-//! use masonry_dem::geometry::{running_bond, RunningBond, FirstCourse};
+//! use masonry_dem::geometry::{polygons, running_bond, RunningBond, FirstCourse};
 //! use masonry_dem::joint::JointLaw;
 //! use masonry_dem::limit::{limit_analysis, LimitOptions};
 //! use masonry_dem::model::{JointLaws, Model, ModelSpec};
@@ -38,7 +38,7 @@
 //! let blocks = running_bond(&RunningBond { block_length: 0.4, block_height: 0.175, courses: 6, height: None,
 //!     length: 2.0, first_course: FirstCourse::Half, openings: vec![] }).unwrap();
 //! let law = JointLaw { friction: 0.65, dilatancy: 0.65, ..JointLaw::default() };
-//! let model = Model::new(ModelSpec { blocks, gravity: 10.0, joints: JointLaws::uniform(law),
+//! let model = Model::new(ModelSpec { blocks: polygons(blocks), gravity: 10.0, joints: JointLaws::uniform(law),
 //!     ..ModelSpec::default() }).unwrap();
 //! let res = limit_analysis(&model, &LimitOptions::default()).unwrap();
 //! assert!((res.collapse_multiplier - 0.642857).abs() < 1e-5);

@@ -6,19 +6,23 @@ use crate::error::{non_negative, positive, Error, Result};
 use crate::geometry::{Rect, MAX_BLOCKS};
 use crate::interface::{detect, BlockKind, Family, Interface};
 use crate::joint::Section;
+use crate::shape::{contact_tolerance, Aabb, Area, Defect, Polygon};
 
-/// The blocks of a model before its interfaces: the wall's, then the base and the top beam.
+/// The blocks of a model before its interfaces: the wall's, then the supports, the base and the
+/// top beam, checked; and the contact tolerance.
 struct Frame {
-    rects: Vec<Rect>,
+    polygons: Vec<Polygon>,
     kinds: Vec<BlockKind>,
     n_wall: usize,
+    n_supports: usize,
     base: Option<usize>,
     top: Option<usize>,
+    tol: f64,
 }
 
 impl Frame {
     fn name(&self, i: usize) -> String {
-        block_name(i, self.n_wall, self.base, self.top, &self.rects)
+        block_name(i, self.n_wall, self.n_supports, self.base, self.top, &self.polygons)
     }
 }
 
@@ -32,30 +36,32 @@ impl Model {
     /// second at a million blocks): `false` stops it with [`Error::Interrupted`].
     pub fn new_with(spec: ModelSpec, poll: &mut dyn FnMut() -> bool) -> Result<Model> {
         check_spec(&spec)?;
+        let gravity_direction = unit_gravity(spec.gravity_direction)?;
         let frame = frame(&spec)?;
+        let areas: Vec<Area> = frame.polygons.iter().map(Polygon::area_properties).collect();
+        let centroids: Vec<[f64; 2]> = areas.iter().map(|a| a.centroid).collect();
         let name = |i: usize| frame.name(i);
-        let interfaces = detect(&frame.rects, &frame.kinds, name, poll)?;
+        let interfaces =
+            detect(&frame.polygons, &centroids, &frame.kinds, gravity_direction, frame.tol, name, poll)?;
         check_touched(&frame, &interfaces)?;
         let s = spec.thickness;
-        let mass: Vec<f64> = frame.rects.iter().map(|r| spec.density * r.area() * s).collect();
-        let inertia: Vec<f64> = frame
-            .rects
-            .iter()
-            .zip(&mass)
-            .map(|(r, m)| m * (r.width().powi(2) + r.height().powi(2)) / 12.0)
-            .collect();
+        let mass: Vec<f64> = areas.iter().map(|a| spec.density * a.area * s).collect();
+        let inertia: Vec<f64> = areas.iter().map(|a| spec.density * a.polar * s).collect();
         check_masses(&mass, &inertia, |i| frame.name(i))?;
         let weight = weights(&frame, &mass, spec.gravity)?;
         let sections = interfaces.iter().map(|it| Section::new(it.l, s)).collect();
-        let nb = frame.rects.len();
+        let nb = frame.polygons.len();
         let mut model = Model {
-            rects: frame.rects,
+            polygons: frame.polygons,
+            centroids,
             kinds: frame.kinds,
             n_wall: frame.n_wall,
+            n_supports: frame.n_supports,
             base: frame.base,
             top: frame.top,
             thickness: s,
             gravity: spec.gravity,
+            gravity_direction,
             live: spec.live,
             laws: spec.joints,
             mass,
@@ -74,13 +80,16 @@ impl Model {
         Ok(model)
     }
 
-    /// The base's fixed dofs, the top beam's supports, and the dead and live loads.
+    /// The fixed dofs of the supports and the base, the top beam's supports, and the dead and live
+    /// loads (the weights along gravity, the horizontal live load across it).
     fn supports_and_loads(&mut self, spec: &ModelSpec) {
-        if let Some(b) = self.base {
+        for b in self.supports().chain(self.base) {
             self.fixed[3 * b..3 * b + 3].fill(true);
         }
+        let (g, h) = (self.gravity_direction, self.horizontal());
         for i in 0..self.n_wall {
-            self.f_dead[3 * i + 1] = -self.weight[i];
+            self.f_dead[3 * i] = self.weight[i] * g[0];
+            self.f_dead[3 * i + 1] = self.weight[i] * g[1];
         }
         if let (Some(t), Some(tb)) = (self.top, &spec.top) {
             self.fixed[3 * t + 2] = tb.rotation_fixed;
@@ -91,8 +100,14 @@ impl Model {
             self.f_dead[3 * t + 1] = tb.force[1];
         }
         match spec.live {
-            LiveLoad::HorizontalWeight => (0..self.n_wall).for_each(|i| self.f_live[3 * i] = self.weight[i]),
-            LiveLoad::TopHorizontal => self.f_live[3 * self.top.expect("checked by frame()")] = 1.0,
+            LiveLoad::HorizontalWeight => (0..self.n_wall).for_each(|i| {
+                self.f_live[3 * i] = self.weight[i] * h[0];
+                self.f_live[3 * i + 1] = self.weight[i] * h[1];
+            }),
+            LiveLoad::TopHorizontal => {
+                let t = self.top.expect("checked by frame()");
+                self.f_live[3 * t..3 * t + 2].copy_from_slice(&h);
+            }
         }
     }
 
@@ -135,7 +150,8 @@ impl Model {
             .filter(|(it, _)| it.family == Family::Base)
             .map(|(it, sec)| self.laws.of(it.family).normal_stiffness * sec.area)
             .sum();
-        let vertical: f64 = self.f_dead.iter().skip(1).step_by(3).sum::<f64>().abs();
+        let g = self.gravity_direction;
+        let vertical: f64 = (0..self.n_blocks()).map(|i| self.f_dead[3 * i] * g[0] + self.f_dead[3 * i + 1] * g[1]).sum::<f64>().abs();
         if base_stiffness > 0.0 {
             let settlement = vertical / base_stiffness;
             if !(settlement <= SETTLEMENT_LIMIT * size) {
@@ -153,7 +169,13 @@ impl Model {
     /// solvers' limits, not the wall (time histories accept them: a joint meant never to yield).
     pub(crate) fn check_strength_range(&self) -> Result<()> {
         if self.live == LiveLoad::HorizontalWeight {
-            let (x0, x1) = self.rects.iter().fold((f64::MAX, f64::MIN), |(a, b), r| (a.min(r.x0), b.max(r.x1)));
+            // the wall's width across gravity
+            let h = self.horizontal();
+            let (x0, x1) = self.polygons[..self.n_wall]
+                .iter()
+                .flat_map(|p| p.vertices())
+                .map(|v| v[0] * h[0] + v[1] * h[1])
+                .fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(x), b.max(x)));
             let stress = self.weight.iter().sum::<f64>() / ((x1 - x0) * self.thickness);
             for it in &self.interfaces {
                 let l = self.laws.of(it.family);
@@ -196,9 +218,6 @@ fn check_spec(spec: &ModelSpec) -> Result<()> {
         &format!("a model of {} blocks", spec.blocks.len()),
         spec.blocks.len() as f64 * crate::error::MODEL_BYTES_PER_BLOCK,
     )?;
-    for (i, r) in spec.blocks.iter().enumerate() {
-        r.validate(&format!("block {i}"))?;
-    }
     spec.joints.default.validate("joints")?;
     for (name, law) in [
         ("bed", spec.joints.bed),
@@ -213,25 +232,55 @@ fn check_spec(spec: &ModelSpec) -> Result<()> {
     Ok(())
 }
 
-/// The wall's blocks with the base under them and the top beam over them (each as wide as the
-/// wall and as high as its highest block), checked against the live load that needs them.
-fn frame(spec: &ModelSpec) -> Result<Frame> {
-    let n_wall = spec.blocks.len();
-    let (mut xmin, mut ymin, mut xmax, mut ymax, mut hmax) =
-        (f64::MAX, f64::MAX, f64::MIN, f64::MIN, 0.0f64);
-    for r in &spec.blocks {
-        xmin = xmin.min(r.x0);
-        ymin = ymin.min(r.y0);
-        xmax = xmax.max(r.x1);
-        ymax = ymax.max(r.y1);
-        hmax = hmax.max(r.height());
+/// The direction of gravity made a unit vector, or the refusal of a zero or non-finite one.
+fn unit_gravity(g: [f64; 2]) -> Result<[f64; 2]> {
+    let l = g[0].hypot(g[1]);
+    if !(l.is_finite() && l > 0.0) {
+        return Err(Error::input_at(
+            "loads.gravity_direction",
+            format!("loads.gravity_direction must be a finite non-zero vector, got [{}, {}]", g[0], g[1]),
+        ));
     }
-    let mut rects = spec.blocks.clone();
+    Ok(if l == 1.0 { g } else { [g[0] / l, g[1] / l] })
+}
+
+/// The error of a block that is not a convex polygon, naming it.
+fn defect(name: String, d: Defect) -> Error {
+    Error::input(format!("{name}: {}", d.reason))
+}
+
+/// The wall's blocks and the supports, checked, with the base under the wall and the top beam
+/// over it (each as wide as the box around the wall blocks and as high as the highest block's
+/// box), checked against the live load that needs them; the contact tolerance from the size of
+/// them all.
+fn frame(spec: &ModelSpec) -> Result<Frame> {
+    let (n_wall, n_supports) = (spec.blocks.len(), spec.supports.len());
+    let given: Vec<&Polygon> = spec.blocks.iter().chain(&spec.supports).collect();
+    let name = |i: usize, p: &Polygon| {
+        if i < n_wall {
+            format!("block {i} {}", p.label())
+        } else {
+            format!("support {} {}", i - n_wall, p.label())
+        }
+    };
+    for (i, p) in given.iter().enumerate() {
+        p.check_finite().map_err(|d| defect(name(i, p), d))?;
+    }
+    let mut wall = Aabb::around(&[]);
+    let mut hmax = 0.0f64;
+    for p in &spec.blocks {
+        let b = p.aabb();
+        wall = wall.union(&b);
+        hmax = hmax.max(b.max[1] - b.min[1]);
+    }
+    let (xmin, ymin, xmax, ymax) = (wall.min[0], wall.min[1], wall.max[0], wall.max[1]);
     let mut kinds = vec![BlockKind::Wall; n_wall];
+    kinds.resize(n_wall + n_supports, BlockKind::Support);
+    let mut extra: Vec<Polygon> = vec![];
     let base = spec.base.then(|| {
-        rects.push(Rect::new(xmin, ymin - hmax, xmax, ymin));
+        extra.push(Rect::new(xmin, ymin - hmax, xmax, ymin).into());
         kinds.push(BlockKind::Base);
-        rects.len() - 1
+        kinds.len() - 1
     });
     if let Some(t) = &spec.top {
         for (k, v) in t.force.iter().enumerate() {
@@ -243,9 +292,9 @@ fn frame(spec: &ModelSpec) -> Result<Frame> {
         }
     }
     let top = spec.top.map(|_| {
-        rects.push(Rect::new(xmin, ymax, xmax, ymax + hmax));
+        extra.push(Rect::new(xmin, ymax, xmax, ymax + hmax).into());
         kinds.push(BlockKind::Top);
-        rects.len() - 1
+        kinds.len() - 1
     });
     if spec.live == LiveLoad::TopHorizontal && top.is_none() {
         return Err(Error::input_at(
@@ -256,12 +305,23 @@ fn frame(spec: &ModelSpec) -> Result<Frame> {
     if spec.live == LiveLoad::HorizontalWeight && spec.gravity == 0.0 {
         return Err(Error::input_at("loads.live", "loads.live = \"horizontal_weight\" needs gravity > 0 (the live load is lambda times the weights)"));
     }
-    Ok(Frame { rects, kinds, n_wall, base, top })
+    let size = given.iter().copied().chain(&extra).fold(wall, |b, p| b.union(&p.aabb())).size();
+    let tol = contact_tolerance(size);
+    let mut polygons = Vec::with_capacity(given.len() + extra.len());
+    for (i, p) in given.iter().copied().chain(&extra).enumerate() {
+        let checked = p.checked(tol).map_err(|d| match kinds[i] {
+            BlockKind::Base => defect("the base".into(), d),
+            BlockKind::Top => defect("the top beam".into(), d),
+            _ => defect(name(i, p), d),
+        })?;
+        polygons.push(checked);
+    }
+    Ok(Frame { polygons, kinds, n_wall, n_supports, base, top, tol })
 }
 
 /// Refuses a wall block, or the top beam, that no interface reaches.
 fn check_touched(frame: &Frame, interfaces: &[Interface]) -> Result<()> {
-    let mut touched = vec![false; frame.rects.len()];
+    let mut touched = vec![false; frame.polygons.len()];
     for it in interfaces {
         touched[it.a] = true;
         touched[it.b] = true;
@@ -277,10 +337,10 @@ fn check_touched(frame: &Frame, interfaces: &[Interface]) -> Result<()> {
     Ok(())
 }
 
-/// The weight of each block \[N\]: the base and the top beam carry none (the beam's load is its
-/// `force`).
+/// The weight of each block \[N\]: the supports, the base and the top beam carry none (the beam's
+/// load is its `force`).
 fn weights(frame: &Frame, mass: &[f64], gravity: f64) -> Result<Vec<f64>> {
-    let weight: Vec<f64> = (0..frame.rects.len())
+    let weight: Vec<f64> = (0..frame.polygons.len())
         .map(|i| if i < frame.n_wall { mass[i] * gravity } else { 0.0 })
         .collect();
     if let Some(i) = weight.iter().position(|w| !w.is_finite()) {
@@ -308,19 +368,24 @@ fn check_masses(mass: &[f64], inertia: &[f64], name: impl Fn(usize) -> String) -
     Ok(())
 }
 
+/// "block 7 [x0, y0, x1, y1]" (a wall block, named by its rectangle or its polygon), "support 0
+/// ..." (the first support), "the base" or "the top beam".
 pub(super) fn block_name(
     i: usize,
     n_wall: usize,
+    n_supports: usize,
     base: Option<usize>,
     top: Option<usize>,
-    rects: &[Rect],
+    polygons: &[Polygon],
 ) -> String {
     if Some(i) == base {
         "the base".into()
     } else if Some(i) == top {
         "the top beam".into()
     } else if i < n_wall {
-        format!("block {i} {}", rects[i].label())
+        format!("block {i} {}", polygons[i].label())
+    } else if i < n_wall + n_supports {
+        format!("support {} {}", i - n_wall, polygons[i].label())
     } else {
         format!("block {i}")
     }

@@ -1,16 +1,32 @@
 //! The model: blocks, interfaces, joint laws, supports and loads.
 //!
-//! Block numbering: wall blocks `0..n_wall` in the order given, then the base (if any), then
-//! the top beam (if any). Each block has 3 dof at its centroid: u1, u2 \[m\], phi \[rad\]; the global
-//! dof index of dof k of block i is `3 i + k`.
+//! A block is a convex polygon ([`Polygon`]): the model holds the polygons with what the shape
+//! layer ([`crate::shape`]) says of them (area, centroid, polar moment, contacts) and gives the
+//! solvers masses, inertias, centroids, interfaces and loads, never a shape. A rectangle is a
+//! polygon of four vertices.
+//!
+//! Block numbering: wall blocks `0..n_wall` in the order given, then the supports (fixed blocks,
+//! in the order given), then the base (if any), then the top beam (if any). Each block has 3 dof
+//! at its centroid: u1, u2 \[m\], phi \[rad\]; the global dof index of dof k of block i is `3 i + k`.
 //!
 //! ```
 //! use masonry_dem::geometry::Rect;
 //! use masonry_dem::model::{Model, ModelSpec};
-//! let spec = ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175)], ..ModelSpec::default() };
+//! use masonry_dem::shape::Polygon;
+//! let spec = ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.175).into()], ..ModelSpec::default() };
 //! let model = Model::new(spec).unwrap();
 //! assert_eq!(model.n_wall(), 1);
 //! assert_eq!(model.interfaces().len(), 1); // the block on the base
+//! // a triangular block on an inclined support, no base: the support carries it
+//! let spec = ModelSpec {
+//!     blocks: vec![Polygon::new(vec![[0.0, 0.0], [1.0, 0.5], [0.0, 1.0]])],
+//!     supports: vec![Polygon::new(vec![[0.0, -1.0], [1.0, -1.0], [1.0, 0.5], [0.0, 0.0]])],
+//!     base: false,
+//!     ..ModelSpec::default()
+//! };
+//! let model = Model::new(spec).unwrap();
+//! assert_eq!((model.n_blocks(), model.interfaces().len()), (2, 1));
+//! assert!((model.centroids()[0][0] - 1.0 / 3.0).abs() < 1e-15);
 //! ```
 
 mod build;
@@ -22,17 +38,19 @@ pub(crate) use supports::unsupported;
 use crate::geometry::Rect;
 use crate::interface::{BlockKind, Family, Interface};
 use crate::joint::{JointLaw, Kinds, Section};
+use crate::shape::{Aabb, Polygon};
 
 /// The joint law of each family; a family without its own law uses `default`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct JointLaws {
     /// The law of every family without its own.
     pub default: JointLaw,
-    /// Horizontal joints between wall blocks.
+    /// Joints between wall blocks within 45 degrees of the horizontal (horizontal joints between
+    /// rectangles).
     pub bed: Option<JointLaw>,
-    /// Vertical joints between wall blocks.
+    /// Joints between wall blocks steeper than 45 degrees (vertical joints between rectangles).
     pub head: Option<JointLaw>,
-    /// Joints between the wall and its base.
+    /// Joints between the wall and its base or its supports.
     pub base: Option<JointLaw>,
     /// Joints between the wall and the top beam.
     pub top: Option<JointLaw>,
@@ -70,9 +88,11 @@ impl JointLaws {
 /// The live load pattern scaled by the load multiplier lambda.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LiveLoad {
-    /// A horizontal force lambda * W_i on every wall block, towards +x (lambda dimensionless).
+    /// A horizontal force lambda * W_i on every wall block, towards +x (lambda dimensionless):
+    /// along gravity turned by +90 degrees ([`ModelSpec::gravity_direction`]).
     HorizontalWeight,
-    /// A horizontal force of lambda newtons on the top beam, towards +x.
+    /// A horizontal force of lambda newtons on the top beam, towards +x (as
+    /// `HorizontalWeight`'s direction).
     TopHorizontal,
 }
 
@@ -92,13 +112,19 @@ pub struct TopBeam {
 /// Everything needed to build a [`Model`]. SI units.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModelSpec {
-    /// Wall blocks.
-    pub blocks: Vec<Rect>,
+    /// Wall blocks: convex polygons, either orientation (a rectangle is
+    /// `Polygon::from(Rect)`; see [`Polygon::checked`] for what is refused).
+    pub blocks: Vec<Polygon>,
+    /// Fixed blocks (abutments, springers, an inclined plane): convex polygons whose three dofs
+    /// are fixed, with no weight. Their joints with the wall are of the `base` family.
+    pub supports: Vec<Polygon>,
     /// Out-of-plane thickness s \[m\].
     pub thickness: f64,
     /// Density [kg/m3].
     pub density: f64,
-    /// A fixed rigid foundation under the lowest blocks, spanning the wall.
+    /// A fixed rigid foundation under the lowest blocks, spanning the wall (a rectangle under the
+    /// box around the wall blocks, as deep as the highest block's box): the blocks whose bottom
+    /// edge lies on the box's bottom stand on it.
     pub base: bool,
     /// A rigid top beam resting on the highest blocks, or none.
     pub top: Option<TopBeam>,
@@ -106,6 +132,12 @@ pub struct ModelSpec {
     pub joints: JointLaws,
     /// [m/s2]
     pub gravity: f64,
+    /// The direction of gravity, a vector of any length (made a unit vector), (0, -1) by
+    /// default. It says which way is up (which block of an interface is below, and whether a
+    /// joint is a bed or a head joint) and the direction of the horizontal live load (gravity
+    /// turned by +90 degrees: +x by default). A wall turned with its gravity gives the same
+    /// multipliers. The base and the top beam stay horizontal: give a turned wall supports.
+    pub gravity_direction: [f64; 2],
     /// The live load, scaled by lambda.
     pub live: LiveLoad,
 }
@@ -114,12 +146,14 @@ impl Default for ModelSpec {
     fn default() -> Self {
         ModelSpec {
             blocks: vec![],
+            supports: vec![],
             thickness: 1.0,
             density: 1000.0,
             base: true,
             top: None,
             joints: JointLaws::default(),
             gravity: 9.81,
+            gravity_direction: [0.0, -1.0],
             live: LiveLoad::HorizontalWeight,
         }
     }
@@ -137,13 +171,16 @@ pub const STRENGTH_RANGE: f64 = 1e6;
 /// A wall of rigid blocks joined by interfaces, with supports and loads.
 #[derive(Debug, Clone)]
 pub struct Model {
-    rects: Vec<Rect>,
+    polygons: Vec<Polygon>,
+    centroids: Vec<[f64; 2]>,
     kinds: Vec<BlockKind>,
     n_wall: usize,
+    n_supports: usize,
     base: Option<usize>,
     top: Option<usize>,
     thickness: f64,
     gravity: f64,
+    gravity_direction: [f64; 2],
     live: LiveLoad,
     laws: JointLaws,
     mass: Vec<f64>,
@@ -159,36 +196,49 @@ pub struct Model {
 }
 
 impl Model {
-    /// A label for messages: "block 7 [x0, y0, x1, y1]", "the base" or "the top beam".
+    /// A label for messages: "block 7 [x0, y0, x1, y1]" (a rectangle), "block 7 (polygon of 5
+    /// vertices: ...)", "support 0 ...", "the base" or "the top beam".
     pub fn block_name(&self, i: usize) -> String {
-        build::block_name(i, self.n_wall, self.base, self.top, &self.rects)
+        build::block_name(i, self.n_wall, self.n_supports, self.base, self.top, &self.polygons)
     }
 
-    /// Number of wall blocks (the base and the top beam not counted).
+    /// Number of wall blocks (the supports, the base and the top beam not counted).
     pub fn n_wall(&self) -> usize {
         self.n_wall
     }
-    /// All blocks: wall blocks, then base, then top beam.
+    /// All blocks: wall blocks, then supports, then base, then top beam.
     pub fn n_blocks(&self) -> usize {
-        self.rects.len()
+        self.polygons.len()
     }
-    /// Every block's rectangle: wall blocks, then the base, then the top beam.
-    pub fn rects(&self) -> &[Rect] {
-        &self.rects
+    /// Every block's polygon (counter-clockwise from its lowest vertex): wall blocks, then the
+    /// supports, then the base, then the top beam.
+    pub fn polygons(&self) -> &[Polygon] {
+        &self.polygons
     }
-    /// The size of the model \[m\]: the larger side of the box around every block (base and top
-    /// beam included). It does not depend on where the wall stands.
+    /// Every block's centroid \[m\], where its dofs are.
+    pub fn centroids(&self) -> &[[f64; 2]] {
+        &self.centroids
+    }
+    /// Every block's bounding box, as a rectangle (a rectangle's is itself).
+    pub fn rects(&self) -> Vec<Rect> {
+        self.polygons
+            .iter()
+            .map(|p| {
+                let b = p.aabb();
+                Rect::new(b.min[0], b.min[1], b.max[0], b.max[1])
+            })
+            .collect()
+    }
+    /// The indices of the supports (fixed blocks given by the user).
+    pub fn supports(&self) -> std::ops::Range<usize> {
+        self.n_wall..self.n_wall + self.n_supports
+    }
+    /// The size of the model \[m\]: the larger side of the box around every block (supports, base
+    /// and top beam included). It does not depend on where the wall stands.
     pub fn size(&self) -> f64 {
-        let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
-        for r in &self.rects {
-            x0 = x0.min(r.x0);
-            y0 = y0.min(r.y0);
-            x1 = x1.max(r.x1);
-            y1 = y1.max(r.y1);
-        }
-        (x1 - x0).max(y1 - y0)
+        self.polygons.iter().fold(Aabb::around(&[]), |b, p| b.union(&p.aabb())).size()
     }
-    /// What each block is (wall, base, top beam).
+    /// What each block is (wall, support, base, top beam).
     pub fn kinds(&self) -> &[BlockKind] {
         &self.kinds
     }
@@ -208,6 +258,15 @@ impl Model {
     pub fn gravity(&self) -> f64 {
         self.gravity
     }
+    /// The direction of gravity (a unit vector; (0, -1) unless given).
+    pub fn gravity_direction(&self) -> [f64; 2] {
+        self.gravity_direction
+    }
+    /// The direction of the horizontal live loads: gravity turned by +90 degrees ((1, 0) unless
+    /// gravity is turned).
+    pub fn horizontal(&self) -> [f64; 2] {
+        [-self.gravity_direction[1], self.gravity_direction[0]]
+    }
     /// The live load.
     pub fn live(&self) -> LiveLoad {
         self.live
@@ -220,7 +279,7 @@ impl Model {
     pub fn inertia(&self) -> &[f64] {
         &self.inertia
     }
-    /// Weight of each block \[N\] (0 for the base and the top beam).
+    /// Weight of each block \[N\] (0 for the supports, the base and the top beam).
     pub fn weight(&self) -> &[f64] {
         &self.weight
     }
@@ -274,17 +333,41 @@ impl Model {
         m
     }
 
+    /// The same model with the live load lambda times the wall blocks' weights, along gravity:
+    /// lambda a factor on the self-weight (lambda = 0 the dead state, -1 no load at all). With dry
+    /// joints an equilibrium scales with its loads, so limit analysis of it says whether the wall
+    /// stands under its own weight: [`Status::Unbounded`](crate::results::Status::Unbounded)
+    /// (every multiple of the weight is carried) if it does, and
+    /// [`Status::NoEquilibrium`](crate::results::Status::NoEquilibrium) (lambda = -1, the
+    /// weight carried by nothing) if not. Near the least thickness of an arch that question is
+    /// better posed than the sign of the horizontal multiplier, whose program is infeasible, by
+    /// a hair, just below it (where the interior point may stall instead of proving it).
+    pub fn with_live_along_gravity(&self) -> Model {
+        let mut m = self.clone();
+        let g = self.gravity_direction;
+        m.f_live.fill(0.0);
+        for i in 0..self.n_wall {
+            m.f_live[3 * i] = self.weight[i] * g[0];
+            m.f_live[3 * i + 1] = self.weight[i] * g[1];
+        }
+        m
+    }
+
     /// The default control block: the top beam if there is one, else the highest wall block at
-    /// the right end (largest y1, then largest x1).
+    /// the right end (the highest top, then the rightmost right end: largest y1, then largest
+    /// x1 for rectangles; up and right as gravity and the live load point).
     pub fn default_control_block(&self) -> usize {
         if let Some(t) = self.top {
             return t;
         }
+        let (up, right) = ([-self.gravity_direction[0], -self.gravity_direction[1]], self.horizontal());
+        let reach = |i: usize, d: [f64; 2]| {
+            self.polygons[i].vertices().iter().map(|v| v[0] * d[0] + v[1] * d[1]).fold(f64::MIN, f64::max)
+        };
         (0..self.n_wall)
             .max_by(|&i, &j| {
-                let (a, b) = (&self.rects[i], &self.rects[j]);
-                (a.y1, a.x1)
-                    .partial_cmp(&(b.y1, b.x1))
+                (reach(i, up), reach(i, right))
+                    .partial_cmp(&(reach(j, up), reach(j, right)))
                     .unwrap_or(std::cmp::Ordering::Equal)
             })
             .unwrap_or(0)

@@ -13,10 +13,10 @@ impl Model {
 
     /// Fixes dof `dof` (0: u1, 1: u2, 2: phi) of block `block` at `value` [m or rad].
     pub fn fix(&mut self, block: usize, dof: usize, value: f64) -> Result<()> {
-        if block >= self.rects.len() {
+        if block >= self.polygons.len() {
             return Err(Error::input(format!(
                 "fix: block {block} does not exist (the model has {} blocks)",
-                self.rects.len()
+                self.polygons.len()
             )));
         }
         if dof > 2 {
@@ -37,7 +37,7 @@ impl Model {
     /// Refuses a model in which some wall block is not connected, through interfaces, to a block
     /// with a fixed dof (the base, or a user support).
     pub fn check_supports(&self) -> Result<()> {
-        let nb = self.rects.len();
+        let nb = self.polygons.len();
         let held: Vec<bool> = (0..nb).map(|i| self.fixed[3 * i..3 * i + 3].iter().any(|&f| f)).collect();
         if !held.iter().any(|&s| s) {
             return Err(Error::input(

@@ -43,7 +43,7 @@
 //! use masonry_dem::geometry::Rect;
 //! use masonry_dem::model::{Model, ModelSpec};
 //! // one block of 0.4 x 0.2 m on the base
-//! let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2)], ..ModelSpec::default() }).unwrap();
+//! let model = Model::new(ModelSpec { blocks: vec![Rect::new(0.0, 0.0, 0.4, 0.2).into()], ..ModelSpec::default() }).unwrap();
 //! // displacement control: the block pushed 1 mm, then lambda stays at the friction coefficient
 //! let opts = StaticOptions { control: Control::Displacement { max_displacement: 1e-3 }, ..StaticOptions::default() };
 //! let r = solve(&model, &opts).unwrap();

@@ -1,7 +1,7 @@
 #![allow(dead_code)]
 //! Builders of the reference cases of docs/references.md.
 
-use masonry_dem::geometry::{running_bond, FirstCourse, Rect, RunningBond};
+use masonry_dem::geometry::{polygons, running_bond, FirstCourse, Rect, RunningBond};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::model::{JointLaws, Model, ModelSpec};
 
@@ -12,7 +12,7 @@ pub fn dry(mu: f64, psi: f64, k: f64) -> JointLaw {
 
 /// Blocks listed explicitly, on a fixed base, g = 10, density 1000, thickness 1.
 pub fn blocks_model(blocks: Vec<Rect>, law: JointLaw) -> Model {
-    Model::new(ModelSpec { blocks, gravity: 10.0, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap()
+    Model::new(ModelSpec { blocks: polygons(blocks), gravity: 10.0, joints: JointLaws::uniform(law), ..ModelSpec::default() }).unwrap()
 }
 
 /// Ferris & Tin-Loi wall with `courses` courses (6: wall 1, 10: wall 2).

@@ -1,0 +1,205 @@
+//! Where two convex polygons touch: facing collinear edges that overlap over a positive length,
+//! and how deep two polygons overlap.
+
+use super::Polygon;
+
+/// Two edges, one of each polygon, that face each other on one line (within the tolerance) and
+/// overlap over a positive length: an interface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeContact {
+    /// The edge of the first polygon (from its vertex k to vertex k + 1) and of the second.
+    pub edges: [usize; 2],
+    /// The unit normal from the first polygon into the second: the bisector of the edges'
+    /// outward normals (the first's, and the second's reversed; one and the same on one line).
+    pub n: [f64; 2],
+    /// The overlap's two ends \[m\], each on the line midway between the two edges, in the
+    /// order of the tangent `(n_y, -n_x)`.
+    pub ends: [[f64; 2]; 2],
+    /// The overlap's length \[m\].
+    pub length: f64,
+}
+
+/// Every pair of an edge of `a` and an edge of `b` that face each other (opposite directions:
+/// the polygons lie on either side) and overlap, along their common direction, over more than
+/// `tol` \[m\], with each end of the overlap within `tol` of the other edge's line (a gap or an
+/// overlap of either polygon into the other, CAD rounding, is closed). The overlap's ends are
+/// the vertices that bound it, each moved half-way across the gap; for a rectangle on a
+/// rectangle they are corners' coordinates, exactly. Polygons counter-clockwise (checked).
+///
+/// Two convex polygons that do not overlap meet along one segment at most: one contact; more
+/// only where the tolerance joins edges that meet at a corner within it.
+pub fn contacts(a: &Polygon, b: &Polygon, tol: f64) -> Vec<EdgeContact> {
+    let (va, vb) = (a.vertices(), b.vertices());
+    let mut out = Vec::new();
+    for i in 0..va.len() {
+        let (p0, p1) = (va[i], va[(i + 1) % va.len()]);
+        let da = sub(p1, p0);
+        for j in 0..vb.len() {
+            let (q0, q1) = (vb[j], vb[(j + 1) % vb.len()]);
+            if dot(da, sub(q1, q0)) >= 0.0 {
+                continue; // not facing
+            }
+            if let Some(c) = edge_pair([p0, p1], [q0, q1], tol) {
+                out.push(EdgeContact { edges: [i, j], ..c });
+            }
+        }
+    }
+    out
+}
+
+/// The contact of edge `p` of one polygon and edge `q` of another, running opposite ways.
+fn edge_pair(p: [[f64; 2]; 2], q: [[f64; 2]; 2], tol: f64) -> Option<EdgeContact> {
+    let (na, nb) = (outward(p), outward(q));
+    let n = unit([na[0] - nb[0], na[1] - nb[1]]);
+    let t = [n[1], -n[0]];
+    // positions along t from p[0]: edge p runs from 0 down to s(p[1]), edge q up from s(q[0])
+    let s = |x: [f64; 2]| dot(sub(x, p[0]), t);
+    let (lo_from_p, hi_from_p) = (s(p[1]) >= s(q[0]), 0.0 <= s(q[1]));
+    let lo = if lo_from_p { s(p[1]) } else { s(q[0]) };
+    let hi = if hi_from_p { 0.0 } else { s(q[1]) };
+    if hi - lo <= tol {
+        return None; // apart along the line, or meeting at a corner
+    }
+    // an end of the overlap: its vertex, moved half-way towards the other edge's line
+    let end = |from_p: bool, v: [f64; 2]| -> Option<[f64; 2]> {
+        let (other, m) = if from_p { (q[0], nb) } else { (p[0], na) };
+        let gap = dot(sub(v, other), m);
+        (gap.abs() <= tol).then(|| [v[0] - 0.5 * gap * m[0], v[1] - 0.5 * gap * m[1]])
+    };
+    let e0 = end(lo_from_p, if lo_from_p { p[1] } else { q[0] })?;
+    let e1 = end(hi_from_p, if hi_from_p { p[0] } else { q[1] })?;
+    Some(EdgeContact { edges: [0, 0], n, ends: [e0, e1], length: dot(sub(e1, e0), t) })
+}
+
+/// How deep convex polygons `a` and `b` overlap \[m\]: over the edges of both, the least depth
+/// of the other polygon into the edge's half-plane (zero or negative when they touch or are
+/// apart: some edge's line separates them). It is at least the least translation that parts
+/// them, and never more than zero when an edge's line parts them.
+pub fn penetration(a: &Polygon, b: &Polygon) -> f64 {
+    let mut depth = f64::INFINITY;
+    for (p, q) in [(a, b), (b, a)] {
+        let (vp, vq) = (p.vertices(), q.vertices());
+        for i in 0..vp.len() {
+            let m = outward([vp[i], vp[(i + 1) % vp.len()]]);
+            let into = vq.iter().map(|&x| -dot(sub(x, vp[i]), m)).fold(f64::MIN, f64::max);
+            depth = depth.min(into);
+            if depth <= 0.0 {
+                return depth;
+            }
+        }
+    }
+    depth
+}
+
+/// The outward unit normal of edge `e` of a counter-clockwise polygon.
+fn outward(e: [[f64; 2]; 2]) -> [f64; 2] {
+    let d = sub(e[1], e[0]);
+    unit([d[1], -d[0]])
+}
+
+/// `v` over its length (`sqrt(x^2)` is `|x|` exactly: an axis-aligned vector stays exact).
+fn unit(v: [f64; 2]) -> [f64; 2] {
+    let l = (v[0] * v[0] + v[1] * v[1]).sqrt();
+    [v[0] / l, v[1] / l]
+}
+
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Rect;
+    use proptest::prelude::*;
+
+    const TOL: f64 = 1e-9;
+
+    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Polygon {
+        Polygon::from(Rect::new(x0, y0, x1, y1)).checked(TOL).unwrap()
+    }
+
+    fn turned(p: &Polygon, angle: f64, centre: [f64; 2]) -> Polygon {
+        let (s, c) = angle.sin_cos();
+        p.map(|v| {
+            let (x, y) = (v[0] - centre[0], v[1] - centre[1]);
+            [centre[0] + c * x - s * y, centre[1] + s * x + c * y]
+        })
+        .checked(TOL)
+        .unwrap()
+    }
+
+    #[test]
+    fn rectangles_meet_over_their_common_stretch_exactly() {
+        // a block on part of a longer one: the overlap's ends are corners' coordinates
+        let (low, high) = (rect(0.0, 0.0, 1.0, 0.175), rect(0.4, 0.175, 1.4, 0.35));
+        let c = contacts(&low, &high, TOL);
+        assert_eq!(c.len(), 1);
+        assert_eq!(c[0].n, [0.0, 1.0]);
+        assert_eq!(c[0].ends, [[0.4, 0.175], [1.0, 0.175]]);
+        assert_eq!(c[0].length, 1.0 - 0.4);
+        // the other way round: the normal from the first into the second
+        let c = contacts(&high, &low, TOL);
+        assert_eq!(c[0].n, [0.0, -1.0]);
+        assert_eq!(c[0].length, 1.0 - 0.4);
+        // side by side: along the shorter side
+        let c = contacts(&rect(0.0, 0.0, 0.4, 0.2), &rect(0.4, 0.1, 0.8, 0.5), TOL);
+        assert_eq!((c[0].n, c[0].ends, c[0].length), ([1.0, 0.0], [[0.4, 0.2], [0.4, 0.1]], 0.2 - 0.1));
+    }
+
+    #[test]
+    fn corners_and_gaps_make_no_contact() {
+        let a = rect(0.0, 0.0, 1.0, 1.0);
+        assert!(contacts(&a, &rect(1.0, 1.0, 2.0, 2.0), TOL).is_empty()); // a corner
+        assert!(contacts(&a, &rect(0.0, 1.0 + 1e-6, 1.0, 2.0), TOL).is_empty()); // a gap
+        assert!(contacts(&a, &rect(2.0, 0.0, 3.0, 1.0), TOL).is_empty()); // apart
+        // a gap and an overlap within the tolerance are closed, the points half-way across
+        let c = contacts(&a, &rect(0.5, 1.0 + 4e-10, 1.5, 2.0), TOL);
+        assert_eq!(c.len(), 1);
+        assert!((c[0].ends[0][1] - (1.0 + 2e-10)).abs() < 1e-15 && (c[0].length - 0.5).abs() < 1e-15);
+        assert_eq!(contacts(&a, &rect(0.5, 1.0 - 4e-10, 1.5, 2.0), TOL).len(), 1);
+    }
+
+    #[test]
+    fn overlapping_polygons_are_measured() {
+        let a = rect(0.0, 0.0, 1.0, 1.0);
+        assert_eq!(penetration(&a, &rect(0.5, 0.75, 1.5, 1.5)), 0.25);
+        assert!(penetration(&a, &rect(1.0, 0.0, 2.0, 1.0)) <= 0.0); // side by side
+        assert!(penetration(&a, &rect(3.0, 0.0, 4.0, 1.0)) < 0.0);
+        // a triangle whose tip enters the square by 0.1
+        let tri = Polygon::new(vec![[0.5, 0.9], [1.5, 2.0], [-0.5, 2.0]]).checked(TOL).unwrap();
+        assert!((penetration(&a, &tri) - 0.1).abs() < 1e-12);
+    }
+
+    proptest! {
+        // a pair of touching blocks (a rectangle on a trapezoid's inclined top, the upper one
+        // partly over it), turned about any point by any angle, meets over the same length,
+        // with the normal turned and the overlap's ends on the common edge
+        #[test]
+        fn contacts_turn_with_the_blocks(angle in -3.2f64..3.2, cx in -5.0f64..5.0, cy in -5.0f64..5.0, shift in -0.3f64..0.3, beta in -0.6f64..0.6) {
+            let (sb, cb) = beta.sin_cos();
+            // the support: a trapezoid under the edge from (0, 0) along (cos b, sin b), 1 m long
+            let support = Polygon::new(vec![[0.0, -1.0], [cb, -1.0], [cb, sb], [0.0, 0.0]]).checked(TOL).unwrap();
+            // the block: 0.5 x 0.3 along the edge, starting `shift + 0.25` along it
+            let s0 = 0.25 + shift;
+            let along = |s: f64, h: f64| [s * cb - h * sb, s * sb + h * cb];
+            let block = Polygon::new(vec![along(s0, 0.0), along(s0 + 0.5, 0.0), along(s0 + 0.5, 0.3), along(s0, 0.3)]).checked(TOL).unwrap();
+            let want = (s0 + 0.5).min(1.0) - s0.max(0.0);
+            let (sup, blk) = (turned(&support, angle, [cx, cy]), turned(&block, angle, [cx, cy]));
+            let c = contacts(&sup, &blk, TOL);
+            prop_assert_eq!(c.len(), 1);
+            prop_assert!((c[0].length - want).abs() < 1e-12);
+            let normal = [-(beta + angle).sin(), (beta + angle).cos()];
+            prop_assert!((c[0].n[0] - normal[0]).abs() < 1e-12 && (c[0].n[1] - normal[1]).abs() < 1e-12);
+            prop_assert!(penetration(&sup, &blk) <= 1e-12); // touching, not overlapping
+            // the same pair the other way round
+            let r = contacts(&blk, &sup, TOL);
+            prop_assert!(r.len() == 1 && (r[0].length - want).abs() < 1e-12);
+            prop_assert!((r[0].n[0] + normal[0]).abs() < 1e-12 && (r[0].n[1] + normal[1]).abs() < 1e-12);
+        }
+    }
+}
