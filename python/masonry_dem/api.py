@@ -38,6 +38,7 @@ from typing import Any, Dict, List, Optional, Union
 import numpy as np
 
 from ._core import InputError
+from ._shapes import shapes
 from .case.result_file import JOINT_STATE_KEYS, certificate_dict, json_float as _float, write_result_json
 from .ground_motion import GroundMotion, one_sine, read_at2, ricker
 from .ground_motion import read as read_ground_motion
@@ -248,9 +249,10 @@ def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dic
     1 open, 2 sliding, 4 rocking; 0 elastic), broken, joint_states {elastic, sliding, rocking, open},
     iterations, steps, elapsed_s [s], certificate (a limit analysis's certificate, see
     :data:`masonry_dem.case.CERTIFICATE_KEYS`; None for the other methods); title when given. With ``model`` also: blocks and interfaces
-    (counts, as in the result file), base_index, top_index, block_rects ((n_all, 4) [x0, y0, x1, y1] m),
-    weights [N], interface_blocks ((m, 2) a, b), interface_geometry ((m, 5) x, y [m], nx, ny, l [m]),
-    interface_family. Non-finite numbers become None.
+    (counts, as in the result file), base_index, top_index, block_rects ((n_all, 4) [x0, y0, x1, y1] m: each
+    block's bounding box, the block itself for a rectangle), block_polygons (every block's vertices [[x, y], ...] m,
+    counter-clockwise), weights [N], interface_blocks ((m, 2) a, b), interface_geometry ((m, 5) x, y [m], nx, ny,
+    l [m]), interface_family. Non-finite numbers become None.
 
     The results of a 3D wall (``Results.dimension`` 3, a :class:`masonry_dem.Model3D`) have the same keys with
     ``"dimension": 3``: displacements and mechanism (n_all, 6) ux, uy, uz [m], rx, ry, rz [rad] (the mechanism's
@@ -295,6 +297,7 @@ def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dic
             "base_index": None if model.base_index is None else int(model.base_index),
             "top_index": None if model.top_index is None else int(model.top_index),
             "block_boxes" if space else "block_rects": _floats(model.boxes if space else model.rects),
+            **({} if space else {"block_polygons": [_floats(p) for p in shapes(model).polygons()]}),
             "weights": _floats(model.weights),
             "interface_blocks": [[int(a), int(b)] for a, b in np.asarray(model.interface_blocks).reshape(-1, 2)],
         })

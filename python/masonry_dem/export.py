@@ -2,11 +2,13 @@
 
 :func:`write_vtk` writes two unstructured-grid files (meshio):
 
-* ``PREFIX-blocks.vtu``: every block (wall blocks, then the base and the top beam, as in ``Model.rects``)
-  as a quad in the plane z = 0 [m]. Cell data: ``displacement`` (u1, u2, 0) [m] and ``rotation`` phi
-  [rad] at the last converged step, ``mechanism`` (the last increment, scaled to max |u| = 1; 3-vector
-  u1, u2, 0), ``kind`` (0 wall block, 1 base, 2 top beam), ``block`` (index). Point data:
-  ``displacement`` of each corner (u + phi k x r, linearized) [m], for ParaView's *Warp By Vector*.
+* ``PREFIX-blocks.vtu``: every block (wall blocks, then the supports, the base and the top beam, as in
+  ``Model.polygons``) as a cell in the plane z = 0 [m], its vertices counter-clockwise: a quad of 4 vertices (every
+  rectangle), a triangle of 3, a VTK polygon of more (the cells in the order of the blocks, in runs of one type).
+  Cell data: ``displacement`` (u1, u2, 0) [m] and ``rotation`` phi [rad] at the last converged step, ``mechanism``
+  (the last increment, scaled to max |u| = 1; 3-vector u1, u2, 0), ``kind`` (0 wall block, 1 base, 2 top beam, 3
+  support), ``block`` (index). Point data: ``displacement`` of each vertex (u + phi k x r about the block's
+  centroid, linearized) [m], for ParaView's *Warp By Vector*.
 * ``PREFIX-interfaces.vtu``: every interface as a line from centroid - l/2 t to centroid + l/2 t, with
   the tangent t = (ny, -nx) of the normal (nx, ny) of ``Model.interface_geometry``. Cell data:
   ``normal_force`` N [N] (tension > 0), ``shear_force`` T [N], ``moment`` M [N m], ``state`` (bit flags:
@@ -41,6 +43,7 @@ import numpy as np
 
 from ._vtk import FAMILY_CODES as FAMILY_CODES, write_meshes as _write_meshes
 from ._core import InputError
+from ._shapes import Shapes, shapes, support_indices
 from .api import check_model
 from .atomic import atomic_file, check_target, prefix_problem
 from .history import ENERGIES, check_plane, control_response, is_time_history, largest_translation, record
@@ -73,7 +76,7 @@ def _field(values: Any, shape: Tuple[int, ...]) -> np.ndarray:
 
 def block_mesh(model: Any, results: Any) -> Any:
     """The blocks as a :class:`meshio.Mesh` (see the module docstring for the fields)."""
-    n = len(np.asarray(model.rects).reshape(-1, 4))
+    n = len(shapes(model))
     disp = _field(results.displacements, (n, 3))
     mech = _field(results.mechanism, (n, 3))
     return _blocks(model, disp, {"mechanism": _vec(mech)}, exact=False)
@@ -82,8 +85,8 @@ def block_mesh(model: Any, results: Any) -> Any:
 def history_block_mesh(model: Any, history: Any, k: int) -> Any:
     """The blocks at the ``k``-th record of a time history as a :class:`meshio.Mesh`: the fields of
     :func:`block_mesh` with ``velocity`` (v1, v2, 0) [m/s] and ``angular_velocity`` [rad/s] in place of
-    ``mechanism``; the corners' ``displacement`` with the rotation applied exactly (rocking turns far)."""
-    n = len(np.asarray(model.rects).reshape(-1, 4))
+    ``mechanism``; the vertices' ``displacement`` with the rotation applied exactly (rocking turns far)."""
+    n = len(shapes(model))
     rec = record(history, k)
     vel = _field(rec.velocities, (n, 3))
     fields = {"velocity": _vec(vel), "angular_velocity": vel[:, 2].copy()}
@@ -97,39 +100,47 @@ def _vec(a: np.ndarray) -> np.ndarray:
 
 def _blocks(model: Any, disp: np.ndarray, fields: Dict[str, np.ndarray], exact: bool) -> Any:
     """The blocks moved by ``disp`` ((n_all, 3): u1, u2 [m], phi [rad]) as a mesh with the cell data
-    ``displacement``, ``rotation``, then ``fields``, then ``kind`` and ``block``. The corners' displacement
+    ``displacement``, ``rotation``, then ``fields``, then ``kind`` and ``block``. The vertices' displacement
     turns them about the centroid by phi exactly if ``exact``, else linearized (u + phi k x r)."""
     import meshio
 
-    rects = np.asarray(model.rects, dtype=np.float64).reshape(-1, 4)
-    n = len(rects)
-    x0, y0, x1, y1 = rects.T
-    corners = np.stack([np.c_[x0, y0], np.c_[x1, y0], np.c_[x1, y1], np.c_[x0, y1]], axis=1)  # (n, 4, 2)
-    points = np.concatenate([corners.reshape(-1, 2), np.zeros((4 * n, 1))], axis=1)
-    quads = np.arange(4 * n, dtype=np.int64).reshape(n, 4)
+    blocks = shapes(model)
+    n, p = len(blocks), len(blocks.points)
+    points = np.concatenate([blocks.points, np.zeros((p, 1))], axis=1)
 
     kind = np.zeros(n, dtype=np.int32)
+    kind[support_indices(model)] = 3
     if model.base_index is not None:
         kind[int(model.base_index)] = 1
     if model.top_index is not None:
         kind[int(model.top_index)] = 2
 
-    # corner displacements of the rigid blocks (rotation about the centroid)
-    centroid = 0.5 * np.c_[x0 + x1, y0 + y1]
-    r = corners - centroid[:, None, :]
-    phi = disp[:, 2][:, None]
-    if exact:
-        c, s = np.cos(phi) - 1.0, np.sin(phi)
-        turn = np.stack([c * r[..., 0] - s * r[..., 1], s * r[..., 0] + c * r[..., 1]], axis=-1)
-    else:
-        turn = np.stack([-phi * r[..., 1], phi * r[..., 0]], axis=-1)
-    corner_u = disp[:, None, :2] + turn
-    point_disp = np.concatenate([corner_u.reshape(-1, 2), np.zeros((4 * n, 1))], axis=1)
+    # vertex displacements of the rigid blocks (rotation about the centroid)
+    vertex_u = blocks.displacements(disp, exact)
+    point_disp = np.concatenate([vertex_u, np.zeros((p, 1))], axis=1)
 
-    cell_data = {"displacement": [_vec(disp)], "rotation": [disp[:, 2].copy()]}
-    cell_data.update({name: [values] for name, values in fields.items()})
-    cell_data.update({"kind": [kind], "block": [np.arange(n, dtype=np.int32)]})
-    return meshio.Mesh(points, [("quad", quads)], point_data={"displacement": point_disp}, cell_data=cell_data)
+    cells, runs = _cells(blocks)
+    cell_data = {"displacement": _vec(disp), "rotation": disp[:, 2].copy()}
+    cell_data.update(fields)
+    cell_data.update({"kind": kind, "block": np.arange(n, dtype=np.int32)})
+    split = {name: np.split(values, runs) for name, values in cell_data.items()}
+    return meshio.Mesh(points, cells, point_data={"displacement": point_disp}, cell_data=split)
+
+
+#: The VTK cell of a block of 3 and of 4 vertices; a block of more is a "polygon".
+_CELL_TYPES = {3: "triangle", 4: "quad"}
+
+
+def _cells(blocks: Shapes) -> Tuple[List[Tuple[str, np.ndarray]], np.ndarray]:
+    """The blocks as meshio cell blocks, in the order of the blocks: a run of blocks of one vertex count per cell
+    block (every vertex of the wall a point, block after block); and where each run after the first starts."""
+    counts = blocks.counts
+    runs = np.flatnonzero(np.diff(counts)) + 1
+    cells = []
+    for lo, hi in zip(np.r_[0, runs], np.r_[runs, len(counts)]):
+        k = int(counts[lo])
+        cells.append((_CELL_TYPES.get(k, "polygon"), np.arange(blocks.starts[lo], blocks.starts[hi]).reshape(-1, k)))
+    return cells, runs
 
 
 def interface_mesh(model: Any, results: Any) -> Any:

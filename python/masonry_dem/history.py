@@ -5,7 +5,7 @@ refused there with :func:`check_plane` (its arrays are read directly in this ver
 
 Displacements of a time history (``TimeHistory.displacements``, (k, n_all, 3): u1 [m], u2 [m], phi [rad]) are
 relative to the ground: the blocks move in the frame of the base (a base acceleration acts as the inertial
-forces -m a_g(t)), and they are measured from the undeformed wall (the geometry of ``Model.rects``), as the
+forces -m a_g(t)), and they are measured from the undeformed wall (the geometry of ``Model.polygons``), as the
 ``initial_displacements`` given to ``Model.simulate`` are. The base's rows are zero.
 """
 

@@ -10,11 +10,12 @@ Lengths in m, rotations in rad; a positive rotation is counterclockwise.
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, List, Sequence
+from typing import Any, Dict, List, Mapping, NamedTuple, Optional, Sequence
 
 import numpy as np
 import numpy.typing as npt
 
+from ._shapes import Shapes, centroids as block_centroids, moved_vertices, rect_vertices, shapes
 from ._mechanism import CRACK_TOLERANCE, MOVING_FRACTION, connected_parts as _connected_parts, mechanism_text, plural as _plural
 
 __all__ = [
@@ -24,6 +25,8 @@ __all__ = [
     "corner_motion",
     "deformed_corners",
     "describe_mechanism",
+    "hinges",
+    "describe_hinges",
     "interface_categories",
     "interface_jumps",
     "format_multiplier",
@@ -57,37 +60,26 @@ def interface_categories(states: npt.ArrayLike) -> List[str]:
     return out
 
 
-def _corners(rect: Sequence[float]) -> np.ndarray:
-    x0, y0, x1, y1 = (float(v) for v in rect)
-    return np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]])
+def _as_shapes(blocks: Any) -> Shapes:
+    """``blocks`` as :class:`masonry_dem._shapes.Shapes`: those themselves, or rectangles (n, 4) [x0, y0, x1, y1]."""
+    return blocks if isinstance(blocks, Shapes) else Shapes.from_rects(blocks)
 
 
-def _centroid(rect: Sequence[float]) -> np.ndarray:
-    return np.array([(rect[0] + rect[2]) / 2.0, (rect[1] + rect[3]) / 2.0])
+def corner_motion(blocks: Any, motion: np.ndarray) -> np.ndarray:
+    """(n,) largest vertex displacement [m] of each block for the small motion (u1, u2, phi) at its centroid.
+    ``blocks``: the blocks' :class:`masonry_dem._shapes.Shapes` (:func:`masonry_dem._shapes.shapes` of a model), or
+    rectangles (n, 4) [x0, y0, x1, y1]."""
+    return _as_shapes(blocks).vertex_motion(motion)
 
 
-def corner_motion(rects: np.ndarray, motion: np.ndarray) -> np.ndarray:
-    """(n,) largest corner displacement [m] of each block for the small motion (u1, u2, phi) at its centroid."""
-    r = np.asarray(rects, dtype=np.float64).reshape(-1, 4)
-    m = np.asarray(motion, dtype=np.float64).reshape(-1, 3)
-    # the corners relative to the centroid: (+-half width, +-half height); the largest of the four motions
-    hx, hy = 0.5 * (r[:, 2] - r[:, 0]), 0.5 * (r[:, 3] - r[:, 1])
-    sx, sy = np.array([-1.0, 1.0, 1.0, -1.0]), np.array([-1.0, -1.0, 1.0, 1.0])
-    u1 = m[:, :1] - m[:, 2:] * (hy[:, None] * sy)
-    u2 = m[:, 1:2] + m[:, 2:] * (hx[:, None] * sx)
-    return np.hypot(u1, u2).max(axis=1)  # type: ignore[no-any-return]
-
-
-def deformed_corners(rect: Sequence[float], motion: Sequence[float], scale: float) -> np.ndarray:
-    """(4, 2) corners [m] of a block moved by ``scale`` * (u1, u2) [m] and turned by ``scale`` * phi [rad]
-    about its centroid. The rotation is applied exactly, so the drawn rectangle keeps its shape."""
-    p = _corners(rect)
-    c = _centroid(rect)
-    u1, u2, phi = (float(v) for v in motion)
-    a = scale * phi
-    rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
-    moved: np.ndarray = c + scale * np.array([u1, u2]) + (p - c) @ rot.T
-    return moved
+def deformed_corners(block: Sequence[Any], motion: Sequence[float], scale: float, centroid: Any = None) -> np.ndarray:
+    """(k, 2) vertices [m] of a block moved by ``scale`` * (u1, u2) [m] and turned by ``scale`` * phi [rad]
+    about its centroid. ``block``: a rectangle [x0, y0, x1, y1] (its 4 corners counter-clockwise from (x0, y0)) or
+    the vertices (k, 2) of a polygon; ``centroid``: the block's (by default the area's). The rotation is applied
+    exactly, so the drawn block keeps its shape."""
+    b = np.asarray(block, dtype=np.float64)
+    vertices = rect_vertices(b) if b.shape == (4,) else b
+    return moved_vertices(vertices, motion, scale, centroid)
 
 
 def interface_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
@@ -97,18 +89,26 @@ def interface_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
     With the interface normal n from block a to block b and ``[u] = u_b(c) - u_a(c)`` at the interface
     centroid c: slip = t.[u], gaps = n.[u] +/- (phi_b - phi_a) l / 2.
     """
-    rects = np.asarray(model.rects, dtype=np.float64)
+    j = _end_jumps(model, motion)
+    return np.c_[j[:, 0], np.maximum(j[:, 1], j[:, 2]), np.minimum(j[:, 1], j[:, 2])]  # type: ignore[no-any-return]
+
+
+def _end_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
+    """(m, 3) jumps of a motion across each interface: slip [m] along the tangent t = (n_y, -n_x), and the normal
+    gaps [m] at the ends c - l/2 t and c + l/2 t, n.[u] - (phi_b - phi_a) l / 2 and n.[u] + (phi_b - phi_a) l / 2
+    (the jump of b over a at c + s t is [u] at c + (phi_b - phi_a) s k x t, and k x t = n)."""
+    cents = block_centroids(model)
     pairs = np.asarray(model.interface_blocks, dtype=np.int64).reshape(-1, 2)
     geom = np.asarray(model.interface_geometry, dtype=np.float64).reshape(-1, 5)
     out = np.zeros((len(pairs), 3))
     for k, ((a, b), (cx, cy, nx, ny, length)) in enumerate(zip(pairs, geom)):
         c = np.array([cx, cy])
-        ua = _transport(motion[a], _centroid(rects[a]), c)
-        ub = _transport(motion[b], _centroid(rects[b]), c)
+        ua = _transport(motion[a], cents[a], c)
+        ub = _transport(motion[b], cents[b], c)
         du = ub[:2] - ua[:2]
         dn, dt = nx * du[0] + ny * du[1], -ny * du[0] + nx * du[1]
-        half = abs(ub[2] - ua[2]) * length / 2
-        out[k] = (dt, dn + half, dn - half)
+        turn = (ub[2] - ua[2]) * length / 2
+        out[k] = (dt, dn - turn, dn + turn)
     return out
 
 
@@ -119,16 +119,16 @@ def _transport(motion: np.ndarray, src: np.ndarray, dst: np.ndarray) -> np.ndarr
     return np.array([u1 - phi * d[1], u2 + phi * d[0], phi])
 
 
-def _describe_part(rects: np.ndarray, motion: np.ndarray, part: Sequence[int]) -> str:
+def _describe_part(blocks: Shapes, motion: np.ndarray, part: Sequence[int]) -> str:
     """'turning clockwise about (x, y) m' or 'sliding at +43 deg from +x': the area-weighted mean rigid
     motion of one part."""
-    areas = np.array([(rects[i][2] - rects[i][0]) * (rects[i][3] - rects[i][1]) for i in part])
-    cents = np.array([_centroid(rects[i]) for i in part])
+    areas = blocks.areas[list(part)]
+    cents = blocks.centroids[list(part)]
     r = (areas[:, None] * cents).sum(axis=0) / areas.sum()
     at_r = np.array([_transport(motion[i], cents[k], r) for k, i in enumerate(part)])
     u1, u2, phi = (areas[:, None] * at_r).sum(axis=0) / areas.sum()
-    lo = np.min([rects[i][:2] for i in part], axis=0)
-    hi = np.max([rects[i][2:] for i in part], axis=0)
+    box = blocks.bounds[list(part)]
+    lo, hi = box[:, :2].min(axis=0), box[:, 2:].max(axis=0)
     size = float(np.hypot(*(hi - lo)))
     speed = math.hypot(u1, u2)
     if abs(phi) * 5.0 * size < speed:  # the centre of rotation is far away: a translation
@@ -148,17 +148,17 @@ def describe_mechanism(model: Any, results: Any) -> str:
     [m]) or sliding; and the crack: the interfaces across which the mechanism slips, separates (a gap at
     both ends), or rocks (a gap at one end only), counted by family. An interface may both slip and
     separate. ("open" is kept for the joint states: an interface at its tension cut-off, carrying nothing.)"""
-    rects = np.asarray(model.rects, dtype=np.float64)
+    blocks = shapes(model)
     n = int(model.n_blocks)
     mech = np.asarray(results.mechanism, dtype=np.float64)
     # a limit analysis has no increments: its mechanism is the collapse velocities, zero without a collapse
     nothing = "none (no collapse)" if str(getattr(results, "method", "")) == "limit" else "none (no displacement increment)"
-    if mech.shape != (len(rects), 3) or not np.all(np.isfinite(mech)):
+    if mech.shape != (len(blocks), 3) or not np.all(np.isfinite(mech)):
         return nothing
-    # The bodies that may move: the wall blocks and the top beam (not the base).
+    # The bodies that may move: the wall blocks and the top beam (not the base, nor the supports).
     top = model.top_index
     bodies = list(range(n)) + ([int(top)] if top is not None else [])
-    cm = corner_motion(rects, mech)
+    cm = blocks.vertex_motion(mech)
     peak = float(max(cm[i] for i in bodies))
     if not peak > 0:
         return nothing
@@ -180,8 +180,87 @@ def describe_mechanism(model: Any, results: Any) -> str:
     parts = _connected_parts(moving, np.asarray(model.interface_blocks), list(cracked))
     parts.sort(key=len, reverse=True)
     crack = ((slips, "slip"), (opens, "separate"), (rocks, "rock"))
-    describe = lambda part: _describe_part(rects, mech, part)  # noqa: E731
+    describe = lambda part: _describe_part(blocks, mech, part)  # noqa: E731
     return mechanism_text(n_moving, n, beam, parts, describe, crack, families, "interface")
+
+
+class Hinge(NamedTuple):
+    """A hinge of a mechanism: the interface ``interface`` opens by rotation about its end ``point`` [m] (x, y);
+    ``end``: which end, "intrados" or "extrados" on an arch's joint, else "left" or "right" on a joint within 45
+    degrees of the horizontal, "bottom" or "top" on a steeper one."""
+
+    interface: int
+    point: np.ndarray
+    end: str
+
+
+def hinges(model: Any, motion: np.ndarray, arch: Optional[Mapping[str, Any]] = None) -> List[Hinge]:
+    """The hinges of the mechanism ``motion`` ((n_all, 3): u1, u2, phi of each block): every interface that opens
+    by rotation, a gap at one end and none at the other (a "rock" of :func:`describe_mechanism`), with the end it
+    turns about, left to right (then bottom to top).
+
+    The gap at the end c + s t of an interface (s = +/- l/2 along its tangent t) is n.[u] at c + (phi_b - phi_a) s:
+    the interface turns about the end whose gap is the smaller. ``arch``: the arch's ``intrados`` and
+    ``extrados`` (the arch generator's curves, each a list of points (x, y) in m): an end nearer the intrados than the
+    extrados is "intrados", else "extrados" (on an arch's joint, the end nearer its centre, or farther). Without it, an
+    end is named by its side."""
+    mech = np.asarray(motion, dtype=np.float64)
+    cm = shapes(model).vertex_motion(mech)
+    peak = float(cm.max()) if len(cm) else 0.0
+    if not peak > 0:
+        return []
+    tol = CRACK_TOLERANCE * peak
+    geom = np.asarray(model.interface_geometry, dtype=np.float64).reshape(-1, 5)
+    jumps = _end_jumps(model, mech)
+    gaps = np.sort(jumps[:, 1:], axis=1)
+    curves = None if arch is None else [np.asarray(arch[k], dtype=np.float64).reshape(-1, 2) for k in ("intrados",
+                                                                                                       "extrados")]
+    out = []
+    for k in np.flatnonzero((gaps[:, 1] > tol) & (gaps[:, 0] <= tol)):
+        cx, cy, nx, ny, length = geom[k]
+        ends = [np.array([cx + s * ny, cy - s * nx]) for s in (-length / 2, length / 2)]  # c + s t, t = (ny, -nx)
+        shut = 0 if jumps[k, 1] <= jumps[k, 2] else 1  # the end of the smaller gap: the hinge
+        point, other = ends[shut], ends[1 - shut]
+        if curves is not None:
+            end = "intrados" if _distance(point, curves[0]) < _distance(point, curves[1]) else "extrados"
+        elif abs(ny) >= abs(nx):
+            end = "left" if point[0] < other[0] else "right"
+        else:
+            end = "bottom" if point[1] < other[1] else "top"
+        out.append(Hinge(int(k), point, end))
+    out.sort(key=lambda h: (round(float(h.point[0]), 9), round(float(h.point[1]), 9)))
+    return out
+
+
+def _distance(point: np.ndarray, curve: np.ndarray) -> float:
+    """The distance [m] from a point to a polyline (its segments; a point alone for a curve of one point)."""
+    if len(curve) == 1:
+        return float(np.hypot(*(point - curve[0])))
+    a, d = curve[:-1], np.diff(curve, axis=0)
+    t = np.clip(((point - a) * d).sum(axis=1) / np.maximum((d * d).sum(axis=1), 1e-300), 0.0, 1.0)
+    return float(np.hypot(*(a + t[:, None] * d - point).T).min())
+
+
+#: The most hinges :func:`describe_hinges` lists one by one.
+HINGES_LISTED = 6
+
+
+def describe_hinges(model: Any, results: Any, arch: Optional[Mapping[str, Any]] = None) -> str:
+    """The hinges of the mechanism (``Results.mechanism``, :func:`hinges`) in a line: "4: the intrados of a bed joint
+    at (x, y) m, the extrados of a bed joint at (x, y) m, ..." (on a wall: "the right end of a base joint at ..."),
+    left to right, at most
+    :data:`HINGES_LISTED` of them; "none" when no interface opens by rotation. ``arch`` as in :func:`hinges`."""
+    mech = np.asarray(results.mechanism, dtype=np.float64)
+    if mech.shape != (len(block_centroids(model)), 3) or not np.all(np.isfinite(mech)):
+        return "none"
+    found = hinges(model, mech, arch)
+    if not found:
+        return "none"
+    families = list(model.interface_family)
+    shown = [f"the {h.end}{'' if arch is not None else ' end'} of a {families[h.interface]} joint at "
+             f"({h.point[0]:.2f}, {h.point[1]:.2f}) m" for h in found[:HINGES_LISTED]]
+    more = f", {len(found) - HINGES_LISTED} more" if len(found) > HINGES_LISTED else ""
+    return f"{len(found)}: " + ", ".join(shown) + more
 
 
 def multiplier_symbol(live: str = "horizontal_weight") -> str:
@@ -258,14 +337,18 @@ def certificate_text(results: Any, live: str = "horizontal_weight") -> List[str]
     return lines
 
 
-def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight") -> str:
+def summary(
+    title: str, model: Any, results: Any, live: str = "horizontal_weight", arch: Optional[Mapping[str, Any]] = None
+) -> str:
     """The short human summary printed by ``masonry-dem run`` (several lines, no trailing newline).
 
     A limit analysis (method "limit") has no load path: its joint states are those of the collapse
     mechanism, and a ``certificate`` line (or lines) replaces the count of steps. A static or explicit run checked
     against limit analysis (associative dry joints) gets a ``checked against`` line with the exact value (in 3D a
     lower bound). A 3D wall (a :class:`masonry_dem.Model3D`) gets a line with the live load's direction in plan, and
-    its mechanism is described in 3D (:func:`masonry_dem.space.report.describe_mechanism`)."""
+    its mechanism is described in 3D (:func:`masonry_dem.space.report.describe_mechanism`). A wall in the plane's
+    collapse mechanism that opens joints by rotation gets a ``hinges`` line (:func:`describe_hinges`; ``arch``: the
+    arch generator's intrados and extrados, ``Case.arch``, to name an arch's hinges by them)."""
     describe = describe_mechanism
     three_d = int(getattr(model, "dimension", 2)) == 3
     if three_d:
@@ -313,6 +396,10 @@ def summary(title: str, model: Any, results: Any, live: str = "horizontal_weight
         lines.append(f"  joint states:        {joint_text}; at the last equilibrium")
     # a mechanism is a claim of collapse too: none without one
     lines.append(f"  mechanism:           {describe(model, results) if collapse else 'none (no collapse)'}")
+    if collapse and not three_d:
+        hinge_text = describe_hinges(model, results, arch)
+        if hinge_text != "none":
+            lines.append(f"  hinges:              {hinge_text}")
     if limit:
         for k, text in enumerate(certificate_text(results, live)):
             lines.append(f"  {'certificate:' if k == 0 else '':<21}{text}")

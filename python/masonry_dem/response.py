@@ -19,6 +19,7 @@ from typing import Any, Dict, List, Optional
 
 import numpy as np
 
+from ._shapes import shapes
 from .history import control_response, default_control_block
 
 __all__ = [
@@ -52,7 +53,7 @@ def _array(history: Any, name: str) -> Optional[np.ndarray]:
 
 def wall_height(model: Any) -> float:
     """The height of the wall blocks [m] (the base and the top beam not counted)."""
-    wall = np.asarray(model.rects, dtype=np.float64)[: int(model.n_blocks)]
+    wall = shapes(model).bounds[: int(model.n_blocks)]
     return float(wall[:, 3].max() - wall[:, 1].min())
 
 

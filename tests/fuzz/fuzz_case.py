@@ -49,7 +49,8 @@ STRINGS = ["", "half", "full", "fixed", "none", "free", "static", "dynamic", "lo
            "horizontal_weight", "top_horizontal", "local", "viscous", "\u00e9", "1.0", "nan"]
 KEYS: Dict[str, List[str]] = {
     "": ["format", "title", "geometry", "base", "top", "joints", "loads", "analysis", "reference", "extra"],
-    "geometry": ["thickness", "density", "running_bond", "pattern", "blocks", "boxes", "leaf", "u_wall"],
+    "geometry": ["thickness", "density", "running_bond", "pattern", "blocks", "polygons", "supports", "boxes", "leaf",
+                 "u_wall"],
     "geometry.running_bond": ["block_length", "block_height", "courses", "height", "length", "first_course", "openings"],
     "geometry.pattern": ["block_length", "block_height", "rows"],
     "geometry.leaf": ["length", "height", "thickness", "block_length", "block_height", "first_course", "openings"],
@@ -132,6 +133,13 @@ def structured_case(fdp: "atheris.FuzzedDataProvider") -> str:
                 h = fdp.PickValueInList([1.0, 0.5, 0.25, 1e-9, 1e6])
                 blocks.append([x0, y0, x0 + w, y0 + h])
             tables["geometry"]["blocks"] = blocks
+            if fdp.ConsumeBool():  # polygons too: a gable on some blocks, or a wedge beside them
+                rise = fdp.PickValueInList([1.0, 0.5, 1e-9, 1e6, -0.5, 0.0])
+                on = blocks[: fdp.ConsumeIntInRange(1, 3)]
+                tables["geometry"]["polygons"] = [
+                    [[x0, y1], [x1, y1], [(x0 + x1) / 2, y1 + rise]] if fdp.ConsumeBool()
+                    else [[x1, y0], [x1 + rise, y0], [x1, y1]] for x0, y0, x1, y1 in on
+                ]
     for _ in range(fdp.ConsumeIntInRange(0, 8)):
         path = fdp.PickValueInList(sorted(KEYS))
         if path == "joints" and fdp.ConsumeBool():

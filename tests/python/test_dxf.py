@@ -23,7 +23,7 @@ def _sorted(blocks: np.ndarray) -> np.ndarray:
 
 def _drawing(path: Path, units: Optional[int] = 4, offset=(0.0, 0.0), layer: str = "bricks") -> Path:
     """The wall WALL drawn in mm (as closed LWPOLYLINEs, corners anticlockwise or clockwise), with a dimension
-    line, a text and a rotated rectangle on the layer "notes"."""
+    line, a text, a rotated rectangle and then an outline with an arc on the layer "notes"."""
     doc = ezdxf.new(units=units if units is not None else 0)
     if units is None:
         doc.header["$INSUNITS"] = 0
@@ -39,6 +39,8 @@ def _drawing(path: Path, units: Optional[int] = 4, offset=(0.0, 0.0), layer: str
     c, s = np.cos(np.radians(10)), np.sin(np.radians(10))
     rotated = [(1000 + 400 * c * u - 175 * s * v, 400 * s * u + 175 * c * v) for u, v in ((0, 0), (1, 0), (1, 1), (0, 1))]
     msp.add_lwpolyline(rotated, close=True, dxfattribs={"layer": "notes"})
+    msp.add_lwpolyline([(0, 500, 0.5), (400, 500, 0), (400, 675, 0), (0, 675, 0)], format="xyb", close=True,
+                       dxfattribs={"layer": "notes"})
     doc.saveas(path)
     return path
 
@@ -207,7 +209,8 @@ def test_case_with_drawing(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     "geometry, key, fragment",
     [
-        ('dxf = "drawings/wall.dxf"', "geometry.dxf", "LWPOLYLINE (handle"),  # the rotated one on "notes"
+        # the one with an arc on "notes" (the rotated rectangle before it is a polygon block)
+        ('dxf = "drawings/wall.dxf"', "geometry.dxf", "LWPOLYLINE (handle"),
         ('dxf = "drawings/wall.dxf"\ndxf_layer = "bricks"\ndxf_units = "yd"', "geometry.dxf_units",
          'expected one of "mm"'),
         ('dxf = "missing.dxf"', "geometry.dxf", "cannot read"),

@@ -35,14 +35,14 @@ PACKAGE = ROOT.name
 STAGES: Tuple[Tuple[str, Tuple[str, ...]], ...] = (
     # the compiled core's entry points, checked: the models of both dimensions with their solvers (their methods)
     # and modal analysis; errors, units, files
-    ("core", ("errors", "units", "_files", "atomic", "_lazy", "_checked", "space.model", "modal")),
+    ("core", ("errors", "units", "_files", "atomic", "_lazy", "_shapes", "_checked", "space.model", "modal")),
     # what makes a model and its analysis: case files (a Case builds the model and runs the analysis), ground
     # motions, drawings
     ("input", ("dxf", "ground_motion", "case.table", "case.mapping", "case.common", "case.reader", "space.case",
                "default_case", "assessment.spectra", "assessment.parameters")),
     # what an analysis returns, read: time histories, response peaks, the result file and dicts, the reports in
     # words, comparisons
-    ("results", ("history", "response", "case.result_file", "api", "_mechanism", "report", "space.report",
+    ("results", ("history", "response", "case.result_file", "api", "_mechanism", "report", "thrust", "space.report",
                  "compare", "assessment.kinematic", "assessment.nonlinear", "assessment.pushover",
                  "assessment.verdict")),
     # figures and files: plots, VTK and CSV, progress bars

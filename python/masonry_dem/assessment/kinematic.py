@@ -25,6 +25,7 @@ import numpy as np
 
 from .._core import InputError
 from .._mechanism import MOVING_FRACTION
+from .._shapes import shapes
 from ..report import corner_motion as corner_motion_2d
 from ..space.report import corner_motion as corner_motion_3d
 from .parameters import AssessmentParameters
@@ -95,9 +96,9 @@ def mechanism_weights(model: Any, results: Any, gravity: Optional[float] = None)
         angle = math.radians(float(getattr(model, "direction", 0.0) or 0.0))
         dx = mech[:, 0] * math.cos(angle) + mech[:, 1] * math.sin(angle)
     else:
-        rects = np.asarray(model.rects, dtype=np.float64).reshape(-1, 4)
-        corner = corner_motion_2d(rects, mech)
-        points = 0.5 * (rects[:, :2] + rects[:, 2:])
+        blocks = shapes(model)  # convex polygons: rectangles among them
+        corner = corner_motion_2d(blocks, mech)
+        points = blocks.centroids
         dx = mech[:, 0]  # the dofs are at the centroids
     bodies = np.arange(int(model.n_blocks))
     if model.top_index is not None:

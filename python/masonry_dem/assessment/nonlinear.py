@@ -26,6 +26,7 @@ from typing import Any, Optional, Tuple
 
 import numpy as np
 
+from .._shapes import shapes
 from .kinematic import mechanism_weights, participating_mass
 from .parameters import AssessmentParameters
 from .spectra import _refuse
@@ -77,10 +78,11 @@ def rigid_hinge(model: Any, results: Any, blocks: np.ndarray) -> Tuple[Tuple[flo
     (InputError "mechanism") a mechanism of several bodies, or one that slides."""
     if int(getattr(model, "dimension", 2)) == 3:
         raise _refuse("mechanism", "the nonlinear kinematic check is of a wall in the plane in this version")
-    rects = np.asarray(model.rects, dtype=np.float64)[blocks]
+    every = shapes(model)  # convex polygons: rectangles among them
+    bounds = every.bounds[blocks]
     mech = np.asarray(results.mechanism, dtype=np.float64)[blocks]
-    centroids = 0.5 * (rects[:, :2] + rects[:, 2:])
-    size = float(np.max(rects[:, 2:].max(axis=0) - rects[:, :2].min(axis=0)))
+    centroids = every.centroids[blocks]
+    size = float(np.max(bounds[:, 2:].max(axis=0) - bounds[:, :2].min(axis=0)))
     phi = mech[:, 2]
     peak = float(np.max(np.abs(phi)))
     speed = float(np.max(np.hypot(mech[:, 0], mech[:, 1])))

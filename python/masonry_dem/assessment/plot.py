@@ -10,6 +10,7 @@ from typing import Any, Optional, Union
 
 import numpy as np
 
+from .._shapes import shapes
 from ..plot.canvas import _finish, _new_figure
 from .verdict import Assessment
 
@@ -69,7 +70,7 @@ def plot_displaced_shape(ax: Any, model: Any, assessment: Assessment) -> None:
         ax.set_axis_off()
         return
     from matplotlib.collections import PatchCollection
-    from matplotlib.patches import Rectangle
+    from matplotlib.patches import Polygon
 
     if int(getattr(model, "dimension", 2)) == 3:
         ax.scatter(m.dx, m.points[:, 2], c=m.dx, cmap="viridis", s=12)
@@ -77,17 +78,17 @@ def plot_displaced_shape(ax: Any, model: Any, assessment: Assessment) -> None:
         ax.set_ylabel("height of the block's centroid [m]")
         ax.grid(True, lw=0.3)
     else:
-        rects = np.asarray(model.rects, dtype=np.float64)
+        blocks = shapes(model)  # convex polygons: rectangles among them
         n = int(model.n_blocks)
-        still = [Rectangle((r[0], r[1]), r[2] - r[0], r[3] - r[1]) for i, r in enumerate(rects)
+        still = [Polygon(blocks.polygon(i), closed=True) for i in range(len(blocks))
                  if i not in set(m.blocks.tolist()) and (i < n or i == model.top_index)]
         ax.add_collection(PatchCollection(still, facecolor="0.92", edgecolor="0.6", lw=0.4))
-        moving = [Rectangle((rects[i][0], rects[i][1]), rects[i][2] - rects[i][0], rects[i][3] - rects[i][1])
-                  for i in m.blocks]
+        moving = [Polygon(blocks.polygon(int(i)), closed=True) for i in m.blocks]
         patches = PatchCollection(moving, cmap="viridis", edgecolor="0.2", lw=0.5)
         patches.set_array(np.asarray(m.dx))
         patches.set_clim(min(0.0, float(np.min(m.dx))), 1.0)
         ax.add_collection(patches)
+        rects = blocks.bounds
         size = float(max(np.ptp(rects[:, [0, 2]]), np.ptp(rects[:, [1, 3]])))
         ax.quiver(m.points[:, 0], m.points[:, 1], m.dx, np.zeros_like(m.dx), angles="xy", scale_units="xy",
                   scale=1.0 / (0.08 * size), width=0.004, color="C3")

@@ -69,19 +69,25 @@ def _given(parameters: Any, names: Sequence[str]) -> Dict[str, Any]:
     return {name: value for name, value in values if value is not None}
 
 
+#: The blocks of a wall in the plane as :class:`masonry_dem.Model` takes them: an (n, 4) array of rectangles [x0, y0,
+#: x1, y1] (m), or a list of rectangles and polygons (each an array of vertices [x, y], m).
+Blocks = Union[np.ndarray, List[Any]]
+
+
 @dataclass(frozen=True, eq=False)
 class ModelParameters:
     """The wall of a case, as the arguments of :class:`masonry_dem.Model`.
 
-    ``blocks`` is an (n, 4) array of rectangles [x0, y0, x1, y1] (m); the others are those the case gives,
-    None when it leaves them out (the core's default; for top_rotation: no top beam; for joints: the
-    default law everywhere): thickness [m], density [kg/m3], base, top_rotation, top_force [N], joints,
-    gravity [m/s2], live, top_vertical.
+    ``blocks`` is an (n, 4) array of rectangles [x0, y0, x1, y1] (m), or a list of rectangles and polygons
+    (:data:`Blocks`); the others are those the case gives, None when it leaves them out (the core's default; for
+    top_rotation: no top beam; for joints: the default law everywhere; for supports: none): thickness [m], density
+    [kg/m3], base, top_rotation, top_force [N], joints, gravity [m/s2], live, top_vertical, supports (polygons, each
+    an array of vertices (x, y) in m: fixed blocks).
     """
 
     dimension: ClassVar[int] = 2
 
-    blocks: np.ndarray
+    blocks: Blocks
     thickness: Optional[float] = None
     density: Optional[float] = None
     base: Optional[bool] = None
@@ -91,6 +97,7 @@ class ModelParameters:
     gravity: Optional[float] = None
     live: Optional[str] = None
     top_vertical: Optional[str] = None
+    supports: Optional[List[Any]] = None
 
     def arguments(self) -> Dict[str, Any]:
         """The keyword arguments of ``Model``: blocks and the parameters given."""
@@ -227,19 +234,35 @@ class _Arguments(MutableMapping):  # type: ignore[type-arg]
         return repr(self._values())
 
 
-def generate_blocks(kind: str, geometry: Mapping[str, Any], source: str) -> np.ndarray:
+def generate_blocks(kind: str, geometry: Mapping[str, Any], source: str) -> Blocks:
     """The blocks of a checked [geometry] of ``kind`` ("running_bond", "pattern" or "blocks"), from the
-    arguments given (None: left out, the generator's default). The core's generators may still refuse them
-    (their message, which names the key, gets the file name in front)."""
+    arguments given (None: left out, the generator's default): an (n, 4) array of rectangles, or with
+    ``polygons`` (kind "blocks") the rectangles then the polygons in a list (:data:`Blocks`). The core's generators
+    may still refuse them (their message, which names the key, gets the file name in front)."""
     arguments = {key: value for key, value in geometry.items() if value is not None}
     try:
         if kind == "running_bond":
             return _core.running_bond(**arguments)
         if kind == "pattern":
             return _core.pattern(**arguments)
+        if geometry.get("polygons"):
+            return [list(map(float, r)) for r in geometry["blocks"]] + list(geometry["polygons"])
         return np.asarray(geometry["blocks"], dtype=np.float64)
     except MasonryError as exc:
         raise _in_file(exc, source) from exc  # the core names the key (geometry.<kind>.<key>)
+
+
+def generate_arch(arguments: Mapping[str, Any], source: str) -> Dict[str, Any]:
+    """The arch of a checked [geometry.arch] (the core's generator ``arch``, the arguments given; None: left out):
+    {"blocks": the voussoirs then the piers' blocks, "supports": the abutments, "intrados", "extrados": the joints'
+    ends along each}, each a list of vertices or points [x, y] [m]. The generator's refusals (of a rise that does not
+    fit the span, abutments and piers both, ...), which name the key, get the file name in front."""
+    try:
+        made = _core.arch(**{key: value for key, value in arguments.items() if value is not None})
+    except MasonryError as exc:
+        raise _in_file(exc, source) from exc
+    return {key: [np.asarray(p, dtype=np.float64).tolist() for p in made[key]] for key in
+            ("blocks", "supports", "intrados", "extrados")}
 
 
 @dataclass
@@ -264,6 +287,8 @@ class Case:
         time_history: the [time_history] options (:class:`TimeHistoryParameters`; all None when left out).
         assessment: the optional [assessment] (:class:`masonry_dem.assessment.AssessmentParameters`: the demand
             spectrum and the check's parameters), or None; ``masonry-dem assess`` checks the analysis against it.
+        arch: of a [geometry.arch], what the arch generator gives besides the blocks (its ``intrados`` and
+            ``extrados``, lists of points (x, y) in m), by which the report names an arch's hinges; else None.
 
     The same parameters as dicts of keyword arguments: :attr:`model_kwargs`, :attr:`analysis_kwargs`,
     :attr:`dynamic_kwargs` and :meth:`solver_kwargs`.
@@ -278,6 +303,7 @@ class Case:
     ground_motion: Optional[GroundMotionParameters] = None
     time_history: TimeHistoryParameters = field(default_factory=TimeHistoryParameters)
     assessment: Optional[AssessmentParameters] = None
+    arch: Optional[Dict[str, Any]] = None
 
     @property
     def dimension(self) -> int:
@@ -288,12 +314,13 @@ class Case:
     def model_kwargs(self) -> MutableMapping[str, Any]:
         """The keyword arguments of :class:`masonry_dem.Model` as a dict: blocks, thickness, density, base,
         top_rotation, top_force, joints, gravity, live, top_vertical (the core's default for those the case
-        leaves out); of a 3D wall, those of :class:`masonry_dem.Model3D` (boxes, density, base, top, joints,
-        gravity, live, direction). Setting a key sets that parameter of the case."""
+        leaves out), and supports when the case gives them; of a 3D wall, those of :class:`masonry_dem.Model3D`
+        (boxes, density, base, top, joints, gravity, live, direction). Setting a key sets that parameter of the case."""
         names = [f.name for f in fields(self.model)]
         if self.dimension == 3:
             return _Arguments(self, "model", names, shown=names, defaults=CORE_DEFAULTS_3D)
-        return _Arguments(self, "model", names, shown=names)
+        # a parameter without a default in the core (supports, of a core without them) is shown when given
+        return _Arguments(self, "model", names, shown=[n for n in names if n in CORE_DEFAULTS])
 
     @property
     def analysis_kwargs(self) -> MutableMapping[str, Any]:

@@ -37,6 +37,7 @@ from .mapping import (
     GroundMotionParameters,
     ModelParameters,
     TimeHistoryParameters,
+    generate_arch,
     generate_blocks,
 )
 from .table import FORMAT, _got, _non_negative, _positive, _short, _Table
@@ -52,12 +53,22 @@ TOP_KEYS = (
     "format", "title", "geometry", "base", "top", "joints", "loads", "analysis", "reference", "ground_motion",
     "time_history", "assessment",
 )
-GEOMETRY_KINDS = ("running_bond", "pattern", "blocks", "dxf")
+GEOMETRY_KINDS = ("running_bond", "pattern", "blocks", "dxf", "polygons", "arch")
+# The forms of a wall of rectangles, which the messages name first
+RECTANGLE_KINDS = GEOMETRY_KINDS[:4]
+# Keys of [geometry] that may stand beside a wall's form: the supports (fixed blocks: abutments, springers, an
+# inclined plane), as polygons
+SUPPORT_KEYS = ("supports",)
 # The [geometry] forms of a 3D wall (masonry_dem.space.case): any of them makes the case 3D
 GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner")
 # Keys of [geometry] besides its kinds: the wall's, and the options of a drawing (dxf)
 DXF_KEYS = ("dxf_layer", "dxf_units")
 RUNNING_BOND_KEYS = ("block_length", "block_height", "courses", "height", "length", "first_course", "openings")
+#: The kinds of arch of [geometry.arch] (the core's generator, ``masonry_dem.arch``).
+ARCH_KINDS = ("semicircular", "segmental", "pointed", "elliptical")
+# Keys of [geometry.arch]: its lengths [m], then its counts
+ARCH_LENGTHS = ("span", "radius", "rise", "thickness", "abutment_width", "abutment_height", "pier_width", "pier_height")
+ARCH_COUNTS = ("voussoirs", "pier_courses")
 # Keys of the optional [ground_motion] table: a record file (and a vertical one), or a built-in pulse.
 GROUND_MOTION_KEYS = (
     "file", "units", "scale", "vertical_file", "vertical_scale", "pulse", "amplitude", "amplitude_g", "period",
@@ -215,7 +226,10 @@ def case_from_dict(
         case = case_from_tables(top, title, kind, geometry, wall["density"])
         case.assessment = assessment
         return case  # type: ignore[no-any-return]
-    wall.update(base=_base(top), **_top_beam(top))
+    base = _base(top)
+    if base is None and wall["supports"] is not None:
+        base = False  # a wall on supports has no foundation unless a [base] table puts one
+    wall.update(base=base, **_top_beam(top))
     wall.update(joints=_joints(top), **_loads(top, beam=wall["top_rotation"] is not None))
     method, analysis = _analysis(top)
     reference = _reference(top.table("reference", REFERENCE_KEYS))
@@ -223,7 +237,16 @@ def case_from_dict(
     gravity = wall["gravity"] if wall["gravity"] is not None else float(CORE_DEFAULTS["gravity"])
     motion = _ground_motion(top.table("ground_motion", GROUND_MOTION_KEYS), gravity, base_dir)
     # All keys are valid: map them onto the core (the generators may still refuse a geometry).
-    blocks = generate_blocks(kind, geometry, source)
+    arch = None
+    if kind == "arch":
+        arch = generate_arch(geometry, source)
+        blocks: Any = arch.pop("blocks")
+        if arch["supports"]:  # the abutments, then the supports [geometry] gives
+            wall["supports"] = arch["supports"] + (wall["supports"] or [])
+            if wall["base"] is None:
+                wall["base"] = False
+    else:
+        blocks = generate_blocks(kind, geometry, source)
     return Case(
         title=title,
         model=ModelParameters(blocks=blocks, **wall),
@@ -234,6 +257,7 @@ def case_from_dict(
         ground_motion=motion,
         time_history=time_history,
         assessment=assessment,
+        arch=arch,
     )
 
 
@@ -254,34 +278,43 @@ def _geometry(top: _Table, base_dir: Optional[PathLike]) -> Tuple[str, Dict[str,
     and density (None when left out). A drawing (dxf) is read here, relative to ``base_dir``, and becomes
     a block list (kind "blocks")."""
     every = GEOMETRY_KINDS + GEOMETRY_KINDS_3D
-    geo = top.table("geometry", ("thickness", "density") + every + DXF_KEYS, required=True)
+    geo = top.table("geometry", ("thickness", "density") + every + DXF_KEYS + SUPPORT_KEYS, required=True)
     assert geo is not None
     given = [k for k in every if k in geo]
-    if not given:
-        raise geo.error(f"[geometry] needs exactly one of {', '.join(GEOMETRY_KINDS)}; none is given (a 3D wall: "
-                        f"one of {', '.join(GEOMETRY_KINDS_3D)})")
-    if len(given) > 1:
-        # the forms of a wall in the plane, or with a 3D one given, all of them
-        kinds = ", ".join(GEOMETRY_KINDS if all(k in GEOMETRY_KINDS for k in given) else every)
+    forms = [k for k in given if not (k == "polygons" and "blocks" in given)]  # blocks and polygons: one list
+    if not forms:
+        raise geo.error(f"[geometry] needs exactly one of {', '.join(RECTANGLE_KINDS)}; none is given (polygons "
+                        "also make a wall, alone or beside blocks, and [geometry.arch] an arch; a 3D wall: one of "
+                        f"{', '.join(GEOMETRY_KINDS_3D)})")
+    if len(forms) > 1:
+        # the forms of a wall of rectangles, of polygons too, or with a 3D one given, all of them
+        kinds = ", ".join(RECTANGLE_KINDS if all(k in RECTANGLE_KINDS for k in given) else GEOMETRY_KINDS
+                          if all(k in GEOMETRY_KINDS for k in given) else every)
         count = {3: "all three", 4: "all four"}.get(len(given), ", ".join(given))
         named = f"{' and '.join(given)} are both given" if len(given) == 2 else f"{count} are given"
-        raise geo.error(f"[geometry] needs exactly one of {kinds}; {named}")
-    kind = given[0]
+        both = " (blocks and polygons may be given together)" if "polygons" in given else ""
+        raise geo.error(f"[geometry] needs exactly one of {kinds}{both}; {named}")
+    kind = "blocks" if "blocks" in given else forms[0]
     for key in DXF_KEYS:
         if key in geo and kind != "dxf":
             raise geo.key_error(key, f"applies to a drawing (dxf), not to {kind}")
     if kind in GEOMETRY_KINDS_3D:
+        if "supports" in geo:
+            raise geo.key_error("supports", f"are polygons of a wall in the plane; a 3D wall ([geometry] {kind}) has "
+                                            "no supports in this version")
         from ..space.case import read_geometry
 
         return kind, read_geometry(geo, kind), {"density": geo.number("density", None, _positive, unit="density")}
     wall = {
         "thickness": geo.number("thickness", None, _positive, unit="length"),
         "density": geo.number("density", None, _positive, unit="density"),
+        "supports": geo.polygons("supports", "support"),
     }
     if kind == "dxf":
         return "blocks", _drawing(geo, base_dir), wall
-    read = {"running_bond": _running_bond, "pattern": _pattern, "blocks": _block_list}[kind]
-    return kind, read(geo), wall
+    read = {"running_bond": _running_bond, "pattern": _pattern, "blocks": _block_list, "polygons": _block_list,
+            "arch": _arch}[kind]
+    return "blocks" if kind == "polygons" else kind, read(geo), wall
 
 
 def _running_bond(geo: _Table) -> Dict[str, Any]:
@@ -303,6 +336,21 @@ def _running_bond(geo: _Table) -> Dict[str, Any]:
     )
 
 
+def _arch(geo: _Table) -> Dict[str, Any]:
+    """[geometry.arch]: the arguments of the core's arch generator (``masonry_dem.arch``), each checked alone (a
+    length > 0, with its unit or not; a count >= 1; the kind); how they go together (span or radius, abutments or
+    piers, a rise that fits) is the generator's to check, its messages naming the key."""
+    table = geo.table("arch", ("kind",) + ARCH_LENGTHS + ARCH_COUNTS)
+    assert table is not None
+    args: Dict[str, Any] = {"kind": table.string("kind", choices=ARCH_KINDS)}
+    args.update({key: table.number(key, None, _positive, unit="length") for key in ARCH_LENGTHS})
+    args.update({key: table.integer(key, None, minimum=1) for key in ARCH_COUNTS})
+    for key in ("thickness", "voussoirs"):
+        if args[key] is None:
+            raise table.missing(key)
+    return args
+
+
 def _pattern(geo: _Table) -> Dict[str, Any]:
     pt = geo.table("pattern", ("block_length", "block_height", "rows"))
     assert pt is not None
@@ -322,15 +370,17 @@ def _pattern(geo: _Table) -> Dict[str, Any]:
 
 
 def _block_list(geo: _Table) -> Dict[str, Any]:
-    rects = geo.rectangles("blocks")
-    assert rects is not None
-    if not rects:
+    """``blocks`` (rectangles) and ``polygons``, either or both: the rectangles first, then the polygons, in the
+    order given."""
+    rects = geo.rectangles("blocks", required="polygons" not in geo)
+    if rects is not None and not rects:
         raise geo.key_error("blocks", "expected at least one block [x0, y0, x1, y1]")
-    return dict(blocks=rects)
+    return dict(blocks=rects or [], polygons=geo.polygons("polygons"))
 
 
 def _drawing(geo: _Table, base_dir: Optional[PathLike]) -> Dict[str, Any]:
-    """``dxf``: the rectangles of a drawing (:func:`masonry_dem.dxf.read_dxf`), relative to ``base_dir``, on
+    """``dxf``: the blocks of a drawing (:func:`masonry_dem.dxf.read_dxf_blocks`: rectangles along x and y, and
+    convex polygons), relative to ``base_dir``, on
     the layer ``dxf_layer`` (all layers when left out) and in ``dxf_units`` (the drawing's $INSUNITS when left
     out); its errors name the key and the file."""
     from .. import dxf as _dxf  # ezdxf is imported when a case has a drawing only
@@ -344,11 +394,13 @@ def _drawing(geo: _Table, base_dir: Optional[PathLike]) -> Dict[str, Any]:
     if base_dir is not None and not path.is_absolute():
         path = Path(base_dir) / path
     try:
-        blocks = _dxf.read_dxf(path, layer=layer, units=units)
+        blocks = _dxf.read_dxf_blocks(path, layer=layer, units=units)
     except OSError as exc:
         raise geo.key_error("dxf", f"cannot read {path}: {exc.strerror or exc}") from None
     except (InputError, ImportError) as exc:
         raise geo.key_error("dxf", str(exc)) from None
+    if isinstance(blocks, list):  # polygons among them
+        return dict(blocks=[], polygons=blocks)
     return dict(blocks=blocks.tolist())
 
 

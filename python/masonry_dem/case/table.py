@@ -13,6 +13,7 @@ import math
 from typing import Any, Callable, List, Mapping, Optional, Sequence
 
 from .._core import InputError
+from .._shapes import polygon_problem
 from ..units import KINDS, parse_quantity, unit_names
 
 #: The version of the case-file and result-file format this package reads and writes (their top-level key
@@ -253,3 +254,27 @@ class _Table:
                 raise self.error(f"{label}: expected x1 > x0 and y1 > y0, got {item}", label)
             rects.append([x0, y0, x1, y1])
         return rects
+
+    def polygons(self, key: str, what: str = "block") -> Optional[List[List[List[float]]]]:
+        """An array of at least one convex polygon, each an array of vertices [x, y] (m; each a number [m] or a
+        length with its unit), in either orientation; an outline that is no block (:func:`masonry_dem._shapes.
+        polygon_problem`: too few vertices, a repeated vertex, all on a line, crossing itself, concave) is refused
+        naming the polygon and the vertex at fault. ``what``: the word for one polygon in the messages. None when
+        the key is absent."""
+        items = self.array(key, required=False)
+        if items is None:
+            return None
+        if not items:
+            raise self.key_error(key, f"expected at least one {what}, each an array of vertices [x, y] (or leave the "
+                                      "key out)")
+        polygons = []
+        for i, item in enumerate(items):
+            label = f"{self.where(key)}[{i}]"
+            if not isinstance(item, list):
+                raise self.error(f"{label}: expected an array of vertices [x, y], got {_type_name(item)}", label)
+            vertices = [self.numbers(f"{label}[{j}]", v, 2, " [x, y]", unit="length") for j, v in enumerate(item)]
+            problem = polygon_problem(vertices)
+            if problem:
+                raise self.error(f"{label}: {problem}", label)
+            polygons.append(vertices)
+        return polygons

@@ -11,6 +11,8 @@ Panels, each drawn on a matplotlib ``Axes`` given by the caller:
   the mechanism cracks them.
 * :func:`plot_mechanism` (ax, model, results): the blocks moved along ``Results.mechanism`` (the last
   increment, exaggerated), the moving ones orange, the cracked interfaces black.
+* :func:`plot_thrust` (ax, model, results): the line of thrust, each joint's centre of pressure joined along the
+  chains of blocks of an arch or a pier (:mod:`masonry_dem.thrust`), over the undeformed wall.
 * :func:`plot_curve` (ax, *results, labels=None): load multiplier lambda (or the top-beam force in kN)
   against the horizontal displacement of the control point [mm]; several results overlaid. A limit
   analysis (method "limit") has no curve: its multiplier is drawn as a horizontal line.
@@ -79,6 +81,7 @@ if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); impo
         plot_curve,
         plot_deformed,
         plot_mechanism,
+        plot_thrust,
         plot_wall,
     )
     from .time_panels import plot_energy, plot_response
@@ -88,6 +91,7 @@ __all__ = [
     "plot_deformed",
     "plot_cracks",
     "plot_mechanism",
+    "plot_thrust",
     "plot_curve",
     "plot_response",
     "plot_energy",
@@ -114,7 +118,8 @@ _LAZY = {
     **dict.fromkeys(("RESPONSE_PANELS", "energy_figure", "history_figure", "plot_comparison", "plot_results",
                      "report_figure", "response_figure"), ".figures"),
     **dict.fromkeys(("DEFORMED_FRACTION", "EXTRA_STYLES", "MECHANISM_FRACTION", "METHOD_STYLES", "STATE_STYLES",
-                     "plot_cracks", "plot_curve", "plot_deformed", "plot_mechanism", "plot_wall"), ".panels"),
+                     "plot_cracks", "plot_curve", "plot_deformed", "plot_mechanism", "plot_thrust", "plot_wall"),
+                    ".panels"),
     **dict.fromkeys(("plot_energy", "plot_response"), ".time_panels"),
 }
 

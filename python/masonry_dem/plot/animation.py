@@ -18,7 +18,7 @@ import numpy as np
 
 from .._core import InputError
 from ..atomic import atomic_path, check_target
-from ..report import deformed_corners
+from .._shapes import fixed_blocks, shapes
 
 __all__ = ["write_animation", "ANIMATION_FORMATS", "MAX_FRAMES", "animation_frames", "moved_extent"]
 
@@ -32,23 +32,15 @@ PathLike = Union[str, "os.PathLike[str]"]
 
 
 def moved_extent(model: Any, disp: np.ndarray, scale: float = 1.0) -> tuple:
-    """((x_lo, x_hi), (y_lo, y_hi)) [m] of the blocks (the base at rest) moved by ``scale`` * ``disp``, a
-    (frames, n_all, 3) array of displacements (u1 [m], u2 [m], phi [rad]), over all the frames."""
-    rects = np.asarray(model.rects, dtype=np.float64)
-    x0, y0, x1, y1 = rects.T
-    corners = np.stack([np.c_[x0, y0], np.c_[x1, y0], np.c_[x1, y1], np.c_[x0, y1]], axis=1)  # (n, 4, 2)
-    centroid = 0.5 * np.c_[x0 + x1, y0 + y1]
-    r = corners - centroid[:, None, :]
-    d = np.asarray(disp, dtype=np.float64)
-    phi = scale * d[..., 2][..., None]  # (f, n, 1)
-    c, s = np.cos(phi), np.sin(phi)
-    moved = (centroid[None, :, None, :] + scale * d[..., None, :2]
-             + np.stack([c * r[None, ..., 0] - s * r[None, ..., 1], s * r[None, ..., 0] + c * r[None, ..., 1]], -1))
-    if model.base_index is not None:
-        moved[:, int(model.base_index)] = corners[int(model.base_index)]
+    """((x_lo, x_hi), (y_lo, y_hi)) [m] of the blocks (the base and the supports at rest) moved by ``scale`` *
+    ``disp``, a (frames, n_all, 3) array of displacements (u1 [m], u2 [m], phi [rad]), over all the frames."""
+    blocks = shapes(model)
+    moved = blocks.moved(np.asarray(disp, dtype=np.float64), scale)  # (f, p, 2)
+    at_rest = np.isin(blocks.owner, fixed_blocks(model))
+    moved[:, at_rest] = blocks.points[at_rest]
     finite = moved[np.all(np.isfinite(moved), axis=-1)]
     if finite.size == 0:
-        finite = corners.reshape(-1, 2)
+        finite = blocks.points
     return (float(finite[:, 0].min()), float(finite[:, 0].max())), (float(finite[:, 1].min()), float(finite[:, 1].max()))
 
 
@@ -139,7 +131,7 @@ def write_animation(
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.collections import LineCollection, PolyCollection
     from matplotlib.figure import Figure
-    from matplotlib.patches import Rectangle
+    from matplotlib.patches import Polygon
 
     from ..history import check_plane
     from ..response import drift
@@ -163,15 +155,16 @@ def write_animation(
         raise InputError("write_animation: no record to show" + (" between start and stop" if len(times) else
                                                                   " (the time history is empty)"))
     disp = np.asarray(history.displacements, dtype=np.float64)
-    rects = np.asarray(model.rects, dtype=np.float64)
-    base = model.base_index
-    moving = [i for i in range(len(rects)) if i != base]
+    blocks = shapes(model)
+    fixed = fixed_blocks(model)
+    moving = np.array([i for i in range(len(blocks)) if i not in fixed], dtype=np.int64)
     colors = ["#7f7f7f" if i == model.top_index else "#efe3c8" for i in moving]
 
     # the wall panel's limits: the wall with room for the mechanism, and every block in view in every frame
     (xl, xh), (yl, yh) = _wall_limits(model)
     (x_lo, x_hi), (y_lo, y_hi) = moved_extent(model, disp[frames], scale)
-    pad = 0.03 * (rects[:, 3].max() - rects[:, 1].min())
+    box = blocks.bounds
+    pad = 0.03 * (box[:, 3].max() - box[:, 1].min())
     xlim = (min(xl, x_lo - pad), max(xh, x_hi + pad))
     ylim = (min(yl, y_lo - pad), max(yh, y_hi + pad))
     tall = float(np.clip((ylim[1] - ylim[0]) / (xlim[1] - xlim[0]), 0.3, 1.6))
@@ -179,13 +172,12 @@ def write_animation(
     fig = Figure(figsize=(width, width * tall + 2.4), layout="constrained")
     FigureCanvasAgg(fig)
     ax_wall, ax_drift = fig.subplots(2, 1, gridspec_kw={"height_ratios": [width * tall + 0.6, 1.8]})
-    if base is not None:
-        x0, y0, x1, y1 = rects[int(base)]
-        ax_wall.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, facecolor="#d9d9d9", edgecolor="#555555",
-                                    hatch="///", linewidth=0.8, zorder=1))
-    blocks = PolyCollection([], facecolors=colors, edgecolors="#5a4a3a", linewidths=0.6, zorder=2)
-    ax_wall.add_collection(blocks)
-    outlines = [deformed_corners(rects[i], (0.0, 0.0, 0.0), 0.0) for i in moving]
+    for i in fixed:
+        ax_wall.add_patch(Polygon(blocks.polygon(i), closed=True, facecolor="#d9d9d9", edgecolor="#555555",
+                                  hatch="///", linewidth=0.8, zorder=1))
+    fills = PolyCollection([], facecolors=colors, edgecolors="#5a4a3a", linewidths=0.6, zorder=2)
+    ax_wall.add_collection(fills)
+    outlines = [blocks.polygon(i) for i in moving]
     ax_wall.add_collection(LineCollection([np.vstack([o, o[:1]]) for o in outlines], colors="#404040",
                                           linewidths=0.5, linestyles="--", zorder=3))
     _wall_axes(ax_wall, model)
@@ -206,7 +198,8 @@ def write_animation(
     heading = f"{title} — " if title else ""
 
     def draw(k: int) -> None:
-        blocks.set_verts([deformed_corners(rects[i], disp[k, i], scale) for i in moving])
+        moved = blocks.polygons(blocks.moved(disp[k], scale))
+        fills.set_verts([moved[i] for i in moving])
         cursor.set_xdata([times[k], times[k]])
         ax_wall.set_title(f"{heading}t = {times[k]:.2f} s\n{note}", fontsize=9)
 

@@ -12,11 +12,12 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..history import check_plane, default_control_block, is_time_history, peak_record, record
-from ..report import _plural, corner_motion
+from .._shapes import shapes
+from ..report import _plural
+from ..response import wall_height
 from .canvas import _finish, _new_figure, figure_path as figure_path, save_figure as save_figure
 from .panels import (
     DEFORMED_FRACTION,
-    _wall_height,
     plot_wall,
     _draw_curve,
     _draw_curve_overlay,
@@ -85,6 +86,7 @@ def report_figure(
     path: Optional[Union[str, "os.PathLike[str]"]] = None,
     live: str = "horizontal_weight",
     dpi: int = 150,
+    thrust: bool = False,
 ) -> Figure:
     """A one-page report: the crack pattern, the collapse mechanism, the deformed shape and the load curve;
     of a time history, its response (:func:`history_figure`); of a 3D wall (a :class:`masonry_dem.Model3D`), its
@@ -99,6 +101,9 @@ def report_figure(
         path: output file (PNG), written with the Agg canvas; without it the figure goes through pyplot.
         live: the live load, "horizontal_weight" or "top_horizontal" (lambda in N, plotted in kN).
         dpi: resolution of the PNG.
+        thrust: draw the line of thrust (:func:`masonry_dem.plot.plot_thrust`: each joint's centre of pressure,
+            joined along the chains of blocks of an arch or a pier) over the crack pattern, from the forces of
+            ``results`` (at collapse, or at the last converged step). A wall in the plane's results only.
     Returns:
         The figure.
     """
@@ -122,7 +127,8 @@ def report_figure(
         fig = _new_figure((16.0, 7.0), path is not None)
         grid = fig.add_gridspec(1, 4, width_ratios=[a, a, a, 1.6])
         cells, columns = [grid[0, 0], grid[0, 1], grid[0, 2], grid[0, 3]], 2
-    plot_cracks(fig.add_subplot(cells[0]), model, results, legend_columns=columns)
+    ax_cracks = fig.add_subplot(cells[0])
+    plot_cracks(ax_cracks, model, results, legend_columns=columns, thrust=thrust)
     plot_mechanism(fig.add_subplot(cells[1]), model, results)
     plot_deformed(fig.add_subplot(cells[2]), model, results)
     ax_curve = fig.add_subplot(cells[3])
@@ -185,9 +191,9 @@ def history_figure(
         which = "the time given"
     if len(times):
         shown = record(history, peak)
-        rects = np.asarray(model.rects, dtype=np.float64)
-        largest = float(corner_motion(rects, shown.displacements).max()) if len(rects) else 0.0
-        true_scale = largest >= DEFORMED_FRACTION * _wall_height(model)
+        blocks = shapes(model)
+        largest = float(blocks.vertex_motion(shown.displacements).max()) if len(blocks) else 0.0
+        true_scale = largest >= DEFORMED_FRACTION * wall_height(model)
         plot_deformed(ax_wall, model, shown, scale=1.0 if true_scale else None)
         if true_scale:
             _include_blocks(ax_wall, model, shown.displacements)
@@ -208,7 +214,7 @@ def _include_blocks(ax: Any, model: Any, disp: np.ndarray) -> None:
     from .animation import moved_extent
 
     (x_lo, x_hi), (y_lo, y_hi) = moved_extent(model, np.asarray(disp, dtype=np.float64)[None])
-    pad = 0.05 * _wall_height(model)
+    pad = 0.05 * wall_height(model)
     xl, xh = ax.get_xlim()
     yl, yh = ax.get_ylim()
     ax.set_xlim(min(xl, x_lo - pad), max(xh, x_hi + pad))

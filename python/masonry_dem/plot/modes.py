@@ -12,7 +12,8 @@ from typing import Any, List, Optional, Sequence, Union
 import numpy as np
 
 from .._core import InputError, Modes
-from ..report import corner_motion
+from .._shapes import shapes
+from ..response import wall_height
 
 __all__ = ["plot_modes"]
 
@@ -38,14 +39,13 @@ def _draw_mode(ax: Any, model: Any, m: Modes, i: int, scale: Optional[float]) ->
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
-    from .panels import _draw_blocks, _wall_axes, _wall_height
+    from .panels import _draw_blocks, _wall_axes
 
-    rects = np.asarray(model.rects, dtype=np.float64)
     shape = np.asarray(m.shapes[i], dtype=np.float64)
-    motion = corner_motion(rects, shape)
-    peak = float(motion.max()) if len(rects) else 0.0
+    motion = shapes(model).vertex_motion(shape)
+    peak = float(motion.max()) if len(motion) else 0.0
     if scale is None:
-        scale = MODE_FRACTION * _wall_height(model) / peak if peak > 0 else 0.0
+        scale = MODE_FRACTION * wall_height(model) / peak if peak > 0 else 0.0
     _draw_blocks(ax, model, shape, float(scale), moving=motion > 0.25 * peak if peak > 0 else None)
     _wall_axes(ax, model)
     f = float(m.frequencies_hz[i])

@@ -1,7 +1,7 @@
 """The panels of the figures, each drawn on a matplotlib ``Axes`` given by the caller: the wall
-(:func:`plot_wall`), its deformed shape (:func:`plot_deformed`), crack pattern (:func:`plot_cracks`) and
-collapse mechanism (:func:`plot_mechanism`), and the load curve (:func:`plot_curve`, several results
-overlaid). Geometry in m; displacements plotted in mm.
+(:func:`plot_wall`), its deformed shape (:func:`plot_deformed`), crack pattern (:func:`plot_cracks`),
+collapse mechanism (:func:`plot_mechanism`) and line of thrust (:func:`plot_thrust`), and the load curve
+(:func:`plot_curve`, several results overlaid). Geometry in m; displacements plotted in mm.
 """
 
 from __future__ import annotations
@@ -11,18 +11,20 @@ from typing import Any, List, Optional, Sequence, Tuple
 import numpy as np
 from matplotlib.collections import LineCollection, PatchCollection
 from matplotlib.lines import Line2D
-from matplotlib.patches import Patch, Polygon, Rectangle
+from matplotlib.patches import Patch, Polygon
 
+from .._shapes import fixed_blocks, shapes
 from ..history import default_control_block
+from ..response import wall_height
+from ..thrust import resultant_points, thrust_lines
 from ..report import (
     STATUS_NOTES,
     CRACK_TOLERANCE,
     MOVING_FRACTION,
     _plural,
-    corner_motion,
-    deformed_corners,
     format_multiplier,
     interface_categories,
+    multiplier_symbol,
     interface_jumps,
 )
 
@@ -38,12 +40,6 @@ STATE_STYLES: Tuple[Tuple[str, str, float], ...] = (
 
 #: The largest corner motion of the drawn mechanism, as a fraction of the wall height.
 MECHANISM_FRACTION = 0.12
-
-
-def _outline(rect: Sequence[float]) -> np.ndarray:
-    """(5, 2) closed outline of a rectangle [x0, y0, x1, y1] (m)."""
-    x0, y0, x1, y1 = rect
-    return np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1], [x0, y0]], dtype=np.float64)
 
 
 def _multiplier_label(live: str) -> Tuple[str, float]:
@@ -72,13 +68,13 @@ def _segments(geom: np.ndarray) -> List[List[Tuple[float, float]]]:
 
 def _wall_limits(model: Any) -> Tuple[Tuple[float, float], Tuple[float, float]]:
     """((x_lo, x_hi), (y_lo, y_hi)) [m] of the wall panel: the blocks with room for the mechanism."""
-    rects = np.asarray(model.rects, dtype=np.float64)
-    wall = rects[: int(model.n_blocks)]
+    box = shapes(model).bounds
+    wall = box[: int(model.n_blocks)]
     height = float(wall[:, 3].max() - wall[:, 1].min())
     width = float(wall[:, 2].max() - wall[:, 0].min())
     pad = 0.05 * max(width, height) + MECHANISM_FRACTION * height
-    x_lo, y_lo = rects[:, 0].min(), rects[:, 1].min()
-    x_hi, y_hi = rects[:, 2].max(), rects[:, 3].max()
+    x_lo, y_lo = box[:, 0].min(), box[:, 1].min()
+    x_hi, y_hi = box[:, 2].max(), box[:, 3].max()
     return (x_lo - pad, x_hi + pad), (y_lo - 0.05 * height, y_hi + pad)
 
 
@@ -100,33 +96,26 @@ def _state_handles(counts: Optional[dict] = None) -> List[Any]:
 def _draw_blocks(
     ax: Any,
     model: Any,
-    motion: np.ndarray,
+    motion: Optional[np.ndarray],
     scale: float,
     moving: Optional[np.ndarray] = None,
     undeformed: bool = True,
 ) -> None:
-    """The blocks moved by ``scale`` * ``motion`` ((n_all, 3): u1, u2 [m], phi [rad]), filled; the base
-    hatched where it is; the top beam grey; wall blocks orange where ``moving`` is set, else beige. With
-    ``undeformed`` the undeformed outlines are drawn dashed over the fills."""
-    rects = np.asarray(model.rects, dtype=np.float64)
-    base, beam = model.base_index, model.top_index
+    """The blocks moved by ``scale`` * ``motion`` ((n_all, 3): u1, u2 [m], phi [rad]; None: at rest), filled; the
+    base and the supports (the fixed blocks) hatched where they are; the top beam grey; wall blocks orange where
+    ``moving`` is set, else beige. With ``undeformed`` the undeformed outlines are drawn dashed over the fills."""
+    blocks = shapes(model)
+    beam = model.top_index
+    fixed = set(fixed_blocks(model))
+    for i in sorted(fixed):
+        ax.add_patch(Polygon(blocks.polygon(i), closed=True, facecolor="#d9d9d9", edgecolor="#555555", hatch="///",
+                             linewidth=0.8, zorder=1))
+    moved = blocks.polygons() if motion is None else blocks.polygons(blocks.moved(motion, scale))
     fills, colors = [], []
-    for i, rect in enumerate(rects):
-        if i == base:
-            ax.add_patch(
-                Rectangle(
-                    (rect[0], rect[1]),
-                    rect[2] - rect[0],
-                    rect[3] - rect[1],
-                    facecolor="#d9d9d9",
-                    edgecolor="#555555",
-                    hatch="///",
-                    linewidth=0.8,
-                    zorder=1,
-                )
-            )
+    for i, vertices in enumerate(moved):
+        if i in fixed:
             continue
-        fills.append(Polygon(deformed_corners(rect, motion[i], scale), closed=True))
+        fills.append(Polygon(vertices, closed=True))
         if i == beam:
             colors.append("#7f7f7f")
         else:
@@ -135,7 +124,7 @@ def _draw_blocks(
         PatchCollection(fills, facecolors=colors, edgecolors="#5a4a3a", linewidths=0.6, alpha=0.9, zorder=1)
     )
     if undeformed:
-        outlines = [_outline(r) for i, r in enumerate(rects) if i != base]
+        outlines = [np.vstack([p, p[:1]]) for i, p in enumerate(blocks.polygons()) if i not in fixed]
         ax.add_collection(LineCollection(outlines, colors="#404040", linewidths=0.5, linestyles="--", zorder=2))
 
 
@@ -174,23 +163,18 @@ def _wall_axes(ax: Any, model: Any) -> None:
     ax.set_ylabel("y [m]")
 
 
-def _wall_height(model: Any) -> float:
-    """Height of the wall blocks [m] (base and top beam not counted)."""
-    wall = np.asarray(model.rects, dtype=np.float64)[: int(model.n_blocks)]
-    return float(wall[:, 3].max() - wall[:, 1].min())
-
-
 def _mechanism(model: Any, results: Any) -> Tuple[np.ndarray, bool, float, float, np.ndarray]:
     """(motion, have_mech, peak corner motion, drawing scale, moving) of ``Results.mechanism``; the scale
     draws the largest corner motion as :data:`MECHANISM_FRACTION` of the wall height."""
-    n = len(np.asarray(model.rects))
+    blocks = shapes(model)
+    n = len(blocks)
     mech = np.asarray(results.mechanism, dtype=np.float64)
     have = mech.shape == (n, 3) and bool(np.all(np.isfinite(mech))) and bool(np.any(mech != 0))
     if not have:
         mech = np.zeros((n, 3))
-    motion = corner_motion(np.asarray(model.rects, dtype=np.float64), mech)
+    motion = blocks.vertex_motion(mech)
     peak = float(motion.max()) if have else 0.0
-    scale = MECHANISM_FRACTION * _wall_height(model) / peak if peak > 0 else 0.0
+    scale = MECHANISM_FRACTION * wall_height(model) / peak if peak > 0 else 0.0
     moving = motion > MOVING_FRACTION * peak if peak > 0 else np.zeros(n, dtype=bool)
     return mech, have, peak, scale, moving
 
@@ -236,8 +220,7 @@ DEFORMED_FRACTION = 0.05
 def plot_wall(ax: Any, model: Any) -> None:
     """Draw the wall on ``ax``: block outlines (wall blocks beige, the base hatched, the top beam grey),
     coordinates in m, equal aspect."""
-    n = len(np.asarray(model.rects))
-    _draw_blocks(ax, model, np.zeros((n, 3)), 0.0, undeformed=False)
+    _draw_blocks(ax, model, None, 0.0, undeformed=False)
     _wall_axes(ax, model)
     n_faces = len(np.asarray(model.interface_geometry).reshape(-1, 5))
     ax.set_title(f"{_plural(int(model.n_blocks), 'block')}, {_plural(n_faces, 'interface')}", fontsize=10)
@@ -251,13 +234,13 @@ def plot_deformed(ax: Any, model: Any, results: Any, scale: Optional[float] = No
     displacement is drawn as :data:`DEFORMED_FRACTION` (5%) of the wall height. The panel title gives the
     factor and the largest displacement [mm]. Returns the scale used (0 when nothing moved).
     """
-    rects = np.asarray(model.rects, dtype=np.float64)
+    blocks = shapes(model)
     disp = np.asarray(results.displacements, dtype=np.float64)
-    if disp.shape != (len(rects), 3) or not np.all(np.isfinite(disp)):
-        disp = np.zeros((len(rects), 3))
-    peak = float(corner_motion(rects, disp).max()) if len(rects) else 0.0
+    if disp.shape != (len(blocks), 3) or not np.all(np.isfinite(disp)):
+        disp = np.zeros((len(blocks), 3))
+    peak = float(blocks.vertex_motion(disp).max()) if len(blocks) else 0.0
     if scale is None:
-        scale = DEFORMED_FRACTION * _wall_height(model) / peak if peak > 0 else 0.0
+        scale = DEFORMED_FRACTION * wall_height(model) / peak if peak > 0 else 0.0
     _draw_blocks(ax, model, disp, float(scale))
     _wall_axes(ax, model)
     if _is_limit(results):
@@ -273,35 +256,83 @@ def _is_limit(results: Any) -> bool:
     return str(getattr(results, "method", "")) == "limit"
 
 
-def plot_cracks(ax: Any, model: Any, results: Any, legend: bool = True, legend_columns: int = 5) -> dict:
+def plot_cracks(
+    ax: Any, model: Any, results: Any, legend: bool = True, legend_columns: int = 5, thrust: bool = False
+) -> dict:
     """Draw the crack pattern on ``ax``: the undeformed wall with every interface coloured by its state at
     the last converged step (:data:`STATE_STYLES`: open, sliding, rocking, sliding + rocking, elastic);
     the interfaces that the mechanism cracks (a slip or a gap across them in ``Results.mechanism``) drawn
     wide, so the crack itself stands out among the joints merely at their limit. With ``legend`` a legend
-    with the count of each state under the panel. Returns the counts ({state: n, "cracked": n})."""
-    n = len(np.asarray(model.rects))
-    _draw_blocks(ax, model, np.zeros((n, 3)), 0.0, undeformed=False)
+    with the count of each state under the panel; with ``thrust`` the line of thrust over it (as
+    :func:`plot_thrust` draws it). Returns the counts ({state: n, "cracked": n})."""
+    _draw_blocks(ax, model, None, 0.0, undeformed=False)
     mech, have, peak, _, _ = _mechanism(model, results)
     counts = _draw_interfaces(ax, model, results, _cracked(model, mech, have, peak), state_width=1.8)
+    if thrust:
+        _draw_thrust(ax, model, results)
     _wall_axes(ax, model)
     ax.set_title(
-        f"crack pattern (joint states)\nwide: cracked in the mechanism ({counts['cracked']})",
+        f"crack pattern (joint states{'; line of thrust' if thrust else ''})\nwide: cracked in the mechanism "
+        f"({counts['cracked']})",
         fontsize=10,
     )
     if legend:
         handles = [
             Line2D([], [], color=color, linewidth=3.0, label=f"{name} ({counts[name]})")
             for name, color, _ in STATE_STYLES
-        ]
+        ] + (_thrust_handles() if thrust else [])
         ax.legend(
             handles=handles,
             loc="upper center",
             bbox_to_anchor=(0.5, -0.15 if legend_columns >= 5 else -0.08),
-            ncol=legend_columns,
+            ncol=legend_columns + (1 if thrust and legend_columns >= 5 else 0),
             fontsize=8,
             frameon=False,
         )
     return counts
+
+
+#: The colour of the line of thrust and of the joints' centres of pressure.
+THRUST_COLOR = "#1a1a1a"
+
+
+def _draw_thrust(ax: Any, model: Any, results: Any) -> int:
+    """The line of thrust of ``results`` over a wall panel (:mod:`masonry_dem.thrust`): each joint's centre of
+    pressure a dot, the chains' lines through them. Returns the number of lines."""
+    points = resultant_points(model, results)
+    shown = points[np.all(np.isfinite(points), axis=1)]
+    ax.plot(shown[:, 0], shown[:, 1], "o", color=THRUST_COLOR, markersize=2.5, zorder=6)
+    lines = thrust_lines(model, results)
+    for line in lines:
+        ax.plot(line[:, 0], line[:, 1], "-", color=THRUST_COLOR, linewidth=1.6, zorder=6)
+    return len(lines)
+
+
+def _thrust_handles() -> List[Any]:
+    """Legend entries of the line of thrust."""
+    return [Line2D([], [], color=THRUST_COLOR, linewidth=1.6, marker="o", markersize=3, label="line of thrust")]
+
+
+def plot_thrust(ax: Any, model: Any, results: Any, live: str = "horizontal_weight") -> int:
+    """Draw the line of thrust on ``ax``: the undeformed wall, each joint's centre of pressure (where the resultant
+    of its forces crosses it, :func:`masonry_dem.thrust.resultant_points`) a dot, joined along the chains of blocks
+    (the voussoirs of an arch, the blocks of a pier: :func:`masonry_dem.thrust.thrust_lines`). The forces are those
+    of ``results``: at collapse of a limit analysis, at the last converged step of a static or explicit one (its
+    multiplier in the title; ``live`` as in :func:`plot_curve`). A joint that carries no normal force has no dot,
+    and a line is broken there. Returns the number of lines drawn (0: no chain of blocks, the dots alone)."""
+    _draw_blocks(ax, model, None, 0.0, undeformed=False)
+    geom = np.asarray(model.interface_geometry, dtype=np.float64).reshape(-1, 5)
+    ax.add_collection(LineCollection(_segments(geom), colors="#9a9a9a", linewidths=0.6, zorder=3))
+    count = _draw_thrust(ax, model, results)
+    _wall_axes(ax, model)
+    if _is_limit(results):
+        when = "at collapse" if str(results.status) == "collapse" else f"of the limit analysis ({results.status})"
+    else:
+        lam = float(getattr(results, "last_equilibrium", np.nan))
+        when = (f"at the last converged step, {multiplier_symbol(live)} = {format_multiplier(lam, live)}"
+                if np.isfinite(lam) else "(no equilibrium found)")
+    ax.set_title(f"line of thrust {when}\n{_plural(count, 'line')} through the chains of blocks", fontsize=10)
+    return count
 
 
 def plot_mechanism(ax: Any, model: Any, results: Any) -> bool:

@@ -278,13 +278,33 @@ def _moved_opening(rect: Sequence[float], name: str, value: float) -> List[float
 
 def mirrored(model: ModelParameters) -> ModelParameters:
     """The wall mirrored about its vertical centre line (x -> x_min + x_max - x, a block [x0, y0, x1, y1]
-    becoming [s - x1, y0, s - x0, y1] with s = x_min + x_max), and the top beam's dead force Fx -> -Fx: the
-    live load, which pushes towards +x, then pushes the original wall towards -x."""
-    blocks = np.asarray(model.blocks, dtype=np.float64)
-    s = float(blocks[:, 0].min() + blocks[:, 2].max())
-    flipped = np.column_stack([s - blocks[:, 2], blocks[:, 1], s - blocks[:, 0], blocks[:, 3]])
+    becoming [s - x1, y0, s - x0, y1] with s = x_min + x_max, a polygon's vertex [x, y] becoming [s - x, y], its
+    vertices then listed backwards to go round it counter-clockwise again; the supports alike), and the top beam's
+    dead force Fx -> -Fx: the live load, which pushes towards +x, then pushes the original wall towards -x."""
     force = None if model.top_force is None else [-model.top_force[0], model.top_force[1]]
-    return replace(model, blocks=flipped, top_force=force)
+    if isinstance(model.blocks, np.ndarray) and model.supports is None:  # rectangles alone: an array
+        blocks = np.asarray(model.blocks, dtype=np.float64)
+        s = float(blocks[:, 0].min() + blocks[:, 2].max())
+        flipped = np.column_stack([s - blocks[:, 2], blocks[:, 1], s - blocks[:, 0], blocks[:, 3]])
+        return replace(model, blocks=flipped, top_force=force)
+    shapes = list(model.blocks) + list(model.supports or [])
+    xs = [x for b in shapes for x in (np.asarray(b, dtype=np.float64).reshape(-1, 2)[:, 0] if _is_polygon(b)
+                                      else (float(b[0]), float(b[2])))]
+    s = min(xs) + max(xs)
+
+    def flip(b: Any) -> List[Any]:
+        if _is_polygon(b):
+            return [[s - float(x), float(y)] for x, y in reversed(list(b))]
+        x0, y0, x1, y1 = (float(v) for v in b)
+        return [s - x1, y0, s - x0, y1]
+
+    supports = None if model.supports is None else [flip(p) for p in model.supports]
+    return replace(model, blocks=[flip(b) for b in model.blocks], supports=supports, top_force=force)
+
+
+def _is_polygon(block: Any) -> bool:
+    """Whether a block of a list of blocks is a polygon (vertices [x, y]), not a rectangle [x0, y0, x1, y1]."""
+    return len(block) > 0 and isinstance(block[0], (list, tuple, np.ndarray))
 
 
 # --------------------------------------------------------------------------------------------------
