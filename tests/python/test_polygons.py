@@ -33,7 +33,7 @@ def test_a_rectangle_model_reads_as_four_vertex_polygons() -> None:
     for i, (x0, y0, x1, y1) in enumerate(rects):
         assert blocks.polygon(i).tolist() == [[x0, y0], [x1, y0], [x1, y1], [x0, y1]]  # counter-clockwise
     assert np.array_equal(blocks.bounds, rects)
-    assert np.array_equal(blocks.centroids, 0.5 * (rects[:, :2] + rects[:, 2:]))
+    np.testing.assert_allclose(blocks.centroids, 0.5 * (rects[:, :2] + rects[:, 2:]), rtol=0, atol=1e-15)
     np.testing.assert_allclose(blocks.areas, (rects[:, 2] - rects[:, 0]) * (rects[:, 3] - rects[:, 1]), rtol=1e-14)
     assert fixed_blocks(model) == [model.base_index]
 
@@ -282,7 +282,7 @@ def test_case_polygons_and_supports_are_read(tmp_path: Path) -> None:
     path.write_text("format = 1\n[geometry]\nblocks = [[0, 0, 1, 1]]\n")
     case = md.load_case(path)
     assert isinstance(case.model.blocks, np.ndarray) and case.model.blocks.tolist() == [[0.0, 0.0, 1.0, 1.0]]
-    assert "supports" not in case.model_kwargs
+    assert case.model_kwargs["supports"] is None and case.model_kwargs["base"] is True  # the core's defaults
 
 
 #: A case file of one polygon block on the base; {geometry} replaces its [geometry] keys.
@@ -324,8 +324,8 @@ POLYGON_CASE = """format = 1
         ("boxes = [[0, 0, 0, 1, 1, 1]]\nsupports = [[[1, 0], [2, 0], [1.5, 1]]]", "geometry.supports",
          "geometry.supports: are polygons of a wall in the plane"),
         ("polygons = [[[0, 0], [1, 0], [0, 1]]]\ndxf = \"wall.dxf\"", None,
-         "[geometry] needs exactly one of running_bond, pattern, blocks, dxf, polygons (blocks and polygons may be "
-         "given together); dxf and polygons are both given"),
+         "[geometry] needs exactly one of running_bond, pattern, blocks, dxf, polygons, arch (blocks and polygons "
+         "may be given together); dxf and polygons are both given"),
         ("supports = [[[0, 0], [1, 0], [0, 1]]]", None,
          "[geometry] needs exactly one of running_bond, pattern, blocks, dxf; none is given (polygons also make a "
          "wall, alone or beside blocks"),
