@@ -273,3 +273,12 @@ def test_arch_refusals(tmp_path, capsys, arch: str, extra: str, key, message: st
     assert cli.main(["run", str(path)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert err == [f"masonry-dem: error: {info.value}"]
+
+
+def test_the_arch_example_s_reference_is_its_least_four_hinge_mechanism() -> None:
+    from pathlib import Path
+
+    case = md.load_case(Path(__file__).resolve().parents[2] / "examples" / "semicircular-arch.toml")
+    expected, hinges = four_hinge_multiplier(case.build_model())
+    assert case.reference["collapse_multiplier"] == pytest.approx(expected, abs=5e-5)  # its 4 digits
+    assert [tuple(np.round(p, 2)) for _, p in hinges] == [(-0.87, 0.5), (0.0, 1.15), (0.71, 0.71), (1.15, 0.0)]
