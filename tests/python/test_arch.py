@@ -111,3 +111,174 @@ def test_a_portal_sways_at_b_over_h() -> None:
     assert sorted(tuple(p.round(12)) for _, p in hinges) == [(0.0, h), (b, 0.0), (1.0, h), (1.0 + b, 0.0)]
     found = md.report.hinges(model, results.mechanism)
     assert sorted(tuple(h.point.round(9)) for h in found) == sorted(tuple(p.round(9)) for _, p in hinges)
+
+
+#: The arches of the four kinds, each on abutments: the generator's arguments (m).
+ARCHES = {
+    "semicircular": dict(kind="semicircular", span=2.0, thickness=0.15, voussoirs=12),
+    "segmental": dict(kind="segmental", span=2.0, rise=0.6, thickness=0.2, voussoirs=10),
+    "pointed": dict(kind="pointed", span=2.0, rise=1.4, thickness=0.15, voussoirs=12),
+    "elliptical": dict(kind="elliptical", span=2.4, rise=0.8, thickness=0.2, voussoirs=12),
+}
+
+
+def arch_model(arguments: dict, **model) -> Tuple[Any, dict]:
+    made = md.arch(**arguments)
+    return md.Model(made["blocks"], supports=made["supports"] or None, joints=STICKY, thickness=1.0, density=2000.0,
+                    **model), made
+
+
+@pytest.mark.parametrize("name", sorted(ARCHES))
+def test_an_arch_collapses_at_its_least_four_hinge_mechanism(name: str) -> None:
+    from masonry_dem.report import hinges
+    from masonry_dem.thrust import resultant_points
+
+    model, made = arch_model(ARCHES[name])
+    expected, expected_hinges = four_hinge_multiplier(model)
+    assert 0 < expected < 1
+    results = model.solve_limit()
+    assert results.status == "collapse"
+    assert results.collapse_multiplier == pytest.approx(expected, rel=1e-6)
+    # the report's hinges are the mechanism's four, each named by the arch's curves: the generator's joint ends
+    found = hinges(model, results.mechanism, made)
+    assert [(h.interface, tuple(np.round(h.point, 9))) for h in found] == sorted(
+        [(k, tuple(np.round(p, 9))) for k, p in expected_hinges], key=lambda x: (x[1][0], x[1][1]))
+    for h in found:
+        ends = {side: min(np.hypot(*(np.asarray(made[side]) - h.point).T)) for side in ("intrados", "extrados")}
+        assert ends[h.end] < 1e-12  # at that curve's joint end
+    assert sorted(h.end for h in found) == ["extrados", "extrados", "intrados", "intrados"]
+    # at collapse the line of thrust passes through the hinges: each hinged joint's centre of pressure is its hinge
+    points = resultant_points(model, results)
+    for h in found:
+        assert points[h.interface] == pytest.approx(h.point, abs=1e-6)
+
+
+def test_an_arch_on_piers_collapses_at_its_least_four_hinge_mechanism() -> None:
+    arguments = dict(kind="semicircular", span=2.0, thickness=0.2, voussoirs=8, pier_width=0.3, pier_height=0.8)
+    model, made = arch_model(arguments)
+    assert made["supports"] == [] and model.base_index is not None and model.n_blocks == 10  # the piers: wall blocks
+    expected, expected_hinges = four_hinge_multiplier(model)  # the chain runs from the base through both piers
+    results = model.solve_limit()
+    assert results.status == "collapse" and results.collapse_multiplier == pytest.approx(expected, rel=1e-6)
+
+
+def test_the_line_of_thrust_of_an_arch_stays_within_its_ring_along_a_static_path() -> None:
+    from masonry_dem.thrust import resultant_points, thrust_lines
+
+    model, _ = arch_model(ARCHES["semicircular"])
+    results = model.solve_static()
+    assert results.status == "collapse"
+    geom = model.interface_geometry
+    points = resultant_points(model, results)
+    # no tension: every joint's centre of pressure within the joint (|e| <= l / 2, to the solver's precision)
+    e = np.hypot(*(points - geom[:, :2]).T)
+    assert np.all(e <= geom[:, 4] / 2 * (1 + 1e-9))
+    (line,) = thrust_lines(model, results)
+    assert len(line) == model.n_interfaces  # from abutment to abutment through every joint
+
+
+# --------------------------------------------------------------------------------------------------
+# [geometry.arch] in a case file
+# --------------------------------------------------------------------------------------------------
+
+ARCH_CASE = """format = 1
+title = "arch"
+[geometry]
+thickness = 1.0
+density = 2000.0
+{extra}
+[geometry.arch]
+{arch}
+[joints]
+friction = 2.0
+dilatancy = 2.0
+[analysis]
+method = "limit"
+"""
+SEMICIRCULAR = 'kind = "semicircular"\nspan = "2 m"\nthickness = "150 mm"\nvoussoirs = 12'
+
+
+def test_an_arch_case_is_the_generator_s_arch(tmp_path, capsys) -> None:
+    from masonry_dem import cli
+
+    path = tmp_path / "arch.toml"
+    path.write_text(ARCH_CASE.format(extra="", arch=SEMICIRCULAR))
+    case = md.load_case(path)
+    made = md.arch(**ARCHES["semicircular"])
+    assert case.model.blocks == made["blocks"] and case.model.supports == made["supports"]
+    assert case.model.base is False  # on its abutments alone
+    assert case.arch["intrados"] == made["intrados"] and case.arch["extrados"] == made["extrados"]
+    model, _ = arch_model(ARCHES["semicircular"])
+    assert case.run().collapse_multiplier == pytest.approx(model.solve_limit().collapse_multiplier, rel=1e-12)
+    assert cli.main(["run", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "  hinges:              4: the intrados of a bed joint at (-0.87, 0.50) m, the extrados of a head joint at " \
+           "(0.00, 1.15) m, the intrados of a bed joint at (0.71, 0.71) m, the extrados of a base joint at (1.15, " \
+           "0.00) m\n" in out
+    # supports beside the arch come after its abutments; a [base] table puts the foundation back
+    path.write_text(ARCH_CASE.format(extra='supports = [[[2, -0.15], [3, -0.15], [3, 0]]]', arch=SEMICIRCULAR)
+                    + '[base]\nkind = "fixed"\n')
+    case = md.load_case(path)
+    assert case.model.supports == made["supports"] + [[[2.0, -0.15], [3.0, -0.15], [3.0, 0.0]]]
+    assert case.model.base is True
+    # on piers: no abutments, the piers on the base
+    path.write_text(ARCH_CASE.format(extra="", arch=SEMICIRCULAR + "\npier_width = 0.3\npier_height = 0.8\n"
+                                                                   "pier_courses = 2"))
+    case = md.load_case(path)
+    assert case.model.supports is None and case.model.base is None and len(case.model.blocks) == 16
+    assert case.build_model().base_index is not None
+
+
+@pytest.mark.parametrize(
+    "arch, extra, key, message",
+    [
+        ('kind = "gothic"\nspan = 2\nthickness = 0.1\nvoussoirs = 8', "", "geometry.arch.kind",
+         'geometry.arch.kind: expected one of "semicircular", "segmental", "pointed", "elliptical", got "gothic"'),
+        ('kind = "semicircular"\nspan = 2\nvoussoirs = 8', "", "geometry.arch.thickness",
+         "missing key 'thickness' in [geometry.arch]"),
+        ('kind = "semicircular"\nspan = 2\nthickness = 0.1', "", "geometry.arch.voussoirs",
+         "missing key 'voussoirs' in [geometry.arch]"),
+        ('kind = "semicircular"\nspan = 2\nthickness = 0.1\nvoussoirs = 0', "", "geometry.arch.voussoirs",
+         "geometry.arch.voussoirs: must be >= 1, got 0"),
+        ('kind = "semicircular"\nspan = -2\nthickness = 0.1\nvoussoirs = 8', "", "geometry.arch.span",
+         "geometry.arch.span: must be > 0, got -2"),
+        ('kind = "semicircular"\nspan = "2 kN"\nthickness = 0.1\nvoussoirs = 8', "", "geometry.arch.span",
+         "'2 kN' is a force; geometry.arch.span is a length"),
+        ('kind = "semicircular"\nspna = 2\nthickness = 0.1\nvoussoirs = 8', "", "geometry.arch.spna",
+         "unknown key 'spna' in [geometry.arch] (did you mean 'span'?)"),
+        ('kind = "semicircular"\nspan = 2\nradius = 1\nthickness = 0.1\nvoussoirs = 8', "", "geometry.arch.radius",
+         "geometry.arch.radius and geometry.arch.span are both given: give one"),
+        ('kind = "segmental"\nspan = 2\nthickness = 0.1\nvoussoirs = 8', "", "geometry.arch.rise",
+         "geometry.arch.rise is required for a segmental arch"),
+        ('kind = "pointed"\nspan = 2\nrise = 1.5\nthickness = 0.1\nvoussoirs = 7', "", "geometry.arch.voussoirs",
+         "geometry.arch.voussoirs = 7 for a pointed arch must be even"),
+        ('kind = "semicircular"\nspan = 2\nthickness = 0.1\nvoussoirs = 8\nabutment_width = 0.3\npier_width = 0.3\n'
+         'pier_height = 1', "", "geometry.arch", "geometry.arch: give abutment_width and abutment_height, or "
+                                                "pier_width, pier_height and pier_courses, not both"),
+        ('kind = "semicircular"\nspan = 2\nthickness = 0.1\nvoussoirs = 8', "blocks = [[0, 0, 1, 1]]", None,
+         "[geometry] needs exactly one of running_bond, pattern, blocks, dxf, polygons, arch; blocks and arch are both "
+         "given"),
+        ('kind = "semicircular"\nspan = 2\nthickness = 0.1\nvoussoirs = 8', "supports = [[[0, 0], [1, 0]]]",
+         "geometry.supports[0]", "geometry.supports[0]: 2 vertices: a block needs at least 3"),
+    ],
+)
+def test_arch_refusals(tmp_path, capsys, arch: str, extra: str, key, message: str) -> None:
+    from masonry_dem import cli
+
+    path = tmp_path / "arch.toml"
+    path.write_text(ARCH_CASE.format(extra=extra, arch=arch))
+    with pytest.raises(md.InputError) as info:
+        md.load_case(path)
+    assert str(info.value).startswith(f"{path}: ") and message in str(info.value) and info.value.key == key
+    assert cli.main(["run", str(path)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"masonry-dem: error: {info.value}"]
+
+
+def test_the_arch_example_s_reference_is_its_least_four_hinge_mechanism() -> None:
+    from pathlib import Path
+
+    case = md.load_case(Path(__file__).resolve().parents[2] / "examples" / "semicircular-arch.toml")
+    expected, hinges = four_hinge_multiplier(case.build_model())
+    assert case.reference["collapse_multiplier"] == pytest.approx(expected, abs=5e-5)  # its 4 digits
+    assert [tuple(np.round(p, 2)) for _, p in hinges] == [(-0.87, 0.5), (0.0, 1.15), (0.71, 0.71), (1.15, 0.0)]

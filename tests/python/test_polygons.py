@@ -33,7 +33,7 @@ def test_a_rectangle_model_reads_as_four_vertex_polygons() -> None:
     for i, (x0, y0, x1, y1) in enumerate(rects):
         assert blocks.polygon(i).tolist() == [[x0, y0], [x1, y0], [x1, y1], [x0, y1]]  # counter-clockwise
     assert np.array_equal(blocks.bounds, rects)
-    assert np.array_equal(blocks.centroids, 0.5 * (rects[:, :2] + rects[:, 2:]))
+    np.testing.assert_allclose(blocks.centroids, 0.5 * (rects[:, :2] + rects[:, 2:]), rtol=0, atol=1e-15)
     np.testing.assert_allclose(blocks.areas, (rects[:, 2] - rects[:, 0]) * (rects[:, 3] - rects[:, 1]), rtol=1e-14)
     assert fixed_blocks(model) == [model.base_index]
 
@@ -282,7 +282,7 @@ def test_case_polygons_and_supports_are_read(tmp_path: Path) -> None:
     path.write_text("format = 1\n[geometry]\nblocks = [[0, 0, 1, 1]]\n")
     case = md.load_case(path)
     assert isinstance(case.model.blocks, np.ndarray) and case.model.blocks.tolist() == [[0.0, 0.0, 1.0, 1.0]]
-    assert "supports" not in case.model_kwargs
+    assert case.model_kwargs["supports"] is None and case.model_kwargs["base"] is True  # the core's defaults
 
 
 #: A case file of one polygon block on the base; {geometry} replaces its [geometry] keys.
@@ -324,8 +324,8 @@ POLYGON_CASE = """format = 1
         ("boxes = [[0, 0, 0, 1, 1, 1]]\nsupports = [[[1, 0], [2, 0], [1.5, 1]]]", "geometry.supports",
          "geometry.supports: are polygons of a wall in the plane"),
         ("polygons = [[[0, 0], [1, 0], [0, 1]]]\ndxf = \"wall.dxf\"", None,
-         "[geometry] needs exactly one of running_bond, pattern, blocks, dxf, polygons (blocks and polygons may be "
-         "given together); dxf and polygons are both given"),
+         "[geometry] needs exactly one of running_bond, pattern, blocks, dxf, polygons, arch (blocks and polygons "
+         "may be given together); dxf and polygons are both given"),
         ("supports = [[[0, 0], [1, 0], [0, 1]]]", None,
          "[geometry] needs exactly one of running_bond, pattern, blocks, dxf; none is given (polygons also make a "
          "wall, alone or beside blocks"),
@@ -504,3 +504,50 @@ def test_an_arch_s_hinges_are_named_by_its_intrados_and_extrados() -> None:
     assert describe_hinges(model, results, arch) == "1: the intrados of a bed joint at (1.00, 1.00) m"
     arch = {"intrados": arch["extrados"], "extrados": arch["intrados"]}
     assert describe_hinges(model, results, arch) == "1: the extrados of a bed joint at (1.00, 1.00) m"
+
+
+# --------------------------------------------------------------------------------------------------
+# Walls of polygons built by the core
+# --------------------------------------------------------------------------------------------------
+
+
+def test_a_case_of_polygons_builds_the_model_it_gives(tmp_path: Path) -> None:
+    from masonry_dem.export import block_mesh
+
+    path = tmp_path / "gable.toml"
+    path.write_text(GABLE_CASE + '[base]\nkind = "fixed"\n')
+    case = md.load_case(path)
+    model = case.build_model()
+    assert list(model.block_kinds) == ["wall", "wall", "wall", "support", "base"]
+    assert model.support_indices == [3] and model.base_index == 4 and model.n_blocks == 3
+    blocks = shapes(model)
+    # the model's polygons are the case's, counter-clockwise from the lowest vertex (the leftmost of the lowest)
+    assert blocks.polygon(1).tolist() == [[0.0, 1.0], [1.0, 1.0], [0.5, 1.6]]
+    assert blocks.polygon(2).tolist() == [[1.5, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], [1.0, 0.5]]
+    assert blocks.areas[:4] == pytest.approx([1.0, 0.3, 0.875, 0.125], rel=1e-14)
+    assert fixed_blocks(model) == [3, 4]
+    results = case.run()
+    assert results.status in ("collapse", "estimate")
+    mesh = block_mesh(model, results)
+    assert [c.type for c in mesh.cells] == ["quad", "triangle", "polygon", "triangle", "quad"]
+    assert np.concatenate(mesh.cell_data["kind"]).tolist() == [0, 0, 0, 3, 1]
+
+
+def test_a_drawing_of_polygons_is_the_case_of_the_same_polygons(tmp_path: Path) -> None:
+    def add(msp) -> None:
+        msp.add_lwpolyline([(0, 0), (1000, 0), (1000, 1000), (0, 1000)], close=True)
+        msp.add_lwpolyline([(0, 1000), (1000, 1000), (500, 1600)], close=True)
+
+    _drawing(tmp_path, add)
+    drawn = tmp_path / "drawn.toml"
+    drawn.write_text('format = 1\n[geometry]\ndxf = "arch.dxf"\n[joints]\nfriction = 2.0\ndilatancy = 2.0\n'
+                     '[analysis]\nmethod = "limit"\n')
+    given = tmp_path / "given.toml"
+    given.write_text('format = 1\n[geometry]\nblocks = [[0, 0, 1, 1]]\npolygons = [[[0, 1], [1, 1], [0.5, 1.6]]]\n'
+                     '[joints]\nfriction = 2.0\ndilatancy = 2.0\n[analysis]\nmethod = "limit"\n')
+    a, b = md.load_case(drawn), md.load_case(given)
+    assert a.model.blocks == b.model.blocks
+    # the gable on the square: the two turn together about the square's toe, lambda = (1 - x_c) / y_c of both
+    x_c = (1.0 * 0.5 + 0.3 * 0.5) / 1.3
+    y_c = (1.0 * 0.5 + 0.3 * 1.2) / 1.3
+    assert a.run().collapse_multiplier == pytest.approx((1.0 - x_c) / y_c, rel=1e-7)

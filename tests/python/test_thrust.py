@@ -115,3 +115,27 @@ def test_the_line_of_thrust_is_drawn(tmp_path: Path) -> None:
                                      f"{static.last_equilibrium:.4f}")
     path = report_figure(model, results, title="stack", path=tmp_path / "stack.png", dpi=50, thrust=True)
     assert "line of thrust" in path.axes[0].get_title() and (tmp_path / "stack.png").stat().st_size > 0
+
+
+#: A parallelogram leaning right: its bed [0, 1] at y = 0, its top [0.3, 1.3] at y = 1; centroid (0.65, 0.5).
+LEANING = [[0.0, 0.0], [1.0, 0.0], [1.3, 1.0], [0.3, 1.0]]
+
+
+def test_a_leaning_block_s_resultant_is_on_its_centroid_s_vertical_not_its_joint_s_centre() -> None:
+    model = md.Model([LEANING], thickness=1.0, joints=DRY)
+    assert model.centroids[0] == pytest.approx([0.65, 0.5], abs=1e-15)
+    (p,) = resultant_points(model, dead_load_state(model))
+    assert p == pytest.approx([0.65, 0.0], abs=1e-9)  # the joint's centre is at x = 0.5
+
+
+@pytest.mark.parametrize("method", ["limit", "static"])
+def test_a_leaning_block_overturns_about_its_toe(method: str) -> None:
+    from masonry_dem.report import hinges
+
+    # it turns about its toe (1, 0): lambda W y_c = W (1 - x_c), lambda = (1 - 0.65) / 0.5 = 0.7 (friction 2: no
+    # sliding)
+    model = md.Model([LEANING], thickness=1.0, joints={"default": md.dry_joint(2.0, dilatancy=2.0)})
+    results = model.solve_limit() if method == "limit" else model.solve_static()
+    assert results.status == "collapse" and results.collapse_multiplier == pytest.approx(0.7, rel=1e-9)
+    assert resultant_points(model, results).tolist() == [pytest.approx([1.0, 0.0], abs=1e-9)]
+    assert [(h.end, h.point.tolist()) for h in hinges(model, results.mechanism)] == [("right", [1.0, 0.0])]

@@ -14,6 +14,7 @@ a key against, read from the core (``_core.DEFAULTS``); nothing passes them back
 from __future__ import annotations
 
 import copy
+import re
 from dataclasses import dataclass, field, fields, replace
 from types import MappingProxyType
 from typing import Any, Callable, ClassVar, Dict, Iterator, List, Mapping, MutableMapping, Optional, Sequence, Union
@@ -260,7 +261,11 @@ def generate_arch(arguments: Mapping[str, Any], source: str) -> Dict[str, Any]:
     try:
         made = _core.arch(**{key: value for key, value in arguments.items() if value is not None})
     except MasonryError as exc:
-        raise _in_file(exc, source) from exc
+        again = _in_file(exc, source)
+        named = re.match(r"geometry\.arch(\.\w+)?", str(exc))
+        if isinstance(again, InputError) and again.key is None and named:
+            again.key = named.group(0)  # the key the message starts with
+        raise again from exc
     return {key: [np.asarray(p, dtype=np.float64).tolist() for p in made[key]] for key in
             ("blocks", "supports", "intrados", "extrados")}
 
