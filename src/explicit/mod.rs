@@ -294,7 +294,7 @@ mod motion;
 mod pass;
 mod quasi_static;
 mod space;
-#[cfg(feature = "bench-internals")]
+#[cfg(any(test, feature = "bench-internals"))]
 mod stepper;
 #[cfg(test)]
 mod tests;
@@ -303,7 +303,7 @@ mod time_history;
 use integrator::*;
 use motion::*;
 use pass::*;
-#[cfg(feature = "bench-internals")]
+#[cfg(any(test, feature = "bench-internals"))]
 pub use stepper::{Stepper, Stepper3};
 pub(crate) use quasi_static::{relax_at_displacement, relax_dead_state};
 pub use quasi_static::{solve, solve_with};
