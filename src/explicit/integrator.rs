@@ -94,7 +94,7 @@ impl<'a> Integrator<'a> {
         let (shapes, geo) = shape_table(model, &kinds);
         let hw = if laws.iter().any(|l| l.is_softening()) { 5 } else { 3 };
         let (pool, par, n_parts) = start_pool(threads, m, PAR_MIN_INTERFACES)?;
-        let motion = Motion::new(mass, fixed, model.prescribed().to_vec(), dt, damping, pool, par)?;
+        let motion = Motion::new(3, mass, fixed, model.prescribed().to_vec(), dt, damping, pool, par)?;
         let mut it = Integrator {
             model,
             geo,

@@ -277,14 +277,15 @@ fn monitor_due(k: usize, every: usize, last: &mut Instant) -> bool {
 }
 
 
-/// The stable time step of the model: `2 / omega_max` with a Gershgorin bound on `omega_max`.
+/// The stable time step of the model: `2 / omega_max` with a Gershgorin bound on `omega_max`
+/// ([`Gershgorin`]).
 pub fn critical_time_step(model: &Model) -> f64 {
-    let mut row = vec![0.0; 3 * model.n_blocks()];
+    let mut bound = Gershgorin::new(&integrator::masses(model), model.fixed());
     for (k, it) in model.interfaces().iter().enumerate() {
         let d = crate::joint::stiffness(model.law(k), &model.sections()[k]);
-        add_gershgorin(&mut row, &it.dofs(), &it.b_mat, d);
+        bound.add(&it.dofs(), &it.b_mat, d);
     }
-    gershgorin_step(&row, &integrator::masses(model), model.fixed())
+    bound.step()
 }
 
 pub mod contact;

@@ -134,7 +134,7 @@ fn jump_rows(pt: &Pt, frame: &[[f64; 3]; 3]) -> [[f64; 12]; 3] {
 /// The stable time step of a 3D model: `2 / omega_max`, with a Gershgorin bound on `omega_max`
 /// from the points' elastic stiffnesses.
 pub fn critical_time_step_3d(model: &Model3) -> f64 {
-    let mut row = vec![0.0; 6 * model.n_blocks()];
+    let mut bound = Gershgorin::new(&masses_3d(model), model.fixed());
     for (k, c) in model.contacts().iter().enumerate() {
         // each corner a spring of kN A / 4 (the contact's law is softer in rotation: an upper bound)
         let law = CornerLaw::new(model.law(k), c.area);
@@ -142,10 +142,10 @@ pub fn critical_time_step_3d(model: &Model3) -> f64 {
         let dofs: Vec<usize> = (0..12).map(|j| if j < 6 { 6 * c.a + j } else { 6 * c.b + j - 6 }).collect();
         for x in &c.corners {
             let pt = Pt { ra: sub(*x, model.centroids()[c.a]), rb: sub(*x, model.centroids()[c.b]) };
-            add_gershgorin(&mut row, &dofs, &jump_rows(&pt, &frame), [0.25 * law.kn, law.kt, law.kt]);
+            bound.add(&dofs, &jump_rows(&pt, &frame), [0.25 * law.kn, law.kt, law.kt]);
         }
     }
-    gershgorin_step(&row, &masses_3d(model), model.fixed())
+    bound.step()
 }
 
 /// The mass of each dof (m, m, m, Jx, Jy, Jz per block).
@@ -170,7 +170,7 @@ impl<'a> Integrator3<'a> {
             return Err(Error::input(format!("{nb} blocks and {m} contacts: the explicit solver takes fewer than 2^31 of each")));
         }
         let (pool, par, _) = start_pool(threads, m, PAR_MIN_CONTACTS)?;
-        let motion = Motion::new(masses_3d(model), model.fixed(), vec![0.0; 6 * nb], dt, damping, pool, par)?;
+        let motion = Motion::new(6, masses_3d(model), model.fixed(), vec![0.0; 6 * nb], dt, damping, pool, par)?;
         let cen = model.centroids();
         let mut cts = Vec::with_capacity(m);
         let mut pts = Vec::with_capacity(4 * m);
