@@ -79,8 +79,7 @@ impl<'a> Integrator<'a> {
     /// (None: `safety` times the stability limit), `damping`, and the interface pass on
     /// `threads` threads (0: all cores); bad values are refused with the option they come from.
     pub(super) fn new(model: &'a Model, dt: Option<f64>, safety: f64, damping: Damping, threads: usize) -> Result<Self, Error> {
-        let dt = checked_time_step(critical_time_step(model), dt, safety)?;
-        check_damping(damping)?;
+        let dt = checked_time_step(critical_time_step(model), dt, safety, damping)?;
         let nb = model.n_blocks();
         let m = model.interfaces().len();
         if nb > BLOCK as usize || 2 * m >= u32::MAX as usize {

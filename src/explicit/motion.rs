@@ -299,9 +299,11 @@ impl Gershgorin {
 pub(super) const SCALED_BOUND: f64 = 8.0;
 
 /// The time step: `dt` if given (finite, positive and within the stability limit `crit`), else
-/// `safety` (in (0, 1]) times that limit, which some stiffness must bound.
-pub(super) fn checked_time_step(crit: f64, dt: Option<f64>, safety: f64) -> Result<f64, Error> {
-    match dt {
+/// `safety` (in (0, 1]) times that limit, which some stiffness must bound; and `damping`
+/// checked (its range, and viscous damping stable at that time step: see
+/// [`check_viscous_stability`]).
+pub(super) fn checked_time_step(crit: f64, dt: Option<f64>, safety: f64, damping: Damping) -> Result<f64, Error> {
+    let dt = match dt {
         Some(dt) => {
             if !(dt.is_finite() && dt > 0.0) {
                 return Err(Error::input(format!("analysis.time_step must be a finite number > 0, got {dt}")));
@@ -311,7 +313,7 @@ pub(super) fn checked_time_step(crit: f64, dt: Option<f64>, safety: f64) -> Resu
                     "analysis.time_step = {dt:.3e} s exceeds the stability limit of this model, {crit:.3e} s"
                 )));
             }
-            Ok(dt)
+            dt
         }
         None => {
             if !(safety > 0.0 && safety <= 1.0) {
@@ -320,9 +322,33 @@ pub(super) fn checked_time_step(crit: f64, dt: Option<f64>, safety: f64) -> Resu
             if !crit.is_finite() {
                 return Err(Error::input("no stiffness holds the model: no stable time step"));
             }
-            Ok(safety * crit)
+            safety * crit
+        }
+    };
+    check_damping(damping)?;
+    check_viscous_stability(damping, dt, crit)?;
+    Ok(dt)
+}
+
+/// Refuses viscous damping `c` that the integrator cannot carry at time step `dt` (stability
+/// limit `crit`, `2 / omega_max`). Velocity Verlet with the damping force `-c m v` at the
+/// half-step velocity takes, on a dof of frequency omega, `v' = (1 - c dt) v - omega^2 dt x`,
+/// `x' = x + dt v'`: its step matrix has determinant `1 - c dt` and trace `2 - c dt - omega^2
+/// dt^2`, and stays stable while `c dt / 2 + (omega dt / 2)^2 <= 1` (Jury's conditions). Beyond
+/// it the motion grows at every step (at c dt above 2 even a dof without stiffness), and a
+/// relaxation ended in "no equilibrium under the dead loads alone".
+fn check_viscous_stability(damping: Damping, dt: f64, crit: f64) -> Result<(), Error> {
+    if let Damping::Viscous(c) = damping {
+        let r = dt / crit;
+        let measure = 0.5 * c * dt + r * r;
+        if measure > 1.0 {
+            return Err(Error::input_at("analysis.damping_coefficient", format!(
+                "analysis.damping_coefficient (viscous damping) = {c:e} 1/s is unstable at the time step {dt:.3e} s (the stability limit {crit:.3e} s): the integrator needs c dt / 2 + (dt / limit)^2 <= 1, here {measure:.3e}; at this time step c may be at most {:.3e} 1/s",
+                2.0 * (1.0 - r * r) / dt
+            )));
         }
     }
+    Ok(())
 }
 
 /// Refuses a damping coefficient out of its range: local damping in [0, 1), viscous damping

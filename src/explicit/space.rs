@@ -162,7 +162,7 @@ impl<'a> Integrator3<'a> {
     /// The integrator of `model` at rest, with time step `dt` (None: `safety` times the
     /// stability limit), `damping`, and the contact pass on `threads` threads (0: all cores).
     pub(super) fn new(model: &'a Model3, dt: Option<f64>, safety: f64, damping: Damping, threads: usize) -> Result<Self, Error> {
-        let dt = checked_time_step(critical_time_step_3d(model), dt, safety)?;
+        let dt = checked_time_step(critical_time_step_3d(model), dt, safety, damping)?;
         let nb = model.n_blocks();
         let contacts = model.contacts();
         let m = contacts.len();
@@ -604,7 +604,10 @@ pub fn solve_3d_with(model: &Model3, opts: &ExplicitOptions, monitor: &mut dyn F
         crate::space::LiveLoad3::HorizontalWeight { direction } if direction.to_radians().sin().abs() > direction.to_radians().cos().abs() => 1,
         _ => 0,
     };
-    let setting = Setting { fd: model.dead_load().to_vec(), fl: model.live_load().to_vec(), size: model.size(), scale: 1.0, offset };
+    let free = (0..model.n_blocks()).filter(|&i| !model.fixed()[6 * i + 2]).map(|i| model.mass()[i]);
+    let period = super::quasi_static::vertical_period(free.sum(), model.base_stiffness());
+    let setting = Setting { fd: model.dead_load().to_vec(), fl: model.live_load().to_vec(), size: model.size(), scale: 1.0, offset, period };
+    super::quasi_static::check_relaxation(period, s.dt, opts.time_step.is_some(), opts.max_steps_per_level)?;
     let mut run = QuasiStatic::new(s, setting, opts, control_block, start);
     let end = match run.settle_dead_loads(monitor) {
         std::ops::ControlFlow::Break(end) => end,

@@ -118,15 +118,19 @@ impl Model {
         }
         let size = self.size();
         // the dead loads are carried to the base through its interfaces: their settlement
-        let base_stiffness: f64 = self
-            .interfaces
+        let vertical: f64 = self.f_dead.iter().skip(1).step_by(3).sum::<f64>().abs();
+        check_settlement(vertical, self.base_stiffness(), size, "loads.gravity, geometry.density and the joints' stiffness")
+    }
+
+    /// The normal stiffness of the base's interfaces together \[N/m\]: the wall's vertical
+    /// stiffness as one body on its base (0 without a base).
+    pub(crate) fn base_stiffness(&self) -> f64 {
+        self.interfaces
             .iter()
             .zip(&self.sections)
             .filter(|(it, _)| it.family == Family::Base)
             .map(|(it, sec)| self.laws.of(it.family).normal_stiffness * sec.area)
-            .sum();
-        let vertical: f64 = self.f_dead.iter().skip(1).step_by(3).sum::<f64>().abs();
-        check_settlement(vertical, base_stiffness, size, "loads.gravity, geometry.density and the joints' stiffness")
+            .sum()
     }
 
     /// Refuses, for the analyses that raise lambda until collapse, joints whose cohesion or

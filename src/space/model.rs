@@ -115,10 +115,14 @@ impl Model3 {
             }
         }
         // the dead loads are carried to the base through its contacts: their settlement
-        let base_stiffness: f64 =
-            self.contacts.iter().enumerate().filter(|(_, c)| c.family == Family::Base).map(|(k, c)| self.law(k).normal_stiffness * c.area).sum();
         let vertical: f64 = self.f_dead.iter().skip(2).step_by(6).sum::<f64>().abs();
-        crate::model::check_settlement(vertical, base_stiffness, self.size(), "gravity, density and the joints' normal_stiffness")
+        crate::model::check_settlement(vertical, self.base_stiffness(), self.size(), "gravity, density and the joints' normal_stiffness")
+    }
+
+    /// The normal stiffness of the base's contacts together \[N/m\]: the wall's vertical stiffness
+    /// as one body on its base (0 without a base).
+    pub(crate) fn base_stiffness(&self) -> f64 {
+        self.contacts.iter().enumerate().filter(|(_, c)| c.family == Family::Base).map(|(k, c)| self.law(k).normal_stiffness * c.area).sum()
     }
 
     /// The base's fixed dofs, the weights of the wall and the top beam, and the live load on
