@@ -400,3 +400,66 @@ fn a_held_control_block_is_refused() {
         assert!(msg.contains("is held along x"), "{msg}");
     }
 }
+
+#[test]
+fn settings_under_which_no_relaxation_settles_are_refused_by_name() {
+    use masonry_dem::explicit::{critical_time_step, critical_time_step_3d, solve, solve_3d, Damping, ExplicitOptions};
+    use masonry_dem::interface::Family;
+    use masonry_dem::space::{running_bond_3d, LiveLoad3, Model3, ModelSpec3};
+    // a refusal's key and message
+    let refusal = |r: Result<masonry_dem::results::Results<[f64; 3]>, Error>| match r {
+        Err(Error::Input { key, reason }) => (key, reason),
+        other => panic!("expected an input error, got {other:?}"),
+    };
+    let refusal3 = |r: Result<masonry_dem::results::Results<[f64; 6]>, Error>| match r {
+        Err(Error::Input { key, reason }) => (key, reason),
+        other => panic!("expected an input error, got {other:?}"),
+    };
+    // the number after `after` in a message
+    let number = |m: &str, after: &str| -> f64 { m.split(after).nth(1).and_then(|t| t.split(' ').next()).and_then(|v| v.parse().ok()).unwrap() };
+    // Ferris & Tin-Loi's wall 1 and a leaf in 3D (the explicit solver found no equilibrium under
+    // the dead loads alone with either setting)
+    let plane = Model::new(ModelSpec {
+        blocks: polygons(running_bond(&RunningBond { block_length: 0.4, block_height: 0.175, courses: 6, height: None, length: 2.0, first_course: FirstCourse::Half, openings: vec![] }).unwrap()),
+        ..ModelSpec::default()
+    })
+    .unwrap();
+    let leaf = Model3::new(&ModelSpec3 { blocks: running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175, 0.2).unwrap(), live: LiveLoad3::HorizontalWeight { direction: 90.0 }, ..ModelSpec3::default() }).unwrap();
+
+    // viscous damping: Verlet with -c m v is stable while c dt / 2 + (dt / limit)^2 <= 1; at the
+    // automatic step (0.8 of the limit) c dt <= 0.72
+    let viscous = |c: f64| ExplicitOptions { damping: Damping::Viscous(c), ..ExplicitOptions::default() };
+    let (crit2, crit3) = (critical_time_step(&plane), critical_time_step_3d(&leaf));
+    for (name, crit, (key, m)) in [("plane", crit2, refusal(solve(&plane, &viscous(1e5)))), ("3D", crit3, refusal3(solve_3d(&leaf, &viscous(1e5))))] {
+        assert_eq!(key.as_deref(), Some("analysis.damping_coefficient"), "{name}: {m}");
+        assert!(m.starts_with("analysis.damping_coefficient (viscous damping) = 1e5 1/s is unstable at the time step"), "{name}: {m}");
+        let most = number(&m, "c may be at most ");
+        assert!((most - 0.72 / (0.8 * crit)).abs() <= 1e-3 * most, "{name}: {m}");
+    }
+    // a coefficient within the bound is taken: a block settles under it and slides
+    let block = a_model();
+    let dt = 0.8 * critical_time_step(&block);
+    let r = solve(&block, &ExplicitOptions { tolerance: 1e-2, ..viscous(0.5 / dt) }).unwrap();
+    assert!(r.curve_multiplier.len() > 1, "{:?} {:?}", r.status, r.error);
+
+    // a time step far below the limit: the wall's weight on its base joints vibrates with a period
+    // of at least T = 2 pi sqrt(M / K) (M the mass free to move, K the base joints' normal stiffness:
+    // Rayleigh's quotient of a vertical translation), and the dead loads alone take more than one
+    // to settle: T / dt time steps against the 200,000 a level may take
+    let small = ExplicitOptions { time_step: Some(1e-9), ..ExplicitOptions::default() };
+    let period = |mass: f64, k: f64| 2.0 * std::f64::consts::PI * (mass / k).sqrt();
+    let k2: f64 = plane.interfaces().iter().enumerate().filter(|(_, it)| it.family == Family::Base).map(|(k, _)| 1e10 * plane.sections()[k].area).sum();
+    let t2 = period(plane.mass()[..plane.n_wall()].iter().sum(), k2);
+    let k3: f64 = leaf.contacts().iter().filter(|c| c.family == Family::Base).map(|c| 1e10 * c.area).sum();
+    let t3 = period(leaf.mass()[..leaf.n_wall()].iter().sum(), k3);
+    for (name, t, (key, m)) in [("plane", t2, refusal(solve(&plane, &small))), ("3D", t3, refusal3(solve_3d(&leaf, &small)))] {
+        assert_eq!(key.as_deref(), Some("analysis.time_step"), "{name}: {m}");
+        assert!(m.starts_with("analysis.time_step = 1.000e-9 s is too small to relax the wall"), "{name}: {m}");
+        let needed = number(&m, "takes more than one period, at least ");
+        assert!((needed - t / 1e-9).abs() <= 1e-3 * needed, "{name}: {needed} time steps, T / dt = {}", t / 1e-9);
+        assert!(m.contains("more than the 200000 a load level may take"), "{name}: {m}");
+        // the smallest time step it takes, T / 200,000, runs
+        let least = number(&m, "or take at least ");
+        assert!((least - t / 2e5).abs() <= 1e-3 * least, "{name}: {m}");
+    }
+}

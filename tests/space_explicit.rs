@@ -81,6 +81,37 @@ fn a_u_wall_by_the_explicit_solver_is_limit_analysis_within_two_percent() {
     close(ex, lp.collapse_multiplier, 2e-2, "U wall, explicit against limit analysis");
 }
 
+#[test]
+fn a_pushover_takes_as_many_time_steps_at_any_size() {
+    // a cube of side L on its base (default joints: it slides at 0.65) is the same problem at
+    // every size in its own units: the stable time step grows as sqrt(L), as the time its
+    // levels take to settle. The steps of its pushover (the time steps, over all levels) at
+    // 1 m, 1 km and 1,000 km: the same from a kilometre on (they stopped growing with the
+    // square root of the size once the bound of the time step stopped mixing units), and no
+    // more than twice those at 1 m, where the time step is the one of blocks of metres
+    let steps = |l: f64, plane: bool| {
+        let (status, lambda, levels, steps, error) = if plane {
+            let blocks = vec![masonry_dem::geometry::Rect::new(0.0, 0.0, l, l).into()];
+            let m = Model::new(ModelSpec { blocks, thickness: l, ..ModelSpec::default() }).unwrap();
+            let r = solve(&m, &ExplicitOptions::default()).unwrap();
+            (r.status, r.collapse_multiplier, r.steps, r.iterations, r.error)
+        } else {
+            let m = Model3::new(&ModelSpec3 { blocks: vec![Box3::new(0.0, 0.0, 0.0, l, l, l)], ..ModelSpec3::default() }).unwrap();
+            let r = solve_3d(&m, &ExplicitOptions::default()).unwrap();
+            (r.status, r.collapse_multiplier, r.steps, r.iterations, r.error)
+        };
+        assert_eq!(status, Status::Collapse, "{l} m: {error:?}");
+        close(lambda, 0.65, 2e-3, &format!("a cube of {l} m slides"));
+        eprintln!("{} {l} m: {levels} levels, {steps} time steps", if plane { "plane" } else { "3D" });
+        steps as f64
+    };
+    for plane in [false, true] {
+        let (metre, km, mm) = (steps(1.0, plane), steps(1e3, plane), steps(1e6, plane));
+        close(mm, km, 1e-2, "the steps at 1,000 km against 1 km");
+        assert!(mm <= 2.0 * metre, "{mm} time steps at 1,000 km, {metre} at 1 m");
+    }
+}
+
 /// The times at which a rotation record changes sign (interpolated).
 fn sign_changes(times: &[f64], rot: &[f64]) -> Vec<f64> {
     (1..times.len())

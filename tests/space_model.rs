@@ -302,3 +302,64 @@ fn a_held_control_block_is_refused_in_3d() {
     let (_, msg) = input_message(solve_3d(&model, &ExplicitOptions { control_block: Some(base), ..ExplicitOptions::default() }));
     assert!(msg.contains("control block 1 (the base) is held along y"), "{msg}");
 }
+
+/// A stack of `n` cubes of side `s` whose lowest face is at `z0`, with `law` everywhere and
+/// gravity `g`.
+fn stack(n: usize, s: f64, z0: f64, law: masonry_dem::joint::JointLaw, g: f64) -> Result<Model3, Error> {
+    let blocks = (0..n).map(|i| Box3::new(0.0, 0.0, z0 + i as f64 * s, s, s, z0 + (i + 1) as f64 * s)).collect();
+    Model3::new(&ModelSpec3 { blocks, gravity: g, joints: masonry_dem::model::JointLaws::uniform(law), ..ModelSpec3::default() })
+}
+
+#[test]
+fn joints_too_soft_for_the_dead_loads_are_refused_when_the_model_is_built() {
+    use masonry_dem::joint::JointLaw;
+    // a leaf 2 m long, 1.05 m high (density 2000, g 9.81: 20.6 kPa at its base): kN = 1e5 N/m3 would sink
+    // it 0.21 m, more than 0.01 of its 2 m; so would kN = 1e-300 and gravity 1e12 (the explicit solver
+    // found no equilibrium under the dead loads alone); 1e8 sinks it 0.2 mm and is taken
+    let leaf = |kn: f64, g: f64| {
+        let law = JointLaw { normal_stiffness: kn, shear_stiffness: kn, friction: 0.7, dilatancy: 0.7, ..JointLaw::default() };
+        let blocks = running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175, 0.2).unwrap();
+        Model3::new(&ModelSpec3 { blocks, gravity: g, joints: masonry_dem::model::JointLaws::uniform(law), ..ModelSpec3::default() })
+    };
+    for (kn, g) in [(1e5, 9.81), (1e-300, 9.81), (1e10, 1e12)] {
+        let (key, reason) = input_message(leaf(kn, g));
+        assert_eq!(key, None);
+        assert!(reason.starts_with("under its dead loads ("), "{reason}");
+        assert!(
+            reason.contains("m into its base joints (joints' normal_stiffness x base area = ")
+                && reason.contains("more than 0.01 of its size (2.000e0 m): the small-displacement model does not hold; check gravity, density and the joints' normal_stiffness"),
+            "{reason}"
+        );
+    }
+    let sinks = |r: &str| r.split("sink about ").nth(1).and_then(|t| t.split(' ').next()).and_then(|v| v.parse::<f64>().ok()).unwrap();
+    let (_, reason) = input_message(leaf(1e5, 9.81));
+    // the weight over the base's stiffness: 2000 x 9.81 x 1.05 Pa over 1e5 N/m3
+    assert!(close(sinks(&reason), 2000.0 * 9.81 * 1.05 / 1e5, 1e-3), "{reason}");
+    assert!(leaf(1e8, 9.81).is_ok());
+    // a stiffness whose product with a contact's area overflows: named with its blocks and key
+    let law = JointLaw { normal_stiffness: 1e300, shear_stiffness: 1e300, ..JointLaw::default() };
+    let (_, reason) = input_message(stack(1, 1e5, 0.0, law, 9.81));
+    assert!(
+        reason.starts_with("the contact of the base and block 0 [0, 0, 0, 100000, 100000, 100000]: its stiffness (joints.normal_stiffness or shear_stiffness times its area, 1e10 m2) is not finite"),
+        "{reason}"
+    );
+}
+
+#[test]
+fn boxes_of_any_size_find_their_contacts() {
+    use masonry_dem::joint::JointLaw;
+    // a stack of three cubes on the base is the same model at 1e-10 m, 1 m and 1e6 m (the contact
+    // tolerance 1e-8 of the model's size: at least 1e-8 m, it took boxes of 1e-8 m for apart), and
+    // far from the origin (the tolerance at least 1e-14 of the largest coordinate)
+    for (s, z0) in [(1e-10, 0.0), (1e-8, 0.0), (1.0, 0.0), (1e6, 0.0), (1e-6, 1e3)] {
+        let m = stack(3, s, z0, JointLaw::default(), 9.81).unwrap_or_else(|e| panic!("cubes of {s} m at {z0} m: {e}"));
+        let bases = m.contacts().iter().filter(|c| c.family == Family::Base).count();
+        assert_eq!((m.contacts().len(), bases), (3, 1), "cubes of {s} m at {z0} m");
+        assert!(m.contacts().iter().all(|c| close(c.area, s * s, 1e-9)), "cubes of {s} m");
+    }
+    // a box whose smallest side is within ten times the tolerance: refused by name
+    let blocks = vec![Box3::new(0.0, 0.0, 0.0, 1.0, 1.0, 1.0), Box3::new(0.0, 0.0, 1.0, 1.0, 1.0, 1.0 + 5e-8)];
+    let (_, reason) = input_message(Model3::new(&ModelSpec3 { blocks, ..ModelSpec3::default() }));
+    assert!(reason.starts_with("block 1 [0, 0, 1, 1, 1, 1.00000005]: its smallest side, "), "{reason}");
+    assert!(reason.ends_with("its faces cannot be told apart"), "{reason}");
+}

@@ -79,8 +79,7 @@ impl<'a> Integrator<'a> {
     /// (None: `safety` times the stability limit), `damping`, and the interface pass on
     /// `threads` threads (0: all cores); bad values are refused with the option they come from.
     pub(super) fn new(model: &'a Model, dt: Option<f64>, safety: f64, damping: Damping, threads: usize) -> Result<Self, Error> {
-        let dt = checked_time_step(critical_time_step(model), dt, safety)?;
-        check_damping(damping)?;
+        let dt = checked_time_step(critical_time_step(model), dt, safety, damping)?;
         let nb = model.n_blocks();
         let m = model.interfaces().len();
         if nb > BLOCK as usize || 2 * m >= u32::MAX as usize {
@@ -94,7 +93,7 @@ impl<'a> Integrator<'a> {
         let (shapes, geo) = shape_table(model, &kinds);
         let hw = if laws.iter().any(|l| l.is_softening()) { 5 } else { 3 };
         let (pool, par, n_parts) = start_pool(threads, m, PAR_MIN_INTERFACES)?;
-        let motion = Motion::new(mass, fixed, model.prescribed().to_vec(), dt, damping, pool, par)?;
+        let motion = Motion::new(3, mass, fixed, model.prescribed().to_vec(), dt, damping, pool, par)?;
         let mut it = Integrator {
             model,
             geo,

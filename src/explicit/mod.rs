@@ -277,14 +277,15 @@ fn monitor_due(k: usize, every: usize, last: &mut Instant) -> bool {
 }
 
 
-/// The stable time step of the model: `2 / omega_max` with a Gershgorin bound on `omega_max`.
+/// The stable time step of the model: `2 / omega_max` with a Gershgorin bound on `omega_max`
+/// ([`Gershgorin`]).
 pub fn critical_time_step(model: &Model) -> f64 {
-    let mut row = vec![0.0; 3 * model.n_blocks()];
+    let mut bound = Gershgorin::new(&integrator::masses(model), model.fixed());
     for (k, it) in model.interfaces().iter().enumerate() {
         let d = crate::joint::stiffness(model.law(k), &model.sections()[k]);
-        add_gershgorin(&mut row, &it.dofs(), &it.b_mat, d);
+        bound.add(&it.dofs(), &it.b_mat, d);
     }
-    gershgorin_step(&row, &integrator::masses(model), model.fixed())
+    bound.step()
 }
 
 pub mod contact;
@@ -294,7 +295,7 @@ mod motion;
 mod pass;
 mod quasi_static;
 mod space;
-#[cfg(feature = "bench-internals")]
+#[cfg(any(test, feature = "bench-internals"))]
 mod stepper;
 #[cfg(test)]
 mod tests;
@@ -303,7 +304,7 @@ mod time_history;
 use integrator::*;
 use motion::*;
 use pass::*;
-#[cfg(feature = "bench-internals")]
+#[cfg(any(test, feature = "bench-internals"))]
 pub use stepper::{Stepper, Stepper3};
 pub(crate) use quasi_static::{relax_at_displacement, relax_dead_state};
 pub use quasi_static::{solve, solve_with};

@@ -115,6 +115,7 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
     let control_block = check_options(model, opts)?;
     let s = Integrator::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
     let setting = Setting::of_plane(model);
+    check_relaxation(setting.period, s.dt, opts.time_step.is_some(), opts.max_steps_per_level)?;
     let mut run = QuasiStatic::new(s, setting, opts, control_block, start);
     let end = match run.settle_dead_loads(monitor) {
         ControlFlow::Break(end) => end,
@@ -331,12 +332,41 @@ pub(super) struct Setting {
     pub(super) scale: f64,
     /// the control block's dof the curve follows (0: the first)
     pub(super) offset: usize,
+    /// a lower bound of the period of the wall's slowest vibration \[s\] ([`vertical_period`])
+    pub(super) period: f64,
 }
 
 impl Setting {
     fn of_plane(model: &Model) -> Setting {
-        Setting { fd: model.dead_load().to_vec(), fl: model.live_load().to_vec(), size: model.size(), scale: crate::analysis::lambda_scale(model), offset: 0 }
+        let free = (0..model.n_blocks()).filter(|&i| !model.fixed()[3 * i + 1]).map(|i| model.mass()[i]);
+        let period = vertical_period(free.sum(), model.base_stiffness());
+        Setting { fd: model.dead_load().to_vec(), fl: model.live_load().to_vec(), size: model.size(), scale: crate::analysis::lambda_scale(model), offset: 0, period }
     }
+}
+
+/// The period of a wall of mass `mass` \[kg\] (its blocks free to move vertically) on base
+/// joints of normal stiffness `base_stiffness` \[N/m\] moving as one body, `2 pi sqrt(mass / K)`
+/// (infinite without a base): by Rayleigh's principle no longer than the period of the wall's
+/// slowest vibration, whatever its joints above the base.
+pub(super) fn vertical_period(mass: f64, base_stiffness: f64) -> f64 {
+    2.0 * std::f64::consts::PI * (mass / base_stiffness).sqrt()
+}
+
+/// Refuses a time step `dt` given by the caller on which a wall whose slowest vibration is at
+/// least `period` long cannot settle under its dead loads within the `max_steps` time steps a
+/// level may take (it would end in "no equilibrium under the dead loads alone"): the
+/// relaxations of the dead loads took at least 6.6 of those periods on the walls measured (a
+/// leaf; 7.5 a cube, 9 the plane's walls, 31 a column of 20 blocks, 36 a U wall), one is the
+/// least any can take.
+pub(super) fn check_relaxation(period: f64, dt: f64, given: bool, max_steps: usize) -> Result<(), Error> {
+    let needed = period / dt;
+    if given && needed > max_steps as f64 {
+        return Err(Error::input_at("analysis.time_step", format!(
+            "analysis.time_step = {dt:.3e} s is too small to relax the wall: its weight on its base joints vibrates with a period of at least {period:.3e} s (2 pi sqrt(mass / the base joints' normal stiffness)), and settling under the dead loads alone takes more than one period, at least {needed:.3e} time steps of this one, more than the {max_steps} a load level may take; leave time_step out (the stability limit's) or take at least {:.3e} s",
+            period / max_steps as f64
+        )));
+    }
+    Ok(())
 }
 
 /// A quasi-static run: the integrator (of either dimension), what each level reads (the
@@ -363,7 +393,7 @@ impl<'a, K: Kernel> QuasiStatic<'a, K> {
     /// The run on integrator `s` (at rest) of a model read as `setting`, with `opts` (already
     /// checked), with an empty curve.
     pub(super) fn new(s: K, setting: Setting, opts: &'a ExplicitOptions, control_block: usize, start: Instant) -> Self {
-        let Setting { fd, fl, size, scale, offset } = setting;
+        let Setting { fd, fl, size, scale, offset, .. } = setting;
         QuasiStatic {
             opts,
             nb: fd.len() / K::DOF,

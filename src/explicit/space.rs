@@ -134,7 +134,7 @@ fn jump_rows(pt: &Pt, frame: &[[f64; 3]; 3]) -> [[f64; 12]; 3] {
 /// The stable time step of a 3D model: `2 / omega_max`, with a Gershgorin bound on `omega_max`
 /// from the points' elastic stiffnesses.
 pub fn critical_time_step_3d(model: &Model3) -> f64 {
-    let mut row = vec![0.0; 6 * model.n_blocks()];
+    let mut bound = Gershgorin::new(&masses_3d(model), model.fixed());
     for (k, c) in model.contacts().iter().enumerate() {
         // each corner a spring of kN A / 4 (the contact's law is softer in rotation: an upper bound)
         let law = CornerLaw::new(model.law(k), c.area);
@@ -142,10 +142,10 @@ pub fn critical_time_step_3d(model: &Model3) -> f64 {
         let dofs: Vec<usize> = (0..12).map(|j| if j < 6 { 6 * c.a + j } else { 6 * c.b + j - 6 }).collect();
         for x in &c.corners {
             let pt = Pt { ra: sub(*x, model.centroids()[c.a]), rb: sub(*x, model.centroids()[c.b]) };
-            add_gershgorin(&mut row, &dofs, &jump_rows(&pt, &frame), [0.25 * law.kn, law.kt, law.kt]);
+            bound.add(&dofs, &jump_rows(&pt, &frame), [0.25 * law.kn, law.kt, law.kt]);
         }
     }
-    gershgorin_step(&row, &masses_3d(model), model.fixed())
+    bound.step()
 }
 
 /// The mass of each dof (m, m, m, Jx, Jy, Jz per block).
@@ -162,7 +162,7 @@ impl<'a> Integrator3<'a> {
     /// The integrator of `model` at rest, with time step `dt` (None: `safety` times the
     /// stability limit), `damping`, and the contact pass on `threads` threads (0: all cores).
     pub(super) fn new(model: &'a Model3, dt: Option<f64>, safety: f64, damping: Damping, threads: usize) -> Result<Self, Error> {
-        let dt = checked_time_step(critical_time_step_3d(model), dt, safety)?;
+        let dt = checked_time_step(critical_time_step_3d(model), dt, safety, damping)?;
         let nb = model.n_blocks();
         let contacts = model.contacts();
         let m = contacts.len();
@@ -170,7 +170,7 @@ impl<'a> Integrator3<'a> {
             return Err(Error::input(format!("{nb} blocks and {m} contacts: the explicit solver takes fewer than 2^31 of each")));
         }
         let (pool, par, _) = start_pool(threads, m, PAR_MIN_CONTACTS)?;
-        let motion = Motion::new(masses_3d(model), model.fixed(), vec![0.0; 6 * nb], dt, damping, pool, par)?;
+        let motion = Motion::new(6, masses_3d(model), model.fixed(), vec![0.0; 6 * nb], dt, damping, pool, par)?;
         let cen = model.centroids();
         let mut cts = Vec::with_capacity(m);
         let mut pts = Vec::with_capacity(4 * m);
@@ -607,7 +607,10 @@ pub fn solve_3d_with(model: &Model3, opts: &ExplicitOptions, monitor: &mut dyn F
         None => highest_block(model),
     };
     let s = Integrator3::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
-    let setting = Setting { fd: model.dead_load().to_vec(), fl: model.live_load().to_vec(), size: model.size(), scale: 1.0, offset };
+    let free = (0..model.n_blocks()).filter(|&i| !model.fixed()[6 * i + 2]).map(|i| model.mass()[i]);
+    let period = super::quasi_static::vertical_period(free.sum(), model.base_stiffness());
+    let setting = Setting { fd: model.dead_load().to_vec(), fl: model.live_load().to_vec(), size: model.size(), scale: 1.0, offset, period };
+    super::quasi_static::check_relaxation(period, s.dt, opts.time_step.is_some(), opts.max_steps_per_level)?;
     let mut run = QuasiStatic::new(s, setting, opts, control_block, start);
     let end = match run.settle_dead_loads(monitor) {
         std::ops::ControlFlow::Break(end) => end,

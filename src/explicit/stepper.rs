@@ -1,10 +1,10 @@
-//! [`Stepper`]: time steps of the integrator from outside the crate (benchmarks, profiling).
+//! [`Stepper`]: time steps of the integrator from outside the crate (benchmarks, profiling), with
+//! the `bench-internals` feature; the crate's own unit tests use it without.
 
 use super::*;
 
 /// Puts `s` under `dead + live_multiplier live` at rest (its interface forces and
 /// accelerations with them): those loads, for [`run`].
-#[cfg(feature = "bench-internals")]
 fn loaded<K: Kernel>(s: &mut K, dead: &[f64], live: &[f64], live_multiplier: f64) -> Vec<f64> {
     let f: Vec<f64> = dead.iter().zip(live).map(|(d, l)| d + live_multiplier * l).collect();
     s.f_ext.copy_from_slice(&f);
@@ -14,7 +14,6 @@ fn loaded<K: Kernel>(s: &mut K, dead: &[f64], live: &[f64], live_multiplier: f64
 }
 
 /// `k` time steps of `s` under the fixed loads `f`.
-#[cfg(feature = "bench-internals")]
 fn run<K: Kernel>(s: &mut K, f: &[f64], k: usize) {
     let mut set_ext = |fe: &mut [f64], _: &[f64]| fe.copy_from_slice(f);
     for _ in 0..k {
@@ -37,13 +36,11 @@ fn run<K: Kernel>(s: &mut K, f: &[f64], k: usize) {
 /// assert_eq!(s.n_interfaces(), 1);
 /// assert!(s.displacements()[1] < 0.0); // the block settles onto the base
 /// ```
-#[cfg(feature = "bench-internals")]
 pub struct Stepper<'a> {
     pub(super) s: Integrator<'a>,
     pub(super) f: Vec<f64>,
 }
 
-#[cfg(feature = "bench-internals")]
 impl<'a> Stepper<'a> {
     /// The integrator of `model` (linearized kinematics unless `large_rotations`) on `threads`
     /// threads (0: all cores).
@@ -92,13 +89,11 @@ impl<'a> Stepper<'a> {
 /// assert_eq!(s.n_points(), 4);
 /// assert!(s.displacements()[2] < 0.0); // the block settles onto the base
 /// ```
-#[cfg(feature = "bench-internals")]
 pub struct Stepper3<'a> {
     pub(super) s: super::space::Integrator3<'a>,
     pub(super) f: Vec<f64>,
 }
 
-#[cfg(feature = "bench-internals")]
 impl<'a> Stepper3<'a> {
     /// The integrator of `model` on `threads` threads (0: all cores).
     pub fn new(model: &'a crate::space::Model3, live_multiplier: f64, damping: Damping, large_rotations: bool, threads: usize) -> Result<Self, Error> {

@@ -39,7 +39,8 @@ fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
 }
 
 impl Space {
-    /// The program of `model`.
+    /// The program of `model`, once its joints and contacts are checked and the memory it needs
+    /// ([`memory_need`]) can be had.
     pub(super) fn new(model: &Model3) -> Result<Space> {
         let nb = model.n_blocks();
         let contacts = model.contacts();
@@ -54,6 +55,8 @@ impl Space {
                 )));
             }
         }
+        let (what, bytes) = memory_need(model);
+        crate::error::check_memory(&what, bytes)?;
         // equations: one per free dof
         let fixed = model.fixed();
         let mut eq = vec![None; 6 * nb];
@@ -79,7 +82,7 @@ impl Space {
         let free = |d: &usize| eq[*d].is_some();
         let f_dead = (0..6 * nb).filter(free).map(|d| fd[d] * row(d) / force).collect();
         let f_live = (0..6 * nb).filter(free).map(|d| fl[d] * row(d) / live).collect();
-        let mut dofs = Vec::with_capacity(ROWS3 * m);
+        let mut dofs = crate::error::try_with_capacity("the program's equations", ROWS3 * m)?;
         for c in contacts {
             for blk in [c.a, c.b] {
                 for r in 0..6 {
@@ -90,8 +93,8 @@ impl Space {
         let mut lp = Lp::new(eq, n, ROWS3, CORNERS * 3, None, dofs, f_dead, f_live, (force, length, live))?;
         lp.cone = 3;
         let centroids = model.centroids();
-        let mut gens = Vec::with_capacity(3 * m);
-        let mut arms = Vec::with_capacity(CORNERS * m);
+        let mut gens = crate::error::try_with_capacity("the program's generators", 3 * m)?;
+        let mut arms = crate::error::try_with_capacity("the program's corners", CORNERS * m)?;
         for (k, c) in contacts.iter().enumerate() {
             let mu = model.law(k).friction;
             gens.extend_from_slice(&[c.n, c.t1.map(|v| mu * v), c.t2.map(|v| mu * v)]);
@@ -199,6 +202,13 @@ impl Space {
     }
 }
 
+/// What a limit analysis of `model` is called in a message of memory, and the memory it needs
+/// \[bytes\] ([`crate::error::LIMIT_3D_BYTES_PER_BLOCK`]).
+fn memory_need(model: &Model3) -> (String, f64) {
+    let nb = model.n_blocks();
+    (format!("a limit analysis of {nb} blocks"), nb as f64 * crate::error::LIMIT_3D_BYTES_PER_BLOCK)
+}
+
 /// The block whose displacement a curve would follow: the wall's highest (the first of equals).
 pub(crate) fn control_block(model: &Model3) -> usize {
     let c = model.centroids();
@@ -255,7 +265,16 @@ pub fn limit_analysis_3d_with(
     validate(opts)?;
     model.check_supports()?;
     let start = Instant::now();
-    let mut space = Space::new(model)?;
+    // a large part of the memory `Space::new` checked that cannot be allocated all the same: the
+    // same error
+    let out_of_memory = |e: Error| match e {
+        Error::OutOfMemory { .. } => {
+            let (what, bytes) = memory_need(model);
+            Error::OutOfMemory { what, bytes }
+        }
+        e => e,
+    };
+    let mut space = Space::new(model).map_err(out_of_memory)?;
     space.lp.start_threads(opts.threads)?;
     let sol = space.lp.solve(opts, 0, monitor)?;
     let non_assoc = (0..model.contacts().len()).any(|k| {

@@ -1,7 +1,7 @@
 //! Building a [`Model`] from a [`ModelSpec`]: the checks of the input, the base and the top beam,
 //! the interfaces, masses and loads, and the checks of scales that only the whole model shows.
 
-use super::{LiveLoad, Model, ModelSpec, SETTLEMENT_LIMIT, STRENGTH_RANGE};
+use super::{JointLaws, LiveLoad, Model, ModelSpec, SETTLEMENT_LIMIT, STRENGTH_RANGE};
 use crate::error::{non_negative, positive, Error, Result};
 use crate::geometry::{Rect, MAX_BLOCKS};
 use crate::interface::{detect, BlockKind, Family, Interface};
@@ -114,17 +114,7 @@ impl Model {
 
     /// The key of the joint law of interfaces of family `f` ("joints" or "joints.bed", ...).
     fn law_key(&self, f: Family) -> String {
-        let set = match f {
-            Family::Bed => self.laws.bed.is_some(),
-            Family::Head => self.laws.head.is_some(),
-            Family::Base => self.laws.base.is_some(),
-            Family::Top => self.laws.top.is_some(),
-        };
-        if set {
-            format!("joints.{}", f.name())
-        } else {
-            "joints".into()
-        }
+        law_key(&self.laws, f)
     }
 
     /// Refuses numbers each valid alone whose scales together leave the solvers nothing to
@@ -144,24 +134,21 @@ impl Model {
         }
         let size = self.size();
         // the dead loads are carried to the base through its interfaces: their settlement
-        let base_stiffness: f64 = self
-            .interfaces
+        // along gravity, which may point any way
+        let g = self.gravity_direction;
+        let vertical: f64 = (0..self.n_blocks()).map(|i| self.f_dead[3 * i] * g[0] + self.f_dead[3 * i + 1] * g[1]).sum::<f64>().abs();
+        check_settlement(vertical, self.base_stiffness(), size, "loads.gravity, geometry.density and the joints' stiffness")
+    }
+
+    /// The normal stiffness of the base's interfaces together \[N/m\]: the wall's vertical
+    /// stiffness as one body on its base (0 without a base).
+    pub(crate) fn base_stiffness(&self) -> f64 {
+        self.interfaces
             .iter()
             .zip(&self.sections)
             .filter(|(it, _)| it.family == Family::Base)
             .map(|(it, sec)| self.laws.of(it.family).normal_stiffness * sec.area)
-            .sum();
-        let g = self.gravity_direction;
-        let vertical: f64 = (0..self.n_blocks()).map(|i| self.f_dead[3 * i] * g[0] + self.f_dead[3 * i + 1] * g[1]).sum::<f64>().abs();
-        if base_stiffness > 0.0 {
-            let settlement = vertical / base_stiffness;
-            if !(settlement <= SETTLEMENT_LIMIT * size) {
-                return Err(Error::input(format!(
-                    "under its dead loads ({vertical:.3e} N) the wall would sink about {settlement:.3e} m into its base joints (joints' normal_stiffness x base area = {base_stiffness:.3e} N/m), more than {SETTLEMENT_LIMIT} of its size ({size:.3e} m): the small-displacement model does not hold; check loads.gravity, geometry.density and the joints' stiffness"
-                )));
-            }
-        }
-        Ok(())
+            .sum()
     }
 
     /// Refuses, for the analyses that raise lambda until collapse, joints whose cohesion or
@@ -202,6 +189,37 @@ impl Model {
             n * crate::error::ANALYSIS_BYTES_PER_BLOCK,
         )
     }
+}
+
+/// The key of the joint law of family `f` in `laws` ("joints" or "joints.bed", ...): the
+/// family's own where it has one.
+pub(crate) fn law_key(laws: &JointLaws, f: Family) -> String {
+    let set = match f {
+        Family::Bed => laws.bed.is_some(),
+        Family::Head => laws.head.is_some(),
+        Family::Base => laws.base.is_some(),
+        Family::Top => laws.top.is_some(),
+    };
+    if set {
+        format!("joints.{}", f.name())
+    } else {
+        "joints".into()
+    }
+}
+
+/// Refuses dead loads whose vertical sum `vertical` \[N\] would sink a wall of size `size` \[m\]
+/// into base joints of normal stiffness `base_stiffness` \[N/m\] (none: 0, nothing checked) by
+/// more than [`SETTLEMENT_LIMIT`] of its size; the message ends "check {`check`}".
+pub(crate) fn check_settlement(vertical: f64, base_stiffness: f64, size: f64, check: &str) -> Result<()> {
+    if base_stiffness > 0.0 {
+        let settlement = vertical / base_stiffness;
+        if !(settlement <= SETTLEMENT_LIMIT * size) {
+            return Err(Error::input(format!(
+                "under its dead loads ({vertical:.3e} N) the wall would sink about {settlement:.3e} m into its base joints (joints' normal_stiffness x base area = {base_stiffness:.3e} N/m), more than {SETTLEMENT_LIMIT} of its size ({size:.3e} m): the small-displacement model does not hold; check {check}"
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// The checks of the spec's numbers, blocks and laws, each alone, before anything is built.

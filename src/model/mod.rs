@@ -33,6 +33,7 @@ mod build;
 mod keys;
 mod supports;
 
+pub(crate) use build::{check_settlement, law_key};
 pub(crate) use supports::unsupported;
 
 use crate::geometry::Rect;

@@ -9,8 +9,10 @@ use crate::interface::{BlockKind, Family, POLL_EVERY};
 /// Finds every pair of boxes that share a rectangle of positive area (two faces with opposite
 /// normals, coplanar within a tolerance), and refuses overlapping boxes (naming both).
 ///
-/// Two faces count as coplanar when they are less than `1e-8` times the model's size apart (at
-/// least 1e-8 m), gap or interpenetration: the tolerance of the 2D detection. Boxes touching
+/// Two faces count as coplanar when they are less than `1e-8` times the model's size apart, gap
+/// or interpenetration (at least 1e-14 times its largest coordinate, above their rounding): a
+/// model is the same at any size. A box whose smallest side is within ten times that tolerance
+/// is refused (naming it): its faces could not be told apart. Boxes touching
 /// along an edge or at a corner only share no area and make no contact; a base against a top
 /// beam is not a joint of the wall and makes none either. `name` gives the label of a block for
 /// messages; `poll` is called every few thousand blocks or grid cells, and `false` stops the
@@ -36,6 +38,16 @@ pub fn detect(
         return Ok(vec![]);
     }
     let grid = Grid::new(boxes);
+    for (i, b) in boxes.iter().enumerate() {
+        let side = b.size().into_iter().fold(f64::INFINITY, f64::min);
+        if !(side > THINNEST * grid.tol) {
+            return Err(Error::input(format!(
+                "{}: its smallest side, {side:e} m, is within {THINNEST} times the contact tolerance ({:e} m, 1e-8 of the model's size or 1e-14 of its largest coordinate): its faces cannot be told apart",
+                name(i),
+                grid.tol
+            )));
+        }
+    }
     let entries = grid.entries(boxes, poll)?;
     let mut out = Vec::with_capacity(4 * boxes.len());
     let mut start = 0;
@@ -82,6 +94,15 @@ enum Pair {
     Contact(Contact),
 }
 
+/// The contact tolerance is at least `10 REL_TOL` times this fraction of the largest coordinate:
+/// a hundred times the rounding of coordinates (about 1e-16 of them), for a model small beside
+/// its distance from the origin.
+const REACH: f64 = 1e-6;
+
+/// A box whose smallest side is not more than this many times the contact tolerance is refused:
+/// its faces would be within the tolerance of each other.
+const THINNEST: f64 = 10.0;
+
 /// A uniform grid of cells over the boxes (each axis its own cell size, about twice the mean
 /// side along it), each box entered in the cells within `tol` of it.
 struct Grid {
@@ -101,7 +122,8 @@ impl Grid {
             }
         }
         let scale = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
-        let tol = REL_TOL * scale.max(1.0) * 10.0;
+        let reach = (0..3).map(|k| lo[k].abs().max(hi[k].abs())).fold(0.0, f64::max);
+        let tol = 10.0 * REL_TOL * scale.max(REACH * reach);
         let nb = boxes.len() as f64;
         let mut grid = Grid { lo, cell: [0, 1, 2].map(|k| (2.0 * sum[k] / nb).max(tol * 10.0)), tol };
         // A few boxes much larger than the mean would each cover very many cells: coarsen the

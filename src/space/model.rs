@@ -94,7 +94,37 @@ impl Model3 {
             f_live: vec![0.0; 6 * nb],
         };
         model.supports_and_loads();
+        model.check_scales()?;
         Ok(model)
+    }
+
+    /// Refuses numbers each valid alone whose scales together leave the solvers nothing to
+    /// resolve, as the plane's model does: contact stiffnesses that overflow, and joints so soft
+    /// (or loads so heavy) that the dead loads alone would sink the wall into its base joints by
+    /// more than [`crate::model::SETTLEMENT_LIMIT`] of its size, out of the small-displacement
+    /// model (the explicit solver then found no equilibrium under them).
+    fn check_scales(&self) -> Result<()> {
+        for (k, c) in self.contacts.iter().enumerate() {
+            let law = self.law(k);
+            if !(law.normal_stiffness * c.area).is_finite() || !(law.shear_stiffness * c.area).is_finite() {
+                return Err(Error::input(format!(
+                    "the contact of {} and {}: its stiffness ({}.normal_stiffness or shear_stiffness times its area, {:e} m2) is not finite: check the joints' stiffness",
+                    self.block_name(c.a),
+                    self.block_name(c.b),
+                    crate::model::law_key(&self.laws, c.family),
+                    c.area
+                )));
+            }
+        }
+        // the dead loads are carried to the base through its contacts: their settlement
+        let vertical: f64 = self.f_dead.iter().skip(2).step_by(6).sum::<f64>().abs();
+        crate::model::check_settlement(vertical, self.base_stiffness(), self.size(), "gravity, density and the joints' normal_stiffness")
+    }
+
+    /// The normal stiffness of the base's contacts together \[N/m\]: the wall's vertical stiffness
+    /// as one body on its base (0 without a base).
+    pub(crate) fn base_stiffness(&self) -> f64 {
+        self.contacts.iter().enumerate().filter(|(_, c)| c.family == Family::Base).map(|(k, c)| self.law(k).normal_stiffness * c.area).sum()
     }
 
     /// The base's fixed dofs, the weights of the wall and the top beam, and the live load on
