@@ -119,7 +119,7 @@ def read_dxf_polygons(
     """The convex outlines of a DXF drawing as blocks: a list of (k, 2) arrays of vertices [x, y] in metres.
 
     Every closed polyline of straight segments (LWPOLYLINE, POLYLINE) and every SOLID or TRACE that is a convex
-    polygon is a block, its vertices in the drawing's order (either direction), a vertex on a straight side dropped.
+    polygon is a block, its vertices as drawn, in either direction (the model drops a vertex on a straight side).
     Arguments as :func:`read_dxf`'s; ``tolerance`` [m]: how far a vertex may lie from the line through its
     neighbours and still be on it.
 
@@ -257,8 +257,8 @@ def _nothing(layer: Optional[Union[str, Sequence[str]]], skipped: Dict[str, int]
 
 def _outline(entity: Any, kind: str, tol: float) -> Union[str, List[Point]]:
     """The vertices of a closed outline in the world's x and y (a last vertex repeating the first dropped; a SOLID's
-    in its drawing order, crosswise); a string: why it is not a closed outline of straight sides. ``tol``: the
-    tolerance in drawing units."""
+    as ezdxf gives them); a string: why it is not a closed outline of straight sides. ``tol``: the tolerance in
+    drawing units."""
     arcs = "has arcs (bulges): a block has straight sides; explode its arcs to straight segments in CAD"
     if kind == "LWPOLYLINE":
         if any(b for _, _, b in entity.get_points("xyb")):

@@ -258,8 +258,8 @@ class _Table:
     def polygons(self, key: str, what: str = "block") -> Optional[List[List[List[float]]]]:
         """An array of at least one convex polygon, each an array of vertices [x, y] (m; each a number [m] or a
         length with its unit), in either orientation; an outline that is no block (:func:`masonry_dem._shapes.
-        polygon_problem`: too few vertices, a repeated vertex, all on a line, crossing itself, concave) is refused
-        naming the polygon and the vertex at fault. ``what``: the word for one polygon in the messages. None when
+        polygon_problem`: fewer than 3 distinct vertices, all on a line, turning back, concave or crossing itself) is
+        refused naming the polygon and the vertex at fault. ``what``: the word for one polygon in the messages. None when
         the key is absent."""
         items = self.array(key, required=False)
         if items is None:

@@ -127,8 +127,7 @@ def report_figure(
         fig = _new_figure((16.0, 7.0), path is not None)
         grid = fig.add_gridspec(1, 4, width_ratios=[a, a, a, 1.6])
         cells, columns = [grid[0, 0], grid[0, 1], grid[0, 2], grid[0, 3]], 2
-    ax_cracks = fig.add_subplot(cells[0])
-    plot_cracks(ax_cracks, model, results, legend_columns=columns, thrust=thrust)
+    plot_cracks(fig.add_subplot(cells[0]), model, results, legend_columns=columns, thrust=thrust)
     plot_mechanism(fig.add_subplot(cells[1]), model, results)
     plot_deformed(fig.add_subplot(cells[2]), model, results)
     ax_curve = fig.add_subplot(cells[3])
