@@ -117,3 +117,14 @@ fn an_overhang_either_way_has_no_equilibrium_before_the_iteration_limit() {
         assert!(r.certificate.unwrap().iterations < 100, "{x0}: stopped by the iteration limit");
     }
 }
+
+#[test]
+fn joints_without_friction_slide_at_lambda_zero() {
+    // friction 0: the base takes no horizontal force and the weights stand on the frictionless
+    // joints, so the wall slides at lambda = 0; Ferris & Tin-Loi's wall 1 was said to have no
+    // equilibrium under its dead loads (its normal matrix singular along the courses' sliding)
+    for m in [blocks_model(vec![Rect::new(0.0, 0.0, 0.4, 0.175)], dry(0.0, 0.0, 1e10)), ferris(6, dry(0.0, 0.0, 1e10))] {
+        let lambda = collapse(&m);
+        assert!(lambda.abs() <= 1e-8, "{lambda}");
+    }
+}

@@ -78,3 +78,61 @@ fn a_free_standing_leaf_overturns_about_its_base_edge_at_t_over_h() {
     let rx: Vec<f64> = r.mechanism.iter().take(r.mechanism.len() - 1).map(|v| v[3]).collect();
     assert!(rx.iter().all(|w| (w - rx[0]).abs() <= 1e-6 * rx[0].abs() && w.abs() > 0.0), "{rx:?}");
 }
+
+#[test]
+fn on_joints_without_friction_every_block_slides_at_lambda_zero() {
+    // friction 0 everywhere: the base takes no horizontal force, so no multiplier but 0 balances
+    // a horizontal live load (lambda W = 0), and the weights stand on the frictionless joints:
+    // the wall slides at lambda = 0, whatever the direction in plan (the interior point stopped
+    // at its first iteration: "did not converge in 1 iterations")
+    let frictionless = dry(0.0, 0.0, 1e9);
+    let leaf = running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175, 0.2).unwrap();
+    for (name, blocks) in [("a box", vec![Box3::new(0.0, 0.0, 0.0, 0.4, 0.1, 0.2)]), ("a leaf", leaf.clone())] {
+        for phi in [0.0_f64, 30.0, 90.0] {
+            let r = limit_analysis_3d(&model(blocks.clone(), frictionless, phi), &LimitOptions::default()).unwrap();
+            assert_eq!(r.status, Status::Collapse, "{name} at {phi} deg: {:?}", r.error);
+            assert!(r.collapse_multiplier.abs() <= 1e-8, "{name} at {phi} deg: {}", r.collapse_multiplier);
+            let c = r.certificate.unwrap();
+            assert!(c.primal_residual <= 1e-8 && c.dual_residual <= 1e-8 && c.duality_gap <= 1e-8, "{c:?}");
+            // a mechanism on which the live load works (the box's: sliding along it; a leaf's is one
+            // of many, every motion that slides on the joints costing nothing)
+            let (cos, sin) = (phi.to_radians().cos(), phi.to_radians().sin());
+            let work: f64 = r.mechanism.iter().take(blocks.len()).map(|v| v[0] * cos + v[1] * sin).sum();
+            assert!(work > 0.0, "{name} at {phi} deg: {:?}", r.mechanism);
+            if blocks.len() == 1 {
+                let v = r.mechanism[0];
+                assert!((v[0] - cos).abs() <= 1e-6 && (v[1] - sin).abs() <= 1e-6 && v[2].abs() <= 1e-6, "{phi} deg: {v:?}");
+            }
+        }
+    }
+    // friction on the base alone, 0 above it: the wall above its lowest bed joints slides at 0
+    // too; friction 1e-6 everywhere slides at 1e-6 (the answer is continuous at 0)
+    let mut laws = JointLaws::uniform(frictionless);
+    laws.base = Some(dry(0.6, 0.6, 1e9));
+    let m = Model3::new(&ModelSpec3 { blocks: leaf.clone(), gravity: 10.0, joints: laws, ..ModelSpec3::default() }).unwrap();
+    let r = limit_analysis_3d(&m, &LimitOptions::default()).unwrap();
+    assert!(r.status == Status::Collapse && r.collapse_multiplier.abs() <= 1e-8, "{:?} {}", r.error, r.collapse_multiplier);
+    close(lambda(&model(leaf, dry(1e-6, 1e-6, 1e9), 0.0)), 1e-6, 1e-4, "a leaf of friction 1e-6");
+}
+
+#[test]
+fn without_a_live_load_the_analyses_that_raise_lambda_are_refused_by_name() {
+    // live = "none": limit analysis and the explicit pushover have no multiplier to raise (the
+    // pushover took 21,000 levels of zero load before it gave up, "no collapse bracket", and
+    // limit analysis said its interior point "did not converge in 0 iterations")
+    let m = Model3::new(&ModelSpec3 { blocks: vec![Box3::new(0.0, 0.0, 0.0, 0.4, 0.4, 0.2)], live: LiveLoad3::None, ..ModelSpec3::default() }).unwrap();
+    let limit = limit_analysis_3d(&m, &LimitOptions::default()).map(|_| ());
+    let pushover = masonry_dem::explicit::solve_3d(&m, &masonry_dem::explicit::ExplicitOptions::default()).map(|_| ());
+    for (what, r) in [("limit analysis", limit), ("the explicit solver's pushover", pushover)] {
+        match r {
+            Err(masonry_dem::Error::Input { key, reason }) => {
+                assert_eq!(key.as_deref(), Some("live"), "{reason}");
+                assert!(reason.starts_with(&format!("live = \"none\": {what} raises lambda, the multiplier of the live load, and this model has none")), "{reason}");
+            }
+            other => panic!("{what}: expected an input error, got {other:?}"),
+        }
+    }
+    // a time history takes the model: no multiplier is raised
+    let h = masonry_dem::explicit::simulate_3d(&m, &masonry_dem::explicit::DynamicOptions { duration: 0.01, ..Default::default() }).unwrap();
+    assert_eq!(h.status, Status::Completed);
+}

@@ -277,7 +277,8 @@ fn monitor_due(k: usize, every: usize, last: &mut Instant) -> bool {
 }
 
 /// The stable time step of the model: `2 / omega_max` with a Gershgorin bound on `omega_max`
-/// (the smaller of Gershgorin's bounds on `M^-1 K` and on `M^-1/2 K M^-1/2`, the latter free of units).
+/// (the smaller of the row sums of `M^-1 K` and of eight times those of `M^-1/2 K M^-1/2`: on
+/// blocks beyond metres the first mixes the units of translations and rotations).
 pub fn critical_time_step(model: &Model) -> f64 {
     let mut bound = Gershgorin::new(&integrator::masses(model), model.fixed());
     for (k, it) in model.interfaces().iter().enumerate() {

@@ -290,11 +290,12 @@ impl Gershgorin {
 
 /// How far above the row sums of `M^-1/2 K M^-1/2` (a tight bound: a block of the plane's walls,
 /// 0.4 x 0.175 m, gives a time step 0.96 of its exact limit) the bound on `omega_max^2` is taken.
-/// The time steps of the explicit solver's runs are those of the first bound on blocks of tenths
-/// of a metre to metres, which lies 2.6 to 8 times above that sum (the plane's running bond 3.6,
-/// a leaf 7.0, a U wall 7.8), and its relaxations rely on them: at 0.8 of the tight limit,
-/// local damping lets a block of friction 0.65 creep at lambda = 0.02, and it is said to collapse
-/// at lambda = 0. With 8 the time step is never more than 0.8 / sqrt(8) = 0.28 of
+/// On blocks of tenths of a metre to metres the first bound lies 2.6 to 8 times above that sum
+/// (that block 3.4, the plane's running bond of them 5.5, a leaf 7.0, a U wall 7.8, cubes of 1
+/// and 10 m 2.8 and 2.6), so their time steps are the first bound's, those the explicit
+/// solver's relaxations were made and tested with; they rely on them: at 0.8 of the tight
+/// limit, local damping lets that block of friction 0.65 creep at lambda = 0.02, and it is said
+/// to collapse at lambda = 0. With 8 the time step is never more than 0.8 / sqrt(8) = 0.28 of
 /// the exact limit, as on the leaf (0.30), at any size.
 pub(super) const SCALED_BOUND: f64 = 8.0;
 

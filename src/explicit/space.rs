@@ -589,6 +589,7 @@ pub fn solve_3d_with(model: &Model3, opts: &ExplicitOptions, monitor: &mut dyn F
         return Err(Error::input("3D explicit analyses are load-controlled (analysis.control = \"load\")"));
     }
     model.check_dry("the explicit solver in 3D")?;
+    model.check_live("the explicit solver's pushover")?;
     model.check_supports()?;
     if model.n_wall() == 0 {
         return Err(Error::input("the model has no wall blocks"));

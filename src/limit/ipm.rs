@@ -333,7 +333,11 @@ impl Lp {
         }
         let b_norm = norm_inf(&b);
         let cone = self.cone;
-        let (mut x, mut s, mut y) = (vec![1.0; nx], vec![1.0; nx], vec![0.0; n]);
+        // e, the centre of the orthant or of each cone ((1, 0, 0)), where the solves below
+        // cannot be made (a singular normal matrix: joints without friction); the cones' start
+        // was (1, 1, 1), outside them, and the first step along any direction was nil
+        let e: Vec<f64> = (0..nx).map(|i| if i % cone == 0 { 1.0 } else { 0.0 }).collect();
+        let (mut x, mut s, mut y) = (e.clone(), e, vec![0.0; n]);
         // Theta = 1: in the cones, the scaling of e with itself
         let mut nt = vec![Nt::new([1.0, 0.0, 0.0], [1.0, 0.0, 0.0]); if cone == 3 { nx / 3 } else { 0 }];
         self.assemble(&x, &nt);
@@ -511,7 +515,8 @@ impl Lp {
                 None => fill(0, &mut ipm.nt),
                 Some(par) => par.pool.install(|| ipm.nt.par_chunks_mut(GRAIN_CONES).enumerate().for_each(|(c, nt)| fill(c * GRAIN_CONES, nt))),
             }
-            return self.assemble(&[], &ipm.nt);
+            self.assemble(&[], &ipm.nt);
+            return self.regularize();
         }
         let (p, theta) = (&ipm.p, &mut ipm.theta);
         for ((th, s), x) in theta.iter_mut().zip(&p.s).zip(&p.x) {
@@ -522,6 +527,18 @@ impl Lp {
         }
         theta.iter_mut().for_each(|t| *t = 1.0 / *t);
         self.assemble(theta, &[]);
+        self.regularize();
+    }
+
+    /// Adds [`REGULARIZATION`] times the largest diagonal entry to the normal matrix's diagonal,
+    /// where the program has joints without friction (see [`Lp::diagonal`]).
+    fn regularize(&mut self) {
+        let Some(diagonal) = &self.diagonal else { return };
+        let vals = self.normal.values_mut();
+        let largest = diagonal.iter().map(|&s| vals[s as usize].abs()).fold(0.0, f64::max);
+        for &s in diagonal {
+            vals[s as usize] += REGULARIZATION * largest;
+        }
     }
 
     /// Mehrotra's predictor (the affine direction) and corrector (centred at `sigma mu`, with

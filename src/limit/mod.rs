@@ -151,6 +151,11 @@ const DIRECTION_FRACTION: f64 = 0.1;
 /// iterations, which make the certificate, are as accurate as the solves allow.
 const DIRECTION_FRACTION_ABOVE: f64 = 1e-6;
 
+/// What fraction of its largest diagonal entry is added to the normal matrix's diagonal where
+/// joints have no friction ([`Lp::regularize_frictionless`]): far above the rounding of its
+/// entries (1e-16 of the largest), far below them.
+const REGULARIZATION: f64 = 1e-10;
+
 /// The largest `max_iterations` accepted.
 pub const MAX_ITERATIONS: usize = 100_000;
 

@@ -162,6 +162,7 @@ impl Plane {
         let slope = coulomb.iter().map(|c| c.1).collect();
         let mut plane = Plane { lp, cols, hc, ht, slope, coulomb };
         plane.lp.acols = vec![0.0; plane.lp.m * 6 * nv];
+        plane.lp.regularize_frictionless(plane.slope.contains(&0.0));
         plane.fill();
         Ok(plane)
     }

@@ -52,6 +52,8 @@ pub(super) struct Lp {
     pub(super) length: f64,
     pub(super) live: f64,
     pub(super) normal: SparseLu,
+    /// The normal matrix's diagonal slots, where it is regularized ([`Lp::regularize_frictionless`]).
+    pub(super) diagonal: Option<Vec<u32>>,
 }
 
 impl Lp {
@@ -93,7 +95,20 @@ impl Lp {
             length,
             live,
             normal,
+            diagonal: None,
         })
+    }
+
+    /// Regularizes the normal matrix where joints have no friction (`frictionless`): the
+    /// mechanisms that slide on them meet no resistance, the normal matrix is singular along
+    /// them, and where the live load works on them its solves fail (the plane's wall 1 of
+    /// friction 0 was said to have no equilibrium under its dead loads, a leaf in 3D not to
+    /// converge; the answer is lambda = 0, the wall sliding). [`REGULARIZATION`] times its
+    /// largest diagonal entry added to its diagonal makes it definite; the directions'
+    /// corrections (against the equations, not the normal matrix) keep the iterates to the
+    /// tolerance, as their certificate shows.
+    pub(super) fn regularize_frictionless(&mut self, frictionless: bool) {
+        self.diagonal = frictionless.then(|| (0..self.n).map(|r| self.normal.slot(r, r).expect("the diagonal is in the pattern") as u32).collect());
     }
 
     /// Variables bounded by 1: one per element, or none.

@@ -104,6 +104,7 @@ impl Space {
             }
         }
         lp.corners = Some(Corners { corners: CORNERS, sides: 3, gens, arms });
+        lp.regularize_frictionless((0..m).any(|k| model.law(k).friction == 0.0));
         Ok(Space { lp })
     }
 
@@ -263,6 +264,7 @@ pub fn limit_analysis_3d_with(
     monitor: &mut dyn FnMut(&LimitProgress) -> bool,
 ) -> Result<Results<[f64; 6]>> {
     validate(opts)?;
+    model.check_live("limit analysis")?;
     model.check_supports()?;
     let start = Instant::now();
     // a large part of the memory `Space::new` checked that cannot be allocated all the same: the

@@ -215,6 +215,18 @@ impl Model3 {
         }
         Ok(())
     }
+    /// Refuses, for `what` (an analysis that raises lambda, the live load's multiplier), a model
+    /// without a live load: it has nothing to raise (a pushover of zero loads would take every
+    /// level it may before it gave up).
+    pub fn check_live(&self, what: &str) -> Result<()> {
+        if self.live == LiveLoad3::None {
+            return Err(Error::input_at(
+                "live",
+                format!("live = \"none\": {what} raises lambda, the multiplier of the live load, and this model has none (live = \"horizontal_weight\", the default, pushes each block by lambda times its weight)"),
+            ));
+        }
+        Ok(())
+    }
     /// Refuses a wall that nothing holds: no base (so no fixed block), or blocks that no chain of
     /// contacts joins to the base (limit analysis would not converge on it, and the explicit
     /// solver would see the wall fall under its weight).

@@ -1,6 +1,6 @@
-"""3D walls at the edges of what the core takes, seen from Python and the command line: a limit analysis beyond the
-memory refused before it allocates, scales refused when the model is built, settings under which no relaxation can
-settle, and the answers that exist where the input is extreme but valid (friction 0)."""
+"""3D walls at the edges of what the core takes, seen from the command line: a limit analysis beyond the memory is
+refused before it allocates, in one line. (The core's refusals of scales and settings, and the answers at friction 0,
+are tested in Rust: tests/space_model.rs, tests/bad_input.rs, tests/space_limit.rs.)"""
 
 from __future__ import annotations
 
