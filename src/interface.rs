@@ -236,8 +236,6 @@ impl BlockKind {
     }
 }
 
-pub(crate) use crate::shape::grid::POLL_EVERY;
-
 /// Finds every stretch of boundary of positive length that two blocks share (an edge of each,
 /// facing on one line within `tol` \[m\], see [`contacts`]), and refuses blocks that overlap by
 /// more than `tol` (naming both). The blocks are checked polygons with their centroids
