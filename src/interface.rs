@@ -236,8 +236,6 @@ impl BlockKind {
     }
 }
 
-pub(crate) use crate::shape::grid::POLL_EVERY;
-
 /// Finds every stretch of boundary of positive length that two blocks share (an edge of each,
 /// facing on one line within `tol` \[m\], see [`contacts`]), and refuses blocks that overlap by
 /// more than `tol` (naming both). The blocks are checked polygons with their centroids
@@ -268,7 +266,9 @@ pub fn detect(
     let boxes: Vec<Aabb<2>> = polygons.iter().map(Polygon::aabb).collect();
     let up = [-gravity[0], -gravity[1]];
     let side = [-gravity[1], gravity[0]];
-    let mut out = Vec::new();
+    // what makes each interface, sorted before the interfaces (and their B) are made: a sort of
+    // these small records, not of the interfaces, which is most of the search's time
+    let mut found: Vec<Found> = Vec::with_capacity(3 * polygons.len());
     for_each_pair(&boxes, tol, poll, |i, j| {
         let (pi, pj) = (&polygons[i], &polygons[j]);
         if boxes[i].overlap(&boxes[j]).iter().all(|&w| w > tol) {
@@ -299,12 +299,22 @@ pub fn detect(
                 _ => Family::Head,
             };
             let centre = [0.5 * (c.ends[0][0] + c.ends[1][0]), 0.5 * (c.ends[0][1] + c.ends[1][1])];
-            out.push(Interface::new(a, b, centroids[a], centroids[b], centre, n, c.length, family));
+            found.push(Found { a, b, c: centre, n, l: c.length, family });
         }
         Ok(())
     })?;
-    out.sort_by_key(|p| (p.a, p.b));
-    Ok(out)
+    found.sort_by_key(|f| (f.a, f.b));
+    Ok(found.into_iter().map(|f| Interface::new(f.a, f.b, centroids[f.a], centroids[f.b], f.c, f.n, f.l, f.family)).collect())
+}
+
+/// An interface found, before its `B` is made (see [`Interface`]).
+struct Found {
+    a: usize,
+    b: usize,
+    c: [f64; 2],
+    n: [f64; 2],
+    l: f64,
+    family: Family,
 }
 
 fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {

@@ -8,7 +8,7 @@ use masonry_dem::explicit::{self, ExplicitOptions};
 use masonry_dem::geometry::polygons;
 use masonry_dem::limit::{limit_analysis, LimitOptions};
 use masonry_dem::model::{JointLaws, Model, ModelSpec};
-use masonry_dem::results::Status;
+use masonry_dem::results::{Results, Status};
 use masonry_dem::shape::Polygon;
 use masonry_dem::static_solver::{self, StaticOptions};
 use proptest::prelude::*;
@@ -57,40 +57,34 @@ fn cases() -> Vec<(f64, f64, f64, &'static str)> {
     vec![(beta, 1.0, 0.5, "slides"), (-beta, 1.0, 0.5, "slides"), (beta, 0.3, 1.2, "turns"), (-beta, 0.3, 1.2, "turns")]
 }
 
-#[test]
-fn a_block_on_an_incline_by_limit_analysis() {
-    // the exact multiplier of the program (an interior point run to 1e-11), to 1e-9
+/// Each case's multiplier by `solve` against its closed form, within `tol` (relative).
+fn at_closed_forms(tol: f64, solve: impl Fn(&Model) -> Results) {
     for (beta, b, h, how) in cases() {
         let (want, mode) = closed_form(beta, b, h, 0.6);
         assert_eq!(mode, how);
-        let r = limit_analysis(&inclined(beta, b, h, 0.6), &LimitOptions { tolerance: 1e-11, ..LimitOptions::default() }).unwrap();
+        let r = solve(&inclined(beta, b, h, 0.6));
         assert_eq!(r.status, Status::Collapse, "{:?}", r.error);
-        assert!((r.collapse_multiplier - want).abs() <= 1e-9 * want, "beta {beta}, {how}: {} against {want}", r.collapse_multiplier);
+        assert!((r.collapse_multiplier - want).abs() <= tol * want, "beta {beta}, {how}: {} against {want}", r.collapse_multiplier);
     }
+}
+
+#[test]
+fn a_block_on_an_incline_by_limit_analysis() {
+    // the exact multiplier of the program (an interior point run to 1e-11), to 1e-9
+    at_closed_forms(1e-9, |m| limit_analysis(m, &LimitOptions { tolerance: 1e-11, ..LimitOptions::default() }).unwrap());
 }
 
 #[test]
 fn a_block_on_an_incline_by_the_static_path() {
     // load control to collapse, its multiplier located to 1e-8: the closed form to 1e-6 (the
     // joints' penalty stiffness, 1e10 N/m3, makes the path's elastic part, not its peak)
-    for (beta, b, h, how) in cases() {
-        let (want, _) = closed_form(beta, b, h, 0.6);
-        let opts = StaticOptions { tolerance: 1e-8, ..StaticOptions::default() };
-        let r = static_solver::solve(&inclined(beta, b, h, 0.6), &opts).unwrap();
-        assert_eq!(r.status, Status::Collapse, "{:?}", r.error);
-        assert!((r.collapse_multiplier - want).abs() <= 1e-6 * want, "beta {beta}, {how}: {} against {want}", r.collapse_multiplier);
-    }
+    at_closed_forms(1e-6, |m| static_solver::solve(m, &StaticOptions { tolerance: 1e-8, ..StaticOptions::default() }).unwrap());
 }
 
 #[test]
 fn a_block_on_an_incline_by_the_explicit_solver() {
     // load control by relaxation, its bracket 1e-3 wide: the closed form within 1%
-    for (beta, b, h, how) in cases() {
-        let (want, _) = closed_form(beta, b, h, 0.6);
-        let r = explicit::solve(&inclined(beta, b, h, 0.6), &ExplicitOptions { threads: 1, ..ExplicitOptions::default() }).unwrap();
-        assert_eq!(r.status, Status::Collapse, "{:?}", r.error);
-        assert!((r.collapse_multiplier - want).abs() <= 0.01 * want, "beta {beta}, {how}: {} against {want}", r.collapse_multiplier);
-    }
+    at_closed_forms(0.01, |m| explicit::solve(m, &ExplicitOptions { threads: 1, ..ExplicitOptions::default() }).unwrap());
 }
 
 #[test]

@@ -7,11 +7,11 @@ use crate::*;
 /// Blocks of the plane: an (n, 4) array of rectangles [x0, y0, x1, y1], or a list whose items
 /// are each a rectangle [x0, y0, x1, y1] or a polygon (k >= 3 vertices [x, y]: a list of rows
 /// or a (k, 2) array); a rectangle is checked as the core always has (x0 < x1, y0 < y1, named
-/// "block i [x0, y0, x1, y1]"), a polygon by the model. `what` names the argument.
-pub(crate) fn polygons_from(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Polygon>> {
+/// "block i [x0, y0, x1, y1]", `noun` i), a polygon by the model. `what` names the argument.
+pub(crate) fn polygons_from(obj: &Bound<'_, PyAny>, what: &str, noun: &str) -> PyResult<Vec<Polygon>> {
     let rect = |i: usize, r: &[f64]| -> PyResult<Polygon> {
         let r = Rect::new(r[0], r[1], r[2], r[3]);
-        r.validate(&format!("block {i}")).map_err(to_py)?;
+        r.validate(&format!("{noun} {i}")).map_err(to_py)?;
         Ok(r.into())
     };
     if let Ok(a) = obj.extract::<PyReadonlyArray2<f64>>() {

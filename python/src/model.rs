@@ -58,7 +58,7 @@ impl PyModel {
         let d = ModelSpec::default();
         let top = TopBeam::from_keys(top_rotation, top_force.as_deref(), top_vertical).map_err(to_py)?;
         let supports = match supports {
-            Some(s) if !s.is_none() => polygons_from(s, "supports")?,
+            Some(s) if !s.is_none() => polygons_from(s, "supports", "support")?,
             _ => vec![],
         };
         let gravity_direction = match gravity_direction.as_deref() {
@@ -72,7 +72,7 @@ impl PyModel {
             }
         };
         let spec = ModelSpec {
-            blocks: polygons_from(blocks, "blocks")?,
+            blocks: polygons_from(blocks, "blocks", "block")?,
             base: base.unwrap_or(supports.is_empty()),
             supports,
             thickness: thickness.unwrap_or(d.thickness),

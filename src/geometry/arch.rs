@@ -226,11 +226,12 @@ fn skewback(joint: [[f64; 2]; 2], x1: f64, bottom: f64) -> Polygon {
     Polygon::new(v)
 }
 
-/// The intrados's span and rise, from the given keys of `p` for its kind.
-fn span_of(p: &Arch) -> Result<f64> {
-    match p.span {
-        Some(s) => positive("geometry.arch.span", s),
-        None => Err(Error::input_at("geometry.arch.span", format!("geometry.arch.span is required for a {} arch", kind_name(p.kind)))),
+/// The value of key `geometry.arch.<key>`, required for this kind of arch.
+fn required(p: &Arch, key: &str, value: Option<f64>) -> Result<f64> {
+    let name = format!("geometry.arch.{key}");
+    match value {
+        Some(v) => positive(&name, v),
+        None => Err(Error::input_at(&name, format!("{name} is required for a {} arch", kind_name(p.kind)))),
     }
 }
 
@@ -281,10 +282,7 @@ fn circular(p: &Arch, t: f64) -> Result<Vec<[[f64; 2]; 2]>> {
             (s.unwrap_or(r), 0.0, 0.0)
         }
         _ => {
-            let f = match p.rise {
-                Some(f) => positive("geometry.arch.rise", f)?,
-                None => return Err(Error::input_at("geometry.arch.rise", "geometry.arch.rise is required for a segmental arch")),
-            };
+            let f = required(p, "rise", p.rise)?;
             // the half span from the radius, or the radius from the half span
             let (r, s) = match s {
                 Some(s) => ((s * s + f * f) / (2.0 * f), s),
@@ -313,11 +311,8 @@ fn circular(p: &Arch, t: f64) -> Result<Vec<[[f64; 2]; 2]>> {
 /// the springing line, the crown's joint vertical.
 fn pointed(p: &Arch, t: f64) -> Result<Vec<[[f64; 2]; 2]>> {
     no_key(p, "radius", p.radius.is_some())?;
-    let s = 0.5 * span_of(p)?;
-    let f = match p.rise {
-        Some(f) => positive("geometry.arch.rise", f)?,
-        None => return Err(Error::input_at("geometry.arch.rise", "geometry.arch.rise is required for a pointed arch")),
-    };
+    let s = 0.5 * required(p, "span", p.span)?;
+    let f = required(p, "rise", p.rise)?;
     if f < s {
         return Err(Error::input_at(
             "geometry.arch.rise",
@@ -349,11 +344,8 @@ fn pointed(p: &Arch, t: f64) -> Result<Vec<[[f64; 2]; 2]>> {
 /// angle, the extrados `t` out along them.
 fn elliptical(p: &Arch, t: f64) -> Result<Vec<[[f64; 2]; 2]>> {
     no_key(p, "radius", p.radius.is_some())?;
-    let a = 0.5 * span_of(p)?;
-    let b = match p.rise {
-        Some(f) => positive("geometry.arch.rise", f)?,
-        None => return Err(Error::input_at("geometry.arch.rise", "geometry.arch.rise is required for an elliptical arch")),
-    };
+    let a = 0.5 * required(p, "span", p.span)?;
+    let b = required(p, "rise", p.rise)?;
     let n = p.voussoirs;
     Ok(symmetric(n, |k| {
         let th = PI - PI * k as f64 / n as f64;

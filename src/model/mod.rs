@@ -137,7 +137,9 @@ pub struct ModelSpec {
     /// default. It says which way is up (which block of an interface is below, and whether a
     /// joint is a bed or a head joint) and the direction of the horizontal live load (gravity
     /// turned by +90 degrees: +x by default). A wall turned with its gravity gives the same
-    /// multipliers. The base and the top beam stay horizontal: give a turned wall supports.
+    /// multipliers. The base and the top beam stay horizontal: give a turned wall supports. The
+    /// incremental solvers' curves still follow the control block's displacement along x, and
+    /// a time history under a ground motion (along x and y) takes gravity along -y only.
     pub gravity_direction: [f64; 2],
     /// The live load, scaled by lambda.
     pub live: LiveLoad,

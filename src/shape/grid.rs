@@ -15,8 +15,8 @@ pub(crate) const POLL_EVERY: usize = 16_384;
 ///
 /// The boxes are entered in the cells of a grid (each axis its own cell size, about twice the
 /// mean side along it) within `tol` of them, and a pair is visited in the first cell (in the
-/// order of the cells' indices) that holds both: the cell whose index is, axis by axis, the
-/// larger of the two boxes' lowest. So a pair is seen at once, even where many boxes share
+/// order of the cells' indices, the last axis first) that holds both: the cell whose index is,
+/// axis by axis, the larger of the two boxes' lowest. So a pair is seen at once, even where many boxes share
 /// many cells (copies of one block are refused at their first cell, not after every pair of
 /// every cell has been compared).
 pub(crate) fn for_each_pair<const D: usize>(
@@ -103,8 +103,9 @@ impl<const D: usize> Grid<D> {
         boxes.iter().map(|b| (0..D).map(|k| span(b, k)).product::<f64>()).sum()
     }
 
-    /// Every (cell, box) pair, sorted by cell: the boxes of one cell are consecutive, in
-    /// increasing order.
+    /// Every (cell, box) pair, sorted by cell (the last axis first: a wall's cells course by
+    /// course, so that the pairs come about in the order of the blocks, which are given so, and
+    /// sorting them after is cheap): the boxes of one cell are consecutive, in increasing order.
     fn entries(&self, boxes: &[Aabb<D>], poll: &mut dyn FnMut() -> bool) -> Result<Vec<([i64; D], usize)>> {
         let mut out = Vec::with_capacity(4 * boxes.len());
         for (i, b) in boxes.iter().enumerate() {
@@ -134,7 +135,7 @@ impl<const D: usize> Grid<D> {
                 }
             }
         }
-        out.sort_unstable();
+        out.sort_unstable_by(|(p, i), (q, j)| p.iter().rev().cmp(q.iter().rev()).then(i.cmp(j)));
         Ok(out)
     }
 }

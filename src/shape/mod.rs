@@ -13,7 +13,7 @@
 //!   ([`contact_tolerance`]) do not depend on the dimension: the 3D shapes share them.
 //!
 //! One layer per dimension: the 2D shapes here; the 3D model ([`crate::space`]) is of boxes for
-//! now, with its own contact search on the same grid rule.
+//! now, their contacts (coplanar faces) found on the same grid with the same tolerance.
 //!
 //! ```
 //! use masonry_dem::shape::{contacts, Polygon};

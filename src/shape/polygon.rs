@@ -167,15 +167,15 @@ fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
 }
 
 fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
-    let d = sub(a, b);
-    d[0].hypot(d[1])
+    dot(sub(a, b), sub(a, b)).sqrt()
 }
 
 /// Whether the vertices `idx` of `v` lie within `tol` of one line: the line through the first
 /// and the vertex farthest from it.
 fn collinear(v: &[[f64; 2]], idx: &[usize], tol: f64) -> bool {
     let p = v[idx[0]];
-    let far = idx.iter().map(|&k| v[k]).fold(p, |f, q| if dist(q, p) > dist(f, p) { q } else { f });
+    let far2 = |q: [f64; 2]| dot(sub(q, p), sub(q, p));
+    let far = idx.iter().map(|&k| v[k]).fold(p, |f, q| if far2(q) > far2(f) { q } else { f });
     let (u, len) = (sub(far, p), dist(far, p));
     idx.iter().all(|&k| (cross(u, sub(v[k], p)) / len).abs() <= tol)
 }

@@ -1,10 +1,12 @@
-//! Contact detection between axis-aligned boxes: a uniform grid, as the 2D
-//! [`crate::interface::detect`], so that it costs O(n) for walls of similar blocks.
+//! Contact detection between axis-aligned boxes: the shape layer's grid
+//! ([`crate::shape`]), as the 2D [`crate::interface::detect`], so that it costs O(n) for walls
+//! of similar blocks.
 
 use super::{Box3, Contact};
 use crate::error::{Error, Result};
-use crate::geometry::REL_TOL;
-use crate::interface::{BlockKind, Family, POLL_EVERY};
+use crate::interface::{BlockKind, Family};
+use crate::shape::grid::for_each_pair;
+use crate::shape::{Aabb, REL_TOL};
 
 /// Finds every pair of boxes that share a rectangle of positive area (two faces with opposite
 /// normals, coplanar within a tolerance), and refuses overlapping boxes (naming both).
@@ -34,60 +36,42 @@ pub fn detect(
     name: impl Fn(usize) -> String,
     poll: &mut dyn FnMut() -> bool,
 ) -> Result<Vec<Contact>> {
-    if boxes.is_empty() {
-        return Ok(vec![]);
-    }
-    let grid = Grid::new(boxes);
+    let aabbs: Vec<Aabb<3>> = boxes.iter().map(|b| Aabb { min: b.min, max: b.max }).collect();
+    let tol = tolerance(&aabbs);
     for (i, b) in boxes.iter().enumerate() {
         let side = b.size().into_iter().fold(f64::INFINITY, f64::min);
-        if !(side > THINNEST * grid.tol) {
+        if !(side > THINNEST * tol) {
             return Err(Error::input(format!(
-                "{}: its smallest side, {side:e} m, is within {THINNEST} times the contact tolerance ({:e} m, 1e-8 of the model's size or 1e-14 of its largest coordinate): its faces cannot be told apart",
-                name(i),
-                grid.tol
+                "{}: its smallest side, {side:e} m, is within {THINNEST} times the contact tolerance ({tol:e} m, 1e-8 of the model's size or 1e-14 of its largest coordinate): its faces cannot be told apart",
+                name(i)
             )));
         }
     }
-    let entries = grid.entries(boxes, poll)?;
     let mut out = Vec::with_capacity(4 * boxes.len());
-    let mut start = 0;
-    let mut visited = 0usize;
-    while start < entries.len() {
-        let key = entries[start].0;
-        let end = start + entries[start..].iter().take_while(|e| e.0 == key).count();
-        visited += 1;
-        if visited % POLL_EVERY == 0 && !poll() {
-            return Err(Error::Interrupted);
-        }
-        let members = &entries[start..end];
-        for (p, &(_, i)) in members.iter().enumerate() {
-            for &(_, j) in &members[p + 1..] {
-                match grid.pair(boxes, kinds, i, j, key) {
-                    Pair::None => {}
-                    Pair::Contact(c) => out.push(c),
-                    Pair::Overlap(w) => {
-                        return Err(Error::input(format!(
-                            "{} and {} overlap (intersection {:.6} x {:.6} x {:.6} m)",
-                            name(i.min(j)),
-                            name(i.max(j)),
-                            w[0],
-                            w[1],
-                            w[2]
-                        )))
-                    }
-                }
+    for_each_pair(&aabbs, tol, poll, |i, j| {
+        match pair(boxes, kinds, i, j, tol) {
+            Pair::None => {}
+            Pair::Contact(c) => out.push(c),
+            Pair::Overlap(w) => {
+                return Err(Error::input(format!(
+                    "{} and {} overlap (intersection {:.6} x {:.6} x {:.6} m)",
+                    name(i),
+                    name(j),
+                    w[0],
+                    w[1],
+                    w[2]
+                )))
             }
         }
-        start = end;
-    }
+        Ok(())
+    })?;
     out.sort_by_key(|c| (c.a, c.b));
     Ok(out)
 }
 
-/// What two boxes of a cell are to each other.
+/// What two boxes are to each other.
 enum Pair {
-    /// Apart, touching along an edge or at a corner, seen in another cell, or base against top
-    /// beam.
+    /// Apart, touching along an edge or at a corner, or base against top beam.
     None,
     /// Their intersection along x, y, z \[m\]: refused.
     Overlap([f64; 3]),
@@ -103,109 +87,47 @@ const REACH: f64 = 1e-6;
 /// its faces would be within the tolerance of each other.
 const THINNEST: f64 = 10.0;
 
-/// A uniform grid of cells over the boxes (each axis its own cell size, about twice the mean
-/// side along it), each box entered in the cells within `tol` of it.
-struct Grid {
-    lo: [f64; 3],
-    cell: [f64; 3],
-    tol: f64,
+/// The contact tolerance of the boxes: `10 REL_TOL` of the model's size, relative at any size
+/// (no floor in metres: a wall of boxes of 1e-8 m is the wall of 1 m scaled), and at least
+/// `10 REL_TOL REACH` of its largest coordinate, above the rounding of coordinates.
+fn tolerance(aabbs: &[Aabb<3>]) -> f64 {
+    let around = aabbs.iter().fold(Aabb::around(&[]), |a, b| a.union(b));
+    if aabbs.is_empty() {
+        return 0.0;
+    }
+    let reach = (0..3).map(|k| around.min[k].abs().max(around.max[k].abs())).fold(0.0, f64::max);
+    10.0 * REL_TOL * around.size().max(REACH * reach)
 }
 
-impl Grid {
-    fn new(boxes: &[Box3]) -> Grid {
-        let (mut lo, mut hi, mut sum) = ([f64::MAX; 3], [f64::MIN; 3], [0.0; 3]);
-        for b in boxes {
-            for k in 0..3 {
-                lo[k] = lo[k].min(b.min[k]);
-                hi[k] = hi[k].max(b.max[k]);
-                sum[k] += b.max[k] - b.min[k];
-            }
-        }
-        let scale = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
-        let reach = (0..3).map(|k| lo[k].abs().max(hi[k].abs())).fold(0.0, f64::max);
-        let tol = 10.0 * REL_TOL * scale.max(REACH * reach);
-        let nb = boxes.len() as f64;
-        let mut grid = Grid { lo, cell: [0, 1, 2].map(|k| (2.0 * sum[k] / nb).max(tol * 10.0)), tol };
-        // A few boxes much larger than the mean would each cover very many cells: coarsen the
-        // grid until it holds O(n) entries (as in 2D), so memory stays linear in the boxes.
-        while grid.count(boxes) > 16.0 * nb + 1024.0 {
-            grid.cell = grid.cell.map(|c| 2.0 * c);
-        }
-        grid
+/// Boxes `i` and `j`: their contact if they share a rectangle.
+fn pair(boxes: &[Box3], kinds: &[BlockKind], i: usize, j: usize, tol: f64) -> Pair {
+    let (p, q) = (&boxes[i], &boxes[j]);
+    let lo = [0, 1, 2].map(|k| p.min[k].max(q.min[k]));
+    let hi = [0, 1, 2].map(|k| p.max[k].min(q.max[k]));
+    let w = [0, 1, 2].map(|k| hi[k] - lo[k]);
+    if w.iter().any(|&v| v < -tol) {
+        return Pair::None; // apart
     }
-
-    /// The number of (cell, box) entries, as a float (it may be huge before coarsening).
-    fn count(&self, boxes: &[Box3]) -> f64 {
-        let span = |b: &Box3, k: usize| {
-            ((b.max[k] + self.tol - self.lo[k]) / self.cell[k]).floor()
-                - ((b.min[k] - self.tol - self.lo[k]) / self.cell[k]).floor()
-                + 1.0
-        };
-        boxes.iter().map(|b| span(b, 0) * span(b, 1) * span(b, 2)).sum()
+    if w.iter().all(|&v| v > tol) {
+        return Pair::Overlap(w);
     }
-
-    fn cell_of(&self, x: f64, k: usize) -> i64 {
-        ((x - self.lo[k]) / self.cell[k]).floor() as i64
+    let mut thin = (0..3).filter(|&k| w[k] <= tol);
+    let k = thin.next().expect("one side is thin, or the boxes overlap");
+    if thin.next().is_some() {
+        return Pair::None; // along an edge or at a corner only
     }
-
-    /// Every (cell, box) pair, sorted by cell: the boxes of one cell are consecutive.
-    fn entries(&self, boxes: &[Box3], poll: &mut dyn FnMut() -> bool) -> Result<Vec<([i64; 3], usize)>> {
-        let mut out = Vec::with_capacity(4 * boxes.len());
-        let t = self.tol;
-        for (i, b) in boxes.iter().enumerate() {
-            if i % POLL_EVERY == POLL_EVERY - 1 && !poll() {
-                return Err(Error::Interrupted);
-            }
-            let r = |k: usize| self.cell_of(b.min[k] - t, k)..=self.cell_of(b.max[k] + t, k);
-            for cx in r(0) {
-                for cy in r(1) {
-                    for cz in r(2) {
-                        out.push(([cx, cy, cz], i));
-                    }
-                }
-            }
-        }
-        out.sort_unstable();
-        Ok(out)
+    let (a, b) = if p.min[k] < q.min[k] { (i, j) } else { (j, i) };
+    if kinds[a] != BlockKind::Wall && kinds[b] != BlockKind::Wall {
+        return Pair::None; // base against top beam: not a joint of the wall
     }
-
-    /// Boxes `i` and `j`, both in cell `key`: their contact if they share a rectangle and this
-    /// cell holds the lowest corner of their intersection (each pair is seen once).
-    fn pair(&self, boxes: &[Box3], kinds: &[BlockKind], i: usize, j: usize, key: [i64; 3]) -> Pair {
-        let tol = self.tol;
-        let (p, q) = (&boxes[i], &boxes[j]);
-        let lo = [0, 1, 2].map(|k| p.min[k].max(q.min[k]));
-        let hi = [0, 1, 2].map(|k| p.max[k].min(q.max[k]));
-        let w = [0, 1, 2].map(|k| hi[k] - lo[k]);
-        if w.iter().any(|&v| v < -tol) {
-            return Pair::None; // apart
-        }
-        // an overlap is refused in the first cell that sees it (before the test below: the
-        // copies of one box would otherwise be paired in every cell they share)
-        if w.iter().all(|&v| v > tol) {
-            return Pair::Overlap(w);
-        }
-        if [0, 1, 2].map(|k| self.cell_of(lo[k], k)) != key {
-            return Pair::None;
-        }
-        let mut thin = (0..3).filter(|&k| w[k] <= tol);
-        let k = thin.next().expect("one side is thin, or the boxes overlap");
-        if thin.next().is_some() {
-            return Pair::None; // along an edge or at a corner only
-        }
-        let (a, b) = if p.min[k] < q.min[k] { (i, j) } else { (j, i) };
-        if kinds[a] != BlockKind::Wall && kinds[b] != BlockKind::Wall {
-            return Pair::None; // base against top beam: not a joint of the wall
-        }
-        let family = match (kinds[a], kinds[b]) {
-            (BlockKind::Base, _) | (_, BlockKind::Base) => Family::Base,
-            (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
-            _ if k == 2 => Family::Bed,
-            _ => Family::Head,
-        };
-        let plane = 0.5 * (boxes[a].max[k] + boxes[b].min[k]);
-        Pair::Contact(rectangle(a, b, k, plane, lo, hi, family))
-    }
+    let family = match (kinds[a], kinds[b]) {
+        (BlockKind::Base, _) | (_, BlockKind::Base) => Family::Base,
+        (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
+        _ if k == 2 => Family::Bed,
+        _ => Family::Head,
+    };
+    let plane = 0.5 * (boxes[a].max[k] + boxes[b].min[k]);
+    Pair::Contact(rectangle(a, b, k, plane, lo, hi, family))
 }
 
 /// The contact of blocks `a` and `b` on the plane `x_k = plane`, over `[lo, hi]` along the two

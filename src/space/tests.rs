@@ -185,7 +185,7 @@ fn live_load_direction_in_plan() {
 #[test]
 fn a_false_poll_interrupts_the_search() {
     let blocks = crate::space::running_bond_3d(40.0, 40.0, 0.1, 0.4, 0.2, 0.0).unwrap();
-    assert!(blocks.len() > crate::interface::POLL_EVERY);
+    assert!(blocks.len() > crate::shape::grid::POLL_EVERY);
     let e = Model3::new_with(&ModelSpec3 { blocks, ..ModelSpec3::default() }, &mut || false).unwrap_err();
     assert_eq!(e, crate::error::Error::Interrupted);
 }

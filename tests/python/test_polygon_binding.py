@@ -38,6 +38,8 @@ def test_supports_replace_the_base_unless_it_is_asked_for() -> None:
     both = _core.Model([[0.0, 0.0, 1.0, 1.0]], supports=[[[1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0]]], base=True)
     assert both.block_kinds == ["wall", "support", "base"]
     assert list(both.weights[1:]) == [0.0, 0.0]
+    with pytest.raises(md.InputError, match=r"support 0 \[2, 0, 1, 1\] has zero or negative size"):
+        _core.Model([[0.0, 0.0, 1.0, 1.0]], supports=[[2.0, 0.0, 1.0, 1.0]])
 
 
 def test_gravity_direction_turns_the_loads() -> None:
