@@ -710,6 +710,7 @@ pub fn simulate_3d_with(model: &Model3, opts: &DynamicOptions<[f64; 6]>, monitor
     }
     model.check_dry("the explicit solver in 3D")?;
     model.check_supports()?;
+    model.check_principal("a time history in 3D")?;
     let dt = super::time_history::dashpot_time_step(critical_time_step_3d(model), history_time_step_limit_3d(model), opts)?;
     let mut s = Integrator3::new(model, Some(dt), opts.safety, opts.damping, opts.threads)?;
     s.set_large(opts.large_rotations);

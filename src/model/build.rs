@@ -39,16 +39,28 @@ impl Model {
         let gravity_direction = unit_gravity(spec.gravity_direction)?;
         let frame = frame(&spec)?;
         let areas: Vec<Area> = frame.polygons.iter().map(Polygon::area_properties).collect();
-        let centroids: Vec<[f64; 2]> = areas.iter().map(|a| a.centroid).collect();
+        let mut centroids: Vec<[f64; 2]> = areas.iter().map(|a| a.centroid).collect();
+        let s = spec.thickness;
+        let mut mass: Vec<f64> = areas.iter().map(|a| spec.density * a.area * s).collect();
+        let mut inertia: Vec<f64> = areas.iter().map(|a| spec.density * a.polar * s).collect();
+        check_masses(&mass, &inertia, |i| frame.name(i))?;
+        let mut weight = weights(&frame, &mass, spec.gravity)?;
+        // the carried loads' masses, lumped before the interfaces take the centres as their blocks'
+        super::check_carried_inside(&spec.carried, frame.tol, |i, p| outside(&frame.polygons[i], p), |i| frame.name(i))?;
+        for (i, m) in super::lump_carried(&spec.carried, spec.gravity, &mut mass, &mut centroids) {
+            inertia[i] += m[0][0] + m[1][1];
+        }
+        for (k, l) in spec.carried.iter().enumerate() {
+            weight[l.block] += l.weight;
+            if !weight[l.block].is_finite() {
+                let key = super::carried::key(k);
+                return Err(Error::input_at(key.clone(), format!("{key}: the weight of {} with its loads is not finite", frame.name(l.block))));
+            }
+        }
         let name = |i: usize| frame.name(i);
         let interfaces =
             detect(&frame.polygons, &centroids, &frame.kinds, gravity_direction, frame.tol, name, poll)?;
         check_touched(&frame, &interfaces)?;
-        let s = spec.thickness;
-        let mass: Vec<f64> = areas.iter().map(|a| spec.density * a.area * s).collect();
-        let inertia: Vec<f64> = areas.iter().map(|a| spec.density * a.polar * s).collect();
-        check_masses(&mass, &inertia, |i| frame.name(i))?;
-        let weight = weights(&frame, &mass, spec.gravity)?;
         crate::error::check_weight(weight.iter().sum(), spec.density, spec.gravity)?;
         let sections = interfaces.iter().map(|it| Section::new(it.l, s)).collect();
         let nb = frame.polygons.len();
@@ -230,6 +242,7 @@ fn check_spec(spec: &ModelSpec) -> Result<()> {
     if spec.blocks.is_empty() {
         return Err(Error::input("geometry: the wall has no blocks"));
     }
+    super::check_carried(&spec.carried, spec.blocks.len(), spec.gravity)?;
     if spec.blocks.len() > MAX_BLOCKS {
         return Err(crate::geometry::too_many_blocks("geometry", spec.blocks.len() as f64));
     }
@@ -371,6 +384,19 @@ fn weights(frame: &Frame, mass: &[f64], gravity: f64) -> Result<Vec<f64>> {
         )));
     }
     Ok(weight)
+}
+
+/// How far `p` lies outside the convex polygon `poly` (counter-clockwise) \[m\]: the largest
+/// distance beyond the line of an edge, 0 or less inside.
+fn outside(poly: &Polygon, p: [f64; 2]) -> f64 {
+    let v = poly.vertices();
+    (0..v.len())
+        .map(|k| {
+            let (a, b) = (v[k], v[(k + 1) % v.len()]);
+            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+            ((p[0] - a[0]) * dy - (p[1] - a[1]) * dx) / dx.hypot(dy)
+        })
+        .fold(f64::MIN, f64::max)
 }
 
 /// Refuses a block whose mass or rotary inertia is zero (it underflowed) or not finite (it

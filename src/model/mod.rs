@@ -30,10 +30,13 @@
 //! ```
 
 mod build;
+mod carried;
 mod keys;
 mod supports;
 
 pub(crate) use build::{check_settlement, law_key};
+pub use carried::CarriedLoad;
+pub(crate) use carried::{check as check_carried, check_inside as check_carried_inside, lump as lump_carried};
 pub(crate) use supports::unsupported;
 
 use crate::geometry::Rect;
@@ -143,6 +146,10 @@ pub struct ModelSpec {
     pub gravity_direction: [f64; 2],
     /// The live load, scaled by lambda.
     pub live: LiveLoad,
+    /// Loads carried by wall blocks (a floor's reaction at a point of a block), with their
+    /// masses: each loaded block's centre of mass, where its dofs are, is that of the block and
+    /// its loads together (see [`CarriedLoad`]).
+    pub carried: Vec<CarriedLoad>,
 }
 
 impl Default for ModelSpec {
@@ -158,6 +165,7 @@ impl Default for ModelSpec {
             gravity: 9.81,
             gravity_direction: [0.0, -1.0],
             live: LiveLoad::HorizontalWeight,
+            carried: vec![],
         }
     }
 }
@@ -218,7 +226,8 @@ impl Model {
     pub fn polygons(&self) -> &[Polygon] {
         &self.polygons
     }
-    /// Every block's centroid \[m\], where its dofs are.
+    /// Every block's centroid \[m\], where its dofs are: its centre of mass (the polygon's
+    /// centroid, moved towards the loads it carries if it carries any).
     pub fn centroids(&self) -> &[[f64; 2]] {
         &self.centroids
     }
@@ -274,15 +283,17 @@ impl Model {
     pub fn live(&self) -> LiveLoad {
         self.live
     }
-    /// Mass of each block \[kg\].
+    /// Mass of each block \[kg\], with the masses of the loads it carries.
     pub fn mass(&self) -> &[f64] {
         &self.mass
     }
-    /// Rotary inertia of each block about its centroid [kg m2].
+    /// Rotary inertia of each block about its centroid [kg m2], with the loads it carries as
+    /// point masses.
     pub fn inertia(&self) -> &[f64] {
         &self.inertia
     }
-    /// Weight of each block \[N\] (0 for the supports, the base and the top beam).
+    /// Weight of each block \[N\], with the loads it carries (0 for the supports, the base and
+    /// the top beam).
     pub fn weight(&self) -> &[f64] {
         &self.weight
     }

@@ -165,6 +165,10 @@ pub struct ModelSpec3 {
     pub gravity: f64,
     /// The live load, scaled by lambda.
     pub live: LiveLoad3,
+    /// Loads carried by wall blocks (a floor's reaction at a point (x, y, z) of a box), with
+    /// their masses, as the plane's [`ModelSpec::carried`](crate::model::ModelSpec::carried):
+    /// each loaded block's centroid, where its dofs are, is its centre of mass with its loads.
+    pub carried: Vec<crate::model::CarriedLoad<3>>,
 }
 
 impl Default for ModelSpec3 {
@@ -179,6 +183,7 @@ impl Default for ModelSpec3 {
             joints: JointLaws::default(),
             gravity: 9.81,
             live: LiveLoad3::HorizontalWeight { direction: 0.0 },
+            carried: vec![],
         }
     }
 }

@@ -26,6 +26,7 @@ pub struct Model3 {
     centroids: Vec<[f64; 3]>,
     mass: Vec<f64>,
     inertia: Vec<[f64; 3]>,
+    products: Vec<(usize, [f64; 3])>,
     contacts: Vec<Contact>,
     fixed: Vec<bool>,
     f_dead: Vec<f64>,
@@ -48,8 +49,8 @@ impl Model3 {
         let name = |i: usize| block_name(i, n_wall, base, top, &boxes);
         let contacts = detect(&boxes, &kinds, name, poll)?;
         check_touched(&contacts, boxes.len(), n_wall, base, top, name)?;
-        let mass: Vec<f64> = boxes.iter().map(|b| spec.density * b.volume()).collect();
-        let inertia: Vec<[f64; 3]> = boxes
+        let mut mass: Vec<f64> = boxes.iter().map(|b| spec.density * b.volume()).collect();
+        let mut inertia: Vec<[f64; 3]> = boxes
             .iter()
             .zip(&mass)
             .map(|(b, m)| {
@@ -57,6 +58,8 @@ impl Model3 {
                 [m * (y + z) / 12.0, m * (x + z) / 12.0, m * (x + y) / 12.0]
             })
             .collect();
+        let mut centroids: Vec<[f64; 3]> = boxes.iter().map(Box3::centroid).collect();
+        let products = carry(spec, &boxes, &mut mass, &mut inertia, &mut centroids, name)?;
         for (i, (&m, j)) in mass.iter().zip(&inertia).enumerate() {
             if !(m.is_finite() && m > 0.0 && j.iter().all(|&v| v.is_finite() && v > 0.0)) {
                 return Err(Error::input(format!(
@@ -75,7 +78,6 @@ impl Model3 {
         let weight: f64 = (0..n_wall).chain(top).map(|i| mass[i] * spec.gravity).sum();
         crate::error::check_weight(weight, spec.density, spec.gravity)?;
         let nb = boxes.len();
-        let centroids = boxes.iter().map(Box3::centroid).collect();
         let mut model = Model3 {
             boxes,
             kinds,
@@ -88,6 +90,7 @@ impl Model3 {
             centroids,
             mass,
             inertia,
+            products,
             contacts,
             fixed: vec![false; 6 * nb],
             f_dead: vec![0.0; 6 * nb],
@@ -183,10 +186,31 @@ impl Model3 {
     pub fn mass(&self) -> &[f64] {
         &self.mass
     }
-    /// Each block's principal moments of inertia about its centroid, about x, y and z
-    /// (`m (b^2 + c^2) / 12`, ... for sides a, b, c) \[kg m2\].
+    /// Each block's moments of inertia about its centroid, about x, y and z (`m (b^2 + c^2) /
+    /// 12`, ... for sides a, b, c; its principal moments), with the parallel-axis terms of the
+    /// loads it carries (see [`Model3::check_principal`]) \[kg m2\].
     pub fn inertia(&self) -> &[[f64; 3]] {
         &self.inertia
+    }
+    /// Refuses, for `what` (a time history), a block whose carried loads give it products of
+    /// inertia about x, y and z: the integrator turns each block about its principal axes,
+    /// those of its box. A load on an axis of the box through its centroid (over its centre,
+    /// say) keeps them; a load off those axes does not (the pushover and limit analysis, which
+    /// do not turn blocks dynamically, take it).
+    pub fn check_principal(&self, what: &str) -> Result<()> {
+        for &(i, [yz, xz, xy]) in &self.products {
+            let scale = self.inertia[i].iter().fold(0.0f64, |a, &v| a.max(v));
+            if [yz, xz, xy].iter().any(|p| p.abs() > 1e-9 * scale) {
+                return Err(Error::input_at(
+                    "loads.carried",
+                    format!(
+                        "{what} turns each block about the axes of its box, and the loads carried by {} give it products of inertia (yz {yz:.3e}, xz {xz:.3e}, xy {xy:.3e} kg m2): put its loads on an axis of its box through the box's centroid (over its centre, say), or run limit analysis or the pushover",
+                        self.block_name(i)
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
     /// The contacts, sorted by their blocks (a, b).
     pub fn contacts(&self) -> &[Contact] {
@@ -267,14 +291,7 @@ impl Model3 {
     /// The size of the model \[m\]: the largest side of the box around every block (base and
     /// top beam included).
     pub fn size(&self) -> f64 {
-        let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
-        for b in &self.boxes {
-            for k in 0..3 {
-                lo[k] = lo[k].min(b.min[k]);
-                hi[k] = hi[k].max(b.max[k]);
-            }
-        }
-        (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
+        size(&self.boxes)
     }
     /// Acceleration of gravity \[m/s2\].
     pub fn gravity(&self) -> f64 {
@@ -289,6 +306,49 @@ impl Model3 {
     pub fn contacts_of(&self, i: usize) -> Vec<usize> {
         (0..self.contacts.len()).filter(|&k| self.contacts[k].a == i || self.contacts[k].b == i).collect()
     }
+}
+
+/// The carried loads of `spec`, checked (each on a wall block, inside its box within the contact
+/// tolerance) and lumped: their masses into `mass`, each loaded block's `centroid` moved to its
+/// centre of mass and its `inertia` about x, y and z given the parallel-axis terms
+/// `trace S - S_kk`. Returns the loaded blocks' products of inertia `-S_yz, -S_xz, -S_xy`.
+fn carry(
+    spec: &ModelSpec3,
+    boxes: &[Box3],
+    mass: &mut [f64],
+    inertia: &mut [[f64; 3]],
+    centroids: &mut [[f64; 3]],
+    name: impl Fn(usize) -> String,
+) -> Result<Vec<(usize, [f64; 3])>> {
+    let size = size(boxes);
+    let outside = |i: usize, p: [f64; 3]| {
+        let b = &boxes[i];
+        (0..3).map(|k| (b.min[k] - p[k]).max(p[k] - b.max[k])).fold(f64::MIN, f64::max)
+    };
+    crate::model::check_carried_inside(&spec.carried, crate::shape::contact_tolerance(size), outside, name)?;
+    let lumped = crate::model::lump_carried(&spec.carried, spec.gravity, mass, centroids);
+    Ok(lumped
+        .into_iter()
+        .map(|(i, s)| {
+            let trace = s[0][0] + s[1][1] + s[2][2];
+            for k in 0..3 {
+                inertia[i][k] += trace - s[k][k];
+            }
+            (i, [-s[1][2], -s[0][2], -s[0][1]])
+        })
+        .collect())
+}
+
+/// The largest side of the box around `boxes` \[m\].
+fn size(boxes: &[Box3]) -> f64 {
+    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+    for b in boxes {
+        for k in 0..3 {
+            lo[k] = lo[k].min(b.min[k]);
+            hi[k] = hi[k].max(b.max[k]);
+        }
+    }
+    (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
 }
 
 /// cos and sin of `deg` degrees, exact at multiples of 90 (a load at 90 deg has no x part).
@@ -310,6 +370,7 @@ fn cos_sin_deg(deg: f64) -> (f64, f64) {
 fn check_spec(spec: &ModelSpec3) -> Result<()> {
     positive("density", spec.density)?;
     non_negative("gravity", spec.gravity)?;
+    crate::model::check_carried(&spec.carried, spec.blocks.len(), spec.gravity)?;
     if let Some(h) = spec.top {
         positive("top", h)?;
     }
