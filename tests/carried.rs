@@ -1,10 +1,12 @@
 //! Loads carried by blocks (`ModelSpec::carried`, `ModelSpec3::carried`) against closed forms: a
 //! block with a load on top at an offset overturns about its toe at lambda0 = sum W_i x_i /
 //! sum W_i y_i (the arms from the toe) by limit analysis, the static path and the explicit
-//! solver; the facade of docs' benchmark hand check (a wall of 100 kN with a floor of 20 kN at
+//! solver; the facade of the assessment benchmark's hand check (a wall of 100 kN with a floor of 20 kN at
 //! its top, 0.25 m from the hinge: 30 / 420) in the plane and in 3D; the masses in modal
 //! analysis (the vertical mode sqrt(k / (m + W / g)) and the sliding-rocking pair about the
-//! centre of mass of block and load); the refusals of bad loads, each naming the load.
+//! centre of mass of block and load); in time histories, the fall of a loaded block released
+//! tilted (the rigid body's energy, the load a point mass) and the ground acceleration that tips
+//! it (its multiplier times g); the refusals of bad loads, each naming the load.
 
 mod common;
 use common::*;
@@ -231,4 +233,80 @@ fn bad_loads_are_refused_naming_the_load() {
     assert!(e.key() == Some("loads.carried[0]") && e.to_string().contains("block 1 is not a wall block"), "{e}");
     let e = Model3::new(&spec3(CarriedLoad { block: 0, point: [0.2, 0.7, 1.0], weight: 1.0 })).unwrap_err();
     assert!(e.key() == Some("loads.carried[0]") && e.to_string().contains("outside block 0"), "{e}");
+}
+
+/// The rocking block of the time-history tests: 0.4 x 1.0 m (400 kg, g = 9.81) with 2000 N on
+/// top at x = 0.3 m, on a stiff base, friction 2 (it rocks without sliding); and its centre of
+/// mass (x, y) [m] and total mass [kg].
+fn rocking_block() -> (Model, [f64; 2], f64) {
+    let law = masonry_dem::joint::JointLaw { friction: 2.0, ..Default::default() };
+    let m = Model::new(ModelSpec {
+        blocks: vec![Rect::new(0.0, 0.0, 0.4, 1.0).into()],
+        gravity: 9.81,
+        joints: JointLaws::uniform(law),
+        carried: vec![CarriedLoad { block: 0, point: [0.3, 1.0], weight: 2000.0 }],
+        ..ModelSpec::default()
+    })
+    .unwrap();
+    let (own, load) = (400.0, 2000.0 / 9.81);
+    let total = own + load;
+    (m, [(own * 0.2 + load * 0.3) / total, (own * 0.5 + load * 1.0) / total], total)
+}
+
+#[test]
+fn a_loaded_block_rocks_back_in_the_time_of_the_rigid_bodys_energy() {
+    use masonry_dem::explicit::{simulate, DynamicOptions, Recording};
+    // released at rest turned by theta0 about its left toe (0, 0), it falls back to theta = 0 in
+    // t1 = integral from 0 to theta0 of d theta / sqrt(2 W R (cos(alpha - theta0) - cos(alpha - theta)) / I_O),
+    // with R, alpha the centre of mass's distance from the toe and its angle from the vertical and
+    // I_O = J + M R^2 the inertia about the toe: block and load as point masses, the cross terms in
+    let (m, c, total) = rocking_block();
+    let (r, alpha) = (c[0].hypot(c[1]), c[0].atan2(c[1]));
+    let (own, load) = (400.0, 2000.0 / 9.81);
+    let j_toe = own * (0.4f64.powi(2) + 1.0) / 12.0 + own * (0.2f64.powi(2) + 0.25) + load * (0.3f64.powi(2) + 1.0);
+    assert_close(m.inertia()[0] + total * r * r, j_toe, 1e-12, "inertia about the toe [kg m2]");
+    let th0 = 0.5 * alpha;
+    let k = 2.0 * total * 9.81 * r / j_toe;
+    // theta = theta0 - s^2: a smooth integrand, by the midpoint rule
+    let n = 20_000;
+    let top = th0.sqrt();
+    let t1: f64 = (0..n)
+        .map(|i| {
+            let s = (i as f64 + 0.5) * top / n as f64;
+            2.0 * s / (k * ((alpha - th0).cos() - (alpha - th0 + s * s).cos())).sqrt() * top / n as f64
+        })
+        .sum();
+    let (cs, sn) = (th0.cos(), th0.sin());
+    let d = [cs * c[0] - sn * c[1] - c[0], sn * c[0] + cs * c[1] - c[1]];
+    let opts = DynamicOptions { duration: 1.3 * t1, initial_displacement: Some(vec![[d[0], d[1], th0], [0.0; 3]]), record: Recording::Every(1), ..Default::default() };
+    let h = simulate(&m, &opts).unwrap();
+    assert!(h.error.is_none(), "{:?}", h.error);
+    let phi: Vec<f64> = (0..h.times.len()).map(|k| h.displacement(k)[0][2]).collect();
+    let first = (1..phi.len()).find(|&k| phi[k] <= 0.0).expect("it falls back");
+    let t = h.times[first - 1] + (h.times[first] - h.times[first - 1]) * phi[first - 1] / (phi[first - 1] - phi[first]);
+    eprintln!("loaded block, first impact at {t:.7} s against {t1:.7} s ({:+.2e})", t / t1 - 1.0);
+    // the joints' compliance alone parts them: within 1e-4
+    assert_close(t, t1, 1e-4, "time to the first impact [s]");
+}
+
+#[test]
+fn a_steady_ground_acceleration_tips_the_loaded_block_at_its_multiplier() {
+    use masonry_dem::explicit::{simulate, DynamicOptions, Recording};
+    // a ground acceleration a along +x pushes block and load by -m a: about the left toe the block
+    // tips when a / g exceeds (W_b 0.2 + W 0.3) / (W_b 0.5 + W 1.0), and stays put below it (the
+    // acceleration ramped up over 0.2 s, slowly against the block's periods on its joints, then held)
+    let (m, c, _) = rocking_block();
+    let lambda = c[0] / c[1];
+    let run = |f: f64| {
+        let a = f * lambda * 9.81;
+        let ramp = Some((vec![0.0, 0.2, 1.0], vec![0.0, a, a]));
+        let opts = DynamicOptions { duration: 0.6, base_acceleration: ramp, record: Recording::Every(10), ..Default::default() };
+        let h = simulate(&m, &opts).unwrap();
+        assert!(h.error.is_none(), "{:?}", h.error);
+        (0..h.times.len()).map(|k| h.displacement(k)[0][2].abs()).fold(0.0, f64::max)
+    };
+    let (below, above) = (run(0.97), run(1.03));
+    eprintln!("loaded block under a steady ground acceleration: largest rotation {below:.2e} rad at 0.97 lambda0 g, {above:.2e} rad at 1.03");
+    // below: the joints' elastic rotation, about M / (kN b^3 / 12) = 1200 / 5.3e7 = 2e-5 rad; above: it turns
+    assert!(below < 1e-4 && above > 1e-3, "rotation {below:e} rad below the multiplier, {above:e} rad above it");
 }

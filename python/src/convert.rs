@@ -191,3 +191,27 @@ fn law_from(d: &Bound<'_, PyAny>, base: JointLaw, what: &str) -> PyResult<JointL
     }
     Ok(law)
 }
+
+/// The carried loads of `carried`: a list of (block, point, weight) with the point of `D`
+/// coordinates [m] and the weight [N]; None (or Python's None): none.
+pub(crate) fn carried_from<const D: usize>(carried: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<CarriedLoad<D>>> {
+    let Some(o) = carried.filter(|o| !o.is_none()) else { return Ok(vec![]) };
+    let shape = if D == 2 { "(block, [x, y], weight)" } else { "(block, [x, y, z], weight)" };
+    let items: Vec<Bound<'_, PyAny>> =
+        o.extract().map_err(|_| InputError::new_err(format!("carried: expected a list of {shape}")))?;
+    items
+        .iter()
+        .enumerate()
+        .map(|(k, item)| {
+            let bad = || InputError::new_err(format!("carried[{k}]: expected {shape}: a block index, {D} numbers [m] and a weight [N]"));
+            let (block, point, weight): (usize, Vec<f64>, f64) = item.extract().map_err(|_| bad())?;
+            let point = <[f64; D]>::try_from(point.as_slice()).map_err(|_| bad())?;
+            Ok(CarriedLoad { block, point, weight })
+        })
+        .collect()
+}
+
+/// The carried loads as a list of (block, point, weight), for Python.
+pub(crate) fn carried_to_py<const D: usize>(loads: &[CarriedLoad<D>]) -> Vec<(usize, [f64; D], f64)> {
+    loads.iter().map(|l| (l.block, l.point, l.weight)).collect()
+}

@@ -29,6 +29,10 @@ use crate::*;
 /// gravity [m/s2]; live: "horizontal_weight" (lambda * W_i on every block towards +x) or
 ///     "top_horizontal" (lambda newtons on the top beam towards +x); +x: gravity_direction
 ///     turned by +90 degrees.
+/// carried: loads carried by wall blocks (a floor's reaction), a list of (block, [x, y], weight):
+///     a weight [N] along gravity resting at a point [m] of the block (0-based), whose mass
+///     weight / gravity moves with it: it takes the live load in proportion to its weight, and
+///     the block's centroid (where its dofs are), mass and inertia are those of block and loads.
 /// Raises InputError naming the key, block or interface on bad input.
 #[pyclass(name = "Model", module = "masonry_dem._core", subclass)]
 pub(crate) struct PyModel {
@@ -38,7 +42,7 @@ pub(crate) struct PyModel {
 #[pymethods]
 impl PyModel {
     #[new]
-    #[pyo3(signature = (blocks, thickness=None, density=None, base=None, top_rotation=None, top_force=None, joints=None, gravity=None, live=None, top_vertical=None, supports=None, gravity_direction=None))]
+    #[pyo3(signature = (blocks, thickness=None, density=None, base=None, top_rotation=None, top_force=None, joints=None, gravity=None, live=None, top_vertical=None, supports=None, gravity_direction=None, carried=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -54,6 +58,7 @@ impl PyModel {
         top_vertical: Option<&str>,
         supports: Option<&Bound<'_, PyAny>>,
         gravity_direction: Option<Vec<f64>>,
+        carried: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let d = ModelSpec::default();
         let top = TopBeam::from_keys(top_rotation, top_force.as_deref(), top_vertical).map_err(to_py)?;
@@ -82,6 +87,7 @@ impl PyModel {
             gravity: gravity.unwrap_or(d.gravity),
             gravity_direction,
             live: live.map_or(Ok(d.live), str::parse).map_err(to_py)?,
+            carried: carried_from(carried)?,
         };
         // the GIL released (a million blocks take seconds), polling Ctrl-C in this thread
         let mut raised = None;
@@ -106,6 +112,12 @@ impl PyModel {
     #[pyo3(signature = (block, dof, value=0.0))]
     fn fix(&mut self, block: usize, dof: usize, value: f64) -> PyResult<()> {
         Arc::make_mut(&mut self.inner).fix(block, dof, value).map_err(to_py)
+    }
+
+    /// The loads carried by wall blocks: a list of (block, (x, y), weight [N]).
+    #[getter]
+    fn carried(&self) -> Vec<(usize, [f64; 2], f64)> {
+        carried_to_py(self.inner.carried())
     }
 
     /// The live load: "horizontal_weight" (lambda times each block's weight) or "top_horizontal" (lambda newtons on the top beam).

@@ -192,6 +192,9 @@ pub(crate) fn cut_openings_3d<'py>(
 /// gravity [m/s2], along -z (default 9.81); live: "horizontal_weight" (the default: lambda * W_i on every block
 ///     that weighs, horizontal) or "none"; direction: the live load's direction in plan [deg], from +x towards +y
 ///     (default 0: towards +x; 90 pushes a facade along x out of its plane, towards +y).
+/// carried: loads carried by wall blocks (a floor's reaction), a list of (block, [x, y, z], weight): a weight [N]
+///     along -z resting at a point [m] of the box (0-based), whose mass weight / gravity moves with it, as Model's.
+///     A time history refuses a load off the box's axes through its centroid (its products of inertia).
 /// Block indices: the boxes in the order given, then the base, then the top beam.
 /// Raises InputError naming the key or block on bad input (two overlapping boxes are both named).
 #[pyclass(name = "Model3D", module = "masonry_dem._core", subclass)]
@@ -222,7 +225,7 @@ fn contact_vectors<'py>(py: Python<'py>, model: &Model3, f: impl Fn(&space::Cont
 #[pymethods]
 impl PyModel3D {
     #[new]
-    #[pyo3(signature = (boxes, density=None, base=None, top=None, joints=None, gravity=None, live=None, direction=None))]
+    #[pyo3(signature = (boxes, density=None, base=None, top=None, joints=None, gravity=None, live=None, direction=None, carried=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -234,6 +237,7 @@ impl PyModel3D {
         gravity: Option<f64>,
         live: Option<&str>,
         direction: Option<f64>,
+        carried: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let d = ModelSpec3::default();
         let spec = ModelSpec3 {
@@ -244,6 +248,7 @@ impl PyModel3D {
             joints: laws_from(joints)?,
             gravity: gravity.unwrap_or(d.gravity),
             live: live_from(live, direction)?,
+            carried: carried_from(carried)?,
         };
         // the GIL released, polling Ctrl-C in this thread
         let mut raised = None;
@@ -269,6 +274,12 @@ impl PyModel3D {
     fn dimension(&self) -> usize {
         3
     }
+    /// The loads carried by wall blocks: a list of (block, (x, y, z), weight [N]).
+    #[getter]
+    fn carried(&self) -> Vec<(usize, [f64; 3], f64)> {
+        carried_to_py(self.inner.carried())
+    }
+
     /// The live load: "horizontal_weight" (lambda times each block's weight, horizontal, along direction) or "none".
     #[getter]
     fn live(&self) -> &'static str {

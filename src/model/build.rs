@@ -87,6 +87,7 @@ impl Model {
             f_dead: vec![0.0; 3 * nb],
             f_live: vec![0.0; 3 * nb],
             held: vec![],
+            carried: spec.carried.clone(),
         };
         model.supports_and_loads(&spec);
         model.check_scales()?;

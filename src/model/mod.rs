@@ -204,6 +204,7 @@ pub struct Model {
     f_dead: Vec<f64>,
     f_live: Vec<f64>,
     held: Vec<usize>,
+    carried: Vec<CarriedLoad>,
 }
 
 impl Model {
@@ -291,6 +292,11 @@ impl Model {
     /// point masses.
     pub fn inertia(&self) -> &[f64] {
         &self.inertia
+    }
+    /// The loads carried by wall blocks, as given (their masses are in [`Model::mass`] and
+    /// [`Model::inertia`], their weights in [`Model::weight`]).
+    pub fn carried(&self) -> &[CarriedLoad] {
+        &self.carried
     }
     /// Weight of each block \[N\], with the loads it carries (0 for the supports, the base and
     /// the top beam).

@@ -6,7 +6,7 @@ use crate::error::{non_negative, positive, Error, Result};
 use crate::geometry::MAX_BLOCKS;
 use crate::interface::{BlockKind, Family};
 use crate::joint::JointLaw;
-use crate::model::JointLaws;
+use crate::model::{CarriedLoad, JointLaws};
 
 /// A wall of rigid boxes joined by contacts, with its base, top beam, supports and loads.
 /// Stateless: solvers read it.
@@ -27,6 +27,7 @@ pub struct Model3 {
     mass: Vec<f64>,
     inertia: Vec<[f64; 3]>,
     products: Vec<(usize, [f64; 3])>,
+    carried: Vec<CarriedLoad<3>>,
     contacts: Vec<Contact>,
     fixed: Vec<bool>,
     f_dead: Vec<f64>,
@@ -91,6 +92,7 @@ impl Model3 {
             mass,
             inertia,
             products,
+            carried: spec.carried.clone(),
             contacts,
             fixed: vec![false; 6 * nb],
             f_dead: vec![0.0; 6 * nb],
@@ -191,6 +193,11 @@ impl Model3 {
     /// loads it carries (see [`Model3::check_principal`]) \[kg m2\].
     pub fn inertia(&self) -> &[[f64; 3]] {
         &self.inertia
+    }
+    /// The loads carried by wall blocks, as given (their masses are in [`Model3::mass`] and
+    /// [`Model3::inertia`]).
+    pub fn carried(&self) -> &[CarriedLoad<3>] {
+        &self.carried
     }
     /// Refuses, for `what` (a time history), a block whose carried loads give it products of
     /// inertia about x, y and z: the integrator turns each block about its principal axes,

@@ -5,7 +5,8 @@ acceleration that activates the mechanism, the demand and the verdict (:func:`li
 
 Weights are lumped at each block's centroid: a wall of many courses that turns as one body gives the "sliced" e*
 of its blocks (a bare rectangular wall turning about its toe: e* -> 3/4 as the courses grow thin, against 1 for
-the same wall lumped at its own centroid). The blocks that do not move in the mechanism are left out; a block moves
+the same wall lumped at its own centroid). A load a block carries (``Model(carried=...)``, ``[[loads.carried]]``) is
+a weight of its own at its point, moving with its block. The blocks that do not move in the mechanism are left out; a block moves
 when its largest corner motion exceeds :data:`masonry_dem._mechanism.MOVING_FRACTION` of the largest (the rule of
 the mechanism's description, ``masonry-dem run``).
 
@@ -18,30 +19,32 @@ weights are made with (9.81 m/s2 by default).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Optional, Tuple
 
 import numpy as np
 
 from .._core import InputError
 from .._mechanism import MOVING_FRACTION
-from .._shapes import shapes
+from .._shapes import area_centroid, shapes
 from ..report import corner_motion as corner_motion_2d
-from ..space.report import corner_motion as corner_motion_3d
+from ..space.report import corner_motion as corner_motion_3d, dof_points
 from .parameters import AssessmentParameters
 from .spectra import Spectrum, _refuse
 
 
 @dataclass(frozen=True, eq=False)
 class MechanismWeights:
-    """The weights of a mechanism and their virtual displacements, lumped at the blocks' centroids.
+    """The weights of a mechanism and their virtual displacements, lumped at the blocks' centroids, and the loads
+    the moving blocks carry, each at its point.
 
     Attributes:
-        blocks: (k,) the moving blocks (indices into the model's blocks).
-        weights: (k,) their weights P_i [N].
-        dx: (k,) the horizontal virtual displacements of their centroids along the live load, scaled so that the
+        blocks: (k,) the block of each weight (indices into the model's blocks): the moving blocks, then the block
+            of each load they carry.
+        weights: (k,) the weights P_i [N]: each block's own (without its loads), then the loads'.
+        dx: (k,) the horizontal virtual displacements of their points along the live load, scaled so that the
             largest is 1 and sum P_i dx_i > 0.
-        points: (k, 2) or (k, 3) their centroids [m].
+        points: (k, 2) or (k, 3) their points [m]: the blocks' own centroids, then the loads' points.
         gravity: the model's gravity [m/s2].
     """
 
@@ -88,18 +91,32 @@ def mechanism_weights(model: Any, results: Any, gravity: Optional[float] = None)
         raise _refuse("gravity", f"must be > 0, got {g!r}")
     three_d = int(getattr(model, "dimension", 2)) == 3
     mech = np.asarray(results.mechanism, dtype=np.float64)
-    weights = np.asarray(model.weights, dtype=np.float64)
+    weights = np.array(model.weights, dtype=np.float64)  # with the loads the blocks carry
+    # the dofs are at the centres of mass (the blocks' centroids, moved by the loads they carry): the virtual
+    # displacement along the live load of a point p of block i is that of the small motion at the dofs
     if three_d:
         boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
-        corner = corner_motion_3d(boxes, mech)
+        dofs = dof_points(model)
+        corner = corner_motion_3d(boxes, mech, dofs)
         points = 0.5 * (boxes[:, :3] + boxes[:, 3:])
         angle = math.radians(float(getattr(model, "direction", 0.0) or 0.0))
-        dx = mech[:, 0] * math.cos(angle) + mech[:, 1] * math.sin(angle)
+        along = np.array([math.cos(angle), math.sin(angle), 0.0])
+
+        def dx_at(i: np.ndarray, p: np.ndarray) -> np.ndarray:
+            return (mech[i, :3] + np.cross(mech[i, 3:], p - dofs[i])) @ along  # type: ignore[no-any-return]
     else:
         blocks = shapes(model)  # convex polygons: rectangles among them
+        dofs = blocks.centroids
         corner = corner_motion_2d(blocks, mech)
-        points = blocks.centroids
-        dx = mech[:, 0]  # the dofs are at the centroids
+        points = np.array([area_centroid(blocks.polygon(i)) for i in range(len(blocks))]).reshape(-1, 2)
+
+        def dx_at(i: np.ndarray, p: np.ndarray) -> np.ndarray:
+            return mech[i, 0] - mech[i, 2] * (p[:, 1] - dofs[i, 1])  # type: ignore[no-any-return]
+    carried = list(getattr(model, "carried", None) or [])
+    owner = np.array([c[0] for c in carried], dtype=np.int64)
+    loads = np.array([c[2] for c in carried], dtype=np.float64)
+    at = np.array([c[1] for c in carried], dtype=np.float64).reshape(-1, points.shape[1])
+    np.subtract.at(weights, owner, loads)  # each block's own weight
     bodies = np.arange(int(model.n_blocks))
     if model.top_index is not None:
         bodies = np.append(bodies, int(model.top_index))
@@ -107,11 +124,15 @@ def mechanism_weights(model: Any, results: Any, gravity: Optional[float] = None)
     if not (math.isfinite(peak) and peak > 0):
         raise _refuse("mechanism", "no block moves in the mechanism")
     moving = bodies[corner[bodies] > MOVING_FRACTION * peak]
-    d = dx[moving]
+    on = np.isin(owner, moving)  # the loads of the moving blocks
+    which = np.concatenate([moving, owner[on]])
+    P = np.concatenate([weights[moving], loads[on]])
+    where = np.concatenate([points[moving], at[on]])
+    d = dx_at(which, where)
     scale = float(np.max(np.abs(d)))
     if scale > 0:  # else participating_mass refuses it: no horizontal displacement
-        d = d / (scale if float(weights[moving] @ d) >= 0 else -scale)
-    return MechanismWeights(blocks=moving, weights=weights[moving], dx=d, points=points[moving], gravity=g)
+        d = d / (scale if float(P @ d) >= 0 else -scale)
+    return MechanismWeights(blocks=which, weights=P, dx=d, points=where, gravity=g)
 
 
 @dataclass(frozen=True)
@@ -199,4 +220,5 @@ def linear_check(model: Any, results: Any, spectrum: Any, q: float = 2.0, confid
                                           mechanism_height=mechanism_height, building_height=building_height,
                                           storeys=storeys)
     lumped = mechanism_weights(model, results, gravity)
-    return linear_check_of(float(results.collapse_multiplier), lumped.weights, lumped.dx, lumped.gravity, parameters)
+    check = linear_check_of(float(results.collapse_multiplier), lumped.weights, lumped.dx, lumped.gravity, parameters)
+    return replace(check, moving_blocks=int(np.unique(lumped.blocks).size))  # a block with loads counted once

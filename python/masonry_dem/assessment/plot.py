@@ -83,9 +83,10 @@ def plot_displaced_shape(ax: Any, model: Any, assessment: Assessment) -> None:
         still = [Polygon(blocks.polygon(i), closed=True) for i in range(len(blocks))
                  if i not in set(m.blocks.tolist()) and (i < n or i == model.top_index)]
         ax.add_collection(PatchCollection(still, facecolor="0.92", edgecolor="0.6", lw=0.4))
-        moving = [Polygon(blocks.polygon(int(i)), closed=True) for i in m.blocks]
+        first = np.unique(m.blocks, return_index=True)[1]  # a block's own weight, before its loads'
+        moving = [Polygon(blocks.polygon(int(m.blocks[k])), closed=True) for k in first]
         patches = PatchCollection(moving, cmap="viridis", edgecolor="0.2", lw=0.5)
-        patches.set_array(np.asarray(m.dx))
+        patches.set_array(np.asarray(m.dx)[first])
         patches.set_clim(min(0.0, float(np.min(m.dx))), 1.0)
         ax.add_collection(patches)
         rects = blocks.bounds
@@ -102,7 +103,8 @@ def plot_displaced_shape(ax: Any, model: Any, assessment: Assessment) -> None:
         ax.set_ylabel("y [m]")
     lin = assessment.linear
     extra = f"\ne* = {lin.mass_fraction:.3f}, M* = {lin.participating_mass:.4g} kg" if lin is not None else ""
-    count = f"{len(m.blocks)} block{'s' if len(m.blocks) > 1 else ''}"
+    moved = np.unique(m.blocks).size
+    count = f"{moved} block{'s' if moved > 1 else ''}"
     ax.set_title(f"displaced shape used for M* ({count}){extra}", fontsize=10)
 
 

@@ -5,7 +5,7 @@ and [reference], with their key lists. :mod:`.reader` reads a wall in the plane 
 
 from __future__ import annotations
 
-from typing import Any, Dict, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 from .. import _core
 from .mapping import CORE_DEFAULTS, EXPLICIT_OPTIONS, METHODS, AnalysisParameters
@@ -127,3 +127,26 @@ def _reference(table: Optional[_Table], default_methods: Tuple[str, ...] = METHO
         "source": table.string("source", ""),
         "methods": tuple(methods),
     }
+
+
+#: The keys of a load of [[loads.carried]].
+CARRIED_KEYS = ("block", "point", "weight")
+
+
+def _carried(table: _Table, dimension: int) -> Optional[List[Tuple[int, List[float], float]]]:
+    """[[loads.carried]]: the loads carried by wall blocks, each (block, point, weight): the block's 0-based index,
+    the point [m] (``dimension`` coordinates) and the weight [N]; None when the key is left out. The core checks
+    the block and the point against the wall."""
+    items = table.array("carried", required=False)
+    if items is None:
+        return None
+    loads = []
+    for k, item in enumerate(items):
+        if not isinstance(item, dict):
+            raise table.error(f"{table.where('carried')}[{k}]: expected a table with keys {', '.join(CARRIED_KEYS)} "
+                              f"([[loads.carried]]), {_got(item)}", f"{table.where('carried')}[{k}]")
+        load = _Table(item, f"{table.where('carried')}[{k}]", table.source, CARRIED_KEYS)
+        coordinates = "[x, y]" if dimension == 2 else "[x, y, z]"
+        point = load.numbers(load.where("point"), load.array("point"), dimension, f" {coordinates}", unit="length")
+        loads.append((load.integer("block", minimum=0), point, load.number("weight", check=_non_negative, unit="force")))
+    return loads

@@ -17,7 +17,7 @@ import copy
 import re
 from dataclasses import dataclass, field, fields, replace
 from types import MappingProxyType
-from typing import Any, Callable, ClassVar, Dict, Iterator, List, Mapping, MutableMapping, Optional, Sequence, Union
+from typing import Any, Callable, ClassVar, Dict, Iterator, List, Mapping, MutableMapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -83,7 +83,8 @@ class ModelParameters:
     (:data:`Blocks`); the others are those the case gives, None when it leaves them out (the core's default; for
     top_rotation: no top beam; for joints: the default law everywhere; for supports: none): thickness [m], density
     [kg/m3], base, top_rotation, top_force [N], joints, gravity [m/s2], live, top_vertical, supports (polygons, each
-    an array of vertices (x, y) in m: fixed blocks).
+    an array of vertices (x, y) in m: fixed blocks), carried (the loads carried by wall blocks: (block, [x, y] m,
+    weight N)).
     """
 
     dimension: ClassVar[int] = 2
@@ -99,6 +100,7 @@ class ModelParameters:
     live: Optional[str] = None
     top_vertical: Optional[str] = None
     supports: Optional[List[Any]] = None
+    carried: Optional[List[Tuple[int, List[float], float]]] = None
 
     def arguments(self) -> Dict[str, Any]:
         """The keyword arguments of ``Model``: blocks and the parameters given."""

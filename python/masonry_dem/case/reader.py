@@ -28,6 +28,7 @@ from .common import (
     REFERENCE_KEYS,
     _analysis,
     _base,
+    _carried,
     _joints,
     _reference,
 )
@@ -423,9 +424,9 @@ def _top_beam(top: _Table) -> Dict[str, Any]:
 
 def _loads(top: _Table, beam: bool) -> Dict[str, Any]:
     """[loads]: gravity and the live load (None: left out); ``beam``: whether the case has a top beam."""
-    table = top.table("loads", ("gravity", "live", "direction"))
+    table = top.table("loads", ("gravity", "live", "direction", "carried"))
     if table is None:
-        return dict(gravity=None, live=None)
+        return dict(gravity=None, live=None, carried=None)
     gravity = table.number("gravity", None, _non_negative, unit="acceleration")
     live = table.string("live", None, ("horizontal_weight", "top_horizontal"))
     direction = table.number("direction", None)
@@ -435,7 +436,7 @@ def _loads(top: _Table, beam: bool) -> Dict[str, Any]:
                                            "or corner)")
     if live == "top_horizontal" and not beam:
         raise table.key_error("live", '"top_horizontal" pushes the top beam: add a [top] table')
-    return dict(gravity=gravity, live=live)
+    return dict(gravity=gravity, live=live, carried=_carried(table, 2))
 
 
 def _ground_motion(table: Optional[_Table], gravity: float, base_dir: Optional[PathLike]) -> Optional[GroundMotionParameters]:

@@ -24,7 +24,7 @@ import numpy as np
 
 from .. import _core
 from .._core import InputError, MasonryError
-from ..case.common import REFERENCE_KEYS, _analysis, _base, _joints, _reference
+from ..case.common import REFERENCE_KEYS, _analysis, _base, _carried, _joints, _reference
 from ..case.mapping import AnalysisParameters, Case
 from ..case.table import _got, _non_negative, _positive, _quote, _Table
 from .model import (
@@ -187,7 +187,7 @@ def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any
     beam = _top_beam(top)
     joints = _joints(top)
     _dry_joints(top, joints)
-    gravity, live, direction = _loads(top)
+    gravity, live, direction, carried = _loads(top)
     method, analysis = _analysis(top, default_method="limit")
     if method not in METHODS_3D:
         raise top.error(f'analysis.method = "{method}": {IN_3D} (this case is 3D: [geometry] {kind})',
@@ -204,7 +204,7 @@ def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any
             raise table.key_error("methods", f"{_quote(others[0])}: {IN_3D}")
     boxes = generate_boxes(kind, geometry, top.source)
     model = ModelParameters3D(boxes=boxes, density=density, base=base, top=beam, joints=joints, gravity=gravity,
-                              live=live, direction=direction)
+                              live=live, direction=direction, carried=carried)
     assert isinstance(analysis, AnalysisParameters)
     return Case(title=title, model=model, analysis=analysis, method=method, source=top.source, reference=reference)
 
@@ -236,10 +236,11 @@ def _dry_joints(top: _Table, joints: Optional[Dict[str, Dict[str, float]]]) -> N
 
 
 def _loads(top: _Table) -> Any:
-    """[loads] of a 3D wall: gravity, live ("horizontal_weight" only) and direction [deg] (None: left out)."""
-    table = top.table("loads", ("gravity", "live", "direction"))
+    """[loads] of a 3D wall: gravity, live ("horizontal_weight" only), direction [deg] and the carried loads (None:
+    left out)."""
+    table = top.table("loads", ("gravity", "live", "direction", "carried"))
     if table is None:
-        return None, None, None
+        return None, None, None, None
     gravity = table.number("gravity", None, _non_negative, unit="acceleration")
     live = table.string("live", None, ("horizontal_weight", "top_horizontal"))
     if live == "top_horizontal":
@@ -248,4 +249,4 @@ def _loads(top: _Table) -> Any:
     direction = table.number("direction", None)
     if direction is not None and not math.isfinite(direction):  # pragma: no cover - number() refuses it
         raise table.key_error("direction", f"expected a finite angle [deg], got {direction}")
-    return gravity, live, direction
+    return gravity, live, direction, _carried(table, 3)

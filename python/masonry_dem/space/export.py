@@ -26,7 +26,7 @@ from typing import Any, Iterable, Tuple, Union
 import numpy as np
 
 from .._vtk import FAMILY_CODES, write_meshes
-from .report import box_corners, corner_motion
+from .report import box_corners, corner_motion, dof_points
 
 __all__ = ["block_mesh", "interface_mesh", "write_vtk"]
 
@@ -46,12 +46,13 @@ def block_mesh(model: Any, results: Any) -> Any:
     boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
     n = len(boxes)
     corners = box_corners(boxes)  # (n, 8, 3), VTK's order of a hexahedron
-    r = corners - (0.5 * (boxes[:, :3] + boxes[:, 3:]))[:, None, :]
+    centroids = dof_points(model)  # where the blocks' dofs are
+    r = corners - centroids[:, None, :]
     disp = _rows(results.displacements, n, 6)
     mech = _rows(results.mechanism, n, 6)
     point_mech = mech[:, None, :3] + np.cross(mech[:, None, 3:], r)
     point_disp = disp[:, None, :3] + np.cross(disp[:, None, 3:], r)
-    motion = corner_motion(boxes, np.nan_to_num(mech))
+    motion = corner_motion(boxes, np.nan_to_num(mech), centroids)
     peak = float(motion.max()) if n else 0.0
     kind = np.zeros(n, dtype=np.int32)
     if model.base_index is not None:

@@ -17,7 +17,7 @@ from __future__ import annotations
 import inspect
 from dataclasses import dataclass, fields
 from types import MappingProxyType
-from typing import Any, ClassVar, Dict, Mapping, Optional
+from typing import Any, ClassVar, Dict, List, Mapping, Optional, Tuple
 
 import numpy as np
 
@@ -93,7 +93,7 @@ class ModelParameters3D:
     ``boxes`` is an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] (m); the others are those the case gives,
     None when it leaves them out (the core's default, :data:`CORE_DEFAULTS_3D`; for top: no top beam; for
     joints: the default law everywhere): density [kg/m3], base, top (the top beam's height [m]), joints, gravity
-    [m/s2], live, direction [deg].
+    [m/s2], live, direction [deg], carried (the loads carried by wall blocks: (block, [x, y, z] m, weight N)).
     """
 
     dimension: ClassVar[int] = 3
@@ -106,6 +106,7 @@ class ModelParameters3D:
     gravity: Optional[float] = None
     live: Optional[str] = None
     direction: Optional[float] = None
+    carried: Optional[List[Tuple[int, List[float], float]]] = None
 
     def arguments(self) -> Dict[str, Any]:
         """The keyword arguments of ``Model3D``: boxes and the parameters given."""

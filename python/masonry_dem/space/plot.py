@@ -29,7 +29,7 @@ from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 from .._core import InputError
 from ..plot.canvas import _finish, _new_figure
 from ..report import format_multiplier
-from .report import box_corners, corner_motion, direction_text, moved_corners
+from .report import box_corners, corner_motion, direction_text, dof_points, moved_corners
 
 __all__ = ["MECHANISM_FRACTION_3D", "MOTION_COLORMAP", "plot_mechanism_3d", "mechanism_figure"]
 
@@ -51,7 +51,7 @@ def _mechanism(model: Any, results: Any) -> Tuple[np.ndarray, np.ndarray, float]
     mech = np.asarray(results.mechanism, dtype=np.float64)
     if mech.shape != (len(boxes), 6) or not np.all(np.isfinite(mech)):
         mech = np.zeros((len(boxes), 6))
-    motion = corner_motion(boxes, mech)
+    motion = corner_motion(boxes, mech, dof_points(model))
     base = model.base_index
     if base is not None:
         motion[int(base)] = 0.0
@@ -80,7 +80,7 @@ def plot_mechanism_3d(ax: Any, model: Any, results: Any, scale: Optional[float] 
         scale = MECHANISM_FRACTION_3D * height / peak if peak > 0 else 0.0
     base = None if model.base_index is None else int(model.base_index)
     at_rest = box_corners(boxes)
-    moved = moved_corners(boxes, mech, scale)
+    moved = moved_corners(boxes, mech, scale, dof_points(model))
 
     # the wall at rest: its blocks' edges, faint
     edges = [at_rest[i][[p, q]] for i in range(len(boxes)) if i != base for p, q in _EDGES]

@@ -13,7 +13,7 @@ import numpy as np
 
 from .._mechanism import CRACK_TOLERANCE, MOVING_FRACTION, connected_parts as _connected_parts, mechanism_text
 
-__all__ = ["box_corners", "corner_motion", "contact_motion", "moved_corners", "contact_jumps", "describe_mechanism",
+__all__ = ["box_corners", "corner_motion", "dof_points", "contact_motion", "moved_corners", "contact_jumps", "describe_mechanism",
            "direction_text"]
 
 
@@ -28,15 +28,26 @@ def box_corners(boxes: np.ndarray) -> np.ndarray:
     return np.stack([xs, ys, zs], axis=-1)
 
 
-def _centroids(boxes: np.ndarray) -> np.ndarray:
+def _centroids(boxes: np.ndarray, centroids: Any = None) -> np.ndarray:
+    """(n, 3) the points where the blocks' dofs are [m]: ``centroids`` (a model's, which a block's carried loads
+    move off its box's centre) when given, else the boxes' centres."""
+    if centroids is not None:
+        return np.asarray(centroids, dtype=np.float64).reshape(-1, 3)
     b = np.asarray(boxes, dtype=np.float64).reshape(-1, 6)
     return 0.5 * (b[:, :3] + b[:, 3:])
 
 
-def corner_motion(boxes: np.ndarray, motion: np.ndarray) -> np.ndarray:
-    """(n,) largest corner motion [m] of each box for the small motion (ux, uy, uz, rx, ry, rz) at its centroid."""
+def dof_points(model: Any) -> np.ndarray:
+    """(n_all, 3) where each block's dofs are [m]: ``model.centroids`` (its centre of mass, moved off the box's
+    centre by the loads it carries), else the boxes' centres."""
+    return _centroids(model.boxes, getattr(model, "centroids", None))
+
+
+def corner_motion(boxes: np.ndarray, motion: np.ndarray, centroids: Any = None) -> np.ndarray:
+    """(n,) largest corner motion [m] of each box for the small motion (ux, uy, uz, rx, ry, rz) at its centroid
+    (``centroids``, the model's, or the boxes' centres)."""
     corners = box_corners(boxes)
-    r = corners - _centroids(boxes)[:, None, :]
+    r = corners - _centroids(boxes, centroids)[:, None, :]
     m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
     u = m[:, None, :3] + np.cross(m[:, None, 3:], r)
     return np.linalg.norm(u, axis=-1).max(axis=1)  # type: ignore[no-any-return]
@@ -48,7 +59,7 @@ def contact_motion(model: Any, motion: np.ndarray) -> np.ndarray:
     :func:`corner_motion`, a block's far corners do not count: a tall top beam turning with the wall moves its top
     corners far more than it moves where it rests on the wall, and would make the wall's own motion look like rest."""
     boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
-    centroid = _centroids(boxes)
+    centroid = dof_points(model)
     m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
     pairs = np.asarray(model.interface_blocks, dtype=np.int64).reshape(-1, 2)
     corners = np.asarray(model.interface_corners, dtype=np.float64).reshape(-1, 4, 3)
@@ -65,7 +76,7 @@ def contact_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
     slip [m] (the jump along the contact's plane), and the largest and the smallest normal gap [m] (positive
     opens). With the normal n from block a to block b, the jump at a corner p is u_b(p) - u_a(p)."""
     boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
-    centroid = _centroids(boxes)
+    centroid = dof_points(model)
     m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
     pairs = np.asarray(model.interface_blocks, dtype=np.int64).reshape(-1, 2)
     corners = np.asarray(model.interface_corners, dtype=np.float64).reshape(-1, 4, 3)
@@ -91,11 +102,12 @@ def _rotation(w: np.ndarray) -> np.ndarray:
     return np.eye(3) + math.sin(angle) * kx + (1.0 - math.cos(angle)) * kx @ kx  # type: ignore[no-any-return]
 
 
-def moved_corners(boxes: np.ndarray, motion: np.ndarray, scale: float) -> np.ndarray:
+def moved_corners(boxes: np.ndarray, motion: np.ndarray, scale: float, centroids: Any = None) -> np.ndarray:
     """(n, 8, 3) corners [m] of the boxes moved by ``scale`` times (ux, uy, uz) and turned by ``scale`` times the
-    rotation (rx, ry, rz) about their centroids, the rotation applied exactly (the boxes keep their shape)."""
+    rotation (rx, ry, rz) about their centroids (``centroids``, the model's, or the boxes' centres), the rotation
+    applied exactly (the boxes keep their shape)."""
     corners = box_corners(boxes)
-    centroid = _centroids(boxes)
+    centroid = _centroids(boxes, centroids)
     m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
     out = np.empty_like(corners)
     for i in range(len(corners)):
@@ -123,13 +135,13 @@ def _axis_words(axis: np.ndarray) -> str:
     return "(" + ", ".join(f"{v:.2f}" for v in axis) + ")"
 
 
-def _describe_part(boxes: np.ndarray, motion: np.ndarray, part: Sequence[int]) -> str:
+def _describe_part(boxes: np.ndarray, motion: np.ndarray, part: Sequence[int], centroids: np.ndarray) -> str:
     """The volume-weighted rigid motion of one part: "sliding towards +y (90°)", or "turning about an axis along x
     through y = 0.10, z = 0.00 m"."""
     b = np.asarray(boxes, dtype=np.float64)
     volume = np.prod(b[part, 3:] - b[part, :3], axis=1)
-    cents = _centroids(b[part])
-    r = (volume[:, None] * cents).sum(axis=0) / volume.sum()
+    r = (volume[:, None] * _centroids(b[part])).sum(axis=0) / volume.sum()
+    cents = centroids[part]  # where the motions are: the dofs
     m = np.asarray(motion, dtype=np.float64)[part]
     # each block's motion carried to r: v + w x (r - c)
     v = m[:, :3] + np.cross(m[:, 3:], r - cents)
@@ -180,7 +192,7 @@ def describe_mechanism(model: Any, results: Any) -> str:
         return "none (no collapse)"
     top = model.top_index
     bodies = list(range(n)) + ([int(top)] if top is not None else [])
-    cm = corner_motion(boxes, mech)
+    cm = corner_motion(boxes, mech, dof_points(model))
     if top is not None:  # the top beam's motion where it rests on the wall: its top corners may be far above it
         cm[int(top)] = contact_motion(model, mech)[int(top)]
     peak = float(max(cm[i] for i in bodies))
@@ -205,5 +217,5 @@ def describe_mechanism(model: Any, results: Any) -> str:
     parts = _connected_parts(moving, np.asarray(model.interface_blocks).reshape(-1, 2), list(cracked))
     parts.sort(key=len, reverse=True)
     crack = ((opens, "open"), (slips, "slide"), (rocks, "rock"))
-    describe = lambda part: _describe_part(boxes, mech, part)  # noqa: E731
+    describe = lambda part: _describe_part(boxes, mech, part, dof_points(model))  # noqa: E731
     return mechanism_text(n_moving, n, beam, parts, describe, crack, families, "contact")
