@@ -171,6 +171,10 @@ class Model:
     gravity [m/s2]; live: "horizontal_weight" (lambda * W_i on every block towards +x) or
         "top_horizontal" (lambda newtons on the top beam towards +x); +x: gravity_direction
         turned by +90 degrees.
+    carried: loads carried by wall blocks (a floor's reaction), a list of (block, [x, y], weight):
+        a weight [N] along gravity resting at a point [m] of the block (0-based), whose mass
+        weight / gravity moves with it: it takes the live load in proportion to its weight, and
+        the block's centroid (where its dofs are), mass and inertia are those of block and loads.
     Raises InputError naming the key, block or interface on bad input.
     """
 
@@ -188,7 +192,11 @@ class Model:
         top_vertical: Optional[Literal["free", "held"]] = None,
         supports: Optional[Sequence[npt.ArrayLike]] = None,
         gravity_direction: Optional[Sequence[float]] = None,
+        carried: Optional[Sequence[tuple[int, Sequence[float], float]]] = None,
     ) -> None: ...
+    @property
+    def carried(self) -> list[tuple[int, list[float], float]]:
+        """The loads carried by wall blocks: a list of (block, [x, y], weight [N])."""
     @property
     def live(self) -> Literal["horizontal_weight", "top_horizontal"]:
         """The live load: "horizontal_weight" (lambda times each block's weight) or "top_horizontal" (lambda newtons on the top beam)."""
@@ -222,7 +230,7 @@ class Model:
         (the leftmost of the lowest), in the order of rects: wall blocks, supports, base, top beam."""
     @property
     def centroids(self) -> FloatArray:
-        """(n_all, 2) centroid of every block [m], where its dofs are."""
+        """(n_all, 2) centroid of every block [m], where its dofs are: its centre of mass (the polygon's, moved by the loads it carries)."""
     @property
     def block_kinds(self) -> list[Literal["wall", "support", "base", "top"]]:
         """What each block is: "wall", "support", "base" or "top"."""
@@ -234,7 +242,7 @@ class Model:
         """[gx, gy]: the direction of gravity, a unit vector."""
     @property
     def weights(self) -> FloatArray:
-        """(n_all,) weight of each block [N] (0 for supports, base and top beam)."""
+        """(n_all,) weight of each block [N], with the loads it carries (0 for supports, base and top beam)."""
     @property
     def interface_blocks(self) -> IntArray:
         """(m, 2) block indices (a, b) of each interface; the normal points from a to b."""
@@ -418,6 +426,9 @@ class Model3D:
     gravity [m/s2], along -z (default 9.81); live: "horizontal_weight" (the default: lambda * W_i on every block
         that weighs, horizontal) or "none"; direction: the live load's direction in plan [deg], from +x towards +y
         (default 0: towards +x; 90 pushes a facade along x out of its plane, towards +y).
+    carried: loads carried by wall blocks (a floor's reaction), a list of (block, [x, y, z], weight): a weight [N]
+        along -z resting at a point [m] of the box (0-based), whose mass weight / gravity moves with it, as Model's.
+        A time history refuses a load off the box's axes through its centroid (its products of inertia).
     Block indices: the boxes in the order given, then the base, then the top beam.
     Raises InputError naming the key or block on bad input (two overlapping boxes are both named)."""
 
@@ -431,10 +442,14 @@ class Model3D:
         gravity: Optional[float] = None,
         live: Optional[Literal["horizontal_weight", "none"]] = None,
         direction: Optional[float] = None,
+        carried: Optional[Sequence[tuple[int, Sequence[float], float]]] = None,
     ) -> None: ...
     @property
     def dimension(self) -> Literal[3]:
         """3: a wall of boxes in 3D (Model's is 2)."""
+    @property
+    def carried(self) -> list[tuple[int, list[float], float]]:
+        """The loads carried by wall blocks: a list of (block, [x, y, z], weight [N])."""
     @property
     def live(self) -> Literal["horizontal_weight", "none"]:
         """The live load: "horizontal_weight" (lambda times each block's weight, horizontal, along direction) or "none"."""
@@ -461,13 +476,13 @@ class Model3D:
         """(n_all, 6) boxes [x0, y0, z0, x1, y1, z1] of all blocks [m], wall blocks first, then base, then top beam."""
     @property
     def centroids(self) -> FloatArray:
-        """(n_all, 3) centroid of each block [m] (where its dofs are and its moments are taken)."""
+        """(n_all, 3) centroid of each block [m] (where its dofs are and its moments are taken): its centre of mass (the box's centre, moved by the loads it carries)."""
     @property
     def mass(self) -> FloatArray:
-        """(n_all,) mass of each block [kg] (the base's too, though it is fixed)."""
+        """(n_all,) mass of each block [kg], with the loads it carries (the base's too, though it is fixed)."""
     @property
     def weights(self) -> FloatArray:
-        """(n_all,) weight of each block [N] (the wall's and the top beam's; 0 for the base)."""
+        """(n_all,) weight of each block [N], with the loads it carries (the wall's and the top beam's; 0 for the base)."""
     @property
     def interface_blocks(self) -> IntArray:
         """(m, 2) block indices (a, b) of each interface; the normal points from a to b."""

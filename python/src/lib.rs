@@ -112,6 +112,7 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("density", spec.density)?;
     d.set_item("base", spec.base)?;
     d.set_item("supports", py.None())?;
+    d.set_item("carried", py.None())?;
     d.set_item("gravity_direction", spec.gravity_direction.to_vec())?;
     d.set_item("top_rotation", py.None())?;
     d.set_item("top_force", TopBeam::DEFAULT_FORCE.to_vec())?;
@@ -142,6 +143,7 @@ fn defaults_3d(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     };
     d.set_item("live", live)?;
     d.set_item("direction", direction)?;
+    d.set_item("carried", py.None())?;
     Ok(d)
 }
 

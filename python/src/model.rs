@@ -114,7 +114,7 @@ impl PyModel {
         Arc::make_mut(&mut self.inner).fix(block, dof, value).map_err(to_py)
     }
 
-    /// The loads carried by wall blocks: a list of (block, (x, y), weight [N]).
+    /// The loads carried by wall blocks: a list of (block, [x, y], weight [N]).
     #[getter]
     fn carried(&self) -> Vec<(usize, [f64; 2], f64)> {
         carried_to_py(self.inner.carried())
@@ -168,7 +168,7 @@ impl PyModel {
     fn polygons<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray2<f64>>> {
         polygons_to_py(py, self.inner.polygons())
     }
-    /// (n_all, 2) centroid of every block [m], where its dofs are.
+    /// (n_all, 2) centroid of every block [m], where its dofs are: its centre of mass (the polygon's, moved by the loads it carries).
     #[getter]
     fn centroids<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         rows_of(py, self.inner.centroids())
@@ -188,7 +188,7 @@ impl PyModel {
     fn gravity_direction(&self) -> [f64; 2] {
         self.inner.gravity_direction()
     }
-    /// (n_all,) weight of each block [N] (0 for supports, base and top beam).
+    /// (n_all,) weight of each block [N], with the loads it carries (0 for supports, base and top beam).
     #[getter]
     fn weights<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.weight().to_vec().into_pyarray(py)

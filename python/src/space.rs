@@ -274,7 +274,7 @@ impl PyModel3D {
     fn dimension(&self) -> usize {
         3
     }
-    /// The loads carried by wall blocks: a list of (block, (x, y, z), weight [N]).
+    /// The loads carried by wall blocks: a list of (block, [x, y, z], weight [N]).
     #[getter]
     fn carried(&self) -> Vec<(usize, [f64; 3], f64)> {
         carried_to_py(self.inner.carried())
@@ -326,17 +326,17 @@ impl PyModel3D {
     fn boxes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         boxes_to_py(py, self.inner.boxes())
     }
-    /// (n_all, 3) centroid of each block [m] (where its dofs are and its moments are taken).
+    /// (n_all, 3) centroid of each block [m] (where its dofs are and its moments are taken): its centre of mass (the box's centre, moved by the loads it carries).
     #[getter]
     fn centroids<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         rows_of(py, self.inner.centroids())
     }
-    /// (n_all,) mass of each block [kg] (the base's too, though it is fixed).
+    /// (n_all,) mass of each block [kg], with the loads it carries (the base's too, though it is fixed).
     #[getter]
     fn mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.mass().to_vec().into_pyarray(py)
     }
-    /// (n_all,) weight of each block [N] (the wall's and the top beam's; 0 for the base).
+    /// (n_all,) weight of each block [N], with the loads it carries (the wall's and the top beam's; 0 for the base).
     #[getter]
     fn weights<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let f = self.inner.dead_load();

@@ -50,6 +50,7 @@ impl Model {
         for (i, m) in super::lump_carried(&spec.carried, spec.gravity, &mut mass, &mut centroids) {
             inertia[i] += m[0][0] + m[1][1];
         }
+        check_masses(&mass, &inertia, |i| frame.name(i))?;
         for (k, l) in spec.carried.iter().enumerate() {
             weight[l.block] += l.weight;
             if !weight[l.block].is_finite() {

@@ -7,7 +7,8 @@
 //!
 //! Block numbering: wall blocks `0..n_wall` in the order given, then the supports (fixed blocks,
 //! in the order given), then the base (if any), then the top beam (if any). Each block has 3 dof
-//! at its centroid: u1, u2 \[m\], phi \[rad\]; the global dof index of dof k of block i is `3 i + k`.
+//! at its centroid (its centre of mass: the polygon's, moved by the loads it carries, if any):
+//! u1, u2 \[m\], phi \[rad\]; the global dof index of dof k of block i is `3 i + k`.
 //!
 //! ```
 //! use masonry_dem::geometry::Rect;

@@ -268,7 +268,7 @@ def test_unknown_key_suggests(tmp_path: Path) -> None:
     message = input_error(tmp_path, MINIMAL + "[joints.bed]\nfrictoin = 0.6\n")
     assert message.endswith("unknown key 'frictoin' in [joints.bed] (did you mean 'friction'?)")
     message = input_error(tmp_path, MINIMAL + "[loads]\nzzz = 1\n")
-    assert "(allowed: gravity, live, direction)" in message
+    assert "(allowed: gravity, live, direction, carried)" in message
 
 
 # --------------------------------------------------------------------------------------------------

@@ -320,9 +320,9 @@ class Case:
     @property
     def model_kwargs(self) -> MutableMapping[str, Any]:
         """The keyword arguments of :class:`masonry_dem.Model` as a dict: blocks, thickness, density, base,
-        top_rotation, top_force, joints, gravity, live, top_vertical, supports (the core's default for those the
-        case leaves out); of a 3D wall, those of :class:`masonry_dem.Model3D` (boxes, density, base, top, joints,
-        gravity, live, direction). Setting a key sets that parameter of the case."""
+        top_rotation, top_force, joints, gravity, live, top_vertical, supports, carried (the core's default for
+        those the case leaves out); of a 3D wall, those of :class:`masonry_dem.Model3D` (boxes, density, base, top,
+        joints, gravity, live, direction, carried). Setting a key sets that parameter of the case."""
         names = [f.name for f in fields(self.model)]
         if self.dimension == 3:
             return _Arguments(self, "model", names, shown=names, defaults=CORE_DEFAULTS_3D)
