@@ -2,10 +2,12 @@
 ``[[loads.carried]]``): the facade of the shared benchmark's hand check (section 4: a wall of 100 kN, t = 0.5 m,
 h = 6 m, with a floor's 20 kN at its top 0.25 m from the hinge) turns at alpha0 = 30 / 420 by limit analysis in
 the plane and in 3D, and its linear kinematic check takes the floor as a weight of its own at its point: M* g =
-420^2 / 1620 kN, e* = M* g / 120 kN, a0* = alpha0 g / (e* FC), each to 1e-9; the keys' refusals name the key."""
+420^2 / 1620 kN, e* = M* g / 120 kN, a0* = alpha0 g / (e* FC), each to 1e-9, and its nonlinear check's theta0 where
+the weights' centroid stands over the hinge; the keys' refusals name the key."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
 
@@ -62,6 +64,15 @@ def test_the_facade_with_its_floor_in_the_plane() -> None:
     # the centroid, where the dofs are, is the centre of mass of wall and floor
     assert close(float(model.centroids[0][1]), (100 * 3.0 + 20 * 6.0) / 120, 1e-12)
     _check_hand_values(model)
+
+
+def test_the_nonlinear_check_turns_the_floor_with_the_wall() -> None:
+    # the weights' centroid G of wall and floor stands over the hinge (0.5, 0) at theta0 = atan(0.25 / 3.5): both
+    # 0.25 m from it, at heights 3 and 6 m, G at (100 x 3 + 20 x 6) / 120 = 3.5 m
+    model = facade_2d()
+    site = sa.AssessmentParameters(spectrum=sa.ec8_spectrum(0.25 * 9.80665, "B"))
+    check = sa.nonlinear_check(model, model.solve_limit(tolerance=1e-11), site, gravity=G)
+    assert close(check.theta0, math.atan2(0.25, 3.5), 1e-9), check.theta0
 
 
 @pytest.mark.parametrize("y", [0.5, 0.2])
