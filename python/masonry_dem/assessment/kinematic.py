@@ -6,8 +6,8 @@ acceleration that activates the mechanism, the demand and the verdict (:func:`li
 Weights are lumped at each block's centroid: a wall of many courses that turns as one body gives the "sliced" e*
 of its blocks (a bare rectangular wall turning about its toe: e* -> 3/4 as the courses grow thin, against 1 for
 the same wall lumped at its own centroid). A load a block carries (``Model(carried=...)``, ``[[loads.carried]]``) is
-a weight of its own at its point, moving with its block. The blocks that do not move in the mechanism are left out; a block moves
-when its largest corner motion exceeds :data:`masonry_dem._mechanism.MOVING_FRACTION` of the largest (the rule of
+a weight of its own at its point, moving with its block. The blocks that do not move in the mechanism are left out;
+a block moves when its largest corner motion exceeds :data:`masonry_dem._mechanism.MOVING_FRACTION` of the largest (the rule of
 the mechanism's description, ``masonry-dem run``).
 
 The multiplier alpha0 is the analysis's collapse multiplier of the live load "horizontal_weight" (lambda times

@@ -148,5 +148,6 @@ def _carried(table: _Table, dimension: int) -> Optional[List[Tuple[int, List[flo
         load = _Table(item, f"{table.where('carried')}[{k}]", table.source, CARRIED_KEYS)
         coordinates = "[x, y]" if dimension == 2 else "[x, y, z]"
         point = load.numbers(load.where("point"), load.array("point"), dimension, f" {coordinates}", unit="length")
-        loads.append((load.integer("block", minimum=0), point, load.number("weight", check=_non_negative, unit="force")))
+        weight = load.number("weight", check=_non_negative, unit="force")
+        loads.append((load.integer("block", minimum=0), point, weight))
     return loads

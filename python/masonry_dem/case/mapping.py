@@ -17,7 +17,8 @@ import copy
 import re
 from dataclasses import dataclass, field, fields, replace
 from types import MappingProxyType
-from typing import Any, Callable, ClassVar, Dict, Iterator, List, Mapping, MutableMapping, Optional, Sequence, Tuple, Union
+from typing import (Any, Callable, ClassVar, Dict, Iterator, List, Mapping, MutableMapping, Optional, Sequence, Tuple,
+                    Union)
 
 import numpy as np
 

@@ -13,8 +13,8 @@ import numpy as np
 
 from .._mechanism import CRACK_TOLERANCE, MOVING_FRACTION, connected_parts as _connected_parts, mechanism_text
 
-__all__ = ["box_corners", "corner_motion", "dof_points", "contact_motion", "moved_corners", "contact_jumps", "describe_mechanism",
-           "direction_text"]
+__all__ = ["box_corners", "corner_motion", "dof_points", "contact_motion", "moved_corners", "contact_jumps",
+           "describe_mechanism", "direction_text"]
 
 
 def box_corners(boxes: np.ndarray) -> np.ndarray:
