@@ -215,7 +215,7 @@ fn least_friction_of_a_thick_ring(angles: &[f64]) -> f64 {
 /// no ring from t/R = 0.15 to 1 stands, just above it the ring of t/R = 0.2 does.
 #[test]
 fn gilberts_ring_has_no_equilibrium_below_its_least_friction() {
-    let continuous: Vec<f64> = (1..=200_000).map(|k| std::f64::consts::FRAC_PI_2 * k as f64 / 200_000.0).collect();
+    let continuous: Vec<f64> = (1..=20_000).map(|k| std::f64::consts::FRAC_PI_2 * k as f64 / 20_000.0).collect();
     let cocchetti_rizzi = least_friction_of_a_thick_ring(&continuous);
     assert!((cocchetti_rizzi - 0.309215).abs() <= 1e-6, "{cocchetti_rizzi}");
     let joints: Vec<f64> = (0..14).map(|k| (k as f64 + 0.5) * std::f64::consts::PI / 27.0).collect();
