@@ -245,7 +245,7 @@ def _assess(args: Any) -> int:
     if interrupted:
         _print(report)
         return _error("interrupted (nothing checked, nothing written)", EXIT_INTERRUPTED)
-    has_curve = method != "limit" and case.dimension == 2 and len(results.curve_displacement) > 1
+    has_curve = method != "limit" and len(results.curve_displacement) > 1
     if results.status != "collapse" and not has_curve:
         _print(report)
         return _error(f"no collapse mechanism to check ({results.status}): {results.error or 'no collapse'}",
