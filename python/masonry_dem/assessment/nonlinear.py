@@ -104,44 +104,63 @@ class Chain:
     parent: np.ndarray
     rates: np.ndarray
 
-    def motion(self, t: Any) -> Tuple[np.ndarray, np.ndarray]:
-        """(positions, velocities), each (len(t), k, 2) [m], [m per unit of t]: the weights' points at the path's
-        parameters ``t`` (body k turned by rates[k] t about its hinge, which moves with its parent) and their
-        derivatives along the path."""
-        t = np.atleast_1d(np.asarray(t, dtype=np.float64))
+    def _turn(self, k: int, t: np.ndarray, r: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+        """(R r, w J R r) of arms r (..., 2) of body k turned by rates[k] t, at every t: (len(t), ..., 2)."""
+        c, s = np.cos(self.rates[k] * t), np.sin(self.rates[k] * t)
+        x = np.multiply.outer(c, r[..., 0]) - np.multiply.outer(s, r[..., 1])
+        y = np.multiply.outer(s, r[..., 0]) + np.multiply.outer(c, r[..., 1])
+        return np.stack((x, y), axis=-1), self.rates[k] * np.stack((-y, x), axis=-1)
+
+    def _hinges(self, t: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+        """(where, how fast) each body's hinge is at ``t``: (len(t), m, 2) each."""
         m = len(self.hinges)
-        origin = np.zeros((len(t), m, 2))  # where each hinge is at t
-        speed = np.zeros((len(t), m, 2))  # and how fast it moves
-
-        def rotate(k: int, r: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
-            """(R r, w J R r) of arms r (..., 2) of body k, at every t: (len(t), ..., 2)."""
-            c, s = np.cos(self.rates[k] * t), np.sin(self.rates[k] * t)
-            x = np.multiply.outer(c, r[..., 0]) - np.multiply.outer(s, r[..., 1])
-            y = np.multiply.outer(s, r[..., 0]) + np.multiply.outer(c, r[..., 1])
-            return np.stack((x, y), axis=-1), self.rates[k] * np.stack((-y, x), axis=-1)
-
+        origin = np.zeros((len(t), m, 2))
+        speed = np.zeros((len(t), m, 2))
         for k in range(m):
             p = int(self.parent[k])
             if p < 0:
                 origin[:, k] = self.hinges[k]
             else:
-                arm, rate = rotate(p, self.hinges[k] - self.hinges[p])
+                arm, rate = self._turn(p, t, self.hinges[k] - self.hinges[p])
                 origin[:, k] = origin[:, p] + arm
                 speed[:, k] = speed[:, p] + rate
+        return origin, speed
+
+    def motion(self, t: Any) -> Tuple[np.ndarray, np.ndarray]:
+        """(positions, velocities), each (len(t), k, 2) [m], [m per unit of t]: the weights' points at the path's
+        parameters ``t`` (body k turned by rates[k] t about its hinge, which moves with its parent) and their
+        derivatives along the path."""
+        t = np.atleast_1d(np.asarray(t, dtype=np.float64))
+        origin, speed = self._hinges(t)
         positions = np.zeros((len(t), len(self.weights), 2))
         velocities = np.zeros_like(positions)
-        for k in range(m):
+        for k in range(len(self.hinges)):
             mine = np.nonzero(self.body == k)[0]
-            arm, rate = rotate(k, self.points[mine] - self.hinges[k])
+            arm, rate = self._turn(k, t, self.points[mine] - self.hinges[k])
             positions[:, mine] = origin[:, k][:, None, :] + arm
             velocities[:, mine] = speed[:, k][:, None, :] + rate
         return positions, velocities
 
+    def resultant(self, t: Any) -> Tuple[np.ndarray, np.ndarray]:
+        """(sum P_i x_i, sum P_i v_i), each (len(t), 2): the weights' first moments of :meth:`motion`, from each
+        body's weight and first moment about its hinge (no loop over the blocks)."""
+        t = np.atleast_1d(np.asarray(t, dtype=np.float64))
+        origin, speed = self._hinges(t)
+        moment = np.zeros((len(t), 2))
+        rate = np.zeros((len(t), 2))
+        for k in range(len(self.hinges)):
+            mine = self.body == k
+            weight = float(self.weights[mine].sum())
+            arm, turning = self._turn(k, t, self.weights[mine] @ (self.points[mine] - self.hinges[k]))
+            moment += weight * origin[:, k] + arm
+            rate += weight * speed[:, k] + turning
+        return moment, rate
+
     def alpha(self, t: Any) -> np.ndarray:
         """alpha at the path's parameters ``t``: sum P_i dy_i / sum P_i dx_i, virtual work of the horizontal forces
         alpha P_i and the weights at the turned position."""
-        _, v = self.motion(t)
-        return (v[..., 1] @ self.weights) / (v[..., 0] @ self.weights)  # type: ignore[no-any-return]
+        _, v = self.resultant(t)
+        return v[:, 1] / v[:, 0]  # type: ignore[no-any-return]
 
 
 def _boundary_distance(point: np.ndarray, polygon: np.ndarray) -> float:
@@ -295,8 +314,7 @@ def chain_curve(chain: Chain, gravity: float, confidence_factor: float) -> Tuple
     x0 = float(P @ positions0[0, :, 0]) / float(P.sum())
 
     def d_star(t: Any) -> np.ndarray:
-        x, _ = chain.motion(t)
-        return (x[..., 0] @ P / float(P.sum()) - x0) * to_star  # type: ignore[no-any-return]
+        return (chain.resultant(t)[0][:, 0] / float(P.sum()) - x0) * to_star  # type: ignore[no-any-return]
 
     def a_star(t: Any) -> np.ndarray:
         return chain.alpha(t) * gravity / (e_star * confidence_factor)  # type: ignore[no-any-return]
