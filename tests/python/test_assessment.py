@@ -688,6 +688,23 @@ def test_nonlinear_check_of_a_two_body_chain() -> None:
     assert close(one.theta0, math.atan((b / 2) / H_G), 1e-9)
 
 
+def test_nonlinear_check_refuses_a_closed_chain() -> None:
+    # two piers rocking about their toes and a lintel on them that translates, hinged to both: four hinges for three
+    # bodies (a portal's sway), a loop that the check does not follow
+    b, h = 0.3, 1.0
+    model = md.Model([[0.0, 0.0, b, h], [b, 0.0, 2 * b, h], [0.0, h, 2 * b, h + 0.2]], joints=_dry(), gravity=9.81)
+    mech = np.zeros((len(model.weights), 3))
+    mech[0] = [h / 2, b / 2, -1.0]  # about (b, 0): -J (c - p) with c - p = (-b / 2, h / 2)
+    mech[1] = [h / 2, b / 2, -1.0]  # about (2b, 0)
+    mech[2] = [h, 0.0, 0.0]  # the lintel moves as the piers' tops do
+
+    class Portal:
+        status, collapse_multiplier, mechanism = "collapse", 0.2, mech
+
+    with pytest.raises(md.InputError, match="^mechanism: its 3 bodies are held by 4 hinges"):
+        sa.nonlinear_check(model, Portal(), _site(), gravity=9.81)
+
+
 def test_mechanism_at_height_circolare_2019() -> None:
     # the 2019 Circolare (C8.7.1.2.1.7 with C7.2.7, C7.2.8, C7.2.10, C7.3.2): the demand is a_Z / q with
     # a_Z = S_e(T1, xi_1) gamma psi sqrt(1 + 0.0004 xi_1^2), xi_1 in percent, the ground's spectrum at xi_1
