@@ -38,8 +38,9 @@ class Assessment:
         mechanism: the mechanism's moving blocks, weights and virtual displacements (None without a collapse).
         linear: the linear kinematic check (None without a collapse).
         n2: the N2 method on the pushover's curve (None without one: limit analysis).
-        nonlinear: the nonlinear kinematic check (None unless the mechanism is one rigid body turning about a hinge
-            in a wall in the plane); nonlinear_note: why it is None ("" when it is made).
+        nonlinear: the nonlinear kinematic check (None unless the mechanism is rigid bodies turning about hinges, on
+            the ground or on one another, in a wall in the plane); nonlinear_note: why it is None ("" when it is
+            made).
     """
 
     parameters: AssessmentParameters
@@ -59,8 +60,8 @@ class Assessment:
 
 def assess(model: Any, results: Any, parameters: AssessmentParameters, gravity: Optional[float] = None) -> Assessment:
     """The checks that apply to ``results`` of ``model`` (``gravity``: the model's, needed for a wall in the plane):
-    the linear kinematic check of the collapse mechanism, the nonlinear one when the mechanism is one rigid body
-    turning about a hinge, and the N2 method on a pushover's curve.
+    the linear kinematic check of the collapse mechanism, the nonlinear one when the mechanism is rigid bodies
+    turning about hinges, and the N2 method on a pushover's curve.
 
     Raises InputError when neither applies (no collapse and no curve), or what the checks refuse (a mechanism with
     no moving block, a spectrum without T_C for N2, ...), naming it."""
