@@ -438,6 +438,11 @@ def test_case_table_read_with_units_and_defaults(tmp_path: Path) -> None:
     (tmp_path / "site.csv").write_text("0 0.3\n0.5 0.75\n4 0.1\n")
     case = md.load_case(_case(tmp_path, 'spectrum = "site.csv"\nspectrum_units = "g"\nTc = 0.5\n'))
     assert case.assessment.spectrum.code == "file" and close(case.assessment.spectrum.acceleration(0.25), 0.525 * G)
+    # the rule at height, the building's damping and period
+    case = md.load_case(_case(tmp_path, 'spectrum = "ec8"\nag = 2.0\nheight_rule = "circ2019"\n'
+                                        'building_damping = 0.1\nT1 = "500 ms"\n'))
+    p = case.assessment
+    assert (p.height_rule, p.building_damping, p.T1) == ("circ2019", 0.1, 0.5)
     # no table: no assessment
     assert md.load_case(EXAMPLES / "ferris-tinloi-wall2.toml").assessment is None
 
@@ -458,6 +463,7 @@ def test_case_table_read_with_units_and_defaults(tmp_path: Path) -> None:
     ('spectrum = "ec8"\nag = 2.0\nqq = 2\n', "qq", "unknown key"),
     ('spectrum = "ec8"\nag = 2.0\nheight_rule = "circ2008"\n', "height_rule", 'expected one of "circ2009"'),
     ('spectrum = "ec8"\nag = 2.0\nbuilding_damping = 5\n', "building_damping", "0.05 for 5%"),
+    ('spectrum = "ec8"\nag = 2.0\nT1 = "0 s"\n', "T1", "must be > 0"),
 ])
 def test_case_table_refusals_name_the_key(tmp_path: Path, table: str, key: str, words: str) -> None:
     (tmp_path / "site.csv").write_text("0 0.3\n1 0.5\n")
@@ -726,6 +732,11 @@ def test_mechanism_at_height_circolare_2019() -> None:
     new = sa.linear_check(model, results, spectrum, mechanism_height=6.0, building_height=9.0, storeys=3, gravity=g,
                           height_rule="circ2019")
     assert close(new.demand_height, old.demand_height * math.sqrt(1.01)) and math.isnan(old.floor_acceleration)
+    # a period given (from a model of the building) in place of 0.05 H^(3/4): T1 = 0.8 s, on the 1 / T branch
+    given = sa.linear_check(model, results, spectrum, mechanism_height=6.0, building_height=9.0, storeys=3, gravity=g,
+                            height_rule="circ2019", T1=0.8)
+    a_Z = 0.25 * G * 1.2 * 2.5 * 0.5 / 0.8 * (9 / 7) * (6 / 9) * math.sqrt(1.01)
+    assert close(given.T1, 0.8) and close(given.demand_height, a_Z / 2.0)
     # the table names the 2019 clauses; the nonlinear check at height under the 2019 rule is not made, and says so
     params = sa.AssessmentParameters(spectrum=spectrum, mechanism_height=6.0, building_height=9.0, storeys=3,
                                      height_rule="circ2019")

@@ -160,8 +160,8 @@ class LinearCheck:
 def floor_acceleration(spectrum: Spectrum, parameters: AssessmentParameters) -> float:
     """a_Z(Z) [m/s2], the peak acceleration at the mechanism's height of the building's first mode (Circolare 2019
     eqs. C7.2.7, C7.2.8, the first mode only as C7.2.3 allows): S_e(T1, xi_1) |gamma psi(Z)| sqrt(1 + 0.0004 xi_1^2),
-    xi_1 the building's damping in percent, S_e(T1, xi_1) the ground's spectrum at that damping, T1 = 0.05 H^(3/4)
-    (eq. C7.3.2), psi(Z) = Z / H and gamma = 3 N / (2 N + 1) (eq. C7.2.10)."""
+    xi_1 the building's damping in percent, S_e(T1, xi_1) the ground's spectrum at that damping, T1 the given period
+    or 0.05 H^(3/4) (eq. C7.3.2), psi(Z) = Z / H and gamma = 3 N / (2 N + 1) (eq. C7.2.10)."""
     xi = parameters.building_damping
     T1, psi, gamma = parameters.building_period(), parameters.modal_shape(), parameters.participation()
     damped = spectrum.with_damping(xi)
@@ -206,7 +206,7 @@ def linear_check_of(alpha0: float, weights: Any, dx: Any, gravity: float,
 def linear_check(model: Any, results: Any, spectrum: Any, q: float = 2.0, confidence_factor: float = 1.35,
                  mechanism_height: float = 0.0, building_height: Optional[float] = None,
                  storeys: Optional[int] = None, gravity: Optional[float] = None, height_rule: str = "circ2009",
-                 building_damping: float = 0.05) -> LinearCheck:
+                 building_damping: float = 0.05, T1: Optional[float] = None) -> LinearCheck:
     """The linear kinematic check of the collapse mechanism of ``results`` (of ``model``) against ``spectrum`` (a
     :class:`masonry_dem.assessment.Spectrum`, or an :class:`AssessmentParameters` that holds it and the other
     parameters, which are then ignored): alpha0, M*, e*, a0* = alpha0 g / (e* FC), the demand at ground level
@@ -214,7 +214,8 @@ def linear_check(model: Any, results: Any, spectrum: Any, q: float = 2.0, confid
 
     ``gravity`` [m/s2]: the model's gravity, needed for a wall in the plane (its Model does not tell it).
     ``height_rule``: the demand at height by Circolare 617/2009 ("circ2009") or the 2019 Circolare's floor
-    acceleration ("circ2019", with the building's damping ratio ``building_damping``).
+    acceleration ("circ2019", with the building's damping ratio ``building_damping``); ``T1`` [s]: the building's
+    period, by default 0.05 H^(3/4).
     Raises InputError naming what is refused: no collapse, no moving block, q or confidence_factor below 1, a height
     above the building, ..."""
     if isinstance(spectrum, AssessmentParameters):
@@ -222,6 +223,7 @@ def linear_check(model: Any, results: Any, spectrum: Any, q: float = 2.0, confid
     else:
         parameters = AssessmentParameters(spectrum=spectrum, q=q, confidence_factor=confidence_factor,
                                           mechanism_height=mechanism_height, building_height=building_height,
-                                          storeys=storeys, height_rule=height_rule, building_damping=building_damping)
+                                          storeys=storeys, height_rule=height_rule, building_damping=building_damping,
+                                          T1=T1)
     lumped = mechanism_weights(model, results, gravity)
     return linear_check_of(float(results.collapse_multiplier), lumped.weights, lumped.dx, lumped.gravity, parameters)

@@ -23,7 +23,7 @@ PathLike = Union[str, "os.PathLike[str]"]
 ASSESSMENT_KEYS = (
     "spectrum", "ag", "ground_type", "spectrum_type", "importance", "damping", "F0", "Tc_star", "soil", "topography",
     "spectrum_units", "Tc", "q", "confidence_factor", "mechanism_height", "building_height", "storeys",
-    "height_rule", "building_damping",
+    "height_rule", "building_damping", "T1",
 )
 #: The keys of each kind of spectrum (``spectrum``: "ec8", "ntc2018", or a file's name).
 SPECTRUM_KEYS = {
@@ -59,6 +59,8 @@ class AssessmentParameters:
         height_rule: the rule of the demand at height, "circ2009" (default) or "circ2019" (:data:`HEIGHT_RULES`).
         building_damping: xi_1, the building's first mode's equivalent viscous damping ratio (0.05 for 5%, the
             default), which the 2019 rule's floor acceleration takes (0 <= xi_1 < 1).
+        T1: the building's first period [s] (> 0) from a model of it (NTC 2018 eq. 7.3.6, to which the 2019
+            Circolare's C7.2.3 points), or None: then C1 H^(3/4).
     """
 
     spectrum: Spectrum
@@ -69,6 +71,7 @@ class AssessmentParameters:
     storeys: Optional[int] = None
     height_rule: str = "circ2009"
     building_damping: float = 0.05
+    T1: Optional[float] = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.spectrum, Spectrum):
@@ -109,6 +112,8 @@ class AssessmentParameters:
         object.__setattr__(self, "mechanism_height", z)
         object.__setattr__(self, "building_height", h)
         object.__setattr__(self, "building_damping", xi)
+        if self.T1 is not None:
+            object.__setattr__(self, "T1", _number("T1", self.T1, positive=True))
 
     @property
     def at_height(self) -> bool:
@@ -116,8 +121,10 @@ class AssessmentParameters:
         return self.mechanism_height > 0
 
     def building_period(self) -> float:
-        """T1 = C1 H^(3/4) [s], C1 = 0.05 for masonry (Circolare 2019 eq. C7.3.2); NaN without the building's
-        height."""
+        """T1 [s]: the one given, else C1 H^(3/4), C1 = 0.05 for masonry (Circolare 2019 eq. C7.3.2); NaN without
+        either."""
+        if self.T1 is not None:
+            return self.T1
         return MASONRY_C1 * self.building_height ** 0.75 if self.building_height is not None else math.nan
 
     def modal_shape(self) -> float:
@@ -180,6 +187,7 @@ def read_assessment(table: Any, base_dir: Optional[PathLike] = None) -> Assessme
             storeys=table.integer("storeys", None),
             height_rule=table.string("height_rule", "circ2009", HEIGHT_RULES),
             building_damping=table.number("building_damping", 0.05),
+            T1=table.number("T1", None, unit="time"),
         )
     except InputError as exc:  # a refusal of the spectrum or of the parameters, named by its key: in the file's words
         key = getattr(exc, "key", None)

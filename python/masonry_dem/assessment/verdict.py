@@ -156,6 +156,15 @@ def spectrum_rows(assessment: Assessment) -> List[Row]:
     return rows
 
 
+def _period_row(assessment: Assessment, clause: str) -> Row:
+    """The row of the building's period: given (T1), or C1 H^(3/4) by ``clause``."""
+    c = assessment.linear
+    assert c is not None
+    if assessment.parameters.T1 is not None:
+        return ("T1 (given)", _value(c.T1), "s", "the building's model")
+    return ("T1 = 0.05 H^(3/4)", _value(c.T1), "s", clause)
+
+
 def linear_rows(assessment: Assessment) -> List[Row]:
     """The linear kinematic check's rows of the table."""
     c = assessment.linear
@@ -179,7 +188,7 @@ def linear_rows(assessment: Assessment) -> List[Row]:
         r = f"{CIRCOLARE_2019} C8.7.1.2.1.7"
         rows += [("mechanism height Z, building H, storeys N", f"{p.mechanism_height:g}, {p.building_height:g}, "
                   f"{p.storeys}", "m, m, -", r),
-                 ("T1 = 0.05 H^(3/4)", _value(c.T1), "s", f"{CIRCOLARE_2019} eq. C7.3.2"),
+                 _period_row(assessment, f"{CIRCOLARE_2019} eq. C7.3.2"),
                  ("psi(Z) = Z / H, gamma = 3N / (2N + 1)", f"{c.psi:.4g}, {c.gamma:.4g}", "-",
                   f"{CIRCOLARE_2019} C7.2.3, eq. C7.2.10"),
                  ("building's damping xi_1", _value(100.0 * p.building_damping), "%", f"{CIRCOLARE_2019} C7.2.3"),
@@ -190,7 +199,7 @@ def linear_rows(assessment: Assessment) -> List[Row]:
         p = assessment.parameters
         rows += [("mechanism height Z, building H, storeys N", f"{p.mechanism_height:g}, {p.building_height:g}, "
                   f"{p.storeys}", "m, m, -", q2),
-                 ("T1 = 0.05 H^(3/4)", _value(c.T1), "s", "NTC 2008 7.3.3.2"),
+                 _period_row(assessment, "NTC 2008 7.3.3.2"),
                  ("psi(Z) = Z / H, gamma = 3N / (2N + 1)", f"{c.psi:.4g}, {c.gamma:.4g}", "-", q2),
                  ("demand at height S_e(T1) psi gamma / q", _value(c.demand_height), "m/s2", q2)]
     rows += [("demand", _value(c.demand), "m/s2", q2),
