@@ -13,7 +13,7 @@
 
 ``assess`` runs the case's analysis (limit analysis by default) and checks it against the demand spectrum of its
 [assessment] table (:mod:`masonry_dem.assessment`): the linear kinematic check of the mechanism, the nonlinear one
-of a mechanism of one rigid body, and on a pushover's curve the N2 method; it prints the summary and a table of
+of a mechanism of rigid bodies turning about hinges, and on a pushover's curve the N2 method; it prints the summary and a table of
 the checks (each quantity with its unit and clause), and exits 0 whatever the verdict, 1 when the analysis gives
 nothing to check.
 
@@ -245,7 +245,7 @@ def _assess(args: Any) -> int:
     if interrupted:
         _print(report)
         return _error("interrupted (nothing checked, nothing written)", EXIT_INTERRUPTED)
-    has_curve = method != "limit" and case.dimension == 2 and len(results.curve_displacement) > 1
+    has_curve = method != "limit" and len(results.curve_displacement) > 1
     if results.status != "collapse" and not has_curve:
         _print(report)
         return _error(f"no collapse mechanism to check ({results.status}): {results.error or 'no collapse'}",

@@ -279,7 +279,7 @@ def _add_assess(sub: Any) -> None:
         "Run the analysis of a case file (limit analysis unless --method says otherwise) and check it against the\n"
         "site's demand spectrum of its [assessment] table (docs/assessment.md): the linear kinematic check of the\n"
         "collapse mechanism (alpha0, M*, e*, a0*, the demand, the ratio and the verdict), the nonlinear one when\n"
-        "the mechanism is one rigid body turning about a hinge, and on a static or explicit pushover's curve the\n"
+        "the mechanism is rigid bodies turning about hinges, and on a static or explicit pushover's curve the\n"
         "N2 method of EN 1998-1 Annex B; print a table of each quantity with its unit and clause."
     )
     examples = """\

@@ -563,9 +563,12 @@ def test_the_plot_of_a_mechanism(tmp_path: Path) -> None:
     assert heading.startswith("L — limit, collapse, λu = ") and heading.endswith("towards -y (270°)")
     assert f"λu = {r.collapse_multiplier:.4f}" in heading
     assert len([ax for ax in fig.axes if ax.name == "3d"]) == 2
-    # no collapse: the wall at rest, said in the title
-    held = md.Model3D([[0.0, 0.0, 0.0, 1.0, 1.0, 0.2]], live="none")
-    fig = md.plot.report_figure(held, held.solve_limit(), title="held", path=tmp_path / "held.png")
+    # no collapse (a box overhanging the one under it by more than half its length: the dead loads alone
+    # find no equilibrium): the wall drawn at rest, said in the title
+    held = md.Model3D([[0.0, 0.0, 0.0, 1.0, 1.0, 0.2], [0.6, 0.0, 0.2, 1.6, 1.0, 0.4]])
+    r = held.solve_limit()
+    assert r.status == "no_equilibrium"
+    fig = md.plot.report_figure(held, r, title="held", path=tmp_path / "held.png")
     assert "no mechanism drawn" in fig._suptitle.get_text()
 
 

@@ -328,6 +328,30 @@ def limit_study(n: int = 24) -> Any:
     )
 
 
+def test_a_study_of_the_spectrum_ag(client: Any) -> None:
+    """[vary.ag] varies the a_g of the base case's [assessment]: each row holds the linear check's verdict and
+    ratio at that a_g, the same as the check made directly (a block 0.2 x 0.6 m rocking: alpha0 = 1/3, e* = 1)."""
+    case = table(EXAMPLES / "single-block-rocking.toml")
+    case["joints"]["dilatancy"] = case["joints"]["friction"]  # associative: limit analysis is exact
+    case["assessment"] = {"spectrum": "ec8", "ag": 1.0, "ground_type": "B"}
+    ags = ["0.1 g", "0.3 g", "0.5 g"]
+    frame = run_study(make(case, {"ag": {"values": ags}}, methods=["limit"]), scheduler=client)
+    assert list(frame["ag"]) == pytest.approx([0.1 * 9.80665, 0.3 * 9.80665, 0.5 * 9.80665], rel=1e-15)
+    for _, row in frame.iterrows():
+        model = case_from_dict({**case, "assessment": {**case["assessment"], "ag": row["ag"]}}).build_model()
+        parameters = md.assessment.AssessmentParameters(spectrum=md.assessment.ec8_spectrum(row["ag"], "B"))
+        checked = md.assessment.assess(model, model.solve_limit(), parameters, gravity=9.81)
+        check = checked.linear
+        assert row["ratio"] == pytest.approx(check.ratio, rel=1e-9) and row["verdict"] == checked.verdict
+        assert row["a0_star"] == pytest.approx((1 / 3) * 9.81 / 1.35, rel=1e-6)
+        assert row["demand"] == pytest.approx(row["ag"] * 1.2 / 2.0, rel=1e-12)
+        assert row["pga"] == pytest.approx(row["ag"] * 1.2, rel=1e-12)
+    assert list(frame["ratio"] >= 1) == [True, True, False]  # a0* = 2.42 m/s2 against 0.59, 1.77, 2.94
+    # the base case needs an [assessment] table
+    with pytest.raises(md.InputError, match=r"vary\.ag: ag is the \[assessment\] spectrum's a_g"):
+        make(str(BLOCK), {"ag": {"values": [2.0]}})
+
+
 def test_dynamic_method_in_workers(client: Any) -> None:
     """The explicit solver, one thread in each worker, on the sliding block: lambda = friction to its tolerance."""
     frame = run_study(make(str(BLOCK), {"friction": {"values": [0.4, 0.6]}}, methods=["dynamic"]), scheduler=client)

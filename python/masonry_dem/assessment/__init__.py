@@ -9,10 +9,11 @@
 * :mod:`.kinematic` (the results): :func:`linear_check`, the linear kinematic check of a collapse mechanism (alpha0,
   M*, e*, a0*, the demand, the ratio and the verdict); :func:`mechanism_weights` and :func:`participating_mass` the
   steps of it, :func:`linear_check_of` the same from weights and virtual displacements given directly.
-* :mod:`.nonlinear` (the results): :func:`nonlinear_check`, the nonlinear kinematic check of a mechanism of one
-  rigid body turning about a hinge (alpha(theta) at finite rotation, d*_0, d*_u, T_s, the displacement demand).
+* :mod:`.nonlinear` (the results): :func:`nonlinear_check`, the nonlinear kinematic check of a mechanism of rigid
+  bodies turning about hinges on the ground or on one another (alpha(theta) at finite rotation, d*_0, d*_u, T_s, the
+  displacement demand).
 * :mod:`.pushover` (the results): the N2 method of EN 1998-1 Annex B on a capacity curve given directly (:func:`n2`) or
-  on a static or explicit pushover (:func:`pushover_n2`).
+  on a static or explicit pushover, in the plane or in 3D (:func:`pushover_n2`).
 * :mod:`.verdict` (the results): :func:`assess`, the checks that apply to an analysis's results; the result file's
   ``assessment`` object (:func:`assessment_dict`) and the plain-text table of a calculation report
   (:func:`assessment_table`).

@@ -7,8 +7,8 @@ Weights are lumped at each block's centroid: a wall of many courses that turns a
 of its blocks (a bare rectangular wall turning about its toe: e* -> 3/4 as the courses grow thin, against 1 for
 the same wall lumped at its own centroid). A load a block carries (``Model(carried=...)``, ``[[loads.carried]]``) is
 a weight of its own at its point, moving with its block. The blocks that do not move in the mechanism are left out;
-a block moves when its largest corner motion exceeds :data:`masonry_dem._mechanism.MOVING_FRACTION` of the largest (the rule of
-the mechanism's description, ``masonry-dem run``).
+a block moves when its largest corner motion exceeds :data:`masonry_dem._mechanism.MOVING_FRACTION` of the largest
+(the rule of the mechanism's description, ``masonry-dem run``).
 
 The multiplier alpha0 is the analysis's collapse multiplier of the live load "horizontal_weight" (lambda times
 every block's weight, horizontal): with horizontal forces proportional to the weights, the virtual-work alpha0 of
@@ -147,9 +147,12 @@ class LinearCheck:
         confidence_factor: FC; q: the behaviour factor.
         a0_star: a0* = alpha0 g / (e* FC) [m/s2], the spectral acceleration that activates the mechanism.
         demand_ground: a_g S / q [m/s2] (S_e(0) / q).
-        demand_height: S_e(T1) psi(Z) gamma / q [m/s2] of a mechanism at height; NaN at ground level.
+        demand_height: the demand at height [m/s2] (NaN at ground level): S_e(T1) psi(Z) gamma / q by the 2009 rule,
+            a_Z(Z) / q by the 2019 rule.
         T1: the building's period [s]; psi: psi(Z) = Z / H; gamma: 3 N / (2 N + 1) (NaN at ground level).
-        demand: the demand [m/s2]: demand_ground, and at height the larger of the two (C8A.4.2.3 asks for both).
+        height_rule: "circ2009" or "circ2019"; floor_acceleration: a_Z(Z) = S_e(T1, xi_1) gamma psi(Z)
+            sqrt(1 + 0.0004 xi_1^2) [m/s2] (xi_1 in percent) of the 2019 rule (NaN otherwise).
+        demand: the demand [m/s2]: demand_ground, and at height the larger of the two.
         ratio: a0* / demand (capacity over demand); verdict: "pass" when ratio >= 1, else "fail".
         moving_blocks: how many blocks move.
     """
@@ -171,17 +174,34 @@ class LinearCheck:
     ratio: float
     verdict: str
     moving_blocks: int
+    height_rule: str = "circ2009"
+    floor_acceleration: float = math.nan
+
+
+def floor_acceleration(spectrum: Spectrum, parameters: AssessmentParameters) -> float:
+    """a_Z(Z) [m/s2], the peak acceleration at the mechanism's height of the building's first mode (Circolare 2019
+    eqs. C7.2.7, C7.2.8, the first mode only as C7.2.3 allows): S_e(T1, xi_1) |gamma psi(Z)| sqrt(1 + 0.0004 xi_1^2),
+    xi_1 the building's damping in percent, S_e(T1, xi_1) the ground's spectrum at that damping, T1 the given period
+    or 0.05 H^(3/4) (eq. C7.3.2), psi(Z) = Z / H and gamma = 3 N / (2 N + 1) (eq. C7.2.10)."""
+    xi = parameters.building_damping
+    T1, psi, gamma = parameters.building_period(), parameters.modal_shape(), parameters.participation()
+    damped = spectrum.with_damping(xi)
+    return float(damped.acceleration(T1)) * abs(gamma * psi) * math.sqrt(1.0 + 0.0004 * (100.0 * xi) ** 2)
 
 
 def linear_demand(spectrum: Spectrum, parameters: AssessmentParameters) -> Tuple[float, float, float, float, float]:
     """(at ground level, at height, T1, psi, gamma) of the linear check's demand [m/s2]: a_g S / q (S_e(0) / q),
-    and for a mechanism at height Z in a building of height H and N storeys S_e(T1) psi(Z) gamma / q with
-    T1 = 0.05 H^(3/4), psi = Z / H and gamma = 3 N / (2 N + 1) (Circolare 617/2009 C8A.4.2.3; NaN at ground level)."""
+    and for a mechanism at height Z in a building of height H and N storeys, T1 = 0.05 H^(3/4), psi = Z / H and
+    gamma = 3 N / (2 N + 1): by the 2009 rule S_e(T1) psi(Z) gamma / q (Circolare 617/2009 C8A.4.2.3), by the 2019 rule
+    a_Z(Z) / q (:func:`floor_acceleration`; Circolare 2019 C8.7.1.2.1.7: a_g,SLV = q a_g,SLD, the ground acceleration
+    at which a_Z reaches a0*, read here on the site's spectrum held in shape); NaN at ground level."""
     q = parameters.q
     ground = spectrum.peak_ground_acceleration / q
     if not parameters.at_height:
         return ground, math.nan, math.nan, math.nan, math.nan
     T1, psi, gamma = parameters.building_period(), parameters.modal_shape(), parameters.participation()
+    if parameters.height_rule == "circ2019":
+        return ground, floor_acceleration(spectrum, parameters) / q, T1, psi, gamma
     return ground, float(spectrum.acceleration(T1)) * psi * gamma / q, T1, psi, gamma
 
 
@@ -195,22 +215,28 @@ def linear_check_of(alpha0: float, weights: Any, dx: Any, gravity: float,
     ground, height, T1, psi, gamma = linear_demand(parameters.spectrum, parameters)
     demand = ground if math.isnan(height) else max(ground, height)
     ratio = a0 / demand
+    rule = parameters.height_rule
+    floor = height * parameters.q if rule == "circ2019" and math.isfinite(height) else math.nan
     return LinearCheck(alpha0=float(alpha0), weight=float(np.sum(weights)), participating_mass=mass,
                        mass_fraction=fraction, gravity=float(gravity), confidence_factor=fc, q=parameters.q,
                        a0_star=a0, demand_ground=ground, demand_height=height, T1=T1, psi=psi, gamma=gamma,
                        demand=demand, ratio=ratio, verdict="pass" if ratio >= 1.0 else "fail",
-                       moving_blocks=int(np.size(weights)))
+                       moving_blocks=int(np.size(weights)), height_rule=rule, floor_acceleration=floor)
 
 
 def linear_check(model: Any, results: Any, spectrum: Any, q: float = 2.0, confidence_factor: float = 1.35,
                  mechanism_height: float = 0.0, building_height: Optional[float] = None,
-                 storeys: Optional[int] = None, gravity: Optional[float] = None) -> LinearCheck:
+                 storeys: Optional[int] = None, gravity: Optional[float] = None, height_rule: str = "circ2009",
+                 building_damping: float = 0.05, T1: Optional[float] = None) -> LinearCheck:
     """The linear kinematic check of the collapse mechanism of ``results`` (of ``model``) against ``spectrum`` (a
     :class:`masonry_dem.assessment.Spectrum`, or an :class:`AssessmentParameters` that holds it and the other
     parameters, which are then ignored): alpha0, M*, e*, a0* = alpha0 g / (e* FC), the demand at ground level
     (a_g S / q) or at height, the ratio a0* / demand and the verdict.
 
     ``gravity`` [m/s2]: the model's gravity, needed for a wall in the plane (its Model does not tell it).
+    ``height_rule``: the demand at height by Circolare 617/2009 ("circ2009") or the 2019 Circolare's floor
+    acceleration ("circ2019", with the building's damping ratio ``building_damping``); ``T1`` [s]: the building's
+    period, by default 0.05 H^(3/4).
     Raises InputError naming what is refused: no collapse, no moving block, q or confidence_factor below 1, a height
     above the building, ..."""
     if isinstance(spectrum, AssessmentParameters):
@@ -218,7 +244,8 @@ def linear_check(model: Any, results: Any, spectrum: Any, q: float = 2.0, confid
     else:
         parameters = AssessmentParameters(spectrum=spectrum, q=q, confidence_factor=confidence_factor,
                                           mechanism_height=mechanism_height, building_height=building_height,
-                                          storeys=storeys)
+                                          storeys=storeys, height_rule=height_rule, building_damping=building_damping,
+                                          T1=T1)
     lumped = mechanism_weights(model, results, gravity)
     check = linear_check_of(float(results.collapse_multiplier), lumped.weights, lumped.dx, lumped.gravity, parameters)
     return replace(check, moving_blocks=int(np.unique(lumped.blocks).size))  # a block with loads counted once

@@ -23,6 +23,7 @@ PathLike = Union[str, "os.PathLike[str]"]
 ASSESSMENT_KEYS = (
     "spectrum", "ag", "ground_type", "spectrum_type", "importance", "damping", "F0", "Tc_star", "soil", "topography",
     "spectrum_units", "Tc", "q", "confidence_factor", "mechanism_height", "building_height", "storeys",
+    "height_rule", "building_damping", "T1",
 )
 #: The keys of each kind of spectrum (``spectrum``: "ec8", "ntc2018", or a file's name).
 SPECTRUM_KEYS = {
@@ -32,10 +33,15 @@ SPECTRUM_KEYS = {
 }
 #: The behaviour factor of the linear kinematic check (Circolare 617/2009 C8A.4.2.3: q = 2).
 DEFAULT_Q = 2.0
-#: The confidence factor of the knowledge level LC1 (NTC 2018 C8.5.4: 1.35, 1.20 and 1.00 for LC1, LC2, LC3).
+#: The confidence factor of the knowledge level LC1 (Circolare 2019 C8.5.4, Table C8.5.IV: 1.35, 1.20 and 1.00 for
+#: LC1, LC2, LC3).
 DEFAULT_CONFIDENCE_FACTOR = 1.35
-#: The coefficient C1 of the building's period T1 = C1 H^(3/4) for a masonry building (NTC 2018 eq. 7.3.6).
+#: The coefficient C1 of the building's period T1 = C1 H^(3/4) for a masonry building (Circolare 2019 C7.3.3.2, eq.
+#: C7.3.2: 0.050 "for masonry buildings or any other type of structure").
 MASONRY_C1 = 0.05
+#: The rules of the demand on a mechanism at height: "circ2009" (Circolare 617/2009 C8A.4.2.3: S_e(T1) psi(Z)
+#: gamma / q) or "circ2019" (the 2019 Circolare's floor acceleration, C8.7.1.2.1.7 with C7.2.7 and C7.2.8).
+HEIGHT_RULES = ("circ2009", "circ2019")
 
 
 @dataclass(frozen=True)
@@ -50,6 +56,11 @@ class AssessmentParameters:
             ground level).
         building_height: H [m], the building's height above its foundation (needed when Z > 0; >= Z).
         storeys: N, the building's storeys (an integer >= 1, needed when Z > 0).
+        height_rule: the rule of the demand at height, "circ2009" (default) or "circ2019" (:data:`HEIGHT_RULES`).
+        building_damping: xi_1, the building's first mode's equivalent viscous damping ratio (0.05 for 5%, the
+            default), which the 2019 rule's floor acceleration takes (0 <= xi_1 < 1).
+        T1: the building's first period [s] (> 0) from a model of it (NTC 2018 eq. 7.3.6, to which the 2019
+            Circolare's C7.2.3 points), or None: then C1 H^(3/4).
     """
 
     spectrum: Spectrum
@@ -58,6 +69,9 @@ class AssessmentParameters:
     mechanism_height: float = 0.0
     building_height: Optional[float] = None
     storeys: Optional[int] = None
+    height_rule: str = "circ2009"
+    building_damping: float = 0.05
+    T1: Optional[float] = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.spectrum, Spectrum):
@@ -83,10 +97,23 @@ class AssessmentParameters:
                                          "number of storeys N")
         if h is not None and z > h:
             raise _refuse("mechanism_height", f"{z:g} m is above the building (building_height = {h:g} m)")
+        if self.height_rule not in HEIGHT_RULES:
+            raise _refuse("height_rule", f"expected one of {', '.join(repr(r) for r in HEIGHT_RULES)}, got "
+                                         f"{self.height_rule!r}")
+        xi = _number("building_damping", self.building_damping, minimum=0.0)
+        if xi >= 1.0:
+            raise _refuse("building_damping", f"is the damping ratio, 0 <= building_damping < 1 (0.05 for 5%), got "
+                                              f"{self.building_damping!r}")
+        if self.height_rule == "circ2019" and z > 0 and xi != 0.05 and self.spectrum.code == "file":
+            raise _refuse("building_damping", "a spectrum from a file is at its own damping: the 2019 rule's S_e(T1, "
+                                              "xi_1) needs a code's spectrum for a damping other than 5%")
         object.__setattr__(self, "q", q)
         object.__setattr__(self, "confidence_factor", fc)
         object.__setattr__(self, "mechanism_height", z)
         object.__setattr__(self, "building_height", h)
+        object.__setattr__(self, "building_damping", xi)
+        if self.T1 is not None:
+            object.__setattr__(self, "T1", _number("T1", self.T1, positive=True))
 
     @property
     def at_height(self) -> bool:
@@ -94,16 +121,20 @@ class AssessmentParameters:
         return self.mechanism_height > 0
 
     def building_period(self) -> float:
-        """T1 = C1 H^(3/4) [s], C1 = 0.05 for masonry (NTC 2018 eq. 7.3.6); NaN without the building's height."""
+        """T1 [s]: the one given, else C1 H^(3/4), C1 = 0.05 for masonry (Circolare 2019 eq. C7.3.2); NaN without
+        either."""
+        if self.T1 is not None:
+            return self.T1
         return MASONRY_C1 * self.building_height ** 0.75 if self.building_height is not None else math.nan
 
     def modal_shape(self) -> float:
-        """psi(Z) = Z / H (Circolare 617/2009 C8A.4.2.3), the first mode normalised to 1 at the top; 0 at ground
-        level."""
+        """psi(Z) = Z / H (Circolare 617/2009 C8A.4.2.3; the 2019 Circolare's linear first mode normalised to the top,
+        C7.2.3), the first mode normalised to 1 at the top; 0 at ground level."""
         return self.mechanism_height / self.building_height if self.building_height else 0.0
 
     def participation(self) -> float:
-        """gamma = 3 N / (2 N + 1) (Circolare 617/2009 C8A.4.2.3), the first mode's participation; NaN without N."""
+        """gamma = 3 N / (2 N + 1) (Circolare 617/2009 C8A.4.2.3; Circolare 2019 eq. C7.2.10), the first mode's
+        participation; NaN without N."""
         return 3.0 * self.storeys / (2.0 * self.storeys + 1.0) if self.storeys is not None else math.nan
 
 
@@ -154,6 +185,9 @@ def read_assessment(table: Any, base_dir: Optional[PathLike] = None) -> Assessme
             mechanism_height=table.number("mechanism_height", 0.0, _non_negative, unit="length"),
             building_height=table.number("building_height", None, unit="length"),
             storeys=table.integer("storeys", None),
+            height_rule=table.string("height_rule", "circ2009", HEIGHT_RULES),
+            building_damping=table.number("building_damping", 0.05),
+            T1=table.number("T1", None, unit="time"),
         )
     except InputError as exc:  # a refusal of the spectrum or of the parameters, named by its key: in the file's words
         key = getattr(exc, "key", None)

@@ -1,6 +1,6 @@
 """The N2 method of EN 1998-1 Annex B: a pushover's capacity curve turned into a target displacement and checked
 against the curve's ultimate displacement (:func:`n2`, the curve given directly; :func:`pushover_n2`, from a static or
-explicit pushover's :class:`masonry_dem.Results`).
+explicit pushover's :class:`masonry_dem.Results` of a wall in the plane, or an explicit pushover of a 3D wall).
 
 Steps (Annex B): the transformation factor Gamma = m* / sum m_i Phi_i^2 with m* = sum m_i Phi_i, the displaced shape
 Phi normalised to 1 at the control point (B.2); the equivalent single degree of freedom F* = F_b / Gamma,
@@ -28,6 +28,8 @@ from .spectra import Spectrum, _refuse
 ULTIMATE_DROP = 0.8
 #: EN 1998-1 B.5: the target displacement need not exceed this many times the elastic one.
 TARGET_CAP = 3.0
+#: A 3D live load is along an axis when the sine of its angle to it is below this.
+AXIS_TOLERANCE = 1e-9
 
 
 @dataclass(frozen=True)
@@ -151,16 +153,16 @@ def n2(displacement: Any, force: Any, masses: Any, shape: Any, spectrum: Spectru
 
 
 def pushover_n2(model: Any, results: Any, spectrum: Spectrum, gravity: Optional[float] = None) -> N2Check:
-    """The N2 method on the capacity curve of a static or explicit pushover of a wall in the plane under the live
-    load "horizontal_weight": the base shear F_b = lambda sum W_i against the control block's horizontal
-    displacement, the masses m_i = W_i / g of the blocks, and the displaced shape Phi_i of the blocks' horizontal
-    displacements at the end of the path (their centroids'), over the control block's.
+    """The N2 method on the capacity curve of a pushover under the live load "horizontal_weight": a static or explicit
+    pushover of a wall in the plane, or the explicit solver's of a 3D wall pushed along x or y. The base shear
+    F_b = lambda sum W_i against the control block's displacement along the curve's axis (x in the plane; in 3D the
+    axis of the live load's direction), the masses m_i = W_i / g of the blocks, and the displaced shape Phi_i of the
+    blocks' displacements along that axis at the end of the path (their centroids'), over the control block's.
 
-    ``gravity`` [m/s2]: the model's gravity (a wall in the plane's Model does not tell it). Refuses (InputError) a
-    run without a curve (limit analysis), a 3D model, a live load other than "horizontal_weight", and a control
-    block that has not moved."""
-    if int(getattr(model, "dimension", 2)) == 3:
-        raise _refuse("method", "the N2 method is taken from a wall in the plane's pushover in this version")
+    ``gravity`` [m/s2]: the model's gravity (a wall in the plane's Model does not tell it; a 3D one does). Refuses
+    (InputError) a run without a curve (limit analysis), a live load other than "horizontal_weight", a 3D live load
+    whose direction is not along x or y, and a control block that has not moved."""
+    three_d = int(getattr(model, "dimension", 2)) == 3
     live = str(getattr(model, "live", "horizontal_weight"))
     if live != "horizontal_weight":
         raise _refuse("loads.live", f'the N2 method needs the live load "horizontal_weight", got "{live}"')
@@ -174,9 +176,18 @@ def pushover_n2(model: Any, results: Any, spectrum: Spectrum, gravity: Optional[
         raise _refuse("gravity", "a wall in the plane's Model does not tell its gravity: give the one it was built "
                                  "with")
     weights = np.asarray(model.weights, dtype=np.float64)
-    u = np.asarray(results.displacements, dtype=np.float64)[:, 0]
+    axis, sign = 0, 1.0
+    if three_d:
+        angle = math.radians(float(getattr(model, "direction", 0.0) or 0.0))
+        c, s = math.cos(angle), math.sin(angle)
+        axis = 0 if abs(c) >= abs(s) else 1  # the axis the explicit solver's curve follows
+        if abs(s if axis == 0 else c) > AXIS_TOLERANCE:
+            raise _refuse("direction", f"the N2 method in 3D takes a live load along x or y (the axis of the "
+                                       f"pushover's curve), got a direction of {math.degrees(angle):g} degrees")
+        sign = 1.0 if (c if axis == 0 else s) > 0 else -1.0
+    u = sign * np.asarray(results.displacements, dtype=np.float64)[:, axis]
     control = int(results.control_block)
     if not u[control] != 0:
         raise _refuse("curve", "the control block has not moved: no displaced shape")
     keep = weights > 0
-    return n2(d, lam * float(weights.sum()), weights[keep] / float(g), u[keep] / u[control], spectrum)
+    return n2(sign * d, lam * float(weights.sum()), weights[keep] / float(g), u[keep] / u[control], spectrum)

@@ -5,8 +5,9 @@
   (eq. 3.6); the displacement spectrum of 3.2.2.4 (eq. 3.7) and, beyond T_E, of Annex A (Table A.1).
 * :func:`ntc2018_spectrum`: NTC 2018, 3.2.3.2.1 (eq. 3.2.2), a_g, F0 and T*_C of the site and limit state, the soil
   categories A to E of Table 3.2.IV (S_S and C_C), the topographic categories T1 to T4 of Table 3.2.V (S_T, its value
-  at the top of the slope), T_C = C_C T*_C, T_B = T_C / 3, T_D = 4 a_g / g + 1.6 (eqs. 3.2.5 to 3.2.7); the
-  displacement spectrum of 3.2.3.2.3 (T_E and T_F of Table 3.2.VII).
+  at the top of the slope), T_C = C_C T*_C, T_B = T_C / 3, T_D = 4 a_g / g + 1.6 (eqs. 3.2.5 to 3.2.7), with the
+  g = 9.81 m/s2 the text gives for a_g / g (:data:`NTC_GRAVITY`); the displacement spectrum of 3.2.3.2.3 (eqs. 3.2.10
+  and 3.2.11, T_E and T_F of Table 3.2.VII; d_g of 3.2.3.3, eq. 3.2.12).
 * :func:`tabulated_spectrum` and :func:`read_spectrum`: a spectrum given as periods and accelerations (a site
   study's), linear between the samples.
 
@@ -17,8 +18,8 @@ once here and tested at every corner period against hand values (tests/python/te
 
 Accelerations are in m/s2 and periods in s; ``damping`` is the viscous damping ratio (0.05 for 5%), which the
 codes' eta takes in percent. A ground acceleration written in g (``"0.25 g"`` in a case file) is in units of the
-standard gravity, :data:`masonry_dem.units.STANDARD_GRAVITY` = 9.80665 m/s2, which is also the g of the NTC's
-a_g / g.
+standard gravity, :data:`masonry_dem.units.STANDARD_GRAVITY` = 9.80665 m/s2; the ratio a_g / g in the NTC's
+S_S (Table 3.2.IV) and T_D (eq. 3.2.7) is taken with the text's own g = 9.81 m/s2 (:data:`NTC_GRAVITY`).
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from __future__ import annotations
 import inspect
 import math
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Callable, Mapping, Optional, Union
 
 import numpy as np
@@ -65,6 +66,9 @@ NTC_SOIL = {
 NTC_TOPOGRAPHY = {"T1": 1.0, "T2": 1.2, "T3": 1.2, "T4": 1.4}
 #: NTC 2018 Table 3.2.VII: soil category -> (T_E [s], T_F [s]) of the displacement spectrum.
 NTC_LONG_PERIODS = {"A": (4.5, 10.0), "B": (5.0, 10.0), "C": (6.0, 10.0), "D": (6.0, 10.0), "E": (6.0, 10.0)}
+#: NTC 2018, 3.2.3.2.1: the g of a_g / g in Table 3.2.IV ("g = 9,81 m/s2 is the acceleration of gravity"), used
+#: for T_D = 4 a_g / g + 1.6 (eq. 3.2.7) too.
+NTC_GRAVITY = 9.81
 #: NTC 2018, 3.2.3.2.1: F0 is never below 2.2.
 NTC_F0_MIN = 2.2
 #: The floor of the damping correction, EN 1998-1 eq. 3.6 and NTC 2018 eq. 3.2.4.
@@ -160,7 +164,7 @@ class Spectrum:
 
     @property
     def design_displacement(self) -> float:
-        """d_g = 0.025 a_g S T_C T_D [m] (EN 1998-1 eq. 3.12, NTC 2018 eq. 3.2.14); NaN for a file."""
+        """d_g = 0.025 a_g S T_C T_D [m] (EN 1998-1 eq. 3.12, NTC 2018 eq. 3.2.12); NaN for a file."""
         return 0.025 * self.ag * self.S * self.TC * self.TD
 
     def _periods(self, T: npt.ArrayLike, name: str = "T") -> np.ndarray:
@@ -171,6 +175,16 @@ class Spectrum:
             raise _refuse(name, f"the spectrum's file ends at T = {self.periods[-1]:g} s; it was asked for "
                                 f"T = {float(np.max(t)):g} s")
         return t
+
+    def with_damping(self, damping: float) -> "Spectrum":
+        """The same spectrum at the viscous damping ratio ``damping`` (its eta recomputed, EN 1998-1 eq. 3.6, NTC
+        2018 eq. 3.2.4); a spectrum from a file is at its own damping and is returned as it is for 0.05 only."""
+        eta = damping_correction(damping)
+        if self.code == "file":
+            if float(damping) != 0.05:
+                raise _refuse("damping", "a spectrum from a file is at its own damping (taken as 5%)")
+            return self
+        return replace(self, eta=eta, parameters={**self.parameters, "damping": float(damping)})
 
     def acceleration(self, T: npt.ArrayLike) -> ArrayOrFloat:
         """S_e(T) [m/s2] at the periods ``T`` [s] (a float for a float, an array for an array)."""
@@ -261,12 +275,12 @@ def ntc2018_spectrum(ag: float, F0: float, Tc_star: float, soil: str = "A", topo
     topography = _choice("topography", topography, NTC_TOPOGRAPHY)
     eta = damping_correction(damping)
     a, b, lo, hi, c, e = NTC_SOIL[soil]
-    S_S = min(max(a - b * f0 * a_g / STANDARD_GRAVITY, lo), hi)
+    S_S = min(max(a - b * f0 * a_g / NTC_GRAVITY, lo), hi)
     C_C = c * tc_star ** e
     TC = C_C * tc_star
     TE, TF = NTC_LONG_PERIODS[soil]
     return Spectrum("ntc2018", a_g, S_S * NTC_TOPOGRAPHY[topography], eta, f0, TC / 3.0, TC,
-                    4.0 * a_g / STANDARD_GRAVITY + 1.6, TE, TF,
+                    4.0 * a_g / NTC_GRAVITY + 1.6, TE, TF,
                     parameters={"ag": a_g, "F0": f0, "Tc_star": tc_star, "soil": soil, "topography": topography,
                                 "damping": float(damping), "S_S": S_S, "S_T": NTC_TOPOGRAPHY[topography],
                                 "C_C": C_C})

@@ -3,8 +3,9 @@
 (:func:`assessment_table`: each quantity with its value, its unit and the clause it comes from).
 
 The linear kinematic check applies to a collapse with a mechanism (limit analysis, or a static or explicit
-collapse); the nonlinear kinematic check to a mechanism of one rigid body turning about a hinge in a wall in the
-plane; the N2 method to a pushover's capacity curve (a static or explicit analysis of a wall in the plane).
+collapse); the nonlinear kinematic check to a mechanism of rigid bodies turning about hinges (on the ground or on
+one another, without a closed loop) in a wall in the plane; the N2 method to a pushover's capacity curve (a static or
+explicit analysis of a wall in the plane, or the explicit solver's of a 3D wall pushed along x or y).
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from .parameters import AssessmentParameters
 
 #: The texts the checks follow, as the table names them.
 CIRCOLARE_2009 = "Circ. 617/2009"
+CIRCOLARE_2019 = "Circ. 2019"
 EC8 = "EN 1998-1"
 
 
@@ -35,9 +37,10 @@ class Assessment:
         method: the analysis ("limit", "static" or "dynamic").
         mechanism: the mechanism's moving blocks, weights and virtual displacements (None without a collapse).
         linear: the linear kinematic check (None without a collapse).
-        n2: the N2 method on the pushover's curve (None without one: limit analysis, or a 3D wall).
-        nonlinear: the nonlinear kinematic check (None unless the mechanism is one rigid body turning about a hinge
-            in a wall in the plane); nonlinear_note: why it is None ("" when it is made).
+        n2: the N2 method on the pushover's curve (None without one: limit analysis).
+        nonlinear: the nonlinear kinematic check (None unless the mechanism is rigid bodies turning about hinges, on
+            the ground or on one another, in a wall in the plane); nonlinear_note: why it is None ("" when it is
+            made).
     """
 
     parameters: AssessmentParameters
@@ -57,8 +60,8 @@ class Assessment:
 
 def assess(model: Any, results: Any, parameters: AssessmentParameters, gravity: Optional[float] = None) -> Assessment:
     """The checks that apply to ``results`` of ``model`` (``gravity``: the model's, needed for a wall in the plane):
-    the linear kinematic check of the collapse mechanism, the nonlinear one when the mechanism is one rigid body
-    turning about a hinge, and the N2 method on a pushover's curve.
+    the linear kinematic check of the collapse mechanism, the nonlinear one when the mechanism is rigid bodies
+    turning about hinges, and the N2 method on a pushover's curve.
 
     Raises InputError when neither applies (no collapse and no curve), or what the checks refuse (a mechanism with
     no moving block, a spectrum without T_C for N2, ...), naming it."""
@@ -77,7 +80,7 @@ def assess(model: Any, results: Any, parameters: AssessmentParameters, gravity: 
                 raise
             note = str(exc)[len("mechanism: "):]
     n2 = None
-    if method != "limit" and int(getattr(model, "dimension", 2)) == 2 and len(results.curve_displacement) > 1:
+    if method != "limit" and len(results.curve_displacement) > 1:
         n2 = pushover_n2(model, results, parameters.spectrum, gravity)
     if linear is None and n2 is None:
         mechanism_weights(model, results, gravity)  # refuses, saying why there is no mechanism
@@ -100,7 +103,7 @@ def assessment_dict(assessment: Assessment) -> Dict[str, Any]:
         out.update(_floats(asdict(assessment.linear)))
         out["verdict"] = assessment.linear.verdict
     out.update(_floats({"mechanism_height": p.mechanism_height, "building_height": p.building_height,
-                        "storeys": p.storeys}))
+                        "storeys": p.storeys, "building_damping": p.building_damping}))
     out["spectrum"] = _floats({"code": s.code, **{k: v for k, v in s.parameters.items()},
                                "peak_ground_acceleration": s.peak_ground_acceleration, "S": s.S, "eta": s.eta,
                                "F0": s.F0, "TB": s.TB, "TC": s.TC, "TD": s.TD})
@@ -112,6 +115,7 @@ def assessment_dict(assessment: Assessment) -> Dict[str, Any]:
     if assessment.nonlinear is not None:
         kept = {k: v for k, v in asdict(assessment.nonlinear).items() if k not in ("theta", "d_star", "a_star")}
         kept["hinge"] = list(assessment.nonlinear.hinge)
+        kept["hinges"] = [list(h) for h in assessment.nonlinear.hinges]
         out["nonlinear"] = _floats(kept)
     else:
         out["nonlinear"] = None
@@ -152,6 +156,15 @@ def spectrum_rows(assessment: Assessment) -> List[Row]:
     return rows
 
 
+def _period_row(assessment: Assessment, clause: str) -> Row:
+    """The row of the building's period: given (T1), or C1 H^(3/4) by ``clause``."""
+    c = assessment.linear
+    assert c is not None
+    if assessment.parameters.T1 is not None:
+        return ("T1 (given)", _value(c.T1), "s", "the building's model")
+    return ("T1 = 0.05 H^(3/4)", _value(c.T1), "s", clause)
+
+
 def linear_rows(assessment: Assessment) -> List[Row]:
     """The linear kinematic check's rows of the table."""
     c = assessment.linear
@@ -170,11 +183,23 @@ def linear_rows(assessment: Assessment) -> List[Row]:
         ("behaviour factor q", _value(c.q), "-", q2),
         ("demand at ground level a_g S / q", _value(c.demand_ground), "m/s2", q2),
     ]
-    if math.isfinite(c.demand_height):
+    if math.isfinite(c.demand_height) and c.height_rule == "circ2019":
+        p = assessment.parameters
+        r = f"{CIRCOLARE_2019} C8.7.1.2.1.7"
+        rows += [("mechanism height Z, building H, storeys N", f"{p.mechanism_height:g}, {p.building_height:g}, "
+                  f"{p.storeys}", "m, m, -", r),
+                 _period_row(assessment, f"{CIRCOLARE_2019} eq. C7.3.2"),
+                 ("psi(Z) = Z / H, gamma = 3N / (2N + 1)", f"{c.psi:.4g}, {c.gamma:.4g}", "-",
+                  f"{CIRCOLARE_2019} C7.2.3, eq. C7.2.10"),
+                 ("building's damping xi_1", _value(100.0 * p.building_damping), "%", f"{CIRCOLARE_2019} C7.2.3"),
+                 ("floor acceleration a_Z = S_e(T1, xi_1) gamma psi sqrt(1 + 0.0004 xi_1^2)",
+                  _value(c.floor_acceleration), "m/s2", f"{CIRCOLARE_2019} eqs. C7.2.7, C7.2.8"),
+                 ("demand at height a_Z / q", _value(c.demand_height), "m/s2", r)]
+    elif math.isfinite(c.demand_height):
         p = assessment.parameters
         rows += [("mechanism height Z, building H, storeys N", f"{p.mechanism_height:g}, {p.building_height:g}, "
                   f"{p.storeys}", "m, m, -", q2),
-                 ("T1 = 0.05 H^(3/4)", _value(c.T1), "s", "NTC 2008 7.3.3.2"),
+                 _period_row(assessment, "NTC 2008 7.3.3.2"),
                  ("psi(Z) = Z / H, gamma = 3N / (2N + 1)", f"{c.psi:.4g}, {c.gamma:.4g}", "-", q2),
                  ("demand at height S_e(T1) psi gamma / q", _value(c.demand_height), "m/s2", q2)]
     rows += [("demand", _value(c.demand), "m/s2", q2),
@@ -190,7 +215,8 @@ def nonlinear_rows(assessment: Assessment) -> List[Row]:
         return []
     q = f"{CIRCOLARE_2009} C8A.4.2"
     rows: List[Row] = [
-        ("hinge (x, y)", f"{c.hinge[0]:.4g}, {c.hinge[1]:.4g}", "m", "one rigid body"),
+        ("hinge (x, y)", f"{c.hinge[0]:.4g}, {c.hinge[1]:.4g}", "m",
+         "one rigid body" if c.bodies == 1 else f"the first of {c.bodies} bodies"),
         ("rotation to alpha = 0, theta_0", _value(c.theta0), "rad", f"{q}.1 (finite rotation)"),
         ("d*_0", _value(c.d0_star), "m", f"{q}.1"),
         ("d*_u = 0.4 d*_0", _value(c.du_star), "m", f"{q}.2"),

@@ -136,6 +136,11 @@ class Study:
     inputs: Tuple[str, ...] = ()
 
     @property
+    def assesses(self) -> bool:
+        """Whether each analysis is checked against the base case's [assessment] (a case table that has one)."""
+        return not callable(self.base) and isinstance(self.base.get("assessment"), dict)
+
+    @property
     def grid(self) -> Tuple[Variation, ...]:
         return tuple(v for v in self.variations if v.values is not None)
 
@@ -219,7 +224,8 @@ def apply_values(
     """A copy of the case table ``base`` with the parameters ``values`` set (the direction is applied to the
     checked case, :func:`mirrored`). Names: a joint-law key (the [joints] default law), FAMILY.KEY, thickness,
     density, block_length, block_height, courses, length, gravity, precompression (the downward dead force on
-    the top beam [N]), opening_x, opening_y (the centre of an opening [m]), opening_width, opening_height [m]."""
+    the top beam [N]), opening_x, opening_y (the centre of an opening [m]), opening_width, opening_height [m], ag (the
+    [assessment] spectrum's a_g [m/s2])."""
     data = _tables_copied(base)
     for name, value in values.items():
         if name == "direction":
@@ -247,6 +253,8 @@ def _set(data: Dict[str, Any], name: str, value: Any, variation: Optional[Variat
             geometry["running_bond"].pop("height", None)
     elif name == "gravity":
         data.setdefault("loads", {})["gravity"] = value
+    elif name == "ag":
+        data["assessment"]["ag"] = value
     elif name == "precompression":
         force = list(data["top"].get("force", [0.0, 0.0]))
         data["top"]["force"] = [force[0], -value]

@@ -62,6 +62,8 @@ WALL_PARAMETERS = ("thickness", "density")
 RUNNING_BOND_PARAMETERS = ("block_length", "block_height", "courses", "length")
 OPENING_PARAMETERS = ("opening_x", "opening_y", "opening_width", "opening_height")
 OTHER_PARAMETERS = ("gravity", "precompression") + OPENING_PARAMETERS
+#: The parameters of the base case's [assessment] table a study may vary (a fragility by the PGA): its spectrum's a_g.
+ASSESSMENT_PARAMETERS = ("ag",)
 #: The most analyses one study may hold.
 MAX_ANALYSES = 10_000_000
 
@@ -244,7 +246,8 @@ def _vary(top: _Table, base: Any, per_point: int = 1) -> Tuple[List[Variation], 
 
 def _parameter_names() -> List[str]:
     """The names a [vary] table of a case may hold."""
-    named = WALL_PARAMETERS + RUNNING_BOND_PARAMETERS + OTHER_PARAMETERS + ("direction", "texture")
+    named = WALL_PARAMETERS + RUNNING_BOND_PARAMETERS + OTHER_PARAMETERS + ASSESSMENT_PARAMETERS + ("direction",
+                                                                                                     "texture")
     return list(LAW_KEYS + FAMILIES + named)
 
 
@@ -273,7 +276,9 @@ def _variation(parent: _Table, key: str, name: str, check: Any = None) -> Tuple[
             raise table.key_error("distribution", "courses is an integer: give values")
         variation = Variation(name, **_distribution(table), **options)
     else:
-        variation = Variation(name, values=_grid_values(table, integer=name == "courses", check=check), **options)
+        unit = "acceleration" if name in ASSESSMENT_PARAMETERS else None
+        variation = Variation(name, values=_grid_values(table, integer=name == "courses", check=check, unit=unit),
+                              **options)
     return table, variation
 
 
@@ -301,8 +306,9 @@ def _directions(table: _Table) -> Tuple[str, ...]:
     return tuple(values)
 
 
-def _grid_values(table: _Table, integer: bool, check: Any = None) -> Tuple[Any, ...]:
-    """values = [...], or start, stop and count (count values evenly spaced, both ends included)."""
+def _grid_values(table: _Table, integer: bool, check: Any = None, unit: Optional[str] = None) -> Tuple[Any, ...]:
+    """values = [...], or start, stop and count (count values evenly spaced, both ends included); ``unit``: the kind
+    of quantity of a value given with its unit ("0.25 g" for an acceleration)."""
     if "values" in table:
         items = table.array("values")
         assert items is not None
@@ -315,10 +321,10 @@ def _grid_values(table: _Table, integer: bool, check: Any = None) -> Tuple[Any, 
                         f"{table.where('values')}[{i}]: expected an integer, {_got(v)}", table.where("values")
                     )
             return tuple(items)
-        return tuple(table.numbers(table.where("values"), items))
+        return tuple(table.numbers(table.where("values"), items, unit=unit))
     if integer:
         raise table.key_error("start", "courses is an integer: give values")
-    start, stop = table.number("start"), table.number("stop")
+    start, stop = table.number("start", unit=unit), table.number("stop", unit=unit)
     count = table.integer("count", minimum=2, maximum=MAX_ANALYSES)
     if check is not None:
         check(count)
@@ -381,6 +387,12 @@ def _check_on_case(table: _Table, variation: Variation, base: Mapping[str, Any])
         raise table.error(f"{table.path}: the base case's [geometry] must be a running_bond to vary {name}", table.path)
     if name in OPENING_PARAMETERS and variation.opening >= len(rb.get("openings", [])):  # type: ignore[union-attr]
         raise table.key_error("opening", f"the base case has no opening {variation.opening} (they are numbered from 0)")
+    if name in ASSESSMENT_PARAMETERS and not isinstance(base.get("assessment"), dict):
+        raise table.error(f"{table.path}: {name} is the [assessment] spectrum's a_g: the base case needs an "
+                          "[assessment] table", table.path)
+    if name in ASSESSMENT_PARAMETERS and base["assessment"].get("spectrum", "ec8") not in ("ec8", "ntc2018"):
+        raise table.error(f"{table.path}: {name} is the a_g of a code's spectrum: the base case's [assessment] "
+                          "spectrum is a file", table.path)
     if name == "precompression" and "top" not in base:
         raise table.error(
             f"{table.path}: precompression is a force on the top beam: the base case needs a [top] table", table.path

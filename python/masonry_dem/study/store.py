@@ -24,7 +24,7 @@ import pyarrow.parquet as pq
 from .._core import InputError
 from ..atomic import atomic_path, check_target, check_writable
 from .model import Study
-from .worker import OUTCOME_COLUMNS
+from .worker import ASSESSMENT_COLUMNS, OUTCOME_COLUMNS
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -37,7 +37,8 @@ _ARROW_TYPES = {"int": pa.int64(), "float": pa.float64(), "str": pa.string()}
 
 def columns(study: Study) -> List[Tuple[str, str]]:
     """The columns of the study's table with their types: row, method, direction, the varied parameters
-    (the direction aside), sample, seed, then the outcome (:data:`masonry_dem.study.worker.OUTCOME_COLUMNS`)."""
+    (the direction aside), sample, seed, then the outcome (:data:`masonry_dem.study.worker.OUTCOME_COLUMNS`) and,
+    when the base case has an [assessment], the seismic check's (:data:`masonry_dem.study.worker.ASSESSMENT_COLUMNS`)."""
     out = [("row", "int"), ("method", "str"), ("direction", "str")]
     for v in study.variations:
         if v.name == "direction":
@@ -45,7 +46,8 @@ def columns(study: Study) -> List[Tuple[str, str]]:
         values = v.values or ()
         kind = "int" if v.name == "courses" else "str" if any(isinstance(x, str) for x in values) else "float"
         out.append((v.name, kind))
-    return out + [("sample", "int"), ("seed", "int")] + list(OUTCOME_COLUMNS)
+    checks = list(ASSESSMENT_COLUMNS) if study.assesses else []
+    return out + [("sample", "int"), ("seed", "int")] + list(OUTCOME_COLUMNS) + checks
 
 
 def schema(study: Study) -> pa.Schema:

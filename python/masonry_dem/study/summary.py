@@ -175,7 +175,7 @@ def _plot_weakest(axes: Sequence[Any], frame: pd.DataFrame, study: Study, live: 
 
     for ax, (_, row) in zip(axes, weakest(frame, len(axes)).iterrows()):
         item = study.item(int(row["row"]))
-        results, model = solve(study, item)  # as the worker did: the same numbers
+        results, model, _ = solve(study, item)  # as the worker did: the same numbers
         plot_mechanism(ax, model, results)
         if item.values.get("direction") == "-x":
             _as_pushed_left(ax, np.asarray(model.rects)[: model.n_blocks])

@@ -6,6 +6,9 @@ A row holds the analysis's identity (row, method, direction, the varied paramete
 outcome: status, collapse_multiplier (NaN unless the status is "collapse"; with live = "top_horizontal" the
 peak force on the top beam [N]), last_equilibrium, iterations, steps, blocks, elapsed_s (the solver's time
 [s]), task_s (the row's time in the worker [s]: building the case and the model, solving, the row) and error.
+A study whose base case has an [assessment] table checks each collapse against it (:data:`ASSESSMENT_COLUMNS`:
+the verdict of every check made, the linear kinematic check's ratio a0* / demand, a0* and the demand [m/s2], and
+the site's peak ground acceleration a_g S [m/s2]); a check that is refused leaves them empty and says why in error.
 """
 
 from __future__ import annotations
@@ -14,6 +17,7 @@ import math
 import time
 from typing import Any, Dict, List, Sequence
 
+from .._core import InputError
 from ..case import ERROR_STATUSES
 from .model import Item, Study
 
@@ -35,6 +39,16 @@ OUTCOME_COLUMNS = (
     ("elapsed_s", "float"),
     ("task_s", "float"),
     ("error", "str"),
+)
+
+
+#: The seismic check's columns of a study whose base case has an [assessment] table.
+ASSESSMENT_COLUMNS = (
+    ("verdict", "str"),
+    ("ratio", "float"),
+    ("a0_star", "float"),
+    ("demand", "float"),
+    ("pga", "float"),
 )
 
 
@@ -60,27 +74,49 @@ def failed_row(study: Study, item: Item, status: str, error: str) -> Dict[str, A
         task_s=math.nan,
         error=" ".join(error.split()),
     )
+    if study.assesses:
+        row.update(verdict=None, ratio=math.nan, a0_star=math.nan, demand=math.nan, pga=math.nan)
     return row
 
 
 def solve(study: Study, item: Item) -> Any:
-    """Build and solve one analysis: (results, model)."""
+    """Build and solve one analysis: (results, model, case; None for a builder's)."""
     if callable(study.base):
         model = study.base(**item.values)
         # one thread per worker: the explicit solver, and limit analysis in 3D
         one_thread = item.method == "dynamic" or (item.method == "limit" and model.dimension == 3)
         options = {"threads": 1} if one_thread else {}
-        return getattr(model, f"solve_{item.method}")(**options), model
+        return getattr(model, f"solve_{item.method}")(**options), model, None
     case = study.case(item)
     model = case.build_model()
-    return case.solve(model, item.method), model
+    return case.solve(model, item.method), model, case
+
+
+def check(row: Dict[str, Any], results: Any, model: Any, case: Any) -> None:
+    """The seismic check's columns of ``row`` (:data:`ASSESSMENT_COLUMNS`) from the case's [assessment]: empty
+    without a collapse, and with the refusal in ``error`` when a check refuses the mechanism or the curve."""
+    from ..assessment.verdict import assess
+
+    parameters = case.assessment
+    row.update(verdict=None, ratio=math.nan, a0_star=math.nan, demand=math.nan,
+               pga=parameters.spectrum.peak_ground_acceleration)
+    if row["status"] != "collapse":
+        return
+    try:
+        checked = assess(model, results, parameters, gravity=case.model_kwargs["gravity"])
+    except InputError as exc:
+        row["error"] = f"assessment: {' '.join(str(exc).split())}"
+        return
+    row["verdict"] = checked.verdict
+    if checked.linear is not None:
+        row.update(ratio=checked.linear.ratio, a0_star=checked.linear.a0_star, demand=checked.linear.demand)
 
 
 def run_item(study: Study, item: Item) -> Dict[str, Any]:
     """One analysis as a row; an exception becomes a row with status "error"."""
     start = time.perf_counter()
     try:
-        results, model = solve(study, item)
+        results, model, case = solve(study, item)
     except Exception as exc:  # a bad sample, or a builder's error: the study goes on
         row = failed_row(study, item, "error", f"{type(exc).__name__}: {exc}")
         row["task_s"] = time.perf_counter() - start
@@ -97,6 +133,8 @@ def run_item(study: Study, item: Item) -> Dict[str, Any]:
         elapsed_s=float(results.elapsed_s),
         error=" ".join(str(results.error or "unknown reason").split()) if status in ERROR_STATUSES else None,
     )
+    if study.assesses:
+        check(row, results, model, case)
     row["task_s"] = time.perf_counter() - start
     return row
 
