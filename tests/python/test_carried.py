@@ -2,8 +2,9 @@
 ``[[loads.carried]]``): the facade of the shared benchmark's hand check (section 4: a wall of 100 kN, t = 0.5 m,
 h = 6 m, with a floor's 20 kN at its top 0.25 m from the hinge) turns at alpha0 = 30 / 420 by limit analysis in
 the plane and in 3D, and its linear kinematic check takes the floor as a weight of its own at its point: M* g =
-420^2 / 1620 kN, e* = M* g / 120 kN, a0* = alpha0 g / (e* FC), each to 1e-9, and its nonlinear check's theta0 where
-the weights' centroid stands over the hinge; the keys' refusals name the key."""
+420^2 / 1620 kN, e* = M* g / 120 kN, a0* = alpha0 g / (e* FC), each to 1e-9; the same wall in two courses, the floor
+on the upper one, by the linear check and the nonlinear one (theta0 where the weights' centroid stands over the
+hinge); the keys' refusals name the key."""
 
 from __future__ import annotations
 
@@ -66,13 +67,21 @@ def test_the_facade_with_its_floor_in_the_plane() -> None:
     _check_hand_values(model)
 
 
-def test_the_nonlinear_check_turns_the_floor_with_the_wall() -> None:
-    # the weights' centroid G of wall and floor stands over the hinge (0.5, 0) at theta0 = atan(0.25 / 3.5): both
-    # 0.25 m from it, at heights 3 and 6 m, G at (100 x 3 + 20 x 6) / 120 = 3.5 m
-    model = facade_2d()
+def test_the_facade_in_two_courses_with_its_floor_on_the_upper_one() -> None:
+    # the wall in two courses of 50 kN (centroids at 1.5 and 4.5 m), the floor on the upper: the whole turns about
+    # the toe (the upper course alone at (50 x 0.25 + 20 x 0.25) / (50 x 1.5 + 20 x 3) = 0.13), alpha0 = 30 / 420;
+    # sum P_i dx_i = 50 x 1.5 + 50 x 4.5 + 20 x 6 = 420, sum P_i dx_i^2 = 50 x 1.5^2 + 50 x 4.5^2 + 20 x 6^2 = 1845
+    model = md.Model([[0.0, 0.0, T, 3.0], [0.0, 3.0, T, H]], density=DENSITY, gravity=G, joints=JOINTS,
+                     carried=[(1, [0.25, H], 20e3)])
+    results = model.solve_limit(tolerance=1e-11)
     site = sa.AssessmentParameters(spectrum=sa.ec8_spectrum(0.25 * 9.80665, "B"))
-    check = sa.nonlinear_check(model, model.solve_limit(tolerance=1e-11), site, gravity=G)
-    assert close(check.theta0, math.atan2(0.25, 3.5), 1e-9), check.theta0
+    check = sa.linear_check(model, results, site, gravity=G)
+    assert close(check.alpha0, ALPHA0, 1e-9) and check.moving_blocks == 2
+    assert close(check.participating_mass * G, 420e3**2 / 1845e3, 1e-9), check.participating_mass * G
+    # the nonlinear check: the weights' centroid G stands over the hinge (0.5, 0) at theta0 = atan(0.25 / 3.5), all
+    # weights 0.25 m from it, G at (50 x 1.5 + 50 x 4.5 + 20 x 6) / 120 = 3.5 m
+    nonlinear = sa.nonlinear_check(model, results, site, gravity=G)
+    assert close(nonlinear.theta0, math.atan2(0.25, 3.5), 1e-9), nonlinear.theta0
 
 
 @pytest.mark.parametrize("y", [0.5, 0.2])

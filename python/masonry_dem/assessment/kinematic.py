@@ -68,6 +68,27 @@ def participating_mass(weights: Any, dx: Any, gravity: float) -> Tuple[float, fl
     return mass, gravity * mass / float(P.sum())
 
 
+def block_weights(model: Any, blocks: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The weights of ``blocks`` (distinct indices) and of the loads they carry (``model.carried``): (the block of
+    each (k,), the weights P_i [N] (k,), their points [m] (k, 2) or (k, 3)): each block's own weight (its weight
+    without its loads) at its own centroid (its polygon's or its box's), then each load at its point."""
+    weights = np.array(model.weights, dtype=np.float64)  # with the loads the blocks carry
+    if int(getattr(model, "dimension", 2)) == 3:
+        boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
+        points = 0.5 * (boxes[:, :3] + boxes[:, 3:])
+    else:
+        every = shapes(model)
+        points = np.array([area_centroid(every.polygon(int(i))) for i in range(len(every))]).reshape(-1, 2)
+    carried = list(getattr(model, "carried", None) or [])
+    owner = np.array([c[0] for c in carried], dtype=np.int64)
+    loads = np.array([c[2] for c in carried], dtype=np.float64)
+    at = np.array([c[1] for c in carried], dtype=np.float64).reshape(-1, points.shape[1])
+    np.subtract.at(weights, owner, loads)  # each block's own weight
+    on = np.isin(owner, blocks)
+    return (np.concatenate([blocks, owner[on]]), np.concatenate([weights[blocks], loads[on]]),
+            np.concatenate([points[blocks], at[on]]))
+
+
 def mechanism_weights(model: Any, results: Any, gravity: Optional[float] = None) -> MechanismWeights:
     """The moving blocks of ``results.mechanism`` (the velocities of limit analysis, or the last increment of a
     static or explicit collapse) with their weights and horizontal virtual displacements along the live load.
@@ -91,14 +112,12 @@ def mechanism_weights(model: Any, results: Any, gravity: Optional[float] = None)
         raise _refuse("gravity", f"must be > 0, got {g!r}")
     three_d = int(getattr(model, "dimension", 2)) == 3
     mech = np.asarray(results.mechanism, dtype=np.float64)
-    weights = np.array(model.weights, dtype=np.float64)  # with the loads the blocks carry
     # the dofs are at the centres of mass (the blocks' centroids, moved by the loads they carry): the virtual
     # displacement along the live load of a point p of block i is that of the small motion at the dofs
     if three_d:
         boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
         dofs = dof_points(model)
         corner = corner_motion_3d(boxes, mech, dofs)
-        points = 0.5 * (boxes[:, :3] + boxes[:, 3:])
         angle = math.radians(float(getattr(model, "direction", 0.0) or 0.0))
         along = np.array([math.cos(angle), math.sin(angle), 0.0])
 
@@ -108,15 +127,9 @@ def mechanism_weights(model: Any, results: Any, gravity: Optional[float] = None)
         blocks = shapes(model)  # convex polygons: rectangles among them
         dofs = blocks.centroids
         corner = corner_motion_2d(blocks, mech)
-        points = np.array([area_centroid(blocks.polygon(i)) for i in range(len(blocks))]).reshape(-1, 2)
 
         def dx_at(i: np.ndarray, p: np.ndarray) -> np.ndarray:
             return mech[i, 0] - mech[i, 2] * (p[:, 1] - dofs[i, 1])  # type: ignore[no-any-return]
-    carried = list(getattr(model, "carried", None) or [])
-    owner = np.array([c[0] for c in carried], dtype=np.int64)
-    loads = np.array([c[2] for c in carried], dtype=np.float64)
-    at = np.array([c[1] for c in carried], dtype=np.float64).reshape(-1, points.shape[1])
-    np.subtract.at(weights, owner, loads)  # each block's own weight
     bodies = np.arange(int(model.n_blocks))
     if model.top_index is not None:
         bodies = np.append(bodies, int(model.top_index))
@@ -124,10 +137,7 @@ def mechanism_weights(model: Any, results: Any, gravity: Optional[float] = None)
     if not (math.isfinite(peak) and peak > 0):
         raise _refuse("mechanism", "no block moves in the mechanism")
     moving = bodies[corner[bodies] > MOVING_FRACTION * peak]
-    on = np.isin(owner, moving)  # the loads of the moving blocks
-    which = np.concatenate([moving, owner[on]])
-    P = np.concatenate([weights[moving], loads[on]])
-    where = np.concatenate([points[moving], at[on]])
+    which, P, where = block_weights(model, moving)
     d = dx_at(which, where)
     scale = float(np.max(np.abs(d)))
     if scale > 0:  # else participating_mass refuses it: no horizontal displacement

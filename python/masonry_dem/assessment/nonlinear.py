@@ -7,7 +7,8 @@ point about which it turns relative to the ground or to another body (their rela
 must lie on the outlines of both (a corner where they touch). The mechanism is then followed at finite rotation
 with each body's rotation held in the mechanism's proportion to the others' (its shape kept) and every hinge kept:
 body k's points move as X_k(x) = X_parent(h_k) + R(theta_k) (x - h_k), the geometry updated; no other contact is made
-or lost. Virtual work at each position, with the horizontal forces alpha P_i at the blocks' centroids, gives
+or lost. Virtual work at each position, with the horizontal forces alpha P_i at the blocks' centroids (and at the
+points of the loads they carry, :func:`masonry_dem.assessment.kinematic.block_weights`), gives
 alpha(theta) = sum P_i dy_i / sum P_i dx_i, dx_i and dy_i the centroids' velocities along the path there. For a block
 of base b and height h about its toe this is tan(atan(b / h) - theta); the curve goes to zero at theta_0.
 
@@ -32,7 +33,7 @@ from typing import Any, Optional, Tuple
 import numpy as np
 
 from .._shapes import shapes
-from .kinematic import mechanism_weights, participating_mass
+from .kinematic import block_weights, mechanism_weights, participating_mass
 from .parameters import AssessmentParameters
 from .spectra import _refuse
 
@@ -250,12 +251,14 @@ def mechanism_chain(model: Any, results: Any, blocks: np.ndarray) -> Chain:
                                    "about hinges")
     index = {k: n for n, k in enumerate(order)}
     rates = np.array([w[rep[k]] for k in order]) / rate_scale
-    weights = np.asarray(model.weights, dtype=np.float64)[blocks]
-    chain = Chain(weights=weights, points=c, body=np.array([index[int(k)] for k in body]),
-                  hinges=np.array([hinge[k] for k in order]), parent=np.array([index.get(parent[k], -1) for k in order]),
-                  rates=rates)
+    # the weights: each block's own at its centroid, and the loads it carries at their points, on its body
+    owner, weights, points = block_weights(model, blocks)
+    slot = {int(b): n for n, b in enumerate(blocks)}
+    on_body = np.array([index[int(body[slot[int(b)]])] for b in owner])
+    chain = Chain(weights=weights, points=points, body=on_body, hinges=np.array([hinge[k] for k in order]),
+                  parent=np.array([index.get(parent[k], -1) for k in order]), rates=rates)
     if float(chain.motion(0.0)[1][0, :, 0] @ weights) < 0:  # the direction in which the horizontal forces work
-        chain = Chain(weights=weights, points=c, body=chain.body, hinges=chain.hinges, parent=chain.parent,
+        chain = Chain(weights=weights, points=points, body=chain.body, hinges=chain.hinges, parent=chain.parent,
                       rates=-rates)
     return chain
 
@@ -343,7 +346,7 @@ def nonlinear_check(model: Any, results: Any, parameters: AssessmentParameters,
     if parameters.at_height and parameters.height_rule != "circ2009":
         raise _refuse("mechanism", "at height, the nonlinear check follows Circolare 617/2009 only (the 2019 "
                                    "Circolare's floor displacement spectra, C8.7.1.2.1.8, are not implemented)")
-    chain = mechanism_chain(model, results, lumped.blocks)
+    chain = mechanism_chain(model, results, np.unique(lumped.blocks))  # a block with loads once
     g = lumped.gravity
     t0, d_star, a_star, _ = chain_curve(chain, g, parameters.confidence_factor)
     d0 = float(d_star(t0)[0])
