@@ -244,6 +244,7 @@ impl PyModel3D {
             joints: laws_from(joints)?,
             gravity: gravity.unwrap_or(d.gravity),
             live: live_from(live, direction)?,
+            ..d
         };
         // the GIL released, polling Ctrl-C in this thread
         let mut raised = None;

@@ -175,6 +175,17 @@ impl<'a> Integrator3<'a> {
         let mut cts = Vec::with_capacity(m);
         let mut pts = Vec::with_capacity(4 * m);
         let mut laws = Vec::with_capacity(m);
+        // the points' laws share a contact's area in four, and Euler's equations are written in
+        // the global axes, a box's principal axes
+        for (i, t) in model.inertia_tensor().iter().enumerate() {
+            let off = t[0][1].abs().max(t[0][2].abs()).max(t[1][2].abs());
+            if off > 1e-12 * (t[0][0] + t[1][1] + t[2][2]) {
+                return Err(Error::input(format!(
+                    "{}: the explicit solver in 3D takes blocks whose principal axes of inertia are x, y and z (boxes); this one's are turned",
+                    model.block_name(i)
+                )));
+            }
+        }
         for (k, c) in contacts.iter().enumerate() {
             if c.corners.len() != 4 {
                 return Err(Error::input(format!("contact {k} has {} corners: the explicit solver takes rectangles", c.corners.len())));

@@ -324,7 +324,7 @@ impl Lp {
     /// 56 / 64; in 3D 115 blocks 18 / 19, 1,785 30 / 35, 3,980 34 / 41, 9,331 93 / 104.
     fn start(&mut self) -> Ipm {
         let (n, nbd) = (self.n, self.n_bounded());
-        let nx = self.nv * self.m;
+        let nx = self.n_vars();
         let mut b = self.f_dead.clone();
         for (&d, &pv) in self.dofs.iter().zip(&self.pv) {
             if d != NO_EQ {

@@ -181,6 +181,13 @@ impl Polyhedron {
         Ok(hull)
     }
 
+    /// The box, if the polyhedron is one with sides along the axes (six faces whose normals are
+    /// the axes).
+    pub fn as_box(&self) -> Option<Aabb<3>> {
+        let axial = |n: [f64; 3]| n.iter().filter(|&&v| v == 0.0).count() == 2;
+        (self.faces.len() == 6 && self.vertices.len() == 8 && self.faces.iter().all(|f| axial(f.normal))).then(|| self.aabb())
+    }
+
     /// The vertices \[m\].
     pub fn vertices(&self) -> &[[f64; 3]] {
         &self.vertices

@@ -1,21 +1,25 @@
 //! [`Model3`]: the 3D model built from a [`ModelSpec3`]: the checks of the input, the base and
 //! the top beam, the contacts, masses, supports and loads.
 
-use super::{detect, Box3, Contact, LiveLoad3, ModelSpec3};
+use super::{detect_polyhedra, Box3, Contact, LiveLoad3, ModelSpec3};
 use crate::error::{non_negative, positive, Error, Result};
 use crate::geometry::MAX_BLOCKS;
 use crate::interface::{BlockKind, Family};
 use crate::joint::JointLaw;
 use crate::model::JointLaws;
+use crate::shape::{Polyhedron, Volume};
 
-/// A wall of rigid boxes joined by contacts, with its base, top beam, supports and loads.
-/// Stateless: solvers read it.
+/// A wall of rigid blocks (boxes, or convex polyhedra) joined by contacts, with its base, top
+/// beam, supports and loads. Stateless: solvers read it.
 ///
 /// Dof: 6 per block, `6 i + k` for (ux, uy, uz, rx, ry, rz) of block `i`, small rotations about
 /// axes through its centroid; forces are (Fx, Fy, Fz, Mx, My, Mz) about the centroid.
 #[derive(Debug, Clone)]
 pub struct Model3 {
     boxes: Vec<Box3>,
+    shapes: Vec<Polyhedron>,
+    /// per block, whether it is a box (its `boxes` entry is the block, not the box around it)
+    is_box: Vec<bool>,
     kinds: Vec<BlockKind>,
     n_wall: usize,
     base: Option<usize>,
@@ -26,6 +30,7 @@ pub struct Model3 {
     centroids: Vec<[f64; 3]>,
     mass: Vec<f64>,
     inertia: Vec<[f64; 3]>,
+    tensor: Vec<[[f64; 3]; 3]>,
     contacts: Vec<Contact>,
     fixed: Vec<bool>,
     f_dead: Vec<f64>,
@@ -43,20 +48,28 @@ impl Model3 {
     /// `false` stops it with [`Error::Interrupted`].
     pub fn new_with(spec: &ModelSpec3, poll: &mut dyn FnMut() -> bool) -> Result<Model3> {
         check_spec(spec)?;
-        let (boxes, kinds, base, top) = frame(spec);
-        let n_wall = spec.blocks.len();
-        let name = |i: usize| block_name(i, n_wall, base, top, &boxes);
-        let contacts = detect(&boxes, &kinds, name, poll)?;
-        check_touched(&contacts, boxes.len(), n_wall, base, top, name)?;
-        let mass: Vec<f64> = boxes.iter().map(|b| spec.density * b.volume()).collect();
-        let inertia: Vec<[f64; 3]> = boxes
+        let (shapes, is_box, kinds, base, top) = frame(spec);
+        let boxes: Vec<Box3> = shapes
             .iter()
-            .zip(&mass)
-            .map(|(b, m)| {
-                let [x, y, z] = b.size().map(|s| s * s);
-                [m * (y + z) / 12.0, m * (x + z) / 12.0, m * (x + y) / 12.0]
+            .map(|p| {
+                let b = p.aabb();
+                Box3 { min: b.min, max: b.max }
             })
             .collect();
+        let n_wall = spec.blocks.len() + spec.polyhedra.len();
+        let name = |i: usize| block_name(i, n_wall, base, top, &boxes, &shapes, &is_box);
+        let contacts = detect_polyhedra(&shapes, &kinds, name, poll)?;
+        check_touched(&contacts, shapes.len(), n_wall, base, top, name)?;
+        // a box's closed forms (the polyhedron's to rounding), else the polyhedron's
+        let props: Vec<Volume> = shapes
+            .iter()
+            .zip(&boxes)
+            .zip(&is_box)
+            .map(|((p, b), &boxed)| if boxed { box_volume(b) } else { p.volume_properties() })
+            .collect();
+        let mass: Vec<f64> = props.iter().map(|v| spec.density * v.volume).collect();
+        let tensor: Vec<[[f64; 3]; 3]> = props.iter().map(|v| v.inertia.map(|r| r.map(|x| spec.density * x))).collect();
+        let inertia: Vec<[f64; 3]> = tensor.iter().map(|t| [t[0][0], t[1][1], t[2][2]]).collect();
         for (i, (&m, j)) in mass.iter().zip(&inertia).enumerate() {
             if !(m.is_finite() && m > 0.0 && j.iter().all(|&v| v.is_finite() && v > 0.0)) {
                 return Err(Error::input(format!(
@@ -75,9 +88,11 @@ impl Model3 {
         let weight: f64 = (0..n_wall).chain(top).map(|i| mass[i] * spec.gravity).sum();
         crate::error::check_weight(weight, spec.density, spec.gravity)?;
         let nb = boxes.len();
-        let centroids = boxes.iter().map(Box3::centroid).collect();
+        let centroids = props.iter().map(|v| v.centroid).collect();
         let mut model = Model3 {
             boxes,
+            shapes,
+            is_box,
             kinds,
             n_wall,
             base,
@@ -88,6 +103,7 @@ impl Model3 {
             centroids,
             mass,
             inertia,
+            tensor,
             contacts,
             fixed: vec![false; 6 * nb],
             f_dead: vec![0.0; 6 * nb],
@@ -130,8 +146,10 @@ impl Model3 {
     /// The base's fixed dofs, the weights of the wall and the top beam, and the live load on
     /// the same blocks (the beam weighs in 3D: its weight is loaded like the wall's).
     fn supports_and_loads(&mut self) {
-        if let Some(b) = self.base {
-            self.fixed[6 * b..6 * b + 6].fill(true);
+        for (i, &kind) in self.kinds.iter().enumerate() {
+            if kind == BlockKind::Base {
+                self.fixed[6 * i..6 * i + 6].fill(true);
+            }
         }
         let free = (0..self.n_wall).chain(self.top);
         for i in free {
@@ -155,9 +173,14 @@ impl Model3 {
     pub fn n_wall(&self) -> usize {
         self.n_wall
     }
-    /// Every block's box: wall blocks, then the base, then the top beam.
+    /// Every block's box: wall blocks, then the base, then the top beam, then the supports; a
+    /// box is itself, a polyhedron the box around it.
     pub fn boxes(&self) -> &[Box3] {
         &self.boxes
+    }
+    /// Every block's shape, a convex polyhedron, in the order of [`Model3::boxes`].
+    pub fn shapes(&self) -> &[Polyhedron] {
+        &self.shapes
     }
     /// What each block is (wall, base, top beam).
     pub fn kinds(&self) -> &[BlockKind] {
@@ -171,9 +194,10 @@ impl Model3 {
     pub fn top(&self) -> Option<usize> {
         self.top
     }
-    /// A label for messages: "block 7 [x0, y0, z0, x1, y1, z1]", "the base" or "the top beam".
+    /// A label for messages: "block 7 [x0, y0, z0, x1, y1, z1]" (a box), "block 7 (polyhedron
+    /// of 6 vertices: ...)", "the base", "the top beam" or "support 0 (polyhedron ...)".
     pub fn block_name(&self, i: usize) -> String {
-        block_name(i, self.n_wall, self.base, self.top, &self.boxes)
+        block_name(i, self.n_wall, self.base, self.top, &self.boxes, &self.shapes, &self.is_box)
     }
     /// Each block's centroid \[m\] (where its dofs are and its moments are taken).
     pub fn centroids(&self) -> &[[f64; 3]] {
@@ -183,10 +207,16 @@ impl Model3 {
     pub fn mass(&self) -> &[f64] {
         &self.mass
     }
-    /// Each block's principal moments of inertia about its centroid, about x, y and z
-    /// (`m (b^2 + c^2) / 12`, ... for sides a, b, c) \[kg m2\].
+    /// Each block's moments of inertia about axes through its centroid along x, y and z, the
+    /// diagonal of [`Model3::inertia_tensor`] (a box's principal moments, `m (b^2 + c^2) / 12`,
+    /// ... for sides a, b, c) \[kg m2\].
     pub fn inertia(&self) -> &[[f64; 3]] {
         &self.inertia
+    }
+    /// Each block's inertia tensor about its centroid in global axes \[kg m2\] (diagonal for a
+    /// box).
+    pub fn inertia_tensor(&self) -> &[[[f64; 3]; 3]] {
+        &self.tensor
     }
     /// The contacts, sorted by their blocks (a, b).
     pub fn contacts(&self) -> &[Contact] {
@@ -313,16 +343,14 @@ fn check_spec(spec: &ModelSpec3) -> Result<()> {
     if let Some(h) = spec.top {
         positive("top", h)?;
     }
-    if spec.blocks.is_empty() {
+    let n = spec.blocks.len() + spec.polyhedra.len();
+    if n == 0 {
         return Err(Error::input("blocks: the wall has no blocks"));
     }
-    if spec.blocks.len() > MAX_BLOCKS {
-        return Err(crate::geometry::too_many_blocks("blocks", spec.blocks.len() as f64));
+    if n + spec.supports.len() > MAX_BLOCKS {
+        return Err(crate::geometry::too_many_blocks("blocks", (n + spec.supports.len()) as f64));
     }
-    crate::error::check_memory(
-        &format!("a model of {} blocks", spec.blocks.len()),
-        spec.blocks.len() as f64 * crate::error::MODEL_BYTES_PER_BLOCK,
-    )?;
+    crate::error::check_memory(&format!("a model of {n} blocks"), n as f64 * crate::error::MODEL_BYTES_PER_BLOCK)?;
     for (i, b) in spec.blocks.iter().enumerate() {
         b.validate(&format!("block {i}"))?;
     }
@@ -347,30 +375,49 @@ fn check_spec(spec: &ModelSpec3) -> Result<()> {
     Ok(())
 }
 
-/// The wall's boxes with the base under them and the top beam over them (each over the box
-/// around the wall in plan; the base as deep as the tallest block, as in 2D).
-fn frame(spec: &ModelSpec3) -> (Vec<Box3>, Vec<BlockKind>, Option<usize>, Option<usize>) {
+/// The volume properties of a box: its closed forms (the polyhedron's, to rounding).
+fn box_volume(b: &Box3) -> Volume {
+    let sq = b.size().map(|s| s * s);
+    let v = b.volume();
+    let diag = |d: [f64; 3]| std::array::from_fn(|i| std::array::from_fn(|j| if i == j { d[i] } else { 0.0 }));
+    let [x, y, z] = sq;
+    Volume {
+        volume: v,
+        centroid: b.centroid(),
+        second: diag(sq.map(|s| v * s / 12.0)),
+        inertia: diag([v * (y + z) / 12.0, v * (x + z) / 12.0, v * (x + y) / 12.0]),
+    }
+}
+
+/// The wall's blocks as polyhedra (the boxes first), with the base under them and the top beam
+/// over them (each over the box around the wall in plan; the base as deep as the tallest block,
+/// as in 2D), then the supports; whether each is a box, and what it is.
+#[allow(clippy::type_complexity)]
+fn frame(spec: &ModelSpec3) -> (Vec<Polyhedron>, Vec<bool>, Vec<BlockKind>, Option<usize>, Option<usize>) {
+    let mut shapes: Vec<Polyhedron> = spec.blocks.iter().map(Box3::polyhedron).chain(spec.polyhedra.iter().cloned()).collect();
+    let mut is_box: Vec<bool> = (0..shapes.len()).map(|i| i < spec.blocks.len()).collect();
     let (mut lo, mut hi, mut hmax) = ([f64::MAX; 3], [f64::MIN; 3], 0.0f64);
-    for b in &spec.blocks {
+    for p in &shapes {
+        let b = p.aabb();
         for k in 0..3 {
             lo[k] = lo[k].min(b.min[k]);
             hi[k] = hi[k].max(b.max[k]);
         }
         hmax = hmax.max(b.max[2] - b.min[2]);
     }
-    let mut boxes = spec.blocks.clone();
-    let mut kinds = vec![BlockKind::Wall; boxes.len()];
-    let base = spec.base.then(|| {
-        boxes.push(Box3::new(lo[0], lo[1], lo[2] - hmax, hi[0], hi[1], lo[2]));
-        kinds.push(BlockKind::Base);
-        boxes.len() - 1
-    });
-    let top = spec.top.map(|h| {
-        boxes.push(Box3::new(lo[0], lo[1], hi[2], hi[0], hi[1], hi[2] + h));
-        kinds.push(BlockKind::Top);
-        boxes.len() - 1
-    });
-    (boxes, kinds, base, top)
+    let mut kinds = vec![BlockKind::Wall; shapes.len()];
+    let mut add = |p: Polyhedron, kind: BlockKind, boxed: bool| {
+        shapes.push(p);
+        kinds.push(kind);
+        is_box.push(boxed);
+        shapes.len() - 1
+    };
+    let base = spec.base.then(|| add(Box3::new(lo[0], lo[1], lo[2] - hmax, hi[0], hi[1], lo[2]).polyhedron(), BlockKind::Base, true));
+    let top = spec.top.map(|h| add(Box3::new(lo[0], lo[1], hi[2], hi[0], hi[1], hi[2] + h).polyhedron(), BlockKind::Top, true));
+    for s in &spec.supports {
+        add(s.clone(), BlockKind::Base, false);
+    }
+    (shapes, is_box, kinds, base, top)
 }
 
 /// The refusal of a wall without a base: nothing holds it.
@@ -401,14 +448,24 @@ fn check_touched(
     Ok(())
 }
 
-fn block_name(i: usize, n_wall: usize, base: Option<usize>, top: Option<usize>, boxes: &[Box3]) -> String {
+fn block_name(
+    i: usize,
+    n_wall: usize,
+    base: Option<usize>,
+    top: Option<usize>,
+    boxes: &[Box3],
+    shapes: &[Polyhedron],
+    is_box: &[bool],
+) -> String {
+    let label = if is_box[i] { boxes[i].label() } else { shapes[i].label() };
     if Some(i) == base {
         "the base".into()
     } else if Some(i) == top {
         "the top beam".into()
     } else if i < n_wall {
-        format!("block {i} {}", boxes[i].label())
+        format!("block {i} {label}")
     } else {
-        format!("block {i}")
+        let first = n_wall + usize::from(base.is_some()) + usize::from(top.is_some());
+        format!("support {} {label}", i - first)
     }
 }
