@@ -176,8 +176,8 @@ impl<'a> Integrator3<'a> {
         let mut pts = Vec::with_capacity(4 * m);
         let mut laws = Vec::with_capacity(m);
         // the points' laws share a contact's area in four, and Euler's equations are written in
-        // the global axes, a box's principal axes
-        for (i, t) in model.inertia_tensor().iter().enumerate() {
+        // the global axes, a box's principal axes (a fixed block's inertia plays no part)
+        for (i, t) in model.inertia_tensor().iter().enumerate().filter(|(i, _)| !model.fixed()[6 * i]) {
             let off = t[0][1].abs().max(t[0][2].abs()).max(t[1][2].abs());
             if off > 1e-12 * (t[0][0] + t[1][1] + t[2][2]) {
                 return Err(Error::input(format!(
