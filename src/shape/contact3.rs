@@ -41,37 +41,51 @@ pub struct FaceContact {
 /// corners exactly. Points within `tol` of the one before are merged, and points within `tol`
 /// of the line through their neighbours dropped.
 pub fn face_contacts(a: &Polyhedron, b: &Polyhedron, tol: f64) -> Vec<FaceContact> {
+    facing(a, b, tol).into_iter().filter_map(|[fa, fb]| shared(a, fa, b, fb, tol)).collect()
+}
+
+/// The pairs of a face of `a` and a face of `b` that face each other on one plane within `tol`
+/// (see [`face_contacts`]), whether they share a polygon or not.
+pub fn facing(a: &Polyhedron, b: &Polyhedron, tol: f64) -> Vec<[usize; 2]> {
     let mut out = vec![];
+    let near = |p: &Polyhedron, f: usize, n: [f64; 3], off: f64| p.face_points(f).all(|q| (dot(n, q) - off).abs() <= tol);
     for (fa, ga) in a.faces().iter().enumerate() {
         for (fb, gb) in b.faces().iter().enumerate() {
-            if dot(ga.normal, gb.normal) >= -0.5 {
-                continue;
-            }
-            let near = |p: &Polyhedron, f: usize, n: [f64; 3], off: f64| p.face_points(f).all(|q| (dot(n, q) - off).abs() <= tol);
-            if !(near(b, fb, ga.normal, ga.offset) && near(a, fa, gb.normal, gb.offset)) {
-                continue;
-            }
-            if let Some(c) = shared(a, fa, b, fb, tol) {
-                out.push(c);
+            if dot(ga.normal, gb.normal) < -0.5 && near(b, fb, ga.normal, ga.offset) && near(a, fa, gb.normal, gb.offset) {
+                out.push([fa, fb]);
             }
         }
     }
     out
 }
 
-/// The polygon shared by face `fa` of `a` and face `fb` of `b` (facing, coplanar).
-fn shared(a: &Polyhedron, fa: usize, b: &Polyhedron, fb: usize, tol: f64) -> Option<FaceContact> {
+/// The unit normal of a contact between face `fa` of `a` and face `fb` of `b`, from `a` into
+/// `b`: the bisector of their outward normals (the first's, the second's reversed).
+pub fn bisector(a: &Polyhedron, fa: usize, b: &Polyhedron, fb: usize) -> [f64; 3] {
+    let (na, nb) = (a.faces()[fa].normal, b.faces()[fb].normal);
+    if na == nb.map(|v| -v) {
+        na
+    } else {
+        unit(sub(na, nb))
+    }
+}
+
+/// The polygon shared by face `fa` of `a` and face `fb` of `b` (facing, coplanar: see
+/// [`facing`]), if it has an area (see [`face_contacts`]).
+pub fn shared(a: &Polyhedron, fa: usize, b: &Polyhedron, fb: usize, tol: f64) -> Option<FaceContact> {
     let (ga, gb) = (&a.faces()[fa], &b.faces()[fb]);
-    let n = if ga.normal == gb.normal.map(|v| -v) { ga.normal } else { unit(sub(ga.normal, gb.normal)) };
+    let n = bisector(a, fa, b, fb);
     let (t1, t2) = frame(n);
     let uv = |q: [f64; 3]| [dot(q, t1), dot(q, t2)];
     // face a counter-clockwise about n, face b too once reversed (it is so about -n)
     let mut poly: Vec<[f64; 2]> = a.face_points(fa).map(uv).collect();
     let mut clip: Vec<[f64; 2]> = b.face_points(fb).map(uv).collect();
     clip.reverse();
+    let mut next = Vec::with_capacity(poly.len() + clip.len());
     for i in 0..clip.len() {
         let (q0, q1) = (clip[i], clip[(i + 1) % clip.len()]);
-        poly = cut(&poly, q0, q1, tol);
+        cut(&poly, q0, q1, tol, &mut next);
+        std::mem::swap(&mut poly, &mut next);
         if poly.len() < 3 {
             return None;
         }
@@ -81,7 +95,7 @@ fn shared(a: &Polyhedron, fa: usize, b: &Polyhedron, fb: usize, tol: f64) -> Opt
         return None;
     }
     let props = Area::of(&poly);
-    let diameter = poly.iter().flat_map(|p| poly.iter().map(move |q| (p[0] - q[0]).hypot(p[1] - q[1]))).fold(0.0, f64::max);
+    let diameter = poly.iter().flat_map(|p| poly.iter().map(move |q| dist2(*p, *q))).fold(0.0, f64::max).sqrt();
     if !(props.area > tol * diameter) {
         return None;
     }
@@ -98,11 +112,11 @@ fn shared(a: &Polyhedron, fa: usize, b: &Polyhedron, fb: usize, tol: f64) -> Opt
 /// `q1`, beyond `tol`: a point within `tol` of the line is kept; an edge is cut only where its
 /// ends lie beyond `tol` on either side, the cut clamped between them, and on a line along an
 /// axis of the plane the cut takes the line's coordinate.
-fn cut(poly: &[[f64; 2]], q0: [f64; 2], q1: [f64; 2], tol: f64) -> Vec<[f64; 2]> {
+fn cut(poly: &[[f64; 2]], q0: [f64; 2], q1: [f64; 2], tol: f64, out: &mut Vec<[f64; 2]>) {
     let e = [q1[0] - q0[0], q1[1] - q0[1]];
-    let len = e[0].hypot(e[1]);
+    let len = dist2(q0, q1).sqrt();
     let side = |p: [f64; 2]| (e[0] * (p[1] - q0[1]) - e[1] * (p[0] - q0[0])) / len;
-    let mut out = Vec::with_capacity(poly.len() + 2);
+    out.clear();
     for i in 0..poly.len() {
         let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
         let (sp, sq) = (side(p), side(q));
@@ -120,13 +134,17 @@ fn cut(poly: &[[f64; 2]], q0: [f64; 2], q1: [f64; 2], tol: f64) -> Vec<[f64; 2]>
             out.push(x);
         }
     }
-    out
+}
+
+/// The square of the distance from `p` to `q`.
+fn dist2(p: [f64; 2], q: [f64; 2]) -> f64 {
+    (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1])
 }
 
 /// `poly` with points within `tol` of the one before merged (the last and the first too) and
 /// points within `tol` of the line through their neighbours dropped.
 fn tidy(poly: Vec<[f64; 2]>, tol: f64) -> Vec<[f64; 2]> {
-    let dist = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+    let dist = |p: [f64; 2], q: [f64; 2]| dist2(p, q).sqrt();
     let mut v: Vec<[f64; 2]> = Vec::with_capacity(poly.len());
     for p in poly {
         if v.last().map_or(true, |&q| dist(p, q) > tol) {

@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::interface::{BlockKind, Family};
 use crate::shape::grid::for_each_pair;
 use crate::shape::vec3::dot;
-use crate::shape::{face_contacts, penetration3, Aabb, FaceContact, Polyhedron, REL_TOL};
+use crate::shape::{bisector, facing, penetration3, shared, Aabb, FaceContact, Polyhedron, REL_TOL};
 
 /// Finds every pair of boxes that share a rectangle of positive area (two faces with opposite
 /// normals, coplanar within a tolerance), and refuses overlapping boxes (naming both).
@@ -42,8 +42,9 @@ pub fn detect(
 }
 
 /// [`detect`] on convex polyhedra: every pair of blocks with a face of each on one plane within
-/// the tolerance, facing, that share a polygon of positive area ([`face_contacts`]); blocks that
-/// share none and overlap by more than the tolerance ([`penetration3`]) are refused, naming both.
+/// the tolerance, facing, that share a polygon of positive area
+/// ([`crate::shape::face_contacts`]); blocks without such faces (whose planes would part them)
+/// that overlap by more than the tolerance ([`penetration3`]) are refused, naming both.
 /// A block narrower than ten times the tolerance across one of its faces is refused, naming it.
 /// The normal is oriented up (from the lower block into the upper), or for a vertical contact
 /// towards +x, or else +y (as between boxes); a contact is Bed when its normal is within 45 deg
@@ -70,8 +71,8 @@ pub fn detect_polyhedra(
         if kinds[i] != BlockKind::Wall && kinds[j] != BlockKind::Wall {
             return Ok(()); // base or support against top beam or support: not a joint of the wall
         }
-        let found = face_contacts(&shapes[i], &shapes[j], tol);
-        let Some(first) = found.first() else {
+        let pairs = facing(&shapes[i], &shapes[j], tol);
+        let Some(&[fi, fj]) = pairs.first() else {
             let depth = penetration3(&shapes[i], &shapes[j], tol);
             if depth > tol {
                 let (p, q) = (&aabbs[i], &aabbs[j]);
@@ -86,8 +87,11 @@ pub fn detect_polyhedra(
             }
             return Ok(());
         };
-        let (a, b, found) = if upward(first.n) { (i, j, found) } else { (j, i, face_contacts(&shapes[j], &shapes[i], tol)) };
-        for c in found {
+        let up = upward(bisector(&shapes[i], fi, &shapes[j], fj));
+        let (a, b) = if up { (i, j) } else { (j, i) };
+        for [fi, fj] in pairs {
+            let (fa, fb) = if up { (fi, fj) } else { (fj, fi) };
+            let Some(c) = shared(&shapes[a], fa, &shapes[b], fb, tol) else { continue };
             let family = match (kinds[a], kinds[b]) {
                 (BlockKind::Base, _) | (_, BlockKind::Base) => Family::Base,
                 (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,

@@ -1,5 +1,5 @@
-//! The out-of-plane (3D) model: walls of rigid axis-aligned boxes, their contacts, masses,
-//! supports and loads. No solver here: limit analysis and the incremental solvers in 3D read a
+//! The out-of-plane (3D) model: walls of rigid blocks, axis-aligned boxes or convex polyhedra
+//! ([`crate::shape::Polyhedron`]; a box is one), their contacts, masses, supports and loads. No solver here: limit analysis and the incremental solvers in 3D read a
 //! [`Model3`] (blocks with 6 dof, contacts as polygons with a frame).
 //!
 //! Coordinates are metres with z up. Each block has 6 dof at its centroid: ux, uy, uz \[m\], then
@@ -7,10 +7,10 @@
 //! index of dof k of block i is `6 i + k`. Blocks are numbered as in 2D: the user's blocks
 //! `0..n_wall` in the order given, then the base (if any), then the top beam (if any).
 //!
-//! A contact is the rectangle shared by two faces with opposite normals (boxes are axis-aligned,
-//! so the polygon of a contact is the intersection of two rectangles): its corners, normal and
-//! tangents are what a solver needs to put contact points with a normal force and a shear vector
-//! at its corners (the design's "Out of plane (3D)").
+//! A contact is the convex polygon shared by two facing coplanar faces (between boxes a
+//! rectangle, the intersection of two rectangles): its corners, normal and tangents are what a
+//! solver needs to put contact points with a normal force and a shear vector at its corners (the
+//! design's "Out of plane (3D)").
 //!
 //! ```
 //! use masonry_dem::space::{running_bond_3d, Model3, ModelSpec3};
