@@ -418,7 +418,34 @@ mod tests {
         assert_eq!(frame([0.0, 1.0, 0.0]), ([-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]));
     }
 
+    /// Euler's V - E + F = 2 of a closed convex surface, each edge shared by two faces.
+    fn closed(p: &Polyhedron) -> bool {
+        let e2: usize = p.faces().iter().map(|f| f.vertices.len()).sum();
+        e2 % 2 == 0 && p.vertices().len() + p.faces().len() == e2 / 2 + 2
+    }
+
     proptest! {
+        // random clouds, and box corners jittered by a tenth of the tolerance (each face planar
+        // within it): a closed, well-formed surface with every point inside it (within the
+        // tolerance). (Jittered by half the tolerance, a face's four corners may lie 2 tol off
+        // one plane: it is then two triangles, as the hull of those points is.)
+        #[test]
+        fn hulls_of_clouds_are_closed_and_hold_every_point(
+            cloud in proptest::collection::vec(proptest::array::uniform3(-1.0f64..1.0), 4..40),
+            jitter in proptest::collection::vec(proptest::array::uniform3(-1e-10f64..1e-10), 8),
+        ) {
+            if let Ok(p) = Polyhedron::hull(&cloud, TOL) {
+                well_formed(&p);
+                prop_assert!(closed(&p), "{:?}", p);
+                prop_assert!(cloud.iter().all(|&q| p.faces().iter().all(|f| dot(f.normal, q) <= f.offset + 2.0 * TOL)));
+            }
+            let corners: Vec<[f64; 3]> = corners([0.0; 3], [0.4, 0.1, 0.2]).iter().zip(&jitter).map(|(c, j)| std::array::from_fn(|k| c[k] + j[k])).collect();
+            let p = Polyhedron::hull(&corners, TOL).unwrap();
+            well_formed(&p);
+            prop_assert!(closed(&p));
+            prop_assert_eq!((p.vertices().len(), p.faces().len()), (8, 6));
+        }
+
         // a prism over a regular polygon, turned and moved: its faces are the k sides and the
         // two ends, every one well formed, whatever the order of the points
         #[test]
