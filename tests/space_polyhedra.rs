@@ -138,6 +138,12 @@ fn overlapping_polyhedra_are_refused_naming_both() {
     .unwrap_err()
     .to_string();
     assert!(e.starts_with("block 0 [0, 0, 0, 1, 1, 1] and block 1 (polyhedron of 4 vertices: "), "{e}");
+    // a block on a support with another in the air: that one is named
+    let cube = Box3::new(0.0, 0.0, 0.0, 1.0, 1.0, 1.0);
+    let e = Model3::new(&ModelSpec3 { blocks: vec![cube, Box3::new(0.0, 0.0, 3.0, 1.0, 1.0, 4.0)], ..spec(vec![], vec![Box3::new(0.0, 0.0, -1.0, 1.0, 1.0, 0.0).polyhedron()], 0.6, 0.0) })
+        .unwrap_err()
+        .to_string();
+    assert_eq!(e, "block 1 [0, 0, 3, 1, 1, 4] touches no other block");
     // the explicit solver refuses what it does not take yet, naming it
     let m = on_slope(10.0, 0.8, 0.5, 0.3, 0.8, 0.0);
     let e = masonry_dem::explicit::solve_3d(&m, &Default::default()).map(|_| ()).unwrap_err().to_string();

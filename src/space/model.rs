@@ -59,7 +59,8 @@ impl Model3 {
         let n_wall = spec.blocks.len() + spec.polyhedra.len();
         let name = |i: usize| block_name(i, n_wall, base, top, &boxes, &shapes, &is_box);
         let contacts = detect_polyhedra(&shapes, &kinds, name, poll)?;
-        check_touched(&contacts, shapes.len(), n_wall, base, top, name)?;
+        let held = kinds.contains(&BlockKind::Base);
+        check_touched(&contacts, shapes.len(), n_wall, held, top, name)?;
         // a box's closed forms (the polyhedron's to rounding), else the polyhedron's
         let props: Vec<Volume> = shapes
             .iter()
@@ -182,7 +183,7 @@ impl Model3 {
     pub fn shapes(&self) -> &[Polyhedron] {
         &self.shapes
     }
-    /// What each block is (wall, base, top beam).
+    /// What each block is (wall, base or support, top beam).
     pub fn kinds(&self) -> &[BlockKind] {
         &self.kinds
     }
@@ -424,13 +425,14 @@ fn frame(spec: &ModelSpec3) -> (Vec<Polyhedron>, Vec<bool>, Vec<BlockKind>, Opti
 const NO_SUPPORT: &str =
     "the wall has no support: no base ([base] kind = \"none\", base=False): nothing carries its weight";
 
-/// Refuses a wall block, or the top beam, that no contact reaches; without a base, the wall
-/// itself (a lone block touches nothing because nothing holds it: the support is what is missing).
+/// Refuses a wall block, or the top beam, that no contact reaches; without a base or a support
+/// (`held` false), the wall itself (a lone block touches nothing because nothing holds it: the
+/// support is what is missing).
 fn check_touched(
     contacts: &[Contact],
     nb: usize,
     n_wall: usize,
-    base: Option<usize>,
+    held: bool,
     top: Option<usize>,
     name: impl Fn(usize) -> String,
 ) -> Result<()> {
@@ -440,7 +442,7 @@ fn check_touched(
         touched[c.b] = true;
     }
     if let Some(i) = (0..n_wall).chain(top).find(|&i| !touched[i]) {
-        if base.is_none() {
+        if !held {
             return Err(Error::input(NO_SUPPORT));
         }
         return Err(Error::input(format!("{} touches no other block", name(i))));
