@@ -175,6 +175,20 @@ impl<'a> Integrator3<'a> {
         let mut cts = Vec::with_capacity(m);
         let mut pts = Vec::with_capacity(4 * m);
         let mut laws = Vec::with_capacity(m);
+        // the points' laws share a contact's area in four, and Euler's equations are written in
+        // the global axes, a box's principal axes (a fixed block's inertia plays no part; the
+        // products of inertia of carried loads are refused by a time history alone, see
+        // `Model3::check_principal`)
+        for (i, t) in model.inertia_tensor().iter().enumerate().filter(|(i, _)| !model.fixed()[6 * i]) {
+            let [yz, xz, xy] = model.carried_products(i);
+            let off = (t[0][1] - xy).abs().max((t[0][2] - xz).abs()).max((t[1][2] - yz).abs());
+            if off > 1e-12 * (t[0][0] + t[1][1] + t[2][2]) {
+                return Err(Error::input(format!(
+                    "{}: the explicit solver in 3D takes blocks whose principal axes of inertia are x, y and z (boxes); this one's are turned",
+                    model.block_name(i)
+                )));
+            }
+        }
         for (k, c) in contacts.iter().enumerate() {
             if c.corners.len() != 4 {
                 return Err(Error::input(format!("contact {k} has {} corners: the explicit solver takes rectangles", c.corners.len())));

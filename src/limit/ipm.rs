@@ -350,7 +350,7 @@ impl Lp {
     /// 56 / 64; in 3D 115 blocks 18 / 19, 1,785 30 / 35, 3,980 34 / 41, 9,331 93 / 104.
     fn start(&mut self) -> Ipm {
         let (n, nbd) = (self.n, self.n_bounded());
-        let nx = self.nv * self.m;
+        let nx = self.n_vars();
         let mut b = self.f_dead.clone();
         for (&d, &pv) in self.dofs.iter().zip(&self.pv) {
             if d != NO_EQ {
@@ -617,7 +617,15 @@ impl Lp {
         let (p, res, theta, u, nt) = (&ipm.p, &ipm.res, &ipm.theta, &ipm.u, &ipm.nt);
         let (m, nx) = (self.n_bounded(), p.x.len());
         let (mut d, mut rxs, mut rtv, mut steps) = (d, rxs, rtv, steps);
-        let most = if self.n < CORRECTORS_FROM { 1 } else { CORRECTORS };
+        // near the optimum of a tight tolerance the target (sigma times the mean product) may
+        // round to zero or below: no centre to correct towards, the direction stands
+        let most = if !(target > 0.0) {
+            0
+        } else if self.n < CORRECTORS_FROM {
+            1
+        } else {
+            CORRECTORS
+        };
         for _ in 0..most {
             let (ap, ad) = steps;
             if ap.min(ad) >= 0.9 {

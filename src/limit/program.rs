@@ -21,7 +21,8 @@ pub(super) struct Lp {
     /// Elements (interfaces) and equations.
     pub(super) m: usize,
     pub(super) n: usize,
-    /// Equations per element (the dofs of its two blocks) and variables per element.
+    /// Equations per element (the dofs of its two blocks) and variables per element (in
+    /// [`Corners`] form, where contacts have their own numbers of corners: unused, 0).
     pub(super) rows: usize,
     pub(super) nv: usize,
     /// The element's variable that is also bounded above by 1, if any.
@@ -127,6 +128,14 @@ impl Lp {
         self.nv * i + self.bounded.unwrap_or(0)
     }
 
+    /// The number of variables: `nv` per element, or in [`Corners`] form `sides` per corner.
+    pub(super) fn n_vars(&self) -> usize {
+        match &self.corners {
+            Some(cf) => cf.sides * cf.start[self.m],
+            None => self.nv * self.m,
+        }
+    }
+
     /// lambda in its own units from a scaled solution.
     pub(super) fn lambda_of(&self, s: &Solution) -> f64 {
         s.lambda * self.force / self.live
@@ -155,24 +164,33 @@ impl Lp {
 /// corners of contacts between two rigid bodies (3D: six equations per body, forces then
 /// moments), stored factored: `A_k = C_k G_k`, with `G_k` each corner's generators (the same at
 /// every corner of a contact) and `C_k` what a force at a corner does to the two bodies (minus
-/// it and its moment on b, plus on a). Per contact 33 numbers where `A_k` has 144: the interior
-/// point's products stream memory.
+/// it and its moment on b, plus on a). Per contact of 4 corners 33 numbers where `A_k` has 144:
+/// the interior point's products stream memory. Each contact has its own number of corners
+/// (the vertices of its polygon, 3 or more), its variables one after the other's.
 pub(super) struct Corners {
-    /// Corners per contact and generators per corner.
-    pub(super) corners: usize,
+    /// The first corner of each contact, then the number of corners: contact k's corners are
+    /// `start[k]..start[k + 1]`.
+    pub(super) start: Vec<usize>,
+    /// Generators per corner.
     pub(super) sides: usize,
     /// Per contact, its generators (3 each, global axes).
     pub(super) gens: Vec<[f64; 3]>,
-    /// Per contact and corner, the corner's position from a's centroid then from b's, over the
-    /// length scale (the moment rows are scaled by it).
+    /// Per corner, its position from a's centroid then from b's, over the length scale (the
+    /// moment rows are scaled by it).
     pub(super) arms: Vec<[[f64; 3]; 2]>,
 }
 
 impl Corners {
-    /// Variables of element k, corner q, start at `nv k + sides q`.
+    /// The corners of contact k, as indices of corners.
     #[inline]
-    fn var(&self, nv: usize, k: usize, q: usize) -> usize {
-        nv * k + self.sides * q
+    pub(super) fn of(&self, k: usize) -> std::ops::Range<usize> {
+        self.start[k]..self.start[k + 1]
+    }
+
+    /// The variables of corner c start at `sides c`.
+    #[inline]
+    pub(super) fn var(&self, c: usize) -> usize {
+        self.sides * c
     }
 }
 
@@ -257,13 +275,13 @@ impl Lp {
         let contact = |k: usize, out: &mut [f64], e0: usize| {
             let d = &self.dofs[12 * k..12 * k + 12];
             let g = &cf.gens[cf.sides * k..cf.sides * (k + 1)];
-            for q in 0..cf.corners {
-                let xq = &x[cf.var(self.nv, k, q)..cf.var(self.nv, k, q) + cf.sides];
+            for c in cf.of(k) {
+                let xq = &x[cf.var(c)..cf.var(c) + cf.sides];
                 let mut f = [0.0; 3];
                 for (gj, xj) in g.iter().zip(xq) {
                     (0..3).for_each(|i| f[i] += xj * gj[i]);
                 }
-                let [ra, rb] = cf.arms[cf.corners * k + q];
+                let [ra, rb] = cf.arms[c];
                 let (ma, mb) = (cross(ra, f), cross(rb, f));
                 let rows = [f[0], f[1], f[2], ma[0], ma[1], ma[2], -f[0], -f[1], -f[2], -mb[0], -mb[1], -mb[2]];
                 for (&e, v) in d.iter().zip(rows) {
@@ -288,16 +306,16 @@ impl Lp {
     /// `A^T y` for a program in corner form: each generator's dot product with the velocity
     /// jump at its corner (on the threads, in chunks of contacts).
     pub(super) fn apply_t_corners(&self, cf: &Corners, y: &[f64], out: &mut [f64]) {
-        let nv = self.nv;
-        // contacts from k0 into their variables `out`
-        let contacts = |k0: usize, out: &mut [f64]| {
-            for (j, o) in out.chunks_exact_mut(nv).enumerate() {
-                let k = k0 + j;
+        // contacts k0..k1 into their variables `out`
+        let contacts = |k0: usize, k1: usize, out: &mut [f64]| {
+            let v0 = cf.var(cf.start[k0]);
+            for k in k0..k1 {
+                let o = &mut out[cf.var(cf.start[k]) - v0..cf.var(cf.start[k + 1]) - v0];
                 let d = &self.dofs[12 * k..12 * k + 12];
                 let yv: [f64; 12] = std::array::from_fn(|r| if d[r] == NO_EQ { 0.0 } else { y[d[r] as usize] });
                 let g = &cf.gens[cf.sides * k..cf.sides * (k + 1)];
-                for q in 0..cf.corners {
-                    let [ra, rb] = cf.arms[cf.corners * k + q];
+                for (q, c) in cf.of(k).enumerate() {
+                    let [ra, rb] = cf.arms[c];
                     // (r x g) . w = g . (w x r)
                     let (wa, wb) = (cross([yv[3], yv[4], yv[5]], ra), cross([yv[9], yv[10], yv[11]], rb));
                     let jump: [f64; 3] = std::array::from_fn(|i| yv[i] + wa[i] - yv[6 + i] - wb[i]);
@@ -309,10 +327,13 @@ impl Lp {
             }
         };
         match &self.par {
-            None => contacts(0, out),
-            Some(p) => p.pool.install(|| {
-                out.par_chunks_mut(nv * GRAIN_CONTACTS).enumerate().for_each(|(c, o)| contacts(c * GRAIN_CONTACTS, o))
-            }),
+            None => contacts(0, self.m, out),
+            Some(p) => {
+                let firsts: Vec<usize> = (0..self.m).step_by(GRAIN_CONTACTS).chain([self.m]).collect();
+                let bounds: Vec<usize> = firsts.iter().map(|&k| cf.var(cf.start[k])).collect();
+                let parts = Par::cut(out, &bounds);
+                p.pool.install(|| parts.into_par_iter().zip(firsts.par_windows(2)).for_each(|(o, w)| contacts(w[0], w[1], o)))
+            }
         }
     }
 
@@ -331,7 +352,7 @@ impl Lp {
             let c: [[f64; 3]; 3] = std::array::from_fn(|j| cross(r, m[j]));
             std::array::from_fn(|i| std::array::from_fn(|j| c[j][i]))
         };
-        let (all_slots, nv) = (&self.slots, self.nv);
+        let all_slots = &self.slots;
         // contact k's block added into `vals`, whose first slot is `s0`
         let contact = |k: usize, vals: &mut [f64], s0: usize| {
             let slots = &all_slots[144 * k..144 * (k + 1)];
@@ -344,13 +365,13 @@ impl Lp {
                     }
                 }
             };
-            for q in 0..cf.corners {
-                let th = nt[cf.var(nv, k, q) / 3].theta();
+            for c in cf.of(k) {
+                let th = nt[cf.var(c) / 3].theta();
                 let gt: [[f64; 3]; 3] =
                     std::array::from_fn(|i| std::array::from_fn(|b| g[0][i] * th[0][b] + g[1][i] * th[1][b] + g[2][i] * th[2][b]));
                 let m: [[f64; 3]; 3] =
                     std::array::from_fn(|i| std::array::from_fn(|l| gt[i][0] * g[0][l] + gt[i][1] * g[1][l] + gt[i][2] * g[2][l]));
-                let [ra, rb] = cf.arms[cf.corners * k + q];
+                let [ra, rb] = cf.arms[c];
                 let (p, qm) = (cross_cols(ra, &m), cross_cols(rb, &m));
                 let t = |a: &[[f64; 3]; 3]| -> [[f64; 3]; 3] { std::array::from_fn(|i| std::array::from_fn(|j| a[j][i])) };
                 let qt = t(&qm);

@@ -14,9 +14,6 @@
 use super::*;
 use crate::space::{Contact, Model3};
 
-/// Corners of a contact polygon (boxes touch along rectangles).
-const CORNERS: usize = 4;
-
 /// Equations per contact: the six dofs of each of its two blocks.
 const ROWS3: usize = 12;
 
@@ -45,16 +42,6 @@ impl Space {
         let nb = model.n_blocks();
         let contacts = model.contacts();
         model.check_dry("limit analysis in 3D")?;
-        for c in contacts {
-            if c.corners.len() != CORNERS {
-                return Err(Error::input(format!(
-                    "limit analysis in 3D takes contact polygons of {CORNERS} corners; the contact of {} and {} has {}",
-                    model.block_name(c.a),
-                    model.block_name(c.b),
-                    c.corners.len()
-                )));
-            }
-        }
         let (what, bytes) = memory_need(model);
         crate::error::check_memory(&what, bytes)?;
         // equations: one per free dof
@@ -90,11 +77,14 @@ impl Space {
                 }
             }
         }
-        let mut lp = Lp::new(eq, n, ROWS3, CORNERS * 3, None, dofs, f_dead, f_live, (force, length, live))?;
+        let mut lp = Lp::new(eq, n, ROWS3, 0, None, dofs, f_dead, f_live, (force, length, live))?;
         lp.cone = 3;
         let centroids = model.centroids();
         let mut gens = crate::error::try_with_capacity("the program's generators", 3 * m)?;
-        let mut arms = crate::error::try_with_capacity("the program's corners", CORNERS * m)?;
+        let n_corners: usize = contacts.iter().map(|c| c.corners.len()).sum();
+        let mut arms = crate::error::try_with_capacity("the program's corners", n_corners)?;
+        let mut start = crate::error::try_with_capacity("the program's corners", m + 1)?;
+        start.push(0);
         for (k, c) in contacts.iter().enumerate() {
             let mu = model.law(k).friction;
             gens.extend_from_slice(&[c.n, c.t1.map(|v| mu * v), c.t2.map(|v| mu * v)]);
@@ -102,8 +92,9 @@ impl Space {
                 let arm = |i: usize| sub(p, centroids[i]).map(|v| v / length);
                 arms.push([arm(c.a), arm(c.b)]);
             }
+            start.push(arms.len());
         }
-        lp.corners = Some(Corners { corners: CORNERS, sides: 3, gens, arms });
+        lp.corners = Some(Corners { start, sides: 3, gens, arms });
         lp.regularize_frictionless((0..m).any(|k| model.law(k).friction == 0.0));
         Ok(Space { lp })
     }
@@ -120,12 +111,12 @@ impl Space {
             .map(|(k, c)| {
                 let (mut force, mut moment) = ([0.0; 3], [0.0; 3]);
                 let cf = self.lp.corners.as_ref().expect("a program in corner form");
-                let (sides, nv) = (cf.sides, self.lp.nv);
-                for (q, &p) in c.corners.iter().enumerate() {
+                let sides = cf.sides;
+                for (q, &p) in cf.of(k).zip(&c.corners) {
                     let g = &cf.gens[sides * k..sides * (k + 1)];
                     let mut fp = [0.0; 3];
                     for (j, gj) in g.iter().enumerate() {
-                        let r = x[nv * k + sides * q + j] * f;
+                        let r = x[cf.var(q) + j] * f;
                         (0..3).for_each(|i| fp[i] -= r * gj[i]);
                     }
                     let mp = cross(sub(p, c.centroid), fp);

@@ -12,8 +12,15 @@
 //!   of boxes that may touch to the narrow phase once, in O(n). It and the tolerance
 //!   ([`contact_tolerance`]) do not depend on the dimension: the 3D shapes share them.
 //!
-//! One layer per dimension: the 2D shapes here; the 3D model ([`crate::space`]) is of boxes for
-//! now, their contacts (coplanar faces) found on the same grid with the same tolerance.
+//! The 3D shapes beside them:
+//!
+//! - [`Polyhedron`] (`polyhedron`): a 3D block, a convex polyhedron from its vertices (their
+//!   convex hull) or its faces, each face counter-clockwise seen from outside; a box is one
+//!   ([`Polyhedron::cuboid`]);
+//! - [`Volume`] (`mass`): volume, centroid and inertia tensor of a polyhedron, exact;
+//! - `contact3`: where two polyhedra touch: facing coplanar faces sharing a convex polygon of
+//!   positive area ([`FaceContact`], the faces clipped one by the other), and how deep two
+//!   polyhedra overlap (to refuse them).
 //!
 //! ```
 //! use masonry_dem::shape::{contacts, Polygon};
@@ -29,13 +36,18 @@
 //! ```
 
 mod contact2;
+mod contact3;
 pub(crate) mod grid;
 mod mass;
 mod polygon;
+mod polyhedron;
+pub(crate) mod vec3;
 
 pub use contact2::{contacts, penetration, EdgeContact};
-pub use mass::Area;
+pub use contact3::{bisector, face_contacts, facing, penetration as penetration3, shared, FaceContact};
+pub use mass::{Area, Volume};
 pub use polygon::{Defect, Polygon};
+pub use polyhedron::{Face, Polyhedron};
 
 /// Relative tolerance on coordinates used by the generators and the contact search.
 pub(crate) const REL_TOL: f64 = 1e-9;

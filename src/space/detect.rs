@@ -1,12 +1,13 @@
-//! Contact detection between axis-aligned boxes: the shape layer's grid
+//! Contact detection between convex polyhedra (boxes among them): the shape layer's grid
 //! ([`crate::shape`]), as the 2D [`crate::interface::detect`], so that it costs O(n) for walls
-//! of similar blocks.
+//! of similar blocks, and its contact polygons of facing coplanar faces.
 
 use super::{Box3, Contact};
 use crate::error::{Error, Result};
 use crate::interface::{BlockKind, Family};
 use crate::shape::grid::for_each_pair;
-use crate::shape::{Aabb, REL_TOL};
+use crate::shape::vec3::dot;
+use crate::shape::{bisector, facing, penetration3, shared, Aabb, FaceContact, Polyhedron, REL_TOL};
 
 /// Finds every pair of boxes that share a rectangle of positive area (two faces with opposite
 /// normals, coplanar within a tolerance), and refuses overlapping boxes (naming both).
@@ -36,10 +37,28 @@ pub fn detect(
     name: impl Fn(usize) -> String,
     poll: &mut dyn FnMut() -> bool,
 ) -> Result<Vec<Contact>> {
-    let aabbs: Vec<Aabb<3>> = boxes.iter().map(|b| Aabb { min: b.min, max: b.max }).collect();
+    let shapes: Vec<Polyhedron> = boxes.iter().map(|b| b.polyhedron()).collect();
+    detect_polyhedra(&shapes, kinds, name, poll)
+}
+
+/// [`detect`] on convex polyhedra: every pair of blocks with a face of each on one plane within
+/// the tolerance, facing, that share a polygon of positive area
+/// ([`crate::shape::face_contacts`]); blocks without such faces (whose planes would part them)
+/// that overlap by more than the tolerance ([`penetration3`]) are refused, naming both.
+/// A block narrower than ten times the tolerance across one of its faces is refused, naming it.
+/// The normal is oriented up (from the lower block into the upper), or for a vertical contact
+/// towards +x, or else +y (as between boxes); a contact is Bed when its normal is within 45 deg
+/// of the vertical, else Head (or Base, Top as between boxes).
+pub fn detect_polyhedra(
+    shapes: &[Polyhedron],
+    kinds: &[BlockKind],
+    name: impl Fn(usize) -> String,
+    poll: &mut dyn FnMut() -> bool,
+) -> Result<Vec<Contact>> {
+    let aabbs: Vec<Aabb<3>> = shapes.iter().map(Polyhedron::aabb).collect();
     let tol = tolerance(&aabbs);
-    for (i, b) in boxes.iter().enumerate() {
-        let side = b.size().into_iter().fold(f64::INFINITY, f64::min);
+    for (i, p) in shapes.iter().enumerate() {
+        let side = width(p);
         if !(side > THINNEST * tol) {
             return Err(Error::input(format!(
                 "{}: its smallest side, {side:e} m, is within {THINNEST} times the contact tolerance ({tol:e} m, 1e-8 of the model's size or 1e-14 of its largest coordinate): its faces cannot be told apart",
@@ -47,21 +66,39 @@ pub fn detect(
             )));
         }
     }
-    let mut out = Vec::with_capacity(4 * boxes.len());
+    let mut out = Vec::with_capacity(4 * shapes.len());
     for_each_pair(&aabbs, tol, poll, |i, j| {
-        match pair(boxes, kinds, i, j, tol) {
-            Pair::None => {}
-            Pair::Contact(c) => out.push(c),
-            Pair::Overlap(w) => {
-                return Err(Error::input(format!(
-                    "{} and {} overlap (intersection {:.6} x {:.6} x {:.6} m)",
-                    name(i),
-                    name(j),
-                    w[0],
-                    w[1],
-                    w[2]
-                )))
+        if kinds[i] != BlockKind::Wall && kinds[j] != BlockKind::Wall {
+            return Ok(()); // base or support against top beam or support: not a joint of the wall
+        }
+        let pairs = facing(&shapes[i], &shapes[j], tol);
+        let Some(&[fi, fj]) = pairs.first() else {
+            let depth = penetration3(&shapes[i], &shapes[j], tol);
+            if depth > tol {
+                let (p, q) = (&aabbs[i], &aabbs[j]);
+                let how = match (shapes[i].as_box(), shapes[j].as_box()) {
+                    (Some(_), Some(_)) => {
+                        let w = p.overlap(q);
+                        format!("intersection {:.6} x {:.6} x {:.6} m", w[0], w[1], w[2])
+                    }
+                    _ => format!("by {depth:.6} m"),
+                };
+                return Err(Error::input(format!("{} and {} overlap ({how})", name(i), name(j))));
             }
+            return Ok(());
+        };
+        let up = upward(bisector(&shapes[i], fi, &shapes[j], fj));
+        let (a, b) = if up { (i, j) } else { (j, i) };
+        for [fi, fj] in pairs {
+            let (fa, fb) = if up { (fi, fj) } else { (fj, fi) };
+            let Some(c) = shared(&shapes[a], fa, &shapes[b], fb, tol) else { continue };
+            let family = match (kinds[a], kinds[b]) {
+                (BlockKind::Base, _) | (_, BlockKind::Base) => Family::Base,
+                (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
+                _ if c.n[2].abs() >= std::f64::consts::FRAC_1_SQRT_2 => Family::Bed,
+                _ => Family::Head,
+            };
+            out.push(contact(a, b, c, family));
         }
         Ok(())
     })?;
@@ -69,13 +106,51 @@ pub fn detect(
     Ok(out)
 }
 
-/// What two boxes are to each other.
-enum Pair {
-    /// Apart, touching along an edge or at a corner, or base against top beam.
-    None,
-    /// Their intersection along x, y, z \[m\]: refused.
-    Overlap([f64; 3]),
-    Contact(Contact),
+/// Whether `n` points up, or lies (within 1e-9) horizontal and points towards +x, or along y
+/// and towards +y: the direction of the normal of a contact.
+fn upward(n: [f64; 3]) -> bool {
+    let e = 1e-9;
+    if n[2].abs() > e {
+        n[2] > 0.0
+    } else if n[0].abs() > e {
+        n[0] > 0.0
+    } else {
+        n[1] > 0.0
+    }
+}
+
+/// The least width of `p` across its faces: for each face, how far the farthest vertex lies
+/// behind its plane (a box's smallest side).
+fn width(p: &Polyhedron) -> f64 {
+    p.faces()
+        .iter()
+        .map(|f| p.vertices().iter().map(|&v| f.offset - dot(f.normal, v)).fold(0.0, f64::max))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The contact of blocks `a` and `b` from the polygon their faces share.
+fn contact(a: usize, b: usize, c: FaceContact, family: Family) -> Contact {
+    let uv = |p: &[f64; 3]| [dot(*p, c.t1), dot(*p, c.t2)];
+    let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+    for p in &c.vertices {
+        let q = uv(p);
+        for k in 0..2 {
+            lo[k] = lo[k].min(q[k]);
+            hi[k] = hi[k].max(q[k]);
+        }
+    }
+    Contact {
+        a,
+        b,
+        n: c.n,
+        t1: c.t1,
+        t2: c.t2,
+        corners: c.vertices,
+        dims: [hi[0] - lo[0], hi[1] - lo[1]],
+        area: c.area,
+        centroid: c.centroid,
+        family,
+    }
 }
 
 /// The contact tolerance is at least `10 REL_TOL` times this fraction of the largest coordinate:
@@ -97,75 +172,4 @@ fn tolerance(aabbs: &[Aabb<3>]) -> f64 {
     }
     let reach = (0..3).map(|k| around.min[k].abs().max(around.max[k].abs())).fold(0.0, f64::max);
     10.0 * REL_TOL * around.size().max(REACH * reach)
-}
-
-/// Boxes `i` and `j`: their contact if they share a rectangle.
-fn pair(boxes: &[Box3], kinds: &[BlockKind], i: usize, j: usize, tol: f64) -> Pair {
-    let (p, q) = (&boxes[i], &boxes[j]);
-    let lo = [0, 1, 2].map(|k| p.min[k].max(q.min[k]));
-    let hi = [0, 1, 2].map(|k| p.max[k].min(q.max[k]));
-    let w = [0, 1, 2].map(|k| hi[k] - lo[k]);
-    if w.iter().any(|&v| v < -tol) {
-        return Pair::None; // apart
-    }
-    if w.iter().all(|&v| v > tol) {
-        return Pair::Overlap(w);
-    }
-    let mut thin = (0..3).filter(|&k| w[k] <= tol);
-    let k = thin.next().expect("one side is thin, or the boxes overlap");
-    if thin.next().is_some() {
-        return Pair::None; // along an edge or at a corner only
-    }
-    let (a, b) = if p.min[k] < q.min[k] { (i, j) } else { (j, i) };
-    if kinds[a] != BlockKind::Wall && kinds[b] != BlockKind::Wall {
-        return Pair::None; // base against top beam: not a joint of the wall
-    }
-    let family = match (kinds[a], kinds[b]) {
-        (BlockKind::Base, _) | (_, BlockKind::Base) => Family::Base,
-        (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
-        _ if k == 2 => Family::Bed,
-        _ => Family::Head,
-    };
-    let plane = 0.5 * (boxes[a].max[k] + boxes[b].min[k]);
-    Pair::Contact(rectangle(a, b, k, plane, lo, hi, family))
-}
-
-/// The contact of blocks `a` and `b` on the plane `x_k = plane`, over `[lo, hi]` along the two
-/// other axes, normal `+e_k`.
-fn rectangle(a: usize, b: usize, k: usize, plane: f64, lo: [f64; 3], hi: [f64; 3], family: Family) -> Contact {
-    // t1 = s1 e_u, t2 = e_v with t1 x t2 = e_k: (x, y) under z, (y, z) beside x, (-x, z) beside y
-    let (u, s1, v) = match k {
-        2 => (0, 1.0, 1),
-        0 => (1, 1.0, 2),
-        _ => (0, -1.0, 2),
-    };
-    let unit = |axis: usize, s: f64| {
-        let mut e = [0.0; 3];
-        e[axis] = s;
-        e
-    };
-    let point = |plus1: bool, plus2: bool| {
-        let mut c = [0.0; 3];
-        c[k] = plane;
-        c[u] = if plus1 == (s1 > 0.0) { hi[u] } else { lo[u] };
-        c[v] = if plus2 { hi[v] } else { lo[v] };
-        c
-    };
-    let dims = [hi[u] - lo[u], hi[v] - lo[v]];
-    let mut centroid = [0.0; 3];
-    centroid[k] = plane;
-    centroid[u] = 0.5 * (lo[u] + hi[u]);
-    centroid[v] = 0.5 * (lo[v] + hi[v]);
-    Contact {
-        a,
-        b,
-        n: unit(k, 1.0),
-        t1: unit(u, s1),
-        t2: unit(v, 1.0),
-        corners: vec![point(false, false), point(true, false), point(true, true), point(false, true)],
-        dims,
-        area: dims[0] * dims[1],
-        centroid,
-        family,
-    }
 }

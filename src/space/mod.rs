@@ -1,5 +1,5 @@
-//! The out-of-plane (3D) model: walls of rigid axis-aligned boxes, their contacts, masses,
-//! supports and loads. No solver here: limit analysis and the incremental solvers in 3D read a
+//! The out-of-plane (3D) model: walls of rigid blocks, axis-aligned boxes or convex polyhedra
+//! ([`crate::shape::Polyhedron`]; a box is one), their contacts, masses, supports and loads. No solver here: limit analysis and the incremental solvers in 3D read a
 //! [`Model3`] (blocks with 6 dof, contacts as polygons with a frame).
 //!
 //! Coordinates are metres with z up. Each block has 6 dof at its centroid: ux, uy, uz \[m\], then
@@ -7,10 +7,10 @@
 //! index of dof k of block i is `6 i + k`. Blocks are numbered as in 2D: the user's blocks
 //! `0..n_wall` in the order given, then the base (if any), then the top beam (if any).
 //!
-//! A contact is the rectangle shared by two faces with opposite normals (boxes are axis-aligned,
-//! so the polygon of a contact is the intersection of two rectangles): its corners, normal and
-//! tangents are what a solver needs to put contact points with a normal force and a shear vector
-//! at its corners (the design's "Out of plane (3D)").
+//! A contact is the convex polygon shared by two facing coplanar faces (between boxes a
+//! rectangle, the intersection of two rectangles): its corners, normal and tangents are what a
+//! solver needs to put contact points with a normal force and a shear vector at its corners (the
+//! design's "Out of plane (3D)").
 //!
 //! ```
 //! use masonry_dem::space::{running_bond_3d, Model3, ModelSpec3};
@@ -33,13 +33,14 @@ mod walls;
 #[cfg(test)]
 mod tests;
 
-pub use detect::detect;
+pub use detect::{detect, detect_polyhedra};
 pub use model::Model3;
 pub use walls::{corner, cut_openings, running_bond_3d, u_wall};
 
 use crate::error::{Error, Result};
 use crate::interface::Family;
 use crate::model::JointLaws;
+use crate::shape::Polyhedron;
 
 /// An axis-aligned box `[min, max]` \[m\], z up: a block of the wall (or the base, the top beam).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -62,6 +63,10 @@ impl Box3 {
     /// The sides along x, y, z \[m\].
     pub fn size(&self) -> [f64; 3] {
         [0, 1, 2].map(|k| self.max[k] - self.min[k])
+    }
+    /// The box as a convex polyhedron (its faces made directly: exact normals and offsets).
+    pub fn polyhedron(&self) -> Polyhedron {
+        Polyhedron::cuboid(self.min, self.max)
     }
     /// The product of the sides \[m3\].
     pub fn volume(&self) -> f64 {
@@ -98,11 +103,13 @@ pub(crate) fn coord(v: f64) -> String {
     }
 }
 
-/// One contact (interface): the rectangle shared by a face of block `a` and the opposite face of
-/// block `b`, of positive area (boxes touching along an edge or at a corner have none).
+/// One contact (interface): the convex polygon shared by a face of block `a` and a face of block
+/// `b` on one plane, facing, of positive area (blocks touching along an edge or at a corner have
+/// none); between boxes a rectangle.
 ///
-/// The detection puts `a` on the side the normal leaves: `n` is +x, +y or +z, and `a` is the
-/// block below (or at smaller x, y). Solvers should rely only on "n points from a into b".
+/// The detection puts `a` on the side the normal leaves: `n` points up, or on a vertical contact
+/// towards +x (else +y); between boxes `n` is +x, +y or +z, and `a` is the block below (or at
+/// smaller x, y). Solvers should rely only on "n points from a into b".
 #[derive(Debug, Clone, PartialEq)]
 pub struct Contact {
     /// The block the normal leaves.
@@ -117,14 +124,15 @@ pub struct Contact {
     /// Second unit tangent, `n x t1` (so that `t1 x t2 = n`): +y on a horizontal contact, +z on a
     /// vertical one.
     pub t2: [f64; 3],
-    /// The rectangle's four corners \[m\], counter-clockwise seen from the tip of `n` (in the
-    /// (t1, t2) plane: (-,-), (+,-), (+,+), (-,+)).
+    /// The polygon's corners \[m\] (3 or more), counter-clockwise seen from the tip of `n`, from
+    /// the one of least `t1 + t2` coordinate (a rectangle's along the tangents: (-,-), (+,-),
+    /// (+,+), (-,+)).
     pub corners: Vec<[f64; 3]>,
-    /// The rectangle's sides along `t1` and `t2` \[m\] (for a section's moments of inertia).
+    /// The polygon's extent along `t1` and `t2` \[m\] (a rectangle's sides).
     pub dims: [f64; 2],
     /// Area \[m2\].
     pub area: f64,
-    /// The rectangle's centre \[m\], on the plane midway between the two faces.
+    /// The polygon's centroid \[m\], on the plane midway between the two faces.
     pub centroid: [f64; 3],
     /// Bed (horizontal, wall-wall), Head (vertical, wall-wall), Base (with the base) or Top (with
     /// the top beam); the contact's joint law is that family's.
@@ -150,6 +158,10 @@ pub enum LiveLoad3 {
 pub struct ModelSpec3 {
     /// Wall blocks.
     pub blocks: Vec<Box3>,
+    /// Wall blocks of any convex shape, after `blocks`.
+    pub polyhedra: Vec<Polyhedron>,
+    /// Fixed rigid supports of any convex shape (beside the base, or instead of it).
+    pub supports: Vec<Polyhedron>,
     /// Density of the blocks (and of the top beam) \[kg/m3\].
     pub density: f64,
     /// A fixed rigid foundation under the wall's footprint: the box around the blocks in plan,
@@ -177,6 +189,8 @@ impl Default for ModelSpec3 {
     fn default() -> Self {
         ModelSpec3 {
             blocks: vec![],
+            polyhedra: vec![],
+            supports: vec![],
             density: 2000.0,
             base: true,
             top: None,

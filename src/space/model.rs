@@ -1,21 +1,25 @@
 //! [`Model3`]: the 3D model built from a [`ModelSpec3`]: the checks of the input, the base and
 //! the top beam, the contacts, masses, supports and loads.
 
-use super::{detect, Box3, Contact, LiveLoad3, ModelSpec3};
+use super::{detect_polyhedra, Box3, Contact, LiveLoad3, ModelSpec3};
 use crate::error::{non_negative, positive, Error, Result};
 use crate::geometry::MAX_BLOCKS;
 use crate::interface::{BlockKind, Family};
 use crate::joint::JointLaw;
 use crate::model::{CarriedLoad, JointLaws};
+use crate::shape::{Polyhedron, Volume};
 
-/// A wall of rigid boxes joined by contacts, with its base, top beam, supports and loads.
-/// Stateless: solvers read it.
+/// A wall of rigid blocks (boxes, or convex polyhedra) joined by contacts, with its base, top
+/// beam, supports and loads. Stateless: solvers read it.
 ///
 /// Dof: 6 per block, `6 i + k` for (ux, uy, uz, rx, ry, rz) of block `i`, small rotations about
 /// axes through its centroid; forces are (Fx, Fy, Fz, Mx, My, Mz) about the centroid.
 #[derive(Debug, Clone)]
 pub struct Model3 {
     boxes: Vec<Box3>,
+    shapes: Vec<Polyhedron>,
+    /// per block, whether it is a box (its `boxes` entry is the block, not the box around it)
+    is_box: Vec<bool>,
     kinds: Vec<BlockKind>,
     n_wall: usize,
     base: Option<usize>,
@@ -28,6 +32,7 @@ pub struct Model3 {
     inertia: Vec<[f64; 3]>,
     products: Vec<(usize, [f64; 3])>,
     carried: Vec<CarriedLoad<3>>,
+    tensor: Vec<[[f64; 3]; 3]>,
     contacts: Vec<Contact>,
     fixed: Vec<bool>,
     f_dead: Vec<f64>,
@@ -45,22 +50,31 @@ impl Model3 {
     /// `false` stops it with [`Error::Interrupted`].
     pub fn new_with(spec: &ModelSpec3, poll: &mut dyn FnMut() -> bool) -> Result<Model3> {
         check_spec(spec)?;
-        let (boxes, kinds, base, top) = frame(spec);
-        let n_wall = spec.blocks.len();
-        let name = |i: usize| block_name(i, n_wall, base, top, &boxes);
-        let contacts = detect(&boxes, &kinds, name, poll)?;
-        check_touched(&contacts, boxes.len(), n_wall, base, top, name)?;
-        let mut mass: Vec<f64> = boxes.iter().map(|b| spec.density * b.volume()).collect();
-        let mut inertia: Vec<[f64; 3]> = boxes
+        let (shapes, is_box, kinds, base, top) = frame(spec);
+        let boxes: Vec<Box3> = shapes
             .iter()
-            .zip(&mass)
-            .map(|(b, m)| {
-                let [x, y, z] = b.size().map(|s| s * s);
-                [m * (y + z) / 12.0, m * (x + z) / 12.0, m * (x + y) / 12.0]
+            .map(|p| {
+                let b = p.aabb();
+                Box3 { min: b.min, max: b.max }
             })
             .collect();
-        let mut centroids: Vec<[f64; 3]> = boxes.iter().map(Box3::centroid).collect();
-        let products = carry(spec, &boxes, &mut mass, &mut inertia, &mut centroids, name)?;
+        let n_wall = spec.blocks.len() + spec.polyhedra.len();
+        let name = |i: usize| block_name(i, n_wall, base, top, &boxes, &shapes, &is_box);
+        let contacts = detect_polyhedra(&shapes, &kinds, name, poll)?;
+        let held = kinds.contains(&BlockKind::Base);
+        check_touched(&contacts, shapes.len(), n_wall, held, top, name)?;
+        // a box's closed forms (the polyhedron's to rounding), else the polyhedron's
+        let props: Vec<Volume> = shapes
+            .iter()
+            .zip(&boxes)
+            .zip(&is_box)
+            .map(|((p, b), &boxed)| if boxed { box_volume(b) } else { p.volume_properties() })
+            .collect();
+        let mut mass: Vec<f64> = props.iter().map(|v| spec.density * v.volume).collect();
+        let mut tensor: Vec<[[f64; 3]; 3]> = props.iter().map(|v| v.inertia.map(|r| r.map(|x| spec.density * x))).collect();
+        let mut centroids: Vec<[f64; 3]> = props.iter().map(|v| v.centroid).collect();
+        let products = carry(spec, &shapes, &mut mass, &mut tensor, &mut centroids, name)?;
+        let inertia: Vec<[f64; 3]> = tensor.iter().map(|t| [t[0][0], t[1][1], t[2][2]]).collect();
         for (i, (&m, j)) in mass.iter().zip(&inertia).enumerate() {
             if !(m.is_finite() && m > 0.0 && j.iter().all(|&v| v.is_finite() && v > 0.0)) {
                 return Err(Error::input(format!(
@@ -81,6 +95,8 @@ impl Model3 {
         let nb = boxes.len();
         let mut model = Model3 {
             boxes,
+            shapes,
+            is_box,
             kinds,
             n_wall,
             base,
@@ -93,6 +109,7 @@ impl Model3 {
             inertia,
             products,
             carried: spec.carried.clone(),
+            tensor,
             contacts,
             fixed: vec![false; 6 * nb],
             f_dead: vec![0.0; 6 * nb],
@@ -135,8 +152,10 @@ impl Model3 {
     /// The base's fixed dofs, the weights of the wall and the top beam, and the live load on
     /// the same blocks (the beam weighs in 3D: its weight is loaded like the wall's).
     fn supports_and_loads(&mut self) {
-        if let Some(b) = self.base {
-            self.fixed[6 * b..6 * b + 6].fill(true);
+        for (i, &kind) in self.kinds.iter().enumerate() {
+            if kind == BlockKind::Base {
+                self.fixed[6 * i..6 * i + 6].fill(true);
+            }
         }
         let free = (0..self.n_wall).chain(self.top);
         for i in free {
@@ -160,11 +179,16 @@ impl Model3 {
     pub fn n_wall(&self) -> usize {
         self.n_wall
     }
-    /// Every block's box: wall blocks, then the base, then the top beam.
+    /// Every block's box: wall blocks, then the base, then the top beam, then the supports; a
+    /// box is itself, a polyhedron the box around it.
     pub fn boxes(&self) -> &[Box3] {
         &self.boxes
     }
-    /// What each block is (wall, base, top beam).
+    /// Every block's shape, a convex polyhedron, in the order of [`Model3::boxes`].
+    pub fn shapes(&self) -> &[Polyhedron] {
+        &self.shapes
+    }
+    /// What each block is (wall, base or support, top beam).
     pub fn kinds(&self) -> &[BlockKind] {
         &self.kinds
     }
@@ -176,9 +200,10 @@ impl Model3 {
     pub fn top(&self) -> Option<usize> {
         self.top
     }
-    /// A label for messages: "block 7 [x0, y0, z0, x1, y1, z1]", "the base" or "the top beam".
+    /// A label for messages: "block 7 [x0, y0, z0, x1, y1, z1]" (a box), "block 7 (polyhedron
+    /// of 6 vertices: ...)", "the base", "the top beam" or "support 0 (polyhedron ...)".
     pub fn block_name(&self, i: usize) -> String {
-        block_name(i, self.n_wall, self.base, self.top, &self.boxes)
+        block_name(i, self.n_wall, self.base, self.top, &self.boxes, &self.shapes, &self.is_box)
     }
     /// Each block's centroid \[m\] (where its dofs are and its moments are taken).
     pub fn centroids(&self) -> &[[f64; 3]] {
@@ -188,11 +213,21 @@ impl Model3 {
     pub fn mass(&self) -> &[f64] {
         &self.mass
     }
-    /// Each block's moments of inertia about its centroid, about x, y and z (`m (b^2 + c^2) /
-    /// 12`, ... for sides a, b, c; its principal moments), with the parallel-axis terms of the
-    /// loads it carries (see [`Model3::check_principal`]) \[kg m2\].
+    /// Each block's moments of inertia about axes through its centroid along x, y and z, the
+    /// diagonal of [`Model3::inertia_tensor`] (a box's principal moments, `m (b^2 + c^2) / 12`,
+    /// ... for sides a, b, c) \[kg m2\].
     pub fn inertia(&self) -> &[[f64; 3]] {
         &self.inertia
+    }
+    /// Each block's inertia tensor about its centroid in global axes \[kg m2\] (diagonal for a
+    /// box).
+    pub fn inertia_tensor(&self) -> &[[[f64; 3]; 3]] {
+        &self.tensor
+    }
+    /// The products of inertia `[yz, xz, xy]` (off the diagonal of [`Model3::inertia_tensor`])
+    /// that the loads carried by block `i` give it \[kg m2\] (zeros for a block without loads).
+    pub fn carried_products(&self, i: usize) -> [f64; 3] {
+        self.products.iter().find(|p| p.0 == i).map_or([0.0; 3], |p| p.1)
     }
     /// The loads carried by wall blocks, as given (their masses are in [`Model3::mass`] and
     /// [`Model3::inertia`]).
@@ -321,25 +356,29 @@ impl Model3 {
 /// `trace S - S_kk`. Returns the loaded blocks' products of inertia `-S_yz, -S_xz, -S_xy`.
 fn carry(
     spec: &ModelSpec3,
-    boxes: &[Box3],
+    shapes: &[Polyhedron],
     mass: &mut [f64],
-    inertia: &mut [[f64; 3]],
+    tensor: &mut [[[f64; 3]; 3]],
     centroids: &mut [[f64; 3]],
     name: impl Fn(usize) -> String,
 ) -> Result<Vec<(usize, [f64; 3])>> {
-    let size = size(boxes);
+    let boxes: Vec<Box3> = shapes.iter().map(|p| Box3 { min: p.aabb().min, max: p.aabb().max }).collect();
+    let size = size(&boxes);
+    // how far a point lies outside block i: the largest of its distances beyond the faces' planes
     let outside = |i: usize, p: [f64; 3]| {
-        let b = &boxes[i];
-        (0..3).map(|k| (b.min[k] - p[k]).max(p[k] - b.max[k])).fold(f64::MIN, f64::max)
+        shapes[i].faces().iter().map(|f| (0..3).map(|k| f.normal[k] * p[k]).sum::<f64>() - f.offset).fold(f64::MIN, f64::max)
     };
     crate::model::check_carried_inside(&spec.carried, crate::shape::contact_tolerance(size), outside, name)?;
     let lumped = crate::model::lump_carried(&spec.carried, spec.gravity, mass, centroids);
     Ok(lumped
         .into_iter()
         .map(|(i, s)| {
+            // the point masses' tensor about the new centre: trace(S) I - S
             let trace = s[0][0] + s[1][1] + s[2][2];
-            for k in 0..3 {
-                inertia[i][k] += trace - s[k][k];
+            for a in 0..3 {
+                for b in 0..3 {
+                    tensor[i][a][b] += if a == b { trace } else { 0.0 } - s[a][b];
+                }
             }
             (i, [-s[1][2], -s[0][2], -s[0][1]])
         })
@@ -381,16 +420,14 @@ fn check_spec(spec: &ModelSpec3) -> Result<()> {
     if let Some(h) = spec.top {
         positive("top", h)?;
     }
-    if spec.blocks.is_empty() {
+    let n = spec.blocks.len() + spec.polyhedra.len();
+    if n == 0 {
         return Err(Error::input("blocks: the wall has no blocks"));
     }
-    if spec.blocks.len() > MAX_BLOCKS {
-        return Err(crate::geometry::too_many_blocks("blocks", spec.blocks.len() as f64));
+    if n + spec.supports.len() > MAX_BLOCKS {
+        return Err(crate::geometry::too_many_blocks("blocks", (n + spec.supports.len()) as f64));
     }
-    crate::error::check_memory(
-        &format!("a model of {} blocks", spec.blocks.len()),
-        spec.blocks.len() as f64 * crate::error::MODEL_BYTES_PER_BLOCK,
-    )?;
+    crate::error::check_memory(&format!("a model of {n} blocks"), n as f64 * crate::error::MODEL_BYTES_PER_BLOCK)?;
     for (i, b) in spec.blocks.iter().enumerate() {
         b.validate(&format!("block {i}"))?;
     }
@@ -415,43 +452,63 @@ fn check_spec(spec: &ModelSpec3) -> Result<()> {
     Ok(())
 }
 
-/// The wall's boxes with the base under them and the top beam over them (each over the box
-/// around the wall in plan; the base as deep as the tallest block, as in 2D).
-fn frame(spec: &ModelSpec3) -> (Vec<Box3>, Vec<BlockKind>, Option<usize>, Option<usize>) {
+/// The volume properties of a box: its closed forms (the polyhedron's, to rounding).
+fn box_volume(b: &Box3) -> Volume {
+    let sq = b.size().map(|s| s * s);
+    let v = b.volume();
+    let diag = |d: [f64; 3]| std::array::from_fn(|i| std::array::from_fn(|j| if i == j { d[i] } else { 0.0 }));
+    let [x, y, z] = sq;
+    Volume {
+        volume: v,
+        centroid: b.centroid(),
+        second: diag(sq.map(|s| v * s / 12.0)),
+        inertia: diag([v * (y + z) / 12.0, v * (x + z) / 12.0, v * (x + y) / 12.0]),
+    }
+}
+
+/// The wall's blocks as polyhedra (the boxes first), with the base under them and the top beam
+/// over them (each over the box around the wall in plan; the base as deep as the tallest block,
+/// as in 2D), then the supports; whether each is a box, and what it is.
+#[allow(clippy::type_complexity)]
+fn frame(spec: &ModelSpec3) -> (Vec<Polyhedron>, Vec<bool>, Vec<BlockKind>, Option<usize>, Option<usize>) {
+    let mut shapes: Vec<Polyhedron> = spec.blocks.iter().map(Box3::polyhedron).chain(spec.polyhedra.iter().cloned()).collect();
+    let mut is_box: Vec<bool> = (0..shapes.len()).map(|i| i < spec.blocks.len()).collect();
     let (mut lo, mut hi, mut hmax) = ([f64::MAX; 3], [f64::MIN; 3], 0.0f64);
-    for b in &spec.blocks {
+    for p in &shapes {
+        let b = p.aabb();
         for k in 0..3 {
             lo[k] = lo[k].min(b.min[k]);
             hi[k] = hi[k].max(b.max[k]);
         }
         hmax = hmax.max(b.max[2] - b.min[2]);
     }
-    let mut boxes = spec.blocks.clone();
-    let mut kinds = vec![BlockKind::Wall; boxes.len()];
-    let base = spec.base.then(|| {
-        boxes.push(Box3::new(lo[0], lo[1], lo[2] - hmax, hi[0], hi[1], lo[2]));
-        kinds.push(BlockKind::Base);
-        boxes.len() - 1
-    });
-    let top = spec.top.map(|h| {
-        boxes.push(Box3::new(lo[0], lo[1], hi[2], hi[0], hi[1], hi[2] + h));
-        kinds.push(BlockKind::Top);
-        boxes.len() - 1
-    });
-    (boxes, kinds, base, top)
+    let mut kinds = vec![BlockKind::Wall; shapes.len()];
+    let mut add = |p: Polyhedron, kind: BlockKind, boxed: bool| {
+        shapes.push(p);
+        kinds.push(kind);
+        is_box.push(boxed);
+        shapes.len() - 1
+    };
+    let base = spec.base.then(|| add(Box3::new(lo[0], lo[1], lo[2] - hmax, hi[0], hi[1], lo[2]).polyhedron(), BlockKind::Base, true));
+    let top = spec.top.map(|h| add(Box3::new(lo[0], lo[1], hi[2], hi[0], hi[1], hi[2] + h).polyhedron(), BlockKind::Top, true));
+    for s in &spec.supports {
+        add(s.clone(), BlockKind::Base, false);
+    }
+    (shapes, is_box, kinds, base, top)
 }
 
 /// The refusal of a wall without a base: nothing holds it.
 const NO_SUPPORT: &str =
     "the wall has no support: no base ([base] kind = \"none\", base=False): nothing carries its weight";
 
-/// Refuses a wall block, or the top beam, that no contact reaches; without a base, the wall
-/// itself (a lone block touches nothing because nothing holds it: the support is what is missing).
+/// Refuses a wall block, or the top beam, that no contact reaches; without a base or a support
+/// (`held` false), the wall itself (a lone block touches nothing because nothing holds it: the
+/// support is what is missing).
 fn check_touched(
     contacts: &[Contact],
     nb: usize,
     n_wall: usize,
-    base: Option<usize>,
+    held: bool,
     top: Option<usize>,
     name: impl Fn(usize) -> String,
 ) -> Result<()> {
@@ -461,7 +518,7 @@ fn check_touched(
         touched[c.b] = true;
     }
     if let Some(i) = (0..n_wall).chain(top).find(|&i| !touched[i]) {
-        if base.is_none() {
+        if !held {
             return Err(Error::input(NO_SUPPORT));
         }
         return Err(Error::input(format!("{} touches no other block", name(i))));
@@ -469,14 +526,24 @@ fn check_touched(
     Ok(())
 }
 
-fn block_name(i: usize, n_wall: usize, base: Option<usize>, top: Option<usize>, boxes: &[Box3]) -> String {
+fn block_name(
+    i: usize,
+    n_wall: usize,
+    base: Option<usize>,
+    top: Option<usize>,
+    boxes: &[Box3],
+    shapes: &[Polyhedron],
+    is_box: &[bool],
+) -> String {
+    let label = if is_box[i] { boxes[i].label() } else { shapes[i].label() };
     if Some(i) == base {
         "the base".into()
     } else if Some(i) == top {
         "the top beam".into()
     } else if i < n_wall {
-        format!("block {i} {}", boxes[i].label())
+        format!("block {i} {label}")
     } else {
-        format!("block {i}")
+        let first = n_wall + usize::from(base.is_some()) + usize::from(top.is_some());
+        format!("support {} {label}", i - first)
     }
 }

@@ -1,0 +1,332 @@
+//! Where two convex polyhedra touch: facing coplanar faces that overlap over a positive area (the
+//! intersection of the two faces, a convex polygon), and how deep two polyhedra overlap.
+
+use super::polyhedron::frame;
+use super::vec3::{cross, dot, norm, sub, unit};
+use super::{Area, Polyhedron};
+
+/// Two faces, one of each polyhedron, on one plane (within the tolerance), facing each other,
+/// and the convex polygon they share: a contact.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FaceContact {
+    /// The face of the first polyhedron and of the second.
+    pub faces: [usize; 2],
+    /// The unit normal from the first polyhedron into the second: the bisector of the faces'
+    /// outward normals (the first's, and the second's reversed).
+    pub n: [f64; 3],
+    /// The unit tangents, `t1 x t2 = n`: `t1` horizontal unless the contact is (within 1e-6)
+    /// horizontal, then along x. For a normal along an axis: (+x, +y) under +z, (+y, +z) beside
+    /// +x, (-x, +z) beside +y.
+    pub t1: [f64; 3],
+    /// See `t1`.
+    pub t2: [f64; 3],
+    /// The shared polygon's vertices \[m\], on the plane midway between the faces,
+    /// counter-clockwise seen from the tip of `n`, from the one of least `t1 + t2` (the
+    /// (-, -) corner of a rectangle along the tangents).
+    pub vertices: Vec<[f64; 3]>,
+    /// Area \[m2\].
+    pub area: f64,
+    /// Centroid \[m\], on the plane midway between the faces.
+    pub centroid: [f64; 3],
+}
+
+/// Every pair of a face of `a` and a face of `b` whose outward normals are opposite (their
+/// dot product below -1/2) and whose vertices each lie within `tol` of the other face's plane,
+/// gap or overlap, and that share a polygon of area more than `tol` times its diameter (faces
+/// that meet along an edge or at a corner share none).
+///
+/// The shared polygon is face `a` clipped by each edge of face `b` in the plane of the tangents
+/// (Sutherland-Hodgman): a point within `tol` of an edge's line is on it, and a cut on a line
+/// along a tangent takes the line's coordinate, so that boxes give the coordinates of their
+/// corners exactly. Points within `tol` of the one before are merged, and points within `tol`
+/// of the line through their neighbours dropped.
+pub fn face_contacts(a: &Polyhedron, b: &Polyhedron, tol: f64) -> Vec<FaceContact> {
+    facing(a, b, tol).into_iter().filter_map(|[fa, fb]| shared(a, fa, b, fb, tol)).collect()
+}
+
+/// The pairs of a face of `a` and a face of `b` that face each other on one plane within `tol`
+/// (see [`face_contacts`]), whether they share a polygon or not.
+pub fn facing(a: &Polyhedron, b: &Polyhedron, tol: f64) -> Vec<[usize; 2]> {
+    let mut out = vec![];
+    let near = |p: &Polyhedron, f: usize, n: [f64; 3], off: f64| p.face_points(f).all(|q| (dot(n, q) - off).abs() <= tol);
+    for (fa, ga) in a.faces().iter().enumerate() {
+        for (fb, gb) in b.faces().iter().enumerate() {
+            if dot(ga.normal, gb.normal) < -0.5 && near(b, fb, ga.normal, ga.offset) && near(a, fa, gb.normal, gb.offset) {
+                out.push([fa, fb]);
+            }
+        }
+    }
+    out
+}
+
+/// The unit normal of a contact between face `fa` of `a` and face `fb` of `b`, from `a` into
+/// `b`: the bisector of their outward normals (the first's, the second's reversed).
+pub fn bisector(a: &Polyhedron, fa: usize, b: &Polyhedron, fb: usize) -> [f64; 3] {
+    let (na, nb) = (a.faces()[fa].normal, b.faces()[fb].normal);
+    if na == nb.map(|v| -v) {
+        na
+    } else {
+        unit(sub(na, nb))
+    }
+}
+
+/// The polygon shared by face `fa` of `a` and face `fb` of `b` (facing, coplanar: see
+/// [`facing`]), if it has an area (see [`face_contacts`]).
+pub fn shared(a: &Polyhedron, fa: usize, b: &Polyhedron, fb: usize, tol: f64) -> Option<FaceContact> {
+    let (ga, gb) = (&a.faces()[fa], &b.faces()[fb]);
+    let n = bisector(a, fa, b, fb);
+    let (t1, t2) = frame(n);
+    let uv = |q: [f64; 3]| [dot(q, t1), dot(q, t2)];
+    // face a counter-clockwise about n, face b too once reversed (it is so about -n)
+    let mut poly: Vec<[f64; 2]> = a.face_points(fa).map(uv).collect();
+    let mut clip: Vec<[f64; 2]> = b.face_points(fb).map(uv).collect();
+    clip.reverse();
+    let mut next = Vec::with_capacity(poly.len() + clip.len());
+    for i in 0..clip.len() {
+        let (q0, q1) = (clip[i], clip[(i + 1) % clip.len()]);
+        cut(&poly, q0, q1, tol, &mut next);
+        std::mem::swap(&mut poly, &mut next);
+        if poly.len() < 3 {
+            return None;
+        }
+    }
+    let poly = tidy(poly, tol);
+    if poly.len() < 3 {
+        return None;
+    }
+    let props = Area::of(&poly);
+    let diameter = poly.iter().flat_map(|p| poly.iter().map(move |q| dist2(*p, *q))).fold(0.0, f64::max).sqrt();
+    if !(props.area > tol * diameter) {
+        return None;
+    }
+    let plane = 0.5 * (dot(n, a.vertices()[ga.vertices[0]]) + dot(n, b.vertices()[gb.vertices[0]]));
+    let lift = |p: [f64; 2]| -> [f64; 3] { std::array::from_fn(|k| n[k] * plane + p[0] * t1[k] + p[1] * t2[k]) };
+    let first = (0..poly.len())
+        .min_by(|&i, &j| (poly[i][0] + poly[i][1], poly[i][0]).partial_cmp(&(poly[j][0] + poly[j][1], poly[j][0])).expect("finite"))
+        .expect("3 vertices at least");
+    let vertices = (0..poly.len()).map(|i| lift(poly[(first + i) % poly.len()])).collect();
+    Some(FaceContact { faces: [fa, fb], n, t1, t2, vertices, area: props.area, centroid: lift(props.centroid) })
+}
+
+/// The convex polygon `poly` (counter-clockwise) less what lies right of the line from `q0` to
+/// `q1`, beyond `tol`: a point within `tol` of the line is kept; an edge is cut only where its
+/// ends lie beyond `tol` on either side, the cut clamped between them, and on a line along an
+/// axis of the plane the cut takes the line's coordinate.
+fn cut(poly: &[[f64; 2]], q0: [f64; 2], q1: [f64; 2], tol: f64, out: &mut Vec<[f64; 2]>) {
+    let e = [q1[0] - q0[0], q1[1] - q0[1]];
+    let len = dist2(q0, q1).sqrt();
+    let side = |p: [f64; 2]| (e[0] * (p[1] - q0[1]) - e[1] * (p[0] - q0[0])) / len;
+    out.clear();
+    for i in 0..poly.len() {
+        let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
+        let (sp, sq) = (side(p), side(q));
+        if sp >= -tol {
+            out.push(p);
+        }
+        if (sp > tol && sq < -tol) || (sp < -tol && sq > tol) {
+            let t = (sp / (sp - sq)).clamp(0.0, 1.0);
+            let mut x = [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])];
+            if e[0] == 0.0 {
+                x[0] = q0[0];
+            } else if e[1] == 0.0 {
+                x[1] = q0[1];
+            }
+            out.push(x);
+        }
+    }
+}
+
+/// The square of the distance from `p` to `q`.
+fn dist2(p: [f64; 2], q: [f64; 2]) -> f64 {
+    (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1])
+}
+
+/// `poly` with points within `tol` of the one before merged (the last and the first too) and
+/// points within `tol` of the line through their neighbours dropped.
+fn tidy(poly: Vec<[f64; 2]>, tol: f64) -> Vec<[f64; 2]> {
+    let dist = |p: [f64; 2], q: [f64; 2]| dist2(p, q).sqrt();
+    let mut v: Vec<[f64; 2]> = Vec::with_capacity(poly.len());
+    for p in poly {
+        if v.last().map_or(true, |&q| dist(p, q) > tol) {
+            v.push(p);
+        }
+    }
+    while v.len() > 1 && dist(v[0], v[v.len() - 1]) <= tol {
+        v.pop();
+    }
+    let mut i = 0;
+    while v.len() >= 3 && i < v.len() {
+        let k = v.len();
+        let (p, q, r) = (v[(i + k - 1) % k], v[i], v[(i + 1) % k]);
+        let l = dist(p, r);
+        let off = ((r[0] - p[0]) * (q[1] - p[1]) - (r[1] - p[1]) * (q[0] - p[0])).abs() / l;
+        if l <= tol || off <= tol {
+            v.remove(i);
+            i = i.saturating_sub(1);
+        } else {
+            i += 1;
+        }
+    }
+    v
+}
+
+/// How deep convex polyhedra `a` and `b` overlap \[m\]: over the separating axes (the faces'
+/// normals of both, and the cross products of an edge of each), the least depth (zero or
+/// negative when they touch or are apart: some plane parts them). It stops at the first axis
+/// whose depth is at most `stop`.
+pub fn penetration(a: &Polyhedron, b: &Polyhedron, stop: f64) -> f64 {
+    let span = |p: &Polyhedron, n: [f64; 3]| p.vertices().iter().fold((f64::MAX, f64::MIN), |(lo, hi), &v| (lo.min(dot(n, v)), hi.max(dot(n, v))));
+    let depth_along = |n: [f64; 3]| {
+        let ((alo, ahi), (blo, bhi)) = (span(a, n), span(b, n));
+        (ahi - blo).min(bhi - alo)
+    };
+    let mut depth = f64::INFINITY;
+    for f in a.faces().iter().chain(b.faces()) {
+        depth = depth.min(depth_along(f.normal));
+        if depth <= stop {
+            return depth;
+        }
+    }
+    let (ea, eb) = (edges(a), edges(b));
+    for &da in &ea {
+        for &db in &eb {
+            let c = cross(da, db);
+            if norm(c) > 1e-9 {
+                depth = depth.min(depth_along(unit(c)));
+                if depth <= stop {
+                    return depth;
+                }
+            }
+        }
+    }
+    depth
+}
+
+/// The unit directions of the edges of `p` (each face's, so each edge twice).
+fn edges(p: &Polyhedron) -> Vec<[f64; 3]> {
+    let v = p.vertices();
+    p.faces()
+        .iter()
+        .flat_map(|f| (0..f.vertices.len()).map(move |i| unit(sub(v[f.vertices[(i + 1) % f.vertices.len()]], v[f.vertices[i]]))))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TOL: f64 = 1e-9;
+
+    fn cube(min: [f64; 3], side: f64) -> Polyhedron {
+        Polyhedron::cuboid(min, min.map(|v| v + side))
+    }
+
+    /// `p` turned by `angle` about the vertical through `c`.
+    fn turned(p: &Polyhedron, angle: f64, c: [f64; 2]) -> Polyhedron {
+        let (s, co) = angle.sin_cos();
+        p.map(|v| [c[0] + co * (v[0] - c[0]) - s * (v[1] - c[1]), c[1] + s * (v[0] - c[0]) + co * (v[1] - c[1]), v[2]])
+    }
+
+    #[test]
+    fn cubes_offset_on_a_face_share_their_rectangle_exactly() {
+        let (low, high) = (cube([0.0; 3], 1.0), cube([0.3, 0.2, 1.0], 1.0));
+        let found = face_contacts(&low, &high, TOL);
+        assert_eq!(found.len(), 1);
+        let c = &found[0];
+        assert_eq!((c.n, c.t1, c.t2), ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]));
+        assert_eq!(c.vertices, vec![[0.3, 0.2, 1.0], [1.0, 0.2, 1.0], [1.0, 1.0, 1.0], [0.3, 1.0, 1.0]]);
+        assert!((c.area - 0.7 * 0.8).abs() < 1e-15);
+        assert!((0..3).all(|k| (c.centroid[k] - [0.65, 0.6, 1.0][k]).abs() < 1e-15));
+        // the other way round: the same polygon, the normal down
+        let back = face_contacts(&high, &low, TOL);
+        assert_eq!(back.len(), 1);
+        assert_eq!(back[0].n, [0.0, 0.0, -1.0]);
+        assert!((back[0].area - 0.56).abs() < 1e-15);
+        // beside each other along y, with a gap within the tolerance
+        let side = face_contacts(&cube([0.0; 3], 1.0), &cube([0.5, 1.0 + 1e-10, 0.25], 1.0), TOL);
+        assert_eq!(side.len(), 1);
+        assert_eq!((side[0].n, side[0].t1, side[0].t2), ([0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]));
+        assert!((side[0].area - 0.5 * 0.75).abs() < 1e-15);
+        assert_eq!(side[0].vertices[0], [1.0, 1.0 + 0.5e-10, 0.25]);
+    }
+
+    #[test]
+    fn a_box_on_a_turned_box_shares_an_octagon() {
+        // two unit squares, one turned by 45 deg about their common centre: a regular octagon
+        // of area 2 (sqrt 2 - 1), whose vertices lie on both squares' sides
+        let low = cube([0.0; 3], 1.0);
+        let high = turned(&cube([0.0, 0.0, 1.0], 1.0), std::f64::consts::FRAC_PI_4, [0.5, 0.5]);
+        let found = face_contacts(&low, &high, TOL);
+        assert_eq!(found.len(), 1);
+        let c = &found[0];
+        assert_eq!(c.vertices.len(), 8);
+        let exact = 2.0 * (2f64.sqrt() - 1.0);
+        assert!((c.area - exact).abs() < 1e-14, "{} against {exact}", c.area);
+        assert!((0..3).all(|k| (c.centroid[k] - [0.5, 0.5, 1.0][k]).abs() < 1e-15));
+        // a 3 x 1 plank turned by 30 deg on a 2 x 2 slab, both centred: a hexagon, the slab
+        // less two right triangles at opposite corners (legs 1 and 2 cos 30 deg; the plank's edge
+        // -x sin 30 + y cos 30 = 1/2 meets x = -1 at y = 0 and y = 1 at x = 2 cos 30 - 1):
+        // 4 - 2 cos 30 deg = 4 - sqrt 3
+        let slab = Polyhedron::cuboid([-1.0, -1.0, -0.5], [1.0, 1.0, 0.0]);
+        let plank = turned(&Polyhedron::cuboid([-1.5, -0.5, 0.0], [1.5, 0.5, 0.5]), std::f64::consts::FRAC_PI_6, [0.0, 0.0]);
+        let found = face_contacts(&slab, &plank, TOL);
+        assert_eq!(found.len(), 1);
+        assert_eq!(found[0].vertices.len(), 6);
+        let exact = 4.0 - 3f64.sqrt();
+        assert!((found[0].area - exact).abs() < 1e-14, "{} against {exact}", found[0].area);
+    }
+
+    #[test]
+    fn a_tetrahedron_on_a_cube_shares_its_triangle() {
+        let block = cube([0.0; 3], 1.0);
+        let tet = Polyhedron::hull(&[[0.2, 0.1, 1.0], [0.9, 0.3, 1.0], [0.4, 0.8, 1.0], [0.5, 0.4, 1.6]], TOL).unwrap();
+        let found = face_contacts(&block, &tet, TOL);
+        assert_eq!(found.len(), 1);
+        let c = &found[0];
+        assert_eq!(c.vertices.len(), 3);
+        // half the cross product of two sides
+        let exact = 0.5 * ((0.9 - 0.2) * (0.8 - 0.1) - (0.3 - 0.1) * (0.4 - 0.2));
+        assert!((c.area - exact).abs() < 1e-15, "{} against {exact}", c.area);
+        assert!((0..2).all(|k| (c.centroid[k] - [0.5, 0.4][k]).abs() < 1e-15) && c.centroid[2] == 1.0);
+        // over the cube's edge, half of it off: the triangle clipped
+        let over = tet.map(|p| [p[0] + 0.5, p[1], p[2]]);
+        let c = &face_contacts(&block, &over, TOL)[0];
+        assert!(c.area < exact && c.vertices.iter().all(|v| v[0] <= 1.0));
+    }
+
+    #[test]
+    fn edges_corners_and_gaps_make_no_contact() {
+        let a = cube([0.0; 3], 1.0);
+        // along an edge, at a corner, beyond the tolerance
+        assert!(face_contacts(&a, &cube([1.0, 0.0, 1.0], 1.0), TOL).is_empty());
+        assert!(face_contacts(&a, &cube([1.0, 1.0, 1.0], 1.0), TOL).is_empty());
+        assert!(face_contacts(&a, &cube([0.0, 0.0, 1.0 + 1e-8], 1.0), TOL).is_empty());
+        // a sliver narrower than the tolerance
+        assert!(face_contacts(&a, &cube([1.0 - 1e-10, 0.0, 1.0], 1.0), TOL).is_empty());
+        // tilted beyond the tolerance over the face
+        let tilted = cube([0.0, 0.0, 1.0], 1.0).map(|p| [p[0], p[1], p[2] + 1e-6 * p[0]]);
+        assert!(face_contacts(&a, &tilted, TOL).is_empty());
+    }
+
+    #[test]
+    fn overlap_is_measured_and_touching_is_not() {
+        let a = cube([0.0; 3], 1.0);
+        assert!((penetration(&a, &cube([0.7, 0.2, 0.1], 1.0), f64::MIN) - 0.3).abs() < 1e-15);
+        assert!(penetration(&a, &cube([1.0, 0.0, 0.0], 1.0), f64::MIN).abs() < 1e-15);
+        assert!(penetration(&a, &cube([1.5, 0.0, 0.0], 1.0), f64::MIN) < -0.4);
+        // two unit cubes on edge, ridge across ridge 0.01 apart: no face's normal parts them,
+        // the cross product of the ridges does
+        let r = 0.5 * 2f64.sqrt();
+        let ridge_up = Polyhedron::hull(
+            &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, r, r], [1.0, r, r], [0.0, -r, r], [1.0, -r, r], [0.0, 0.0, 2.0 * r], [1.0, 0.0, 2.0 * r]],
+            TOL,
+        )
+        .unwrap();
+        // turned a quarter about z and upside down (a proper rotation: (x, y, z) -> (y, x, -z))
+        let ridge_down = ridge_up.map(|p| [0.5 + p[1], p[0] - 0.5 + 0.0, 4.0 * r + 0.01 - p[2]]);
+        let d = penetration(&ridge_up, &ridge_down, f64::MIN);
+        assert!((d + 0.01).abs() < 1e-12, "{d}");
+        let into = ridge_down.map(|p| [p[0], p[1], p[2] - 0.03]);
+        assert!((penetration(&ridge_up, &into, f64::MIN) - 0.02).abs() < 1e-12);
+    }
+}
