@@ -245,3 +245,76 @@ fn a_polygon_on_an_inclined_support_has_the_modes_of_the_flat_one() {
         }
     }
 }
+
+/// The stone pier of examples/stone-wall.toml: a wall one stone long, each course a single
+/// stone between inclined bed joints.
+fn stone_pier() -> StoneWall {
+    StoneWall { length: 0.6, height: 2.4, stone_length: 0.6, stone_height: 0.3, irregularity: 0.3, head_angle: 15.0, bed_angle: 8.0, seed: 2026 }
+}
+
+/// The multiplier of a column of blocks (bottom to top) on a fixed base, tension-free joints of
+/// friction `mu`, each carrying the weight of the part above it and lambda times it across: the
+/// column is statically determinate, so each joint's normal force N, shear T and centre of
+/// pressure follow from the statics of the part above; the joint holds while |T| <= mu N and the
+/// centre of pressure lies on the joint. The largest such lambda of each joint (by bisection, to
+/// the last bits), the least over the joints.
+fn column_multiplier(blocks: &[Polygon], mu: f64) -> f64 {
+    let mut least = f64::MAX;
+    for k in 0..blocks.len() {
+        // the joint under block k: its bottom edge, from x = 0 to the far side
+        let v = blocks[k].vertices();
+        let lowest_at = |x: f64| v.iter().filter(|p| p[0] == x).map(|p| p[1]).fold(f64::MAX, f64::min);
+        let right = v.iter().map(|p| p[0]).fold(f64::MIN, f64::max);
+        let (p0, p1) = ([0.0, lowest_at(0.0)], [right, lowest_at(right)]);
+        let len = (p1[0] - p0[0]).hypot(p1[1] - p0[1]);
+        let t = [(p1[0] - p0[0]) / len, (p1[1] - p0[1]) / len];
+        let n = [-t[1], t[0]];
+        let (mut a, mut m) = (0.0, [0.0, 0.0]);
+        for b in &blocks[k..] {
+            let p = b.area_properties();
+            a += p.area;
+            m = [m[0] + p.area * p.centroid[0], m[1] + p.area * p.centroid[1]];
+        }
+        let c = [m[0] / a, m[1] / a];
+        let holds = |lam: f64| {
+            let f = [lam * a, -a]; // the loads on the part above
+            let dot = |u: [f64; 2], w: [f64; 2]| u[0] * w[0] + u[1] * w[1];
+            let (normal, shear) = (-dot(f, n), -dot(f, t));
+            // where the loads' line through c crosses the joint, along it from p0
+            let tau = -dot([c[0] - p0[0], c[1] - p0[1]], n) / dot(f, n);
+            let s = dot([c[0] - p0[0] + tau * f[0], c[1] - p0[1] + tau * f[1]], t);
+            normal > 0.0 && shear.abs() <= mu * normal && (0.0..=len).contains(&s)
+        };
+        assert!(holds(0.0), "joint {k} does not hold the weight");
+        let (mut lo, mut hi) = (0.0, 10.0);
+        while hi - lo > 1e-15 * hi {
+            let mid = 0.5 * (lo + hi);
+            if holds(mid) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        least = least.min(lo);
+    }
+    least
+}
+
+#[test]
+fn a_stone_pier_fails_at_its_statics_and_the_example_says_so() {
+    let blocks = stone_wall(&stone_pier()).unwrap();
+    assert_eq!(blocks.len(), 8);
+    assert!(blocks.iter().all(|b| b.vertices().len() == 4));
+    // friction 0.3: the pier neither overturns on its base (0.25) nor slides on a horizontal
+    // joint (0.3) first, but slides along a bed joint falling towards the load
+    let want = column_multiplier(&blocks, 0.3);
+    assert!(want < 0.25 * (1.0 - 1e-3), "{want}");
+    let res = limit_analysis(&model(blocks, 0.3), &LimitOptions { tolerance: 1e-11, ..LimitOptions::default() }).unwrap();
+    assert_eq!(res.status, Status::Collapse, "{:?}", res.error);
+    assert_close(res.collapse_multiplier, want, 1e-9, "stone pier");
+    // the example's reference, to its printed digits
+    let example = include_str!("../examples/stone-wall.toml");
+    let line = example.lines().find(|l| l.starts_with("collapse_multiplier")).expect("a [reference]");
+    let printed: f64 = line.split('=').nth(1).unwrap().split('#').next().unwrap().trim().parse().unwrap();
+    assert_close(printed, want, 5e-5, "the example's reference");
+}

@@ -54,6 +54,11 @@ pub struct Gable {
 }
 
 impl Gable {
+    /// `geometry.gable.first_course`: "half" or "full".
+    pub fn first_course(s: &str) -> Result<FirstCourse> {
+        s.parse().map_err(|e| rename(e, "geometry.running_bond", "geometry.gable"))
+    }
+
     /// The ridge's x \[m\].
     pub fn ridge(&self) -> f64 {
         self.ridge_x.unwrap_or(0.5 * self.length)
