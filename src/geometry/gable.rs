@@ -145,31 +145,29 @@ pub fn gable(p: &Gable) -> Result<Vec<Polygon>> {
         let top_course = end == rects.len();
         // the course's blocks as x ranges, the top course reaching up to the ridge
         let y1 = if top_course { r } else { rects[start].y1 };
-        let mut pieces: Vec<(f64, f64, Option<Vec<[f64; 2]>>)> = rects[start..end]
+        let cut_at = |x0: f64, x1: f64| cut(Rect::new(x0, y0, x1, y1), &rakes, snap);
+        let mut pieces: Vec<Piece> = rects[start..end]
             .iter()
-            .map(|b| (b.x0, b.x1, cut(Rect::new(b.x0, y0, b.x1, y1), &rakes, snap)))
-            .filter(|piece| piece.2.is_some())
+            .filter_map(|b| cut_at(b.x0, b.x1).map(|outline| Piece { x0: b.x0, x1: b.x1, outline }))
             .collect();
         // merge slivers, the farthest from the ridge first, each into its neighbour towards it
         loop {
-            let area = |v: &Option<Vec<[f64; 2]>>| v.as_ref().map_or(0.0, |v| crate::shape::Area::of(v).area);
+            let mid = |k: usize| 0.5 * (pieces[k].x0 + pieces[k].x1);
             let sliver = (0..pieces.len())
-                .filter(|&i| pieces.len() > 1 && area(&pieces[i].2) < SLIVER * whole)
-                .max_by(|&i, &j| {
-                    let d = |k: usize| (0.5 * (pieces[k].0 + pieces[k].1) - xr).abs();
-                    d(i).total_cmp(&d(j))
-                });
+                .filter(|&i| pieces.len() > 1 && crate::shape::Area::of(&pieces[i].outline).area < SLIVER * whole)
+                .max_by(|&i, &j| (mid(i) - xr).abs().total_cmp(&(mid(j) - xr).abs()));
             let Some(i) = sliver else { break };
-            let towards = if 0.5 * (pieces[i].0 + pieces[i].1) < xr { i + 1 } else { i.wrapping_sub(1) };
+            let towards = if mid(i) < xr { i + 1 } else { i.wrapping_sub(1) };
             let j = if towards < pieces.len() { towards } else if i + 1 < pieces.len() { i + 1 } else { i - 1 };
             let (a, b) = (i.min(j), i.max(j));
-            let (x0, x1) = (pieces[a].0, pieces[b].1);
-            pieces[a] = (x0, x1, cut(Rect::new(x0, y0, x1, y1), &rakes, snap));
+            let (x0, x1) = (pieces[a].x0, pieces[b].x1);
+            // the two rectangles together hold the piece's outline: their cut is not empty
+            let outline = cut_at(x0, x1).expect("a merged piece holds its parts");
+            pieces[a] = Piece { x0, x1, outline };
             pieces.remove(b);
         }
-        for (_, _, v) in pieces {
-            let v = v.expect("kept pieces are cut polygons");
-            let polygon = Polygon::new(v).checked(snap).map_err(|d| {
+        for piece in pieces {
+            let polygon = Polygon::new(piece.outline).checked(snap).map_err(|d| {
                 Error::input(format!("geometry.gable: a block cut at the rake is degenerate ({}): the wall is too small for its blocks", d.reason))
             })?;
             out.push(polygon);
@@ -180,6 +178,13 @@ pub fn gable(p: &Gable) -> Result<Vec<Polygon>> {
         }
     }
     Ok(out)
+}
+
+/// A block of a course, the x range of its rectangle and its outline cut at the rakes.
+struct Piece {
+    x0: f64,
+    x1: f64,
+    outline: Vec<[f64; 2]>,
 }
 
 /// The error `e` with its key prefix `from` named `to` (the running bond's checks of a gable's keys).
