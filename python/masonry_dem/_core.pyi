@@ -117,12 +117,13 @@ def stone_wall(
 ) -> list[list[list[float]]]:
     """The stones of a stone wall, each a list of vertices [x, y] counter-clockwise (m), course by course bottom to top,
     left to right: a wall from x = 0 to length [m] and from y = 0 to height [m] (a flat base and a flat top), in
-    round(height / stone_height) courses of heights drawn in stone_height (1 +- irregularity) [m], of stones of
-    lengths drawn in stone_length (1 +- irregularity) [m] (irregularity in 0..=0.5). Head joints are inclined from
-    the vertical by angles drawn within +-head_angle (degrees, 0..=30), bed joints from the horizontal within
-    +-bed_angle (degrees, 0..=10; less where a course would be left thinner than half its height at the wall's ends);
-    no stone is shorter than 25% of stone_length along a bed joint. Every joint is an edge the two stones share. The
-    same seed (an integer in 0..2^64) gives the same wall, bit for bit, on any machine. Model(stones) is the wall."""
+    round(height / stone_height) courses of heights drawn in stone_height (1 +- irregularity) [m], of stones of lengths
+    drawn in stone_length (1 +- irregularity) [m] (irregularity in 0..=0.5). Head joints are inclined from the vertical
+    by angles drawn within +-head_angle (degrees, 0..=30), bed joints from the horizontal within +-bed_angle (degrees,
+    0..=10; less where a course would be left thinner than half its height at the wall's ends); no stone is shorter than
+    25% of stone_length along a bed joint, and the head joints of two courses are at least that far apart along the bed
+    joint between them. Every joint is an edge the two stones share. The same seed (an integer in 0..2^64) gives the
+    same wall, bit for bit, on any machine. Model(stones) is the wall."""
 
 def running_bond_3d(
     length: float,

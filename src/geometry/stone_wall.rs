@@ -17,9 +17,11 @@
 //!   uniformly in `stone_length (1 +- irregularity)`, its joint through that point at an angle
 //!   from the vertical drawn uniformly within `+-head_angle`. A joint that would leave a stone
 //!   shorter than [`MIN_STONE`] of `stone_length` along a bed joint (the two joints leaning
-//!   towards each other) is made vertical, and moved along the course if it still would. The
-//!   course's last stone runs to x = `length`: no joint is placed less than half a mean stone
-//!   from the end.
+//!   towards each other) is made vertical, and moved along the course if it still would. A joint
+//!   whose lower end would lie less than [`MIN_STONE`] of `stone_length` from the upper end of a
+//!   joint of the course below, along their bed joint, is moved along the course past it (a
+//!   bond: no head joint runs on through two courses, and no interface is a sliver). The course's
+//!   last stone runs to x = `length`: no joint is placed less than half a mean stone from the end.
 //!
 //! Stones are convex: two segments across a strip that do not cross bound a convex
 //! quadrilateral with the strip's two lines. The numbers come from a SplitMix64 generator seeded
@@ -41,7 +43,8 @@ use super::{check_count, coord};
 use crate::error::{non_negative, positive, Error, Result};
 use crate::shape::{contact_tolerance, Polygon};
 
-/// The shortest stone along a bed joint, as a fraction of `stone_length` (25%).
+/// The shortest stone along a bed joint, and the least distance between the head joints of two
+/// courses along the bed joint between them, as a fraction of `stone_length` (25%).
 pub const MIN_STONE: f64 = 0.25;
 
 /// The largest `irregularity`.
@@ -181,36 +184,51 @@ pub fn stone_wall(p: &StoneWall) -> Result<Vec<Polygon>> {
     let w_min = MIN_STONE * sl;
     let tol = contact_tolerance(l.max(h));
     let mut out = Vec::new();
+    // the upper ends' x of the head joints of the course below, along this course's lower bed joint
+    let mut below: Vec<f64> = vec![];
     for k in 0..courses {
         let (lo, hi) = (beds[k], beds[k + 1]);
         let on = |b: Bed, x: f64| b.level + b.slope * (x - mid);
         // the previous joint's ends on the lower and upper bed joints
         let (mut b0, mut t0) = ([0.0, on(lo, 0.0)], [0.0, on(hi, 0.0)]);
         let mut xc = 0.0;
+        let mut tops = vec![];
+        // a length within rounding of w_min is w_min (a joint moved to w_min from another)
+        let apart = |a: f64, b: f64| b - a >= w_min * (1.0 - 1e-9);
         loop {
             let w = sl * (1.0 + irr * rng.symmetric());
-            let t = tan_head * rng.symmetric();
+            let mut t = tan_head * rng.symmetric();
             xc += w;
-            if l - xc < 0.5 * sl {
-                break;
-            }
-            let ym = 0.5 * (on(lo, xc) + on(hi, xc));
-            let (mut b1, mut t1) = (meet(xc, ym, t, lo, mid), meet(xc, ym, t, hi, mid));
-            let short = |b1: [f64; 2], t1: [f64; 2]| {
-                b1[0] - b0[0] < w_min || t1[0] - t0[0] < w_min || l - b1[0] < w_min || l - t1[0] < w_min
-            };
-            if short(b1, t1) {
-                // vertical, and moved along the course as far as the previous joint asks
-                xc = xc.max(b0[0] + w_min).max(t0[0] + w_min);
+            // the joint through (xc, the course's mid-line) at dx/dy = t: moved along the course
+            // past a joint of the course below that it would meet, made vertical and moved where
+            // it would leave a stone too short; none less than half a stone from the end
+            let placed = loop {
                 if l - xc < 0.5 * sl {
-                    break;
+                    break None;
                 }
-                (b1, t1) = ([xc, on(lo, xc)], [xc, on(hi, xc)]);
-            }
+                let ym = 0.5 * (on(lo, xc) + on(hi, xc));
+                let (b1, t1) = (meet(xc, ym, t, lo, mid), meet(xc, ym, t, hi, mid));
+                if let Some(&x) = below.iter().find(|&&x| !apart(x, b1[0]) && !apart(b1[0], x)) {
+                    xc += x + w_min - b1[0];
+                    continue;
+                }
+                if !(apart(b0[0], b1[0]) && apart(t0[0], t1[0]) && apart(b1[0], l) && apart(t1[0], l)) {
+                    t = 0.0;
+                    xc = xc.max(b0[0] + w_min).max(t0[0] + w_min);
+                    if !apart(xc, l) {
+                        break None;
+                    }
+                    continue;
+                }
+                break Some((b1, t1));
+            };
+            let Some((b1, t1)) = placed else { break };
             out.push(stone(b0, b1, t1, t0, tol)?);
+            tops.push(t1[0]);
             (b0, t0) = (b1, t1);
         }
         out.push(stone(b0, [l, on(lo, l)], [l, on(hi, l)], t0, tol)?);
+        below = tops;
     }
     Ok(out)
 }

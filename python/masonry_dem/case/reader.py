@@ -292,8 +292,8 @@ def _geometry(top: _Table, base_dir: Optional[PathLike]) -> Tuple[str, Dict[str,
     forms = [k for k in given if not (k == "polygons" and "blocks" in given)]  # blocks and polygons: one list
     if not forms:
         raise geo.error(f"[geometry] needs exactly one of {', '.join(RECTANGLE_KINDS)}; none is given (polygons "
-                        "also make a wall, alone or beside blocks, [geometry.arch] an arch, [geometry.gable] a gable wall and "
-                        "[geometry.stone_wall] a stone wall; a 3D wall: one of "
+                        "also make a wall, alone or beside blocks, [geometry.arch] an arch, [geometry.gable] a gable "
+                        "wall and [geometry.stone_wall] a stone wall; a 3D wall: one of "
                         f"{', '.join(GEOMETRY_KINDS_3D)})")
     if len(forms) > 1:
         # the forms of a wall of rectangles, of polygons too, or with a 3D one given, all of them
