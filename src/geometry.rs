@@ -1,6 +1,7 @@
 //! Axis-aligned rectangular blocks and the wall generators of the case format
-//! (running bond with openings, pattern rows, explicit lists), and the arches of voussoirs
-//! ([`arch`]: convex polygons).
+//! (running bond with openings, pattern rows, explicit lists), and the generators of convex
+//! polygons: the arches of voussoirs ([`arch`]), gable walls (a running bond cut at the rakes,
+//! [`gable`]) and stone walls (courses of random convex stones, [`stone_wall`]).
 //!
 //! ```
 //! use masonry_dem::geometry::{running_bond, RunningBond, FirstCourse};
@@ -32,10 +33,14 @@ use crate::error::{positive, Error, Result};
 
 mod arch;
 mod fit;
+mod gable;
 mod openings;
+mod stone_wall;
 
 pub use arch::{arch, Arch, ArchGeometry, ArchKind, Springing, MAX_VOUSSOIRS};
 pub use fit::{courses_for_height, CourseFit, MIN_LAST_COURSE};
+pub use gable::{gable, Gable, SLIVER};
+pub use stone_wall::{stone_wall, StoneWall, MAX_BED_ANGLE, MAX_HEAD_ANGLE, MAX_IRREGULARITY, MIN_STONE};
 pub use openings::{cut_openings, MIN_PART};
 
 /// An axis-aligned rectangle `[x0, x1] x [y0, y1]` in metres.
@@ -280,7 +285,7 @@ fn check_height(what: &str, block_height: f64, courses: usize) -> Result<()> {
     Ok(())
 }
 
-fn check_count(what: &str, estimate: f64) -> Result<()> {
+pub(crate) fn check_count(what: &str, estimate: f64) -> Result<()> {
     if !(estimate <= MAX_BLOCKS as f64) {
         return Err(too_many_blocks(what, estimate));
     }

@@ -63,6 +63,8 @@ from ._core import (
     TimeHistory,
     __version__,
     arch,
+    gable,
+    stone_wall,
 )
 from ._checked import Model, pattern, running_bond
 
@@ -123,6 +125,8 @@ __all__ = [
     "running_bond",
     "pattern",
     "arch",
+    "gable",
+    "stone_wall",
     "running_bond_3d",
     "u_wall",
     "corner_wall",

@@ -87,6 +87,44 @@ def arch(
     wall blocks, pier_width [m] wide from the intrados's springing point and pier_height [m] from the ground to it,
     in pier_courses courses (default 1: a single block), standing on the base."""
 
+def gable(
+    block_length: float,
+    block_height: float,
+    length: float,
+    eaves_height: float,
+    ridge_height: float,
+    ridge_x: Optional[float] = None,
+    first_course: Optional[Literal["half", "full"]] = None,
+) -> list[list[list[float]]]:
+    """The blocks of a gable wall, each a list of vertices [x, y] counter-clockwise (m), course by course bottom to top,
+    left to right: a running bond (block_length x block_height [m], courses alternating half-block and whole-block
+    starts, first_course "half" or "full" for the lowest) from x = 0 to length [m] on y = 0, under a top that rises in
+    a straight line from eaves_height [m] at x = 0 to ridge_height [m] at x = ridge_x [m] (default: length / 2) and
+    falls to eaves_height at x = length; a ridge at 0 or length makes a single slope. The blocks are cut at the rakes
+    (convex polygons); a cut block of less than 25% of a whole block's area is merged with its neighbour towards the
+    ridge, and a course at the ridge lower than 25% of block_height is joined to the course below: nothing is
+    dropped, the blocks tile the gable. Model(blocks) is the wall."""
+
+def stone_wall(
+    length: float,
+    height: float,
+    stone_length: float,
+    stone_height: float,
+    irregularity: float = 0.3,
+    head_angle: float = 15.0,
+    bed_angle: float = 0.0,
+    seed: int = 0,
+) -> list[list[list[float]]]:
+    """The stones of a stone wall, each a list of vertices [x, y] counter-clockwise (m), course by course bottom to top,
+    left to right: a wall from x = 0 to length [m] and from y = 0 to height [m] (a flat base and a flat top), in
+    round(height / stone_height) courses of heights drawn in stone_height (1 +- irregularity) [m], of stones of lengths
+    drawn in stone_length (1 +- irregularity) [m] (irregularity in 0..=0.5). Head joints are inclined from the vertical
+    by angles drawn within +-head_angle (degrees, 0..=30), bed joints from the horizontal within +-bed_angle (degrees,
+    0..=10; less where a course would be left thinner than half its height at the wall's ends); no stone is shorter than
+    25% of stone_length along a bed joint, and the head joints of two courses are at least that far apart along the bed
+    joint between them. Every joint is an edge the two stones share. The same seed (an integer in 0..2^64) gives the
+    same wall, bit for bit, on any machine. Model(stones) is the wall."""
+
 def running_bond_3d(
     length: float,
     height: float,

@@ -3,13 +3,13 @@
 //! as KeyboardInterrupt with the partial results, panics caught.
 //!
 //! Here: the exceptions and the module. `convert` turns Python values into the core's, `walls`
-//! binds the wall generators and the arch's, `model` the Model and its analyses, `space` the 3D Model3D with its
+//! binds the wall generators and those of polygons (arch, gable, stone wall), `model` the Model and its analyses, `space` the 3D Model3D with its
 //! generators and analyses (limit, explicit), `results` what they return (one Results and one
 //! TimeHistory for both dimensions),
 //! `run` runs an analysis in a thread of its own while Ctrl-C is watched.
 
 use masonry_dem::error::Error;
-use masonry_dem::geometry::{self, Arch, ArchKind, FirstCourse, Rect, RunningBond, Springing};
+use masonry_dem::geometry::{self, Arch, ArchKind, FirstCourse, Gable, Rect, RunningBond, Springing, StoneWall};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::model::{CarriedLoad, JointLaws, Model, ModelSpec, TopBeam};
 use masonry_dem::shape::Polygon;
@@ -162,6 +162,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(pattern, m)?)?;
     m.add_function(wrap_pyfunction!(cut_openings, m)?)?;
     m.add_function(wrap_pyfunction!(arch, m)?)?;
+    m.add_function(wrap_pyfunction!(gable, m)?)?;
+    m.add_function(wrap_pyfunction!(stone_wall, m)?)?;
     m.add_function(wrap_pyfunction!(running_bond_3d, m)?)?;
     m.add_function(wrap_pyfunction!(u_wall, m)?)?;
     m.add_function(wrap_pyfunction!(corner_wall, m)?)?;

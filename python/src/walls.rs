@@ -1,4 +1,5 @@
-//! The wall generators: `running_bond` and `pattern`, and `arch`.
+//! The wall generators: `running_bond` and `pattern`, and those of convex polygons: `arch`, `gable` and
+//! `stone_wall`.
 
 use crate::*;
 
@@ -155,11 +156,69 @@ pub(crate) fn arch<'py>(
         (true, _, None) => return Err(InputError::new_err("geometry.arch.pier_height is required for piers")),
     };
     let made = guarded(|| geometry::arch(&Arch { kind, span, radius, rise, thickness, voussoirs, springing }))?;
-    let lists = |ps: &[Polygon]| -> Vec<Vec<[f64; 2]>> { ps.iter().map(|p| p.vertices().to_vec()).collect() };
     let d = PyDict::new(py);
-    d.set_item("blocks", lists(&made.blocks))?;
-    d.set_item("supports", lists(&made.supports))?;
+    d.set_item("blocks", polygon_lists(&made.blocks))?;
+    d.set_item("supports", polygon_lists(&made.supports))?;
     d.set_item("intrados", made.intrados)?;
     d.set_item("extrados", made.extrados)?;
     Ok(d)
+}
+
+/// The blocks as lists of vertices [x, y] (m), counter-clockwise.
+fn polygon_lists(ps: &[Polygon]) -> Vec<Vec<[f64; 2]>> {
+    ps.iter().map(|p| p.vertices().to_vec()).collect()
+}
+
+/// The blocks of a gable wall, each a list of vertices [x, y] counter-clockwise (m), course by course bottom to top,
+/// left to right: a running bond (block_length x block_height [m], courses alternating half-block and whole-block
+/// starts, first_course "half" or "full" for the lowest) from x = 0 to length [m] on y = 0, under a top that rises in
+/// a straight line from eaves_height [m] at x = 0 to ridge_height [m] at x = ridge_x [m] (default: length / 2) and
+/// falls to eaves_height at x = length; a ridge at 0 or length makes a single slope. The blocks are cut at the rakes
+/// (convex polygons); a cut block of less than 25% of a whole block's area is merged with its neighbour towards the
+/// ridge, and a course at the ridge lower than 25% of block_height is joined to the course below: nothing is
+/// dropped, the blocks tile the gable. Model(blocks) is the wall.
+#[pyfunction]
+#[pyo3(signature = (block_length, block_height, length, eaves_height, ridge_height, ridge_x=None, first_course=None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn gable(
+    block_length: f64,
+    block_height: f64,
+    length: f64,
+    eaves_height: f64,
+    ridge_height: f64,
+    ridge_x: Option<f64>,
+    first_course: Option<&str>,
+) -> PyResult<Vec<Vec<[f64; 2]>>> {
+    let first_course = first_course.map_or(Ok(FirstCourse::default()), Gable::first_course).map_err(to_py)?;
+    let p = Gable { block_length, block_height, length, eaves_height, ridge_height, ridge_x, first_course };
+    Ok(polygon_lists(&guarded(|| geometry::gable(&p))?))
+}
+
+/// The stones of a stone wall, each a list of vertices [x, y] counter-clockwise (m), course by course bottom to top,
+/// left to right: a wall from x = 0 to length [m] and from y = 0 to height [m] (a flat base and a flat top), in
+/// round(height / stone_height) courses of heights drawn in stone_height (1 +- irregularity) [m], of stones of lengths
+/// drawn in stone_length (1 +- irregularity) [m] (irregularity in 0..=0.5). Head joints are inclined from the vertical
+/// by angles drawn within +-head_angle (degrees, 0..=30), bed joints from the horizontal within +-bed_angle (degrees,
+/// 0..=10; less where a course would be left thinner than half its height at the wall's ends); no stone is shorter than
+/// 25% of stone_length along a bed joint, and the head joints of two courses are at least that far apart along the bed
+/// joint between them. Every joint is an edge the two stones share. The same seed (an integer in 0..2^64) gives the
+/// same wall, bit for bit, on any machine. Model(stones) is the wall.
+#[pyfunction]
+#[pyo3(signature = (length, height, stone_length, stone_height, irregularity=0.3, head_angle=15.0, bed_angle=0.0, seed=0))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn stone_wall(
+    length: f64,
+    height: f64,
+    stone_length: f64,
+    stone_height: f64,
+    irregularity: f64,
+    head_angle: f64,
+    bed_angle: f64,
+    seed: i128,
+) -> PyResult<Vec<Vec<[f64; 2]>>> {
+    let seed = u64::try_from(seed).map_err(|_| {
+        InputError::new_err(format!("geometry.stone_wall.seed must be an integer in 0..=18446744073709551615, got {seed}"))
+    })?;
+    let p = StoneWall { length, height, stone_length, stone_height, irregularity, head_angle, bed_angle, seed };
+    Ok(polygon_lists(&guarded(|| geometry::stone_wall(&p))?))
 }

@@ -256,8 +256,8 @@ def test_an_arch_case_is_the_generator_s_arch(tmp_path, capsys) -> None:
          'pier_height = 1', "", "geometry.arch", "geometry.arch: give abutment_width and abutment_height, or "
                                                 "pier_width, pier_height and pier_courses, not both"),
         ('kind = "semicircular"\nspan = 2\nthickness = 0.1\nvoussoirs = 8', "blocks = [[0, 0, 1, 1]]", None,
-         "[geometry] needs exactly one of running_bond, pattern, blocks, dxf, polygons, arch; blocks and arch are both "
-         "given"),
+         "[geometry] needs exactly one of running_bond, pattern, blocks, dxf, polygons, arch, gable, stone_wall; blocks "
+         "and arch are both given"),
         ('kind = "semicircular"\nspan = 2\nthickness = 0.1\nvoussoirs = 8', "supports = [[[0, 0], [1, 0]]]",
          "geometry.supports[0]", "geometry.supports[0]: 2 vertices: a block needs at least 3"),
     ],

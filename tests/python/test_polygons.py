@@ -324,8 +324,8 @@ POLYGON_CASE = """format = 1
         ("boxes = [[0, 0, 0, 1, 1, 1]]\nsupports = [[[1, 0], [2, 0], [1.5, 1]]]", "geometry.supports",
          "geometry.supports: are polygons of a wall in the plane"),
         ("polygons = [[[0, 0], [1, 0], [0, 1]]]\ndxf = \"wall.dxf\"", None,
-         "[geometry] needs exactly one of running_bond, pattern, blocks, dxf, polygons, arch (blocks and polygons "
-         "may be given together); dxf and polygons are both given"),
+         "[geometry] needs exactly one of running_bond, pattern, blocks, dxf, polygons, arch, gable, stone_wall "
+         "(blocks and polygons may be given together); dxf and polygons are both given"),
         ("supports = [[[0, 0], [1, 0], [0, 1]]]", None,
          "[geometry] needs exactly one of running_bond, pattern, blocks, dxf; none is given (polygons also make a "
          "wall, alone or beside blocks"),

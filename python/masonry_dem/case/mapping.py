@@ -239,9 +239,10 @@ class _Arguments(MutableMapping):  # type: ignore[type-arg]
 
 
 def generate_blocks(kind: str, geometry: Mapping[str, Any], source: str) -> Blocks:
-    """The blocks of a checked [geometry] of ``kind`` ("running_bond", "pattern" or "blocks"), from the
-    arguments given (None: left out, the generator's default): an (n, 4) array of rectangles, or with
-    ``polygons`` (kind "blocks") the rectangles then the polygons in a list (:data:`Blocks`). The core's generators
+    """The blocks of a checked [geometry] of ``kind`` ("running_bond", "pattern", "blocks", "gable" or
+    "stone_wall"), from the arguments given (None: left out, the generator's default): an (n, 4) array of
+    rectangles, or with ``polygons`` (kind "blocks") the rectangles then the polygons in a list, or the polygons of a
+    gable or a stone wall in a list (:data:`Blocks`). The core's generators
     may still refuse them (their message, which names the key, gets the file name in front)."""
     arguments = {key: value for key, value in geometry.items() if value is not None}
     try:
@@ -249,6 +250,10 @@ def generate_blocks(kind: str, geometry: Mapping[str, Any], source: str) -> Bloc
             return _core.running_bond(**arguments)
         if kind == "pattern":
             return _core.pattern(**arguments)
+        if kind == "gable":
+            return _core.gable(**arguments)  # type: ignore[no-any-return]
+        if kind == "stone_wall":
+            return _core.stone_wall(**arguments)  # type: ignore[no-any-return]
         if geometry.get("polygons"):
             return [list(map(float, r)) for r in geometry["blocks"]] + list(geometry["polygons"])
         return np.asarray(geometry["blocks"], dtype=np.float64)

@@ -54,7 +54,7 @@ TOP_KEYS = (
     "format", "title", "geometry", "base", "top", "joints", "loads", "analysis", "reference", "ground_motion",
     "time_history", "assessment",
 )
-GEOMETRY_KINDS = ("running_bond", "pattern", "blocks", "dxf", "polygons", "arch")
+GEOMETRY_KINDS = ("running_bond", "pattern", "blocks", "dxf", "polygons", "arch", "gable", "stone_wall")
 # The forms of a wall of rectangles, which the messages name first
 RECTANGLE_KINDS = GEOMETRY_KINDS[:4]
 # Keys of [geometry] that may stand beside a wall's form: the supports (fixed blocks: abutments, springers, an
@@ -70,6 +70,14 @@ ARCH_KINDS = ("semicircular", "segmental", "pointed", "elliptical")
 # Keys of [geometry.arch]: its lengths [m], then its counts
 ARCH_LENGTHS = ("span", "radius", "rise", "thickness", "abutment_width", "abutment_height", "pier_width", "pier_height")
 ARCH_COUNTS = ("voussoirs", "pier_courses")
+# Keys of [geometry.gable] (the core's generator, ``masonry_dem.gable``): its lengths [m] (eaves_height and ridge_x may
+# be 0), then how the lowest course starts
+GABLE_LENGTHS = ("block_length", "block_height", "length", "ridge_height")
+GABLE_KEYS = GABLE_LENGTHS + ("eaves_height", "ridge_x", "first_course")
+# Keys of [geometry.stone_wall] (``masonry_dem.stone_wall``): its lengths [m], the spread and the angles' bounds
+# [degrees], and the seed
+STONE_WALL_LENGTHS = ("length", "height", "stone_length", "stone_height")
+STONE_WALL_KEYS = STONE_WALL_LENGTHS + ("irregularity", "head_angle", "bed_angle", "seed")
 # Keys of the optional [ground_motion] table: a record file (and a vertical one), or a built-in pulse.
 GROUND_MOTION_KEYS = (
     "file", "units", "scale", "vertical_file", "vertical_scale", "pulse", "amplitude", "amplitude_g", "period",
@@ -285,7 +293,8 @@ def _geometry(top: _Table, base_dir: Optional[PathLike]) -> Tuple[str, Dict[str,
     forms = [k for k in given if not (k == "polygons" and "blocks" in given)]  # blocks and polygons: one list
     if not forms:
         raise geo.error(f"[geometry] needs exactly one of {', '.join(RECTANGLE_KINDS)}; none is given (polygons "
-                        "also make a wall, alone or beside blocks, and [geometry.arch] an arch; a 3D wall: one of "
+                        "also make a wall, alone or beside blocks, [geometry.arch] an arch, [geometry.gable] a gable "
+                        "wall and [geometry.stone_wall] a stone wall; a 3D wall: one of "
                         f"{', '.join(GEOMETRY_KINDS_3D)})")
     if len(forms) > 1:
         # the forms of a wall of rectangles, of polygons too, or with a 3D one given, all of them
@@ -314,7 +323,7 @@ def _geometry(top: _Table, base_dir: Optional[PathLike]) -> Tuple[str, Dict[str,
     if kind == "dxf":
         return "blocks", _drawing(geo, base_dir), wall
     read = {"running_bond": _running_bond, "pattern": _pattern, "blocks": _block_list, "polygons": _block_list,
-            "arch": _arch}[kind]
+            "arch": _arch, "gable": _gable, "stone_wall": _stone_wall}[kind]
     return "blocks" if kind == "polygons" else kind, read(geo), wall
 
 
@@ -349,6 +358,30 @@ def _arch(geo: _Table) -> Dict[str, Any]:
     for key in ("thickness", "voussoirs"):
         if args[key] is None:
             raise table.missing(key)
+    return args
+
+
+def _gable(geo: _Table) -> Dict[str, Any]:
+    """[geometry.gable]: the arguments of the core's gable generator (``masonry_dem.gable``), each checked alone;
+    how they go together (a ridge above the eaves, within the wall's length) is the generator's to check, its
+    messages naming the key."""
+    table = geo.table("gable", GABLE_KEYS)
+    assert table is not None
+    args: Dict[str, Any] = {key: table.number(key, check=_positive, unit="length") for key in GABLE_LENGTHS}
+    args["eaves_height"] = table.number("eaves_height", check=_non_negative, unit="length")
+    args["ridge_x"] = table.number("ridge_x", None, _non_negative, unit="length")
+    args["first_course"] = table.string("first_course", None, ("half", "full"))
+    return args
+
+
+def _stone_wall(geo: _Table) -> Dict[str, Any]:
+    """[geometry.stone_wall]: the arguments of the core's stone-wall generator (``masonry_dem.stone_wall``), each
+    checked alone (the bounds of the spread and the angles are the generator's, its messages naming the key)."""
+    table = geo.table("stone_wall", STONE_WALL_KEYS)
+    assert table is not None
+    args: Dict[str, Any] = {key: table.number(key, check=_positive, unit="length") for key in STONE_WALL_LENGTHS}
+    args.update({key: table.number(key, None, _non_negative) for key in ("irregularity", "head_angle", "bed_angle")})
+    args["seed"] = table.integer("seed", None, minimum=0, maximum=2**63 - 1)
     return args
 
 
