@@ -107,6 +107,7 @@ test: rust-check $(VENV)/.extra-test
 # wheel built with zig as the linker into out/wheels, installed with its dependencies alone into a fresh
 # out/wheel-venv, and the demo and the validation run there from outside the repository, so that the
 # installed package and its shipped examples are used, not the sources.
+# (The notebooks run in make test's pytest, from the sources: tests/python/test_tutorial.py.)
 WHEEL_VENV := out/wheel-venv
 wheel-check: $(VENV)/.deps
 	@$(PY) -m pip install -q "maturin[zig]>=1.5,<2"
@@ -125,11 +126,6 @@ wheel-check: $(VENV)/.deps
 	@$(WHEEL_VENV)/bin/python -m pip install -q out/wheels/*.whl
 	cd $(WHEEL_VENV) && VIRTUAL_ENV=$(abspath $(WHEEL_VENV)) bin/masonry-dem demo --plot ../wheel-demo.png
 	cd $(WHEEL_VENV) && VIRTUAL_ENV=$(abspath $(WHEEL_VENV)) bin/masonry-dem validate --quiet
-	@echo "adding the extras the tutorial uses (studies) and a notebook runner, then running examples/tutorial.ipynb..."
-	@$(WHEEL_VENV)/bin/python -m pip install -q "$$(ls out/wheels/*.whl)[studies]" nbclient nbformat ipykernel
-	cd $(WHEEL_VENV) && VIRTUAL_ENV=$(abspath $(WHEEL_VENV)) bin/python -c "import sys, nbformat, nbclient; \
-		nb = nbformat.read('$(abspath examples/tutorial.ipynb)', as_version=4); \
-		nbclient.NotebookClient(nb, timeout=600, kernel_name='python3').execute(); print('tutorial: every cell ran')"
 
 # The documentation site (mkdocs.yml: docs/*.md and the API reference from the docstrings) into out/site,
 # warnings as errors. The extra `docs` (mkdocs-material, mkdocstrings) is installed by pip.
