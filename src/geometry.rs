@@ -37,7 +37,7 @@ mod gable;
 mod openings;
 mod stone_wall;
 
-pub use arch::{arch, Arch, ArchGeometry, ArchKind, Springing, MAX_VOUSSOIRS};
+pub use arch::{arch, Arch, ArchGeometry, ArchKind, FillStrip, Springing, MAX_VOUSSOIRS};
 pub use fit::{courses_for_height, CourseFit, MIN_LAST_COURSE};
 pub use gable::{gable, Gable, SLIVER};
 pub use stone_wall::{stone_wall, StoneWall, MAX_BED_ANGLE, MAX_HEAD_ANGLE, MAX_IRREGULARITY, MIN_STONE};

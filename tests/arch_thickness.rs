@@ -58,6 +58,7 @@ impl Ring {
             thickness: t,
             voussoirs: self.voussoirs,
             springing: Springing::Abutments { width: None, height: None },
+            backfill: None,
         })
         .unwrap();
         let law = JointLaw { friction: self.friction, dilatancy: self.friction, ..JointLaw::default() };

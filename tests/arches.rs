@@ -1,6 +1,7 @@
 //! The arch generator: the voussoirs' area against the closed form of a ring cut by chords,
 //! symmetry, the joints' directions, and the interfaces of the model it makes (every pair of
-//! neighbouring voussoirs and both springings).
+//! neighbouring voussoirs and both springings); the backfill over the extrados against the
+//! closed form of its area and a strip's centroid by hand, and its refusals.
 
 use masonry_dem::geometry::{arch, Arch, ArchGeometry, ArchKind, Springing};
 use masonry_dem::interface::Family;
@@ -12,7 +13,7 @@ use std::f64::consts::PI;
 const ABUTMENTS: Springing = Springing::Abutments { width: None, height: None };
 
 fn make(kind: ArchKind, span: Option<f64>, radius: Option<f64>, rise: Option<f64>, t: f64, n: usize, springing: Springing) -> ArchGeometry {
-    arch(&Arch { kind, span, radius, rise, thickness: t, voussoirs: n, springing }).unwrap()
+    arch(&Arch { kind, span, radius, rise, thickness: t, voussoirs: n, springing, backfill: None }).unwrap()
 }
 
 fn area(blocks: &[Polygon]) -> f64 {
@@ -178,7 +179,7 @@ fn refused(p: Arch, key: &str) {
 
 #[test]
 fn bad_arches_are_refused_naming_their_key() {
-    let base = Arch { kind: ArchKind::Semicircular, span: None, radius: Some(2.0), rise: None, thickness: 0.3, voussoirs: 10, springing: ABUTMENTS };
+    let base = Arch { kind: ArchKind::Semicircular, span: None, radius: Some(2.0), rise: None, thickness: 0.3, voussoirs: 10, springing: ABUTMENTS, backfill: None };
     refused(Arch { thickness: 0.0, ..base }, "geometry.arch.thickness");
     refused(Arch { voussoirs: 1, ..base }, "geometry.arch.voussoirs");
     refused(Arch { radius: Some(0.1), ..base }, "geometry.arch.radius");
@@ -194,4 +195,87 @@ fn bad_arches_are_refused_naming_their_key() {
     refused(Arch { springing: Springing::Abutments { width: Some(0.1), height: None }, ..base }, "geometry.arch.abutment_width");
     refused(Arch { springing: Springing::Piers { width: 1.0, height: -1.0, courses: 2 }, ..base }, "geometry.arch.pier_height");
     refused(Arch { springing: Springing::Piers { width: 1.0, height: 1.0, courses: 0 }, ..base }, "geometry.arch.pier_courses");
+}
+
+/// A semicircular arch of extrados radius `re` in `n` voussoirs with its fill up to `level`.
+fn filled(re: f64, t: f64, n: usize, level: f64) -> ArchGeometry {
+    let a = Arch { kind: ArchKind::Semicircular, span: Some(2.0 * (re - t)), radius: None, rise: None, thickness: t, voussoirs: n, springing: ABUTMENTS, backfill: Some(level) };
+    arch(&a).unwrap()
+}
+
+#[test]
+fn the_fill_over_a_semicircular_arch_is_the_rectangle_less_the_extrados_polygon() {
+    // the fill from the extrados's springing points up to `level` >= its crown: the rectangle
+    // 2 re x level less the polygon under the extrados chords, n triangles of apex the centre,
+    // each 1/2 re^2 sin(pi / n)
+    for n in [2, 7, 20, 81] {
+        for level in [2.5, 3.0, 4.75] {
+            let (re, t) = (2.5, 0.4);
+            let a = filled(re, t, n, level);
+            let want = 2.0 * re * level - 0.5 * n as f64 * re * re * (PI / n as f64).sin();
+            let got: f64 = a.fill.iter().map(|s| s.area).sum();
+            assert!((got - want).abs() <= 1e-9 * want, "{n} voussoirs, level {level}: {got} against {want}");
+            assert_eq!(a.fill.len(), n, "every voussoir carries fill");
+            // the weights: density x thickness x g x area, on the voussoir under each strip
+            let loads = a.fill_loads(1800.0, 0.5, 9.81).unwrap();
+            let total: f64 = loads.iter().map(|l| l.weight).sum();
+            assert!((total - 1800.0 * 0.5 * 9.81 * want).abs() <= 1e-9 * total);
+            assert!(loads.iter().enumerate().all(|(k, l)| l.block == k));
+        }
+    }
+}
+
+#[test]
+fn a_fill_strip_rests_under_its_centroid_by_hand() {
+    // 4 voussoirs, extrados radius 2: the right-hand one's extrados chord from (sqrt 2, sqrt 2)
+    // to (2, 0); the fill up to 3 m over it is a trapezoid of heights h0 = 3 - sqrt 2 and
+    // h1 = 3 over the width w = 2 - sqrt 2: area w (h0 + h1) / 2, centroid
+    // x = x0 + w (h0 + 2 h1) / (3 (h0 + h1)), y = the mean of L - h(x) / 2 weighted by h(x)
+    let a = filled(2.0, 0.5, 4, 3.0);
+    let s = a.fill[3];
+    let (x0, y0) = (2f64.sqrt(), 2f64.sqrt());
+    let (w, h0, h1) = (2.0 - x0, 3.0 - y0, 3.0);
+    let area = w * (h0 + h1) / 2.0;
+    let xc = x0 + w * (h0 + 2.0 * h1) / (3.0 * (h0 + h1));
+    // y of the centroid: integral of (L + chord(x)) / 2 * h(x) dx / area, chord linear from y0 to 0:
+    // with h = h0 + (h1 - h0) s over s in [0, 1] and chord = L - h, (L + chord) / 2 = L - h / 2,
+    // integral of (L - h / 2) h ds = L (h0 + h1) / 2 - (h0^2 + h0 h1 + h1^2) / 6
+    let yc = (3.0 * (h0 + h1) / 2.0 - (h0 * h0 + h0 * h1 + h1 * h1) / 6.0) / ((h0 + h1) / 2.0);
+    let point = [xc, y0 * (2.0 - xc) / w];
+    assert_eq!(s.block, 3);
+    assert!((s.area - area).abs() <= 1e-12 * area, "{} against {area}", s.area);
+    for (got, want) in [(s.centroid[0], xc), (s.centroid[1], yc), (s.point[0], point[0]), (s.point[1], point[1])] {
+        assert!((got - want).abs() <= 1e-12, "{got} against {want}");
+    }
+    // a level below the crown, 1.9 m: the crown's voussoirs (their chords from (0, 2) down to
+    // (sqrt 2, sqrt 2)) carry the triangle between the chord's crossing of the level and their
+    // lower end; x of the crossing on the chord from (sqrt 2, sqrt 2) to (0, 2)
+    let a = filled(2.0, 0.5, 4, 1.9);
+    let s = a.fill[2];
+    let cross = x0 * (2.0 - 1.9) / (2.0 - y0);
+    let want_area = 0.5 * (x0 - cross) * (1.9 - y0);
+    assert!((s.area - want_area).abs() <= 1e-12, "{} against {want_area}", s.area);
+    assert!((s.centroid[0] - (cross + 2.0 * x0) / 3.0).abs() <= 1e-12);
+}
+
+#[test]
+fn bad_backfills_are_refused_naming_their_key() {
+    let base = Arch { kind: ArchKind::Semicircular, span: None, radius: Some(2.0), rise: None, thickness: 0.3, voussoirs: 10, springing: ABUTMENTS, backfill: None };
+    let key = "geometry.arch.backfill.level";
+    for level in [-1.0, 0.0, f64::NAN, f64::INFINITY] {
+        refused(Arch { backfill: Some(level), ..base }, key);
+    }
+    // a segmental arch's extrados springs 0.18 m up (its centre 1.5 m below the springing line,
+    // its radius 2.8 m, at sin 0.6): a level under it leaves no fill on the arch
+    let segmental = Arch { kind: ArchKind::Segmental, radius: None, span: Some(4.0), rise: Some(1.0), ..base };
+    let lowest = arch(&segmental).unwrap().extrados[0][1];
+    assert!(lowest > 0.1);
+    refused(Arch { backfill: Some(0.5 * lowest), ..segmental }, key);
+    let a = arch(&Arch { backfill: Some(3.0), ..base }).unwrap();
+    for (d, t, g, key) in [(-1.0, 1.0, 9.81, "geometry.arch.backfill.density"), (f64::NAN, 1.0, 9.81, "geometry.arch.backfill.density"), (1800.0, 0.0, 9.81, "geometry.thickness"), (1800.0, 1.0, 0.0, "loads.gravity")] {
+        match a.fill_loads(d, t, g) {
+            Err(Error::Input { key: Some(k), reason }) => assert!(k == key && reason.contains(key), "{reason}"),
+            other => panic!("expected a refusal naming {key}, got {other:?}"),
+        }
+    }
 }

@@ -122,8 +122,15 @@ pub(crate) fn cut_openings<'py>(
 /// (default: the springing joint's extent) and abutment_height [m] below it (default: the thickness); or piers of
 /// wall blocks, pier_width [m] wide from the intrados's springing point and pier_height [m] from the ground to it,
 /// in pier_courses courses (default 1: a single block), standing on the base.
+/// Backfill: backfill_level [m] (its top, above the springing line y = 0) and backfill_density [kg/m3], both or
+/// neither: each voussoir carries the fill in the vertical strip over its extrados chord up to the level, its weight
+/// (density x wall_thickness x gravity x the strip's area) at the extrados under the strip's centroid, in "carried"
+/// (a list of (block, [x, y], weight [N]), empty without a fill: Model(..., carried=made["carried"])). wall_thickness
+/// [m] and gravity [m/s2] are the Model's own (defaults those of Model: 1.0 and 9.81), so that the fill's mass is its
+/// density times its volume. The fill's weight and mass move with the voussoir under it; its lateral pressure, its
+/// strength and the fill over the abutments or piers are not modelled.
 #[pyfunction]
-#[pyo3(signature = (kind, thickness, voussoirs, span=None, radius=None, rise=None, abutment_width=None, abutment_height=None, pier_width=None, pier_height=None, pier_courses=None))]
+#[pyo3(signature = (kind, thickness, voussoirs, span=None, radius=None, rise=None, abutment_width=None, abutment_height=None, pier_width=None, pier_height=None, pier_courses=None, backfill_level=None, backfill_density=None, wall_thickness=None, gravity=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn arch<'py>(
     py: Python<'py>,
@@ -138,6 +145,10 @@ pub(crate) fn arch<'py>(
     pier_width: Option<f64>,
     pier_height: Option<f64>,
     pier_courses: Option<i64>,
+    backfill_level: Option<f64>,
+    backfill_density: Option<f64>,
+    wall_thickness: Option<f64>,
+    gravity: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let kind: ArchKind = kind.parse().map_err(to_py)?;
     let voussoirs = count("geometry.arch.voussoirs", voussoirs, 1)?;
@@ -155,13 +166,31 @@ pub(crate) fn arch<'py>(
         (true, None, _) => return Err(InputError::new_err("geometry.arch.pier_width is required for piers")),
         (true, _, None) => return Err(InputError::new_err("geometry.arch.pier_height is required for piers")),
     };
-    let made = guarded(|| geometry::arch(&Arch { kind, span, radius, rise, thickness, voussoirs, springing }))?;
+    let density = match (backfill_level, backfill_density) {
+        (Some(_), Some(d)) => Some(d),
+        (None, None) => None,
+        (Some(_), None) => return Err(required("geometry.arch.backfill.density", "a backfill's level")),
+        (None, Some(_)) => return Err(required("geometry.arch.backfill.level", "a backfill's density")),
+    };
+    let backfill = backfill_level;
+    let made = guarded(|| geometry::arch(&Arch { kind, span, radius, rise, thickness, voussoirs, springing, backfill }))?;
+    let spec = ModelSpec::default();
+    let carried = match density {
+        Some(d) => guarded(|| made.fill_loads(d, wall_thickness.unwrap_or(spec.thickness), gravity.unwrap_or(spec.gravity)))?,
+        None => vec![],
+    };
     let d = PyDict::new(py);
     d.set_item("blocks", polygon_lists(&made.blocks))?;
     d.set_item("supports", polygon_lists(&made.supports))?;
     d.set_item("intrados", made.intrados)?;
     d.set_item("extrados", made.extrados)?;
+    d.set_item("carried", carried_to_py(&carried))?;
     Ok(d)
+}
+
+/// The InputError of `key`, required with `what`.
+fn required(key: &str, what: &str) -> PyErr {
+    py_error("InputError", format!("{key} is required with {what}"), Some(key.to_string()))
 }
 
 /// The blocks as lists of vertices [x, y] (m), counter-clockwise.

@@ -19,19 +19,29 @@
 //! two piers of wall blocks in courses (the top course's top the springing joint, then
 //! horizontal), standing on the base.
 //!
+//! A backfill ([`Arch::backfill`], its top a level above the springing line) is a dead load over
+//! the extrados: each voussoir carries the fill in the vertical strip over its extrados chord, up
+//! to the level, as a [`CarriedLoad`] ([`ArchGeometry::fill_loads`]) on the vertical through the
+//! strip's centroid, at the extrados there. It models the fill's weight and its mass, which moves
+//! with the voussoir under it (so it takes the horizontal live load and a ground motion as the
+//! voussoir's own weight does); not the fill's lateral pressure, its strength, its spreading of
+//! the load, nor the fill over the abutments or piers.
+//!
 //! ```
 //! use masonry_dem::geometry::{arch, Arch, ArchKind, Springing};
 //! use masonry_dem::model::{Model, ModelSpec};
 //! // a semicircular arch of 20 voussoirs, centreline radius 2 m, 0.3 m thick, on abutments
 //! let a = arch(&Arch { kind: ArchKind::Semicircular, span: None, radius: Some(2.0), rise: None,
-//!     thickness: 0.3, voussoirs: 20, springing: Springing::Abutments { width: None, height: None } }).unwrap();
+//!     thickness: 0.3, voussoirs: 20, springing: Springing::Abutments { width: None, height: None },
+//!     backfill: None }).unwrap();
 //! assert_eq!((a.blocks.len(), a.supports.len()), (20, 2));
 //! let model = Model::new(ModelSpec { blocks: a.blocks, supports: a.supports, base: false, ..ModelSpec::default() }).unwrap();
 //! assert_eq!(model.interfaces().len(), 21); // 19 joints between voussoirs and two springings
 //! ```
 
 use crate::error::{positive, Error, Result};
-use crate::shape::Polygon;
+use crate::model::CarriedLoad;
+use crate::shape::{Area, Polygon};
 use std::f64::consts::PI;
 
 /// The shape of an arch's intrados.
@@ -108,6 +118,24 @@ pub struct Arch {
     pub voussoirs: usize,
     /// Abutments or piers.
     pub springing: Springing,
+    /// The level of a backfill's top \[m\], above the springing line (y = 0): the fill lies
+    /// over the extrados up to it (and the voussoirs whose extrados rises above it carry none
+    /// there); `None`, no fill.
+    pub backfill: Option<f64>,
+}
+
+/// The fill over one voussoir: the part of the vertical strip over its extrados chord below the
+/// backfill's level.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FillStrip {
+    /// The voussoir (its index among the blocks).
+    pub block: usize,
+    /// The strip's area in the arch's plane \[m2\].
+    pub area: f64,
+    /// The strip's centroid \[m\].
+    pub centroid: [f64; 2],
+    /// Where its weight rests: the extrados chord's point under the centroid \[m\].
+    pub point: [f64; 2],
 }
 
 /// An arch made: its blocks and supports, and the curves they follow.
@@ -122,6 +150,20 @@ pub struct ArchGeometry {
     pub intrados: Vec<[f64; 2]>,
     /// The joints' extrados ends, left to right \[m\].
     pub extrados: Vec<[f64; 2]>,
+    /// The backfill over each voussoir that has any, left to right (empty without a backfill).
+    pub fill: Vec<FillStrip>,
+}
+
+impl ArchGeometry {
+    /// The backfill's weights as loads carried by the voussoirs: each strip's area times
+    /// `density` \[kg/m3\], the wall's out-of-plane `thickness` \[m\] and `gravity` \[m/s2\]
+    /// (the model's: its mass is then the fill's, density times volume), at the strip's point.
+    pub fn fill_loads(&self, density: f64, thickness: f64, gravity: f64) -> Result<Vec<CarriedLoad>> {
+        let density = positive("geometry.arch.backfill.density", density)?;
+        let thickness = positive("geometry.thickness", thickness)?;
+        let gravity = positive("loads.gravity", gravity)?;
+        Ok(self.fill.iter().map(|s| CarriedLoad { block: s.block, point: s.point, weight: density * thickness * gravity * s.area }).collect())
+    }
 }
 
 /// The most voussoirs an arch may have.
@@ -153,6 +195,10 @@ pub fn arch(p: &Arch) -> Result<ArchGeometry> {
         .collect();
     let intrados: Vec<[f64; 2]> = joints.iter().map(|j| j[0]).collect();
     let extrados: Vec<[f64; 2]> = joints.iter().map(|j| j[1]).collect();
+    let fill = match p.backfill {
+        Some(level) => backfill(&extrados, level)?,
+        None => vec![],
+    };
     // the left side's blocks: the right's mirrored, counter-clockwise again
     let mirror = |q: &Polygon| Polygon::new(q.vertices().iter().rev().map(|v| [-v[0], v[1]]).collect());
     let right = joints[n]; // [intrados, extrados] of the right springing
@@ -191,7 +237,55 @@ pub fn arch(p: &Arch) -> Result<ArchGeometry> {
             vec![]
         }
     };
-    Ok(ArchGeometry { blocks, supports, intrados, extrados })
+    Ok(ArchGeometry { blocks, supports, intrados, extrados, fill })
+}
+
+/// The fill up to `level` over each chord of the `extrados` (the joints' ends, left to right):
+/// the strip between the chord and the level, cut where the chord rises above the level.
+fn backfill(extrados: &[[f64; 2]], level: f64) -> Result<Vec<FillStrip>> {
+    let key = "geometry.arch.backfill.level";
+    let level = positive(key, level)?;
+    let lowest = extrados.iter().map(|e| e[1]).fold(f64::INFINITY, f64::min);
+    if !(level > lowest) {
+        return Err(Error::input_at(
+            key,
+            format!("{key} = {level} m does not reach the extrados, whose lowest point is {lowest:.6} m above the springing line: no fill would rest on the arch"),
+        ));
+    }
+    Ok(extrados
+        .windows(2)
+        .enumerate()
+        .filter_map(|(block, chord)| {
+            let [e0, e1] = [chord[0], chord[1]];
+            // the strip counter-clockwise (along the chord, up, back along the level), cut at y = level
+            let strip = [e0, e1, [e1[0], level], [e0[0], level]];
+            let below = below_level(&strip, level);
+            let Area { area, centroid, .. } = Area::of(&below);
+            if below.len() < 3 || !(area > 0.0) {
+                return None;
+            }
+            let s = (centroid[0] - e0[0]) / (e1[0] - e0[0]);
+            let point = [centroid[0], e0[1] + s * (e1[1] - e0[1])];
+            Some(FillStrip { block, area, centroid, point })
+        })
+        .collect())
+}
+
+/// The part of the polygon `v` on or below y = `level` (the polygon cut by the line; convex
+/// stays convex).
+fn below_level(v: &[[f64; 2]], level: f64) -> Vec<[f64; 2]> {
+    let mut out = Vec::with_capacity(v.len() + 1);
+    for (i, &p) in v.iter().enumerate() {
+        let q = v[(i + 1) % v.len()];
+        if p[1] <= level {
+            out.push(p);
+        }
+        if (p[1] - level) * (q[1] - level) < 0.0 {
+            let s = (level - p[1]) / (q[1] - p[1]);
+            out.push([p[0] + s * (q[0] - p[0]), level]);
+        }
+    }
+    out
 }
 
 /// The outer face's x of a support under the right springing joint `joint` ([intrados end,

@@ -229,6 +229,29 @@ def test_an_arch_case_is_the_generator_s_arch(tmp_path, capsys) -> None:
     assert case.build_model().base_index is not None
 
 
+def test_an_arch_s_backfill_is_carried_by_its_voussoirs(tmp_path) -> None:
+    # the fill's weights: the generator's with the case's thickness and gravity, after the case's own loads
+    path = tmp_path / "arch.toml"
+    fill = '\n[geometry.arch.backfill]\nlevel = "1.4 m"\ndensity = "1.8 t/m3"\n'
+    loads = '[loads]\ngravity = 10.0\n[[loads.carried]]\nblock = 5\npoint = [0.0, 1.0]\nweight = "1 kN"\n'
+    path.write_text(ARCH_CASE.format(extra="", arch=SEMICIRCULAR + fill).replace("[geometry]\nthickness = 1.0",
+                                                                                 "[geometry]\nthickness = 0.5") + loads)
+    case = md.load_case(path)
+    made = md.arch(**ARCHES["semicircular"], backfill_level=1.4, backfill_density=1800.0, wall_thickness=0.5,
+                   gravity=10.0)
+    assert case.model.carried == [(5, [0.0, 1.0], 1000.0)] + made["carried"]
+    assert len(made["carried"]) == 12 and all(w > 0 for _, _, w in made["carried"])
+    # the weight of the fill: density x thickness x g x (the rectangle 2 re x level less the 12 extrados triangles)
+    re = 1.15
+    area = 2 * re * 1.4 - 6 * re * re * math.sin(math.pi / 12)
+    assert sum(w for _, _, w in made["carried"]) == pytest.approx(1800.0 * 0.5 * 10.0 * area, rel=1e-12)
+    # each voussoir weighs its own weight and its loads'
+    bare = md.Model(made["blocks"], supports=made["supports"], thickness=0.5, density=2000.0, gravity=10.0)
+    assert sum(case.build_model().weights) == pytest.approx(sum(bare.weights) + 1000.0 + 1800.0 * 0.5 * 10.0 * area,
+                                                            rel=1e-12)
+    assert case.run().status == "collapse"
+
+
 @pytest.mark.parametrize(
     "arch, extra, key, message",
     [
@@ -260,6 +283,17 @@ def test_an_arch_case_is_the_generator_s_arch(tmp_path, capsys) -> None:
          "and arch are both given"),
         ('kind = "semicircular"\nspan = 2\nthickness = 0.1\nvoussoirs = 8', "supports = [[[0, 0], [1, 0]]]",
          "geometry.supports[0]", "geometry.supports[0]: 2 vertices: a block needs at least 3"),
+        (SEMICIRCULAR + "\nbackfill = { level = -1, density = 1800 }", "", "geometry.arch.backfill.level",
+         "geometry.arch.backfill.level: must be > 0, got -1"),
+        (SEMICIRCULAR + "\nbackfill = { level = nan, density = 1800 }", "", "geometry.arch.backfill.level",
+         "geometry.arch.backfill.level: expected a finite number"),
+        (SEMICIRCULAR + "\nbackfill = { level = 1.5 }", "", "geometry.arch.backfill.density",
+         "missing key 'density' in [geometry.arch.backfill]"),
+        (SEMICIRCULAR + '\nbackfill = { level = 1.5, density = "2 kN" }', "", "geometry.arch.backfill.density",
+         "'2 kN' is a force; geometry.arch.backfill.density is a mass density"),
+        ('kind = "segmental"\nspan = 4\nrise = 1\nthickness = 0.3\nvoussoirs = 8\nbackfill = { level = 0.1, density = '
+         '1800 }', "", "geometry.arch.backfill.level", "geometry.arch.backfill.level = 0.1 m does not reach the "
+                                                     "extrados, whose lowest point is 0.180000 m above the springing line"),
     ],
 )
 def test_arch_refusals(tmp_path, capsys, arch: str, extra: str, key, message: str) -> None:

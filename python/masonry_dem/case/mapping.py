@@ -264,7 +264,8 @@ def generate_blocks(kind: str, geometry: Mapping[str, Any], source: str) -> Bloc
 def generate_arch(arguments: Mapping[str, Any], source: str) -> Dict[str, Any]:
     """The arch of a checked [geometry.arch] (the core's generator ``arch``, the arguments given; None: left out):
     {"blocks": the voussoirs then the piers' blocks, "supports": the abutments, "intrados", "extrados": the joints'
-    ends along each}, each a list of vertices or points [x, y] [m]. The generator's refusals (of a rise that does not
+    ends along each}, each a list of vertices or points [x, y] [m], and "carried": the backfill's weights, a list of
+    (voussoir, [x, y], weight [N]) (empty without a backfill). The generator's refusals (of a rise that does not
     fit the span, abutments and piers both, ...), which name the key, get the file name in front."""
     try:
         made = _core.arch(**{key: value for key, value in arguments.items() if value is not None})
@@ -274,8 +275,9 @@ def generate_arch(arguments: Mapping[str, Any], source: str) -> Dict[str, Any]:
         if isinstance(again, InputError) and again.key is None and named:
             again.key = named.group(0)  # the key the message starts with
         raise again from exc
-    return {key: [np.asarray(p, dtype=np.float64).tolist() for p in made[key]] for key in
-            ("blocks", "supports", "intrados", "extrados")}
+    made_lists = {key: [np.asarray(p, dtype=np.float64).tolist() for p in made[key]] for key in
+                  ("blocks", "supports", "intrados", "extrados")}
+    return {**made_lists, "carried": [(int(k), [float(v) for v in p], float(w)) for k, p, w in made["carried"]]}
 
 
 @dataclass

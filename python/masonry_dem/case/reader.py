@@ -248,8 +248,12 @@ def case_from_dict(
     # All keys are valid: map them onto the core (the generators may still refuse a geometry).
     arch = None
     if kind == "arch":
-        arch = generate_arch(geometry, source)
+        thickness = wall["thickness"] if wall["thickness"] is not None else float(CORE_DEFAULTS["thickness"])
+        arch = generate_arch({**geometry, "wall_thickness": thickness, "gravity": gravity}, source)
         blocks: Any = arch.pop("blocks")
+        fill = arch.pop("carried")
+        if fill:  # the backfill's weights, after the loads [[loads.carried]] gives
+            wall["carried"] = (wall["carried"] or []) + fill
         if arch["supports"]:  # the abutments, then the supports [geometry] gives
             wall["supports"] = arch["supports"] + (wall["supports"] or [])
             if wall["base"] is None:
@@ -350,7 +354,7 @@ def _arch(geo: _Table) -> Dict[str, Any]:
     """[geometry.arch]: the arguments of the core's arch generator (``masonry_dem.arch``), each checked alone (a
     length > 0, with its unit or not; a count >= 1; the kind); how they go together (span or radius, abutments or
     piers, a rise that fits) is the generator's to check, its messages naming the key."""
-    table = geo.table("arch", ("kind",) + ARCH_LENGTHS + ARCH_COUNTS)
+    table = geo.table("arch", ("kind", "backfill") + ARCH_LENGTHS + ARCH_COUNTS)
     assert table is not None
     args: Dict[str, Any] = {"kind": table.string("kind", choices=ARCH_KINDS)}
     args.update({key: table.number(key, None, _positive, unit="length") for key in ARCH_LENGTHS})
@@ -358,6 +362,10 @@ def _arch(geo: _Table) -> Dict[str, Any]:
     for key in ("thickness", "voussoirs"):
         if args[key] is None:
             raise table.missing(key)
+    fill = table.table("backfill", ("level", "density"))
+    if fill is not None:  # whether the level reaches the extrados is the generator's to check
+        args["backfill_level"] = fill.number("level", check=_positive, unit="length")
+        args["backfill_density"] = fill.number("density", check=_positive, unit="density")
     return args
 
 
