@@ -56,6 +56,7 @@ class _ArchGeometry(TypedDict):
     supports: list[list[list[float]]]
     intrados: list[list[float]]
     extrados: list[list[float]]
+    carried: list[tuple[int, list[float], float]]
 
 def arch(
     kind: Literal["semicircular", "segmental", "pointed", "elliptical"],
@@ -69,6 +70,10 @@ def arch(
     pier_width: Optional[float] = None,
     pier_height: Optional[float] = None,
     pier_courses: Optional[int] = None,
+    backfill_level: Optional[float] = None,
+    backfill_density: Optional[float] = None,
+    wall_thickness: Optional[float] = None,
+    gravity: Optional[float] = None,
 ) -> _ArchGeometry:
     """An arch of voussoirs, as a dict: "blocks" (the voussoirs left to right, then the piers' blocks, each a list of
     vertices [x, y] counter-clockwise, m), "supports" (the two abutments, left and right; empty on piers), "intrados"
@@ -85,7 +90,14 @@ def arch(
     Springings: abutments (fixed supports; the default) out to abutment_width [m] from the intrados's springing point
     (default: the springing joint's extent) and abutment_height [m] below it (default: the thickness); or piers of
     wall blocks, pier_width [m] wide from the intrados's springing point and pier_height [m] from the ground to it,
-    in pier_courses courses (default 1: a single block), standing on the base."""
+    in pier_courses courses (default 1: a single block), standing on the base.
+    Backfill: backfill_level [m] (its top, above the springing line y = 0) and backfill_density [kg/m3], both or
+    neither: each voussoir carries the fill in the vertical strip over its extrados chord up to the level, its weight
+    (density x wall_thickness x gravity x the strip's area) at the extrados under the strip's centroid, in "carried"
+    (a list of (block, [x, y], weight [N]), empty without a fill: Model(..., carried=made["carried"])). wall_thickness
+    [m] and gravity [m/s2] are the Model's own (defaults those of Model: 1.0 and 9.81), so that the fill's mass is its
+    density times its volume. The fill's weight and mass move with the voussoir under it; its lateral pressure, its
+    strength and the fill over the abutments or piers are not modelled."""
 
 def gable(
     block_length: float,
