@@ -72,7 +72,7 @@ def test_bad_blocks_are_refused_naming_them(blocks: object, words: str) -> None:
 
 def test_an_arch_on_abutments_makes_a_model_that_stands() -> None:
     a = md.arch("semicircular", thickness=0.15, voussoirs=20, radius=1.0)
-    assert set(a) == {"blocks", "supports", "intrados", "extrados"}
+    assert set(a) == {"blocks", "supports", "intrados", "extrados", "carried"} and a["carried"] == []  # no backfill
     assert len(a["blocks"]) == 20 and len(a["supports"]) == 2 and len(a["intrados"]) == len(a["extrados"]) == 21
     model = md._core.Model(a["blocks"], supports=a["supports"], joints={"default": {"friction": 10.0, "dilatancy": 10.0}})
     assert model.n_interfaces == 21 and model.base_index is None
