@@ -26,7 +26,7 @@ from .. import _core
 from .._core import InputError, MasonryError
 from ..case.common import REFERENCE_KEYS, _analysis, _base, _carried, _joints, _reference
 from ..case.mapping import AnalysisParameters, Case
-from ..case.table import _got, _non_negative, _positive, _quote, _Table
+from ..case.table import _got, _non_negative, _positive, _quote, _Table, _type_name
 from .model import (
     CORE_DEFAULTS_3D as CORE_DEFAULTS_3D,
     DRY_3D,
@@ -39,6 +39,7 @@ from .model import (
 
 __all__ = [
     "GEOMETRY_KINDS_3D",
+    "SOLID_KEYS",
     "LEAF_KEYS",
     "BONDED_KEYS",
     "METHODS_3D",
@@ -50,15 +51,20 @@ __all__ = [
     "ModelParameters3D",
     "read_geometry",
     "generate_boxes",
+    "check_hulls",
     "case_from_tables",
 ]
 
-#: The [geometry] forms of a 3D wall: an explicit list of boxes, and the generators' tables.
-GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner")
+#: The [geometry] forms of a 3D wall: an explicit list of boxes, the generators' tables, and a list of convex
+#: polyhedra (alone or beside boxes).
+GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner", "polyhedra")
 #: Keys of [geometry.leaf]: a single leaf in running bond.
 LEAF_KEYS = ("length", "height", "thickness", "block_length", "block_height", "first_course", "openings")
 #: Keys of [geometry.u_wall] and [geometry.corner]: a facade with two return walls, or one.
 BONDED_KEYS = ("facade", "height", "returns", "thickness", "block_length", "block_height", "openings")
+
+#: The [geometry] keys of convex polyhedra given by their vertices: wall blocks, and fixed ones.
+SOLID_KEYS = ("polyhedra", "supports")
 
 # The core's generator of each [geometry] table, and the name its messages give the table.
 _GENERATORS = {"leaf": "running_bond_3d", "u_wall": "u_wall", "corner": "corner"}
@@ -77,8 +83,10 @@ def read_geometry(geo: _Table, kind: str) -> Dict[str, Any]:
             f"is the out-of-plane thickness of a wall in the plane; a 3D wall ([geometry] {kind}) has its thickness in "
             "its boxes" + ("" if kind == "boxes" else f" or in [geometry.{kind}] thickness"),
         )
-    if kind == "boxes":
-        return dict(boxes=_boxes(geo))
+    solids = {key: _vertex_lists(geo, key, what) for key, what in (("polyhedra", "block"), ("supports", "support"))
+              if key in geo}
+    if kind in ("boxes", "polyhedra"):
+        return dict(boxes=_boxes(geo) if "boxes" in geo else [], **solids)
     if kind == "leaf":
         table = geo.table("leaf", LEAF_KEYS)
         assert table is not None
@@ -91,7 +99,36 @@ def read_geometry(geo: _Table, kind: str) -> Dict[str, Any]:
         names = ("facade", "height", "returns", "thickness", "block_length", "block_height")
         args = {name: table.number(name, check=_positive, unit="length") for name in names}
     args["openings"] = _openings(table)
-    return args
+    return dict(args, **solids)
+
+
+def _vertex_lists(geo: _Table, key: str, what: str) -> List[List[List[float]]]:
+    """``polyhedra`` or ``supports``: at least one convex block, each an array of its vertices [x, y, z] (m; each a
+    number or a length with its unit), checked here as numbers; :func:`check_hulls` has the core make each the
+    convex hull of its vertices."""
+    items = geo.array(key)
+    assert items is not None
+    if not items:
+        raise geo.key_error(key, f"expected at least one {what}, each an array of vertices [x, y, z] (or leave the "
+                                 "key out)")
+    blocks = []
+    for i, item in enumerate(items):
+        label = f"{geo.where(key)}[{i}]"
+        if not isinstance(item, list):
+            raise geo.error(f"{label}: expected an array of vertices [x, y, z], got {_type_name(item)}", label)
+        blocks.append([geo.numbers(f"{label}[{j}]", v, 3, " [x, y, z]", unit="length") for j, v in enumerate(item)])
+    return blocks
+
+
+def check_hulls(geometry: Mapping[str, Any], source: str) -> None:
+    """The core's refusals of the vertex lists of ``polyhedra`` and ``supports`` (fewer than 4 vertices off one
+    plane), named by their keys in the case file (``geometry.polyhedra[3]: ...``) after the file name."""
+    for key in ("polyhedra", "supports"):
+        if geometry.get(key):
+            try:
+                _core.convex_hulls(geometry[key], f"geometry.{key}")
+            except InputError as exc:
+                raise InputError(f"{source}: {exc}", getattr(exc, "key", None)) from exc
 
 
 def _boxes(geo: _Table) -> List[List[float]]:
@@ -146,9 +183,9 @@ def _openings(table: _Table) -> Optional[List[List[float]]]:
 def generate_boxes(kind: str, arguments: Mapping[str, Any], source: str) -> np.ndarray:
     """The boxes of a checked 3D [geometry] of ``kind``; the core's refusals (a last course too thin, a return
     too short, an opening over a corner) get the file name in front and the case file's key names."""
-    if kind == "boxes":
+    if kind in ("boxes", "polyhedra"):
         return np.asarray(arguments["boxes"], dtype=np.float64).reshape(-1, 6)
-    given = {key: value for key, value in arguments.items() if value is not None}
+    given = {key: value for key, value in arguments.items() if value is not None and key not in SOLID_KEYS}
     make = {"leaf": _core.running_bond_3d, "u_wall": _core.u_wall, "corner": _core.corner_wall}[kind]
     try:
         return np.asarray(make(**given), dtype=np.float64).reshape(-1, 6)
@@ -184,6 +221,9 @@ def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any
             raise top.error(f"[{name}]: a time history is refused: {NO_CASE_HISTORY_3D} (this case is 3D: [geometry] "
                             f"{kind})", name)
     base = _base(top)
+    if base is None and geometry.get("supports"):
+        base = False  # a wall on supports has no foundation unless a [base] table puts one
+    check_hulls(geometry, top.source)
     beam = _top_beam(top)
     joints = _joints(top)
     _dry_joints(top, joints)
@@ -204,7 +244,8 @@ def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any
             raise table.key_error("methods", f"{_quote(others[0])}: {IN_3D}")
     boxes = generate_boxes(kind, geometry, top.source)
     model = ModelParameters3D(boxes=boxes, density=density, base=base, top=beam, joints=joints, gravity=gravity,
-                              live=live, direction=direction, carried=carried)
+                              live=live, direction=direction, carried=carried, polyhedra=geometry.get("polyhedra"),
+                              supports=geometry.get("supports"))
     assert isinstance(analysis, AnalysisParameters)
     return Case(title=title, model=model, analysis=analysis, method=method, source=top.source, reference=reference)
 

@@ -1,13 +1,15 @@
 """VTK exports of a 3D wall's analysis (meshio, as the 2D ones of :mod:`masonry_dem.export`), for ParaView:
 
-* ``PREFIX-blocks.vtu``: every block (wall blocks, then the base and the top beam, as in ``Model3D.boxes``) as a
-  hexahedron. Point data: ``mechanism``, the velocity of each corner in the collapse mechanism (v + w x r; the
+* ``PREFIX-blocks.vtu``: every block (wall blocks, then the base, the top beam and the supports, as in
+  ``Model3D.boxes``) as a hexahedron when every block is a box, else as a polyhedron cell of its own vertices and
+  faces (``Model3D.block_vertices``, ``block_faces``; VTK mixes no polyhedra with other cells). Point data: ``mechanism``, the velocity of each corner in the collapse mechanism (v + w x r; the
   largest block translation is 1), and ``displacement`` [m] of each corner (zero for limit analysis), for
   ParaView's *Warp By Vector*. Cell data: ``displacement`` (ux, uy, uz) [m] and ``rotation`` (rx, ry, rz) [rad],
-  ``mechanism`` (vx, vy, vz) and ``mechanism_rotation`` (wx, wy, wz) of the block, ``motion`` (its largest corner
+  ``mechanism`` (vx, vy, vz) and ``mechanism_rotation`` (wx, wy, wz) of the block, ``motion`` (its largest vertex
   motion in the mechanism, over the largest of all blocks: 0 at rest, 1 the most moving), ``kind`` (0 wall block,
-  1 base, 2 top beam), ``block`` (index).
-* ``PREFIX-interfaces.vtu``: every contact as a quad (its four corners, ``Model3D.interface_corners``). Cell data:
+  1 base or support, 2 top beam), ``block`` (index).
+* ``PREFIX-interfaces.vtu``: every contact as its polygon (``Model3D.interface_polygons``): a quad between boxes,
+  a triangle or a polygon of any number of corners between polyhedra, the cells in the contacts' order. Cell data:
   ``normal_force`` N [N] (tension > 0), ``shear_force_t1`` T1 and ``shear_force_t2`` T2 [N], ``torsion`` M_n,
   ``moment_t1`` M_t1 and ``moment_t2`` M_t2 [N m] (block b on block a, in the contact's axes), ``normal`` (a
   3-vector), ``area`` [m2], ``state`` (bit flags: 1 open, 2 sliding, 4 rocking; 0 elastic), ``broken``, ``family``
@@ -26,7 +28,7 @@ from typing import Any, Iterable, Tuple, Union
 import numpy as np
 
 from .._vtk import FAMILY_CODES, write_meshes
-from .report import box_corners, corner_motion, dof_points
+from .report import all_boxes, block_shapes, box_corners, contact_polygons, dof_points, vertex_motion
 
 __all__ = ["block_mesh", "interface_mesh", "write_vtk"]
 
@@ -40,23 +42,32 @@ def _rows(values: Any, n: int, width: int) -> np.ndarray:
 
 
 def block_mesh(model: Any, results: Any) -> Any:
-    """The blocks of a 3D wall as a :class:`meshio.Mesh` of hexahedra (see the module docstring for the fields)."""
+    """The blocks of a 3D wall as a :class:`meshio.Mesh` of hexahedra or polyhedra (see the module docstring for the
+    fields)."""
     import meshio
 
     boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
     n = len(boxes)
-    corners = box_corners(boxes)  # (n, 8, 3), VTK's order of a hexahedron
     centroids = dof_points(model)  # where the blocks' dofs are
-    r = corners - centroids[:, None, :]
-    disp = _rows(results.displacements, n, 6)
-    mech = _rows(results.mechanism, n, 6)
-    point_mech = mech[:, None, :3] + np.cross(mech[:, None, 3:], r)
-    point_disp = disp[:, None, :3] + np.cross(disp[:, None, 3:], r)
-    motion = corner_motion(boxes, np.nan_to_num(mech), centroids)
+    if all_boxes(model):  # hexahedra, their corners in VTK's order
+        vertices = list(box_corners(boxes))
+        cells: Any = [("hexahedron", np.arange(8 * n, dtype=np.int64).reshape(n, 8))]
+    else:  # polyhedra (VTK takes no mix of them with other cells): each block's own vertices and faces
+        shapes = block_shapes(model)
+        vertices = [v for v, _ in shapes]
+        first = np.cumsum([0] + [len(v) for v in vertices])
+        cells = [meshio.CellBlock("polyhedron", [[np.asarray(f, dtype=np.int64) + first[i] for f in faces]
+                                                 for i, (_, faces) in enumerate(shapes)])]
+    owner = np.repeat(np.arange(n), [len(v) for v in vertices])
+    points = np.concatenate(vertices) if n else np.zeros((0, 3))
+    r = points - centroids[owner]
+    disp, mech = _rows(results.displacements, n, 6), _rows(results.mechanism, n, 6)
+    point_mech = mech[owner, :3] + np.cross(mech[owner, 3:], r)
+    point_disp = disp[owner, :3] + np.cross(disp[owner, 3:], r)
+    motion = vertex_motion(model, np.nan_to_num(mech))
     peak = float(motion.max()) if n else 0.0
     kind = np.zeros(n, dtype=np.int32)
-    if model.base_index is not None:
-        kind[int(model.base_index)] = 1
+    kind[int(model.n_blocks):] = 1  # the base and the supports
     if model.top_index is not None:
         kind[int(model.top_index)] = 2
     cell_data = {
@@ -68,20 +79,17 @@ def block_mesh(model: Any, results: Any) -> Any:
         "kind": [kind],
         "block": [np.arange(n, dtype=np.int32)],
     }
-    return meshio.Mesh(
-        corners.reshape(-1, 3),
-        [("hexahedron", np.arange(8 * n, dtype=np.int64).reshape(n, 8))],
-        point_data={"mechanism": point_mech.reshape(-1, 3), "displacement": point_disp.reshape(-1, 3)},
-        cell_data=cell_data,
-    )
+    return meshio.Mesh(points, cells, point_data={"mechanism": point_mech, "displacement": point_disp},
+                       cell_data=cell_data)
 
 
 def interface_mesh(model: Any, results: Any) -> Any:
-    """The contacts of a 3D wall as a :class:`meshio.Mesh` of quads (see the module docstring for the fields)."""
+    """The contacts of a 3D wall as a :class:`meshio.Mesh` of their polygons (see the module docstring for the
+    fields)."""
     import meshio
 
-    corners = np.asarray(model.interface_corners, dtype=np.float64).reshape(-1, 4, 3)
-    m = len(corners)
+    polygons = contact_polygons(model)
+    m = len(polygons)
     forces = _rows(results.interface_forces, m, 6)
     states = np.asarray(results.interface_states, dtype=np.int64).reshape(-1)
     states = states.astype(np.int32) if len(states) == m else np.zeros(m, dtype=np.int32)
@@ -98,8 +106,16 @@ def interface_mesh(model: Any, results: Any) -> Any:
         "family": [family if len(family) == m else np.full(m, -1, dtype=np.int32)],
         "interface": [np.arange(m, dtype=np.int32)],
     })
-    return meshio.Mesh(corners.reshape(-1, 3), [("quad", np.arange(4 * m, dtype=np.int64).reshape(m, 4))],
-                       cell_data=cell_data)
+    # the polygons in runs of equal numbers of corners, in order: quads between boxes, triangles and polygons
+    sizes = [len(p) for p in polygons]
+    runs = [k for k in range(m) if k == 0 or sizes[k] != sizes[k - 1]] + [m]
+    first = np.cumsum([0] + sizes)
+    names = {3: "triangle", 4: "quad"}
+    cells = [(names.get(sizes[a], "polygon"), np.arange(first[a], first[b], dtype=np.int64).reshape(b - a, sizes[a]))
+             for a, b in zip(runs, runs[1:])]
+    split = {name: [values[0][a:b] for a, b in zip(runs, runs[1:])] for name, values in cell_data.items()}
+    points = np.concatenate(polygons) if m else np.zeros((0, 3))
+    return meshio.Mesh(points, cells, cell_data=split)
 
 
 def write_vtk(model: Any, results: Any, path_prefix: PathLike, *, inputs: Iterable[PathLike] = ()) -> Tuple[Path, Path]:
