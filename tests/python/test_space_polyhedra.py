@@ -208,7 +208,7 @@ def test_the_example_runs_with_its_figures_and_vtk(tmp_path: Path) -> None:
     assert [c.type for c in blocks.cells] == ["polyhedron8"] and len(blocks.cells[0].data) == 3
     assert all(len(cell) == 6 for cell in blocks.cells[0].data)
     assert np.allclose(blocks.points, np.concatenate(model.block_vertices))
-    assert list(blocks.cell_data["kind"][0]) == [0, 0, 1]
+    assert list(blocks.cell_data["kind"][0]) == [0, 0, 3]  # the support: 3, as in the plane
     faces = meshio.read(tmp_path / "slope-interfaces.vtu")
     assert [(c.type, len(c.data[0])) for c in faces.cells] == [("polygon", 8), ("quad", 4)]
     assert np.allclose(faces.points, np.concatenate(model.interface_polygons))
@@ -279,3 +279,37 @@ def test_to_dict_carries_the_faces_and_polygons() -> None:
     assert [len(f) for f in out["block_faces"]] == [6, 6, 6]
     assert [len(p) for p in out["interface_polygons"]] == [8, 4]
     assert out["block_boxes"] and out["interface_areas"]  # the keys of before are kept
+
+
+def test_a_3d_time_history_is_a_vtk_series(tmp_path: Path) -> None:
+    # a block rocking from an initial rotation rate: one blocks file per record, the vertices' displacement the
+    # rigid motion of the record (the rotation vector applied exactly), and the .pvd listing them with their times
+    model = md.Model3D([[0.0, 0.0, 0.0, 0.4, 0.3, 1.2]], joints={"default": md.dry_joint(0.7)})
+    history = model.simulate(0.05, initial_velocities=[[0, 0, 0, 0, 0.5, 0], [0] * 6], record_every=200)
+    pvd, paths = md.write_vtk(model, history, tmp_path / "rock")
+    assert pvd == tmp_path / "rock.pvd" and len(paths) == len(history.times) >= 3
+    text = pvd.read_text()
+    assert text.count("<DataSet ") == len(paths) and f'file="{paths[-1].name}"' in text
+    import meshio
+
+    last = meshio.read(paths[-1])
+    u = np.asarray(history.displacements)[-1]
+    assert np.allclose(last.cell_data["rotation"][0], u[:, 3:])
+    angle = np.linalg.norm(u[0, 3:])
+    assert angle > 1e-3
+    # a vertex's displacement: the centroid's plus (R - I) r, R the rotation by angle about u[0, 3:]
+    axis = u[0, 3:] / angle
+    r = last.points[:8] - np.asarray(model.centroids)[0]
+    turned = r * math.cos(angle) + np.cross(axis, r) * math.sin(angle) + np.outer(r @ axis, axis) * (1 - math.cos(angle))
+    assert np.allclose(last.point_data["displacement"][:8], u[0, :3] + turned - r, atol=1e-12)
+    assert list(last.cell_data["kind"][0]) == [0, 1]
+    with pytest.raises(md.InputError, match="^write_vtk: model does not match results"):
+        md.write_vtk(slope_model(), history, tmp_path / "other")
+
+
+def test_supports_are_kind_3_as_in_the_plane() -> None:
+    model = md.Model3D(polyhedra=[cube(0, 0, 0, 1)], supports=[cube(1, 0, 0, 1)], base=True, top=0.2,
+                       joints={"default": md.dry_joint(0.7, dilatancy=0.7)})
+    mesh = space_export.block_mesh(model, model.solve_limit())
+    assert model.base_index == 1 and model.top_index == 2
+    assert list(mesh.cell_data["kind"][0]) == [0, 1, 2, 3]
