@@ -189,3 +189,23 @@ fn a_false_poll_interrupts_the_search() {
     let e = Model3::new_with(&ModelSpec3 { blocks, ..ModelSpec3::default() }, &mut || false).unwrap_err();
     assert_eq!(e, crate::error::Error::Interrupted);
 }
+
+#[test]
+fn hulls_take_the_tolerance_of_the_whole_model_and_name_the_block_refused() {
+    // a corner of a tetrahedron given twice, 1.7e-7 m apart: two vertices in a model of 1 m (tolerance 1e-8 m), one
+    // in a model 100 m wide (its other blocks given as boxes: tolerance 1e-6 m), the first given kept
+    let off = -1e-7;
+    let tet = vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [off, off, off]];
+    let lists = [tet];
+    let alone = hulls(&[(&lists[..], "polyhedra")], &[]).unwrap();
+    assert_eq!(alone[0][0].vertices().len(), 4);
+    assert!(alone[0][0].vertices().contains(&[off; 3]) && !alone[0][0].vertices().contains(&[0.0; 3]));
+    let far = crate::shape::Aabb { min: [0.0; 3], max: [100.0, 1.0, 1.0] };
+    let wide = hulls(&[(&lists[..], "polyhedra")], &[far]).unwrap();
+    assert!(wide[0][0].vertices().contains(&[0.0; 3]) && !wide[0][0].vertices().contains(&[off; 3]));
+    // the refusal names the list, the block and the vertex, and carries the list's key
+    let bad = vec![vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, f64::INFINITY, 0.0], [0.0, 0.0, 1.0]]];
+    let err = hulls(&[(&lists[..], "polyhedra"), (&bad[..], "supports")], &[]).unwrap_err();
+    assert_eq!(err.key(), Some("supports"));
+    assert_eq!(err.to_string(), "supports[0]: vertex 2 (0, inf, 0): coordinate inf is not finite");
+}
