@@ -1,13 +1,17 @@
 """Plots of a 3D wall's analysis, limit or explicit (matplotlib's mplot3d, imported with this module):
 
-* :func:`plot_mechanism_3d` (ax, model, results, scale=None): on a 3D ``Axes``, the blocks moved along the
-  collapse mechanism (``Results.mechanism``, rigidly: each box turned exactly about its centroid), scaled so that
-  the largest corner motion is :data:`MECHANISM_FRACTION_3D` of the wall's height, their faces coloured by how far
-  each block moves (relative to the largest), over the faint outlines of the wall at rest; the base a grey slab,
-  the live load's direction an arrow over the wall; equal axes.
+* :func:`plot_mechanism_3d` (ax, model, results, scale=None, field="mechanism"): on a 3D ``Axes``, the blocks moved
+  along the collapse mechanism (``Results.mechanism``, rigidly: each block turned exactly about its centroid; or the
+  deformed shape, ``field="displacements"``), scaled so that the largest vertex motion is
+  :data:`MECHANISM_FRACTION_3D` of the wall's height, each block with its own faces (a box's six, a polyhedron's),
+  coloured by how far it moves (relative to the largest), over the faint outlines of the wall at rest; the base and
+  the supports grey, the live load's direction an arrow over the wall; equal axes.
 * :func:`mechanism_figure` (model, results, title=None, path=None): the page ``masonry-dem run --plot`` draws for a
   3D case: two views of the mechanism (one across the load, one along it) with a colour bar, and a title with the
   collapse multiplier and the load's direction.
+* :func:`plot_contacts_3d` (ax, model, results): each contact's polygon where it lies at rest, filled by its state
+  (open, sliding, rocking: the plane's colours); :func:`contacts_figure` (model, results, title=None, path=None): a
+  page of it beside the mechanism (or the deformed shape).
 
 Geometry in m. Without a ``path`` the figure goes through pyplot (for ``plt.show()`` or a notebook); with one it is
 written atomically as the 2D figures are (:func:`masonry_dem.plot.save_figure`, of :mod:`masonry_dem.plot.canvas`,
