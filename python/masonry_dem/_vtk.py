@@ -1,6 +1,7 @@
 """What the VTK exports of the two dimensions share (:mod:`masonry_dem.export` in the plane,
-:mod:`masonry_dem.space.export` in 3D): the codes of the interface families, the writing of meshes as .vtu
-files, atomically, and of a time series of them with its ParaView collection (.pvd). Below both exports; meshio is the caller's (a mesh's own ``write``).
+:mod:`masonry_dem.space.export` in 3D): the codes of the interface families, the writing of meshes as .vtu files,
+atomically, and of a time series of them with its ParaView collection (.pvd). Below both exports; meshio is the
+caller's (a mesh's own ``write``).
 """
 
 from __future__ import annotations
@@ -28,7 +29,8 @@ def write_meshes(meshes: List[Tuple[Path, Any]], inputs: List[PathLike]) -> None
         atomic_path(path, lambda tmp, mesh=mesh: mesh.write(tmp, file_format="vtu"), inputs=inputs)
 
 
-def write_series(prefix: str, times: Any, mesh_of: Callable[[int], Any], inputs: List[PathLike]) -> Tuple[Path, List[Path]]:
+def write_series(prefix: str, times: Any, mesh_of: Callable[[int], Any],
+                 inputs: List[PathLike]) -> Tuple[Path, List[Path]]:
     """A time series for ParaView: ``PREFIX-blocks-NNNN.vtu``, the mesh ``mesh_of(k)`` of each record k (numbered
     from 0, at least four digits), and ``PREFIX.pvd``, the collection listing them with their ``times`` [s]; every
     target checked first, each file written atomically. Returns the ``.pvd`` path and the blocks files' paths."""

@@ -173,16 +173,15 @@ fn contact(a: usize, b: usize, c: FaceContact, family: Family) -> Contact {
 pub fn hulls(lists: &[(&[Vec<[f64; 3]>], &str)], more: &[Aabb<3>]) -> Result<Vec<Vec<Polyhedron>>> {
     let finite = lists.iter().flat_map(|(l, _)| l.iter().flatten()).filter(|p| p.iter().all(|v| v.is_finite()));
     let around = Aabb::around(finite);
-    let tol = tolerance(&[more, if around.min[0] <= around.max[0] { std::slice::from_ref(&around) } else { &[] }].concat());
-    lists
-        .iter()
-        .map(|&(list, key)| {
-            list.iter()
-                .enumerate()
-                .map(|(i, v)| Polyhedron::hull(v, tol).map_err(|d| Error::input_at(key, format!("{key}[{i}]: {}", d.reason))))
-                .collect()
-        })
-        .collect()
+    let mut every = more.to_vec();
+    if around.min[0] <= around.max[0] {
+        every.push(around); // not empty: some vertex is finite
+    }
+    let tol = tolerance(&every);
+    let hull = |key: &str, i: usize, v: &[[f64; 3]]| {
+        Polyhedron::hull(v, tol).map_err(|d| Error::input_at(key, format!("{key}[{i}]: {}", d.reason)))
+    };
+    lists.iter().map(|&(list, key)| list.iter().enumerate().map(|(i, v)| hull(key, i, v)).collect()).collect()
 }
 
 /// The contact tolerance is at least `10 REL_TOL` times this fraction of the largest coordinate:

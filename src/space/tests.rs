@@ -209,3 +209,16 @@ fn hulls_take_the_tolerance_of_the_whole_model_and_name_the_block_refused() {
     assert_eq!(err.key(), Some("supports"));
     assert_eq!(err.to_string(), "supports[0]: vertex 2 (0, inf, 0): coordinate inf is not finite");
 }
+
+#[test]
+fn a_polyhedron_after_the_boxes_carries_a_load() {
+    // a box, then a cube given as a polyhedron (block 1) carrying 1 kN on its top: its mass takes it, block 2 (the
+    // base) is refused as the wall's blocks are two
+    let cube = Box3::new(1.0, 0.0, 0.0, 2.0, 1.0, 1.0).polyhedron();
+    let load = |block: usize| crate::model::CarriedLoad { block, point: [1.5, 0.5, 1.0], weight: 1000.0 };
+    let spec = ModelSpec3 { blocks: vec![Box3::new(0.0, 0.0, 0.0, 1.0, 1.0, 1.0)], polyhedra: vec![cube], ..ModelSpec3::default() };
+    let m = Model3::new(&ModelSpec3 { carried: vec![load(1)], ..spec.clone() }).unwrap();
+    assert!((m.mass()[1] - (2000.0 + 1000.0 / 9.81)).abs() < 1e-9);
+    let err = Model3::new(&ModelSpec3 { carried: vec![load(2)], ..spec }).unwrap_err();
+    assert!(err.to_string().contains("block 2 is not a wall block (the wall has 2"), "{err}");
+}

@@ -156,6 +156,10 @@ def test_case_keys_polyhedra_and_supports() -> None:
                        "supports = [" + str(cube(0, 0, -1, 2)) + "]") + '[base]\nkind = "fixed"\n'
     both = md.parse_case(text, source="c.toml")
     assert both.model.base is True and both.model.boxes.shape == (1, 6) and len(both.model.polyhedra) == 1
+    # coordinates are lengths: a unit may be given
+    units = md.parse_case(CASE.format(geometry='polyhedra = [[[0, 0, 0], ["1000 mm", 0, 0], [0, "100 cm", 0], '
+                                               '[0, 0, 1]]]'), source="c.toml")
+    assert units.model.polyhedra == [[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]]
 
 
 @pytest.mark.parametrize("geometry, words", [
@@ -313,3 +317,20 @@ def test_supports_are_kind_3_as_in_the_plane() -> None:
     mesh = space_export.block_mesh(model, model.solve_limit())
     assert model.base_index == 1 and model.top_index == 2
     assert list(mesh.cell_data["kind"][0]) == [0, 1, 2, 3]
+
+
+def test_a_polyhedron_carries_a_load_and_the_check_weighs_it_apart() -> None:
+    # the example's turned block carries a floor's 5 kN over a corner of the stone: its mass and centre of mass take
+    # it, and the linear check weighs the block at its own centroid and the load at its point
+    plain = slope_model()
+    case = md.load_case(SLOPE)
+    case.model_kwargs["carried"] = [(1, [0.8, 0.5, 1.0], 5000.0)]
+    loaded = case.build_model()
+    g = loaded.gravity
+    assert loaded.mass[1] == pytest.approx(plain.mass[1] + 5000.0 / g, rel=1e-12)
+    want = (plain.mass[1] * np.asarray(plain.centroids[1]) + 5000.0 / g * np.array([0.8, 0.5, 1.0])) / loaded.mass[1]
+    assert np.allclose(loaded.centroids[1], want, rtol=1e-12)
+    lumped = sa.mechanism_weights(loaded, loaded.solve_limit(tolerance=1e-11))
+    assert list(lumped.blocks) == [0, 1, 1]
+    assert np.allclose(lumped.points, [plain.centroids[0], plain.centroids[1], [0.8, 0.5, 1.0]], atol=1e-12)
+    assert np.allclose(lumped.weights, [plain.weights[0], plain.weights[1], 5000.0], rtol=1e-12)

@@ -1,8 +1,9 @@
-"""3D walls: walls of rigid blocks (axis-aligned boxes and convex polyhedra, z up) joined by dry Mohr-Coulomb contacts, analysed by limit analysis
-and the explicit solver (the out-of-plane collapse of a leaf, a facade with its return walls; their motion in time).
-The package's 2D side is a wall in the plane (:class:`masonry_dem.Model`); this one is its counterpart in space, with
-the same joint laws, the same :class:`masonry_dem.Results` and :class:`masonry_dem.TimeHistory` (``dimension`` 3:
-arrays of 6 columns where the plane has 3) and the same case files, command line and result file.
+"""3D walls: walls of rigid blocks (axis-aligned boxes and convex polyhedra, z up) joined by dry Mohr-Coulomb
+contacts, analysed by limit analysis and the explicit solver (the out-of-plane collapse of a leaf, a facade with its
+return walls; their motion in time). The package's 2D side is a wall in the plane (:class:`masonry_dem.Model`); this
+one is its counterpart in space, with the same joint laws, the same :class:`masonry_dem.Results` and
+:class:`masonry_dem.TimeHistory` (``dimension`` 3: arrays of 6 columns where the plane has 3) and the same case
+files, command line and result file.
 
 * :class:`Model3D` (``masonry_dem.Model3D``): the model, from an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] (m)
   and lists of the vertices of convex polyhedra (``polyhedra``, and fixed ones: ``supports``);
@@ -12,8 +13,9 @@ arrays of 6 columns where the plane has 3) and the same case files, command line
 * Generators, each returning an (n, 6) array of boxes [m]: :func:`running_bond_3d` (a single leaf in running bond),
   :func:`u_wall` (a facade with two bonded return walls), :func:`corner_wall` (with one), :func:`cut_openings`
   (openings [x0, z0, x1, z1] through a facade).
-* :mod:`.case`: the case files' 3D tables (``[geometry] boxes``, ``polyhedra``, ``supports``, ``[geometry.leaf]``, ``[geometry.u_wall]``,
-  ``[geometry.corner]``, ``[top] height``, ``[loads] direction``; docs/case-format.md, "3D walls").
+* :mod:`.case`: the case files' 3D tables (``[geometry] boxes``, ``polyhedra``, ``supports``, ``[geometry.leaf]``,
+  ``[geometry.u_wall]``, ``[geometry.corner]``, ``[top] height``, ``[loads] direction``; docs/case-format.md, "3D
+  walls").
 * :mod:`.plot` (matplotlib's mplot3d, imported on first use): :func:`plot_mechanism_3d` (the mechanism or the
   deformed shape), :func:`mechanism_figure`, :func:`plot_contacts_3d` (the contacts by state), :func:`contacts_figure`.
 * :mod:`.export` (meshio, on first use): :func:`write_vtk` (the blocks as hexahedra, or polyhedra, the contacts as

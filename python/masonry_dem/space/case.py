@@ -26,7 +26,7 @@ from .. import _core
 from .._core import InputError, MasonryError
 from ..case.common import REFERENCE_KEYS, _analysis, _base, _carried, _joints, _reference
 from ..case.mapping import AnalysisParameters, Case
-from ..case.table import _got, _non_negative, _positive, _quote, _Table, _type_name
+from ..case.table import _got, _non_negative, _positive, _quote, _Table
 from .model import (
     CORE_DEFAULTS_3D as CORE_DEFAULTS_3D,
     DRY_3D,
@@ -83,8 +83,9 @@ def read_geometry(geo: _Table, kind: str) -> Dict[str, Any]:
             f"is the out-of-plane thickness of a wall in the plane; a 3D wall ([geometry] {kind}) has its thickness in "
             "its boxes" + ("" if kind == "boxes" else f" or in [geometry.{kind}] thickness"),
         )
-    solids = {key: _vertex_lists(geo, key, what) for key, what in (("polyhedra", "block"), ("supports", "support"))
-              if key in geo}
+    # vertex lists: each block the convex hull of its vertices, made (and refused) by the core (check_hulls)
+    named = (("polyhedra", "block"), ("supports", "support"))
+    solids = {key: geo.polygons(key, what, dimension=3) for key, what in named if key in geo}
     if kind in ("boxes", "polyhedra"):
         return dict(boxes=_boxes(geo) if "boxes" in geo else [], **solids)
     if kind == "leaf":
@@ -102,28 +103,10 @@ def read_geometry(geo: _Table, kind: str) -> Dict[str, Any]:
     return dict(args, **solids)
 
 
-def _vertex_lists(geo: _Table, key: str, what: str) -> List[List[List[float]]]:
-    """``polyhedra`` or ``supports``: at least one convex block, each an array of its vertices [x, y, z] (m; each a
-    number or a length with its unit), checked here as numbers; :func:`check_hulls` has the core make each the
-    convex hull of its vertices."""
-    items = geo.array(key)
-    assert items is not None
-    if not items:
-        raise geo.key_error(key, f"expected at least one {what}, each an array of vertices [x, y, z] (or leave the "
-                                 "key out)")
-    blocks = []
-    for i, item in enumerate(items):
-        label = f"{geo.where(key)}[{i}]"
-        if not isinstance(item, list):
-            raise geo.error(f"{label}: expected an array of vertices [x, y, z], got {_type_name(item)}", label)
-        blocks.append([geo.numbers(f"{label}[{j}]", v, 3, " [x, y, z]", unit="length") for j, v in enumerate(item)])
-    return blocks
-
-
 def check_hulls(geometry: Mapping[str, Any], source: str) -> None:
     """The core's refusals of the vertex lists of ``polyhedra`` and ``supports`` (fewer than 4 vertices off one
     plane), named by their keys in the case file (``geometry.polyhedra[3]: ...``) after the file name."""
-    for key in ("polyhedra", "supports"):
+    for key in SOLID_KEYS:
         if geometry.get(key):
             try:
                 _core.convex_hulls(geometry[key], f"geometry.{key}")

@@ -4,10 +4,11 @@
   ``Model3D.boxes``) as a hexahedron when every block is a box, else as a polyhedron cell of its own vertices and
   faces (``Model3D.block_vertices``, ``block_faces``; VTK mixes no polyhedra with other cells). Point data:
   ``mechanism``, the velocity of each vertex in the collapse mechanism (v + w x r; the largest block translation is
-  1), and ``displacement`` [m] of each vertex (zero for limit analysis), for ParaView's *Warp By Vector*. Cell data: ``displacement`` (ux, uy, uz) [m] and ``rotation`` (rx, ry, rz) [rad],
-  ``mechanism`` (vx, vy, vz) and ``mechanism_rotation`` (wx, wy, wz) of the block, ``motion`` (its largest vertex
-  motion in the mechanism, over the largest of all blocks: 0 at rest, 1 the most moving), ``kind`` (0 wall block,
-  1 base, 2 top beam, 3 support), ``block`` (index).
+  1), and ``displacement`` [m] of each vertex (zero for limit analysis), for ParaView's *Warp By Vector*. Cell data:
+  ``displacement`` (ux, uy, uz) [m] and ``rotation`` (rx, ry, rz) [rad], ``mechanism`` (vx, vy, vz) and
+  ``mechanism_rotation`` (wx, wy, wz) of the block, ``motion`` (its largest vertex motion in the mechanism, over the
+  largest of all blocks: 0 at rest, 1 the most moving), ``kind`` (0 wall block, 1 base, 2 top beam, 3 support),
+  ``block`` (index).
 * ``PREFIX-interfaces.vtu``: every contact as its polygon (``Model3D.interface_polygons``): a quad between boxes,
   a triangle or a polygon of any number of corners between polyhedra, the cells in the contacts' order. Cell data:
   ``normal_force`` N [N] (tension > 0), ``shear_force_t1`` T1 and ``shear_force_t2`` T2 [N], ``torsion`` M_n,

@@ -32,9 +32,8 @@ from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
 from .._core import InputError
 from ..plot.canvas import _finish, _new_figure
-from ..report import format_multiplier
 from ..plot.panels import STATE_STYLES
-from ..report import interface_categories
+from ..report import format_multiplier, interface_categories
 from .report import block_shapes, contact_polygons, direction_text, moved_vertices, vertex_motion
 
 __all__ = ["MECHANISM_FRACTION_3D", "MOTION_COLORMAP", "plot_mechanism_3d", "mechanism_figure", "plot_contacts_3d",

@@ -1,7 +1,7 @@
 """Plain-text reports of a 3D wall's analysis (limit or explicit): the one-line description of its collapse mechanism
 (:func:`describe_mechanism`, what ``masonry-dem run`` prints for a 3D case) and the kinematic helpers the plots share
-(:func:`corner_motion`, :func:`moved_corners`). No matplotlib here. Lengths in m, rotations in rad, directions in
-plan in degrees from +x towards +y.
+(:func:`vertex_motion`, :func:`moved_vertices`, the blocks' faces and the contacts' polygons). No matplotlib here.
+Lengths in m, rotations in rad, directions in plan in degrees from +x towards +y.
 """
 
 from __future__ import annotations
@@ -13,9 +13,9 @@ import numpy as np
 
 from .._mechanism import CRACK_TOLERANCE, MOVING_FRACTION, connected_parts as _connected_parts, mechanism_text
 
-__all__ = ["box_corners", "block_shapes", "all_boxes", "own_centroids", "contact_polygons", "padded_polygons", "corner_motion",
-           "vertex_motion", "dof_points", "contact_motion", "moved_corners", "moved_vertices", "contact_jumps",
-           "describe_mechanism", "direction_text"]
+__all__ = ["box_corners", "block_shapes", "all_boxes", "own_centroids", "contact_polygons", "padded_polygons",
+           "corner_motion", "vertex_motion", "dof_points", "contact_motion", "moved_vertices",
+           "contact_jumps", "describe_mechanism", "direction_text"]
 
 # The six faces of a box, as indices of its corners (box_corners' order), counter-clockwise seen from outside
 BOX_FACES = ((0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7))
@@ -181,20 +181,6 @@ def _rotation(w: np.ndarray) -> np.ndarray:
     k = w / angle
     kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
     return np.eye(3) + math.sin(angle) * kx + (1.0 - math.cos(angle)) * kx @ kx  # type: ignore[no-any-return]
-
-
-def moved_corners(boxes: np.ndarray, motion: np.ndarray, scale: float, centroids: Any = None) -> np.ndarray:
-    """(n, 8, 3) corners [m] of the boxes moved by ``scale`` times (ux, uy, uz) and turned by ``scale`` times the
-    rotation (rx, ry, rz) about their centroids (``centroids``, the model's, or the boxes' centres), the rotation
-    applied exactly (the boxes keep their shape)."""
-    corners = box_corners(boxes)
-    centroid = _centroids(boxes, centroids)
-    m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
-    out = np.empty_like(corners)
-    for i in range(len(corners)):
-        rot = _rotation(scale * m[i, 3:])
-        out[i] = centroid[i] + scale * m[i, :3] + (corners[i] - centroid[i]) @ rot.T
-    return out
 
 
 def moved_vertices(model: Any, motion: np.ndarray, scale: float) -> List[np.ndarray]:
