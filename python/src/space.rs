@@ -209,6 +209,9 @@ pub(crate) fn cut_openings_3d<'py>(
     with_openings(py, blocks, &openings, "openings")
 }
 
+/// A convex block for Python: its vertices (k, 3) [m] and its faces, each the indices of its vertices.
+type Hull<'py> = (Bound<'py, PyArray2<f64>>, Vec<Vec<usize>>);
+
 /// The convex hull of each block's vertices: a list of (vertices (k, 3) [m], faces, each a list of indices into
 /// them counter-clockwise seen from outside), as Model3D makes its polyhedra (the contact tolerance of the box around
 /// every vertex given). blocks: a list of vertex lists (each a (k, 3) array or a list of [x, y, z] rows [m]); key:
@@ -220,7 +223,7 @@ pub(crate) fn convex_hulls<'py>(
     py: Python<'py>,
     blocks: &Bound<'py, PyAny>,
     key: &str,
-) -> PyResult<Vec<(Bound<'py, PyArray2<f64>>, Vec<Vec<usize>>)>> {
+) -> PyResult<Vec<Hull<'py>>> {
     let lists = vertex_lists(Some(blocks), key)?;
     let made = space::hulls(&[(&lists[..], key)], &[]).map_err(to_py)?;
     Ok(made[0]
@@ -319,7 +322,6 @@ impl PyModel3D {
             gravity: gravity.unwrap_or(d.gravity),
             live: live_from(live, direction)?,
             carried: carried_from(carried)?,
-            ..d
         };
         // the GIL released, polling Ctrl-C in this thread
         let mut raised = None;

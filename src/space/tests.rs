@@ -204,7 +204,7 @@ fn hulls_take_the_tolerance_of_the_whole_model_and_name_the_block_refused() {
     let wide = hulls(&[(&lists[..], "polyhedra")], &[far]).unwrap();
     assert!(wide[0][0].vertices().contains(&[0.0; 3]) && !wide[0][0].vertices().contains(&[off; 3]));
     // the refusal names the list, the block and the vertex, and carries the list's key
-    let bad = vec![vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, f64::INFINITY, 0.0], [0.0, 0.0, 1.0]]];
+    let bad = [vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, f64::INFINITY, 0.0], [0.0, 0.0, 1.0]]];
     let err = hulls(&[(&lists[..], "polyhedra"), (&bad[..], "supports")], &[]).unwrap_err();
     assert_eq!(err.key(), Some("supports"));
     assert_eq!(err.to_string(), "supports[0]: vertex 2 (0, inf, 0): coordinate inf is not finite");
