@@ -193,6 +193,13 @@ def cut_openings_3d(boxes: npt.ArrayLike, openings: Sequence[Sequence[float]]) -
     sill and lintel), no part thinner than 5% of the block being made; an opening that reaches a block deeper than
     the facade (a return wall's block over a corner) is refused."""
 
+def convex_hulls(blocks: Sequence[npt.ArrayLike], key: str = "polyhedra") -> list[tuple[FloatArray, list[list[int]]]]:
+    """The convex hull of each block's vertices: a list of (vertices (k, 3) [m], faces, each a list of indices into
+    them counter-clockwise seen from outside), as Model3D makes its polyhedra (the contact tolerance of the box around
+    every vertex given). blocks: a list of vertex lists (each a (k, 3) array or a list of [x, y, z] rows [m]); key:
+    the name of the list in the refusals, which name the block (`polyhedra[3]: fewer than 4 vertices off one plane:
+    it has no volume ...`, `polyhedra[0]: vertex 2 (...): coordinate NaN is not finite`) and carry the key."""
+
 class Model:
     """A wall of rigid blocks joined by zero-thickness Mohr-Coulomb interfaces.
 
@@ -461,10 +468,11 @@ class Model:
         damping ratio)."""
 
 class Model3D:
-    """A wall of rigid axis-aligned boxes in 3D, z up, joined by dry Mohr-Coulomb contacts (limit analysis, the explicit
-    solver and time histories).
+    """A wall of rigid blocks in 3D (axis-aligned boxes and convex polyhedra), z up, joined by dry Mohr-Coulomb contacts
+    (limit analysis, the explicit solver and time histories).
 
-    boxes: (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] in m (running_bond_3d, u_wall, corner_wall).
+    boxes: (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] in m (running_bond_3d, u_wall, corner_wall); None or
+        left out with polyhedra only.
     density [kg/m3] of the blocks and the top beam (default 2000).
     base: True (the default) puts a fixed rigid foundation under the wall's footprint (the box around the blocks in
         plan, as deep as the tallest block); the lowest blocks stand on it.
@@ -479,12 +487,17 @@ class Model3D:
     carried: loads carried by wall blocks (a floor's reaction), a list of (block, [x, y, z], weight): a weight [N]
         along -z resting at a point [m] of the box (0-based), whose mass weight / gravity moves with it, as Model's.
         A time history refuses a load off the box's axes through its centroid (its products of inertia).
-    Block indices: the boxes in the order given, then the base, then the top beam.
-    Raises InputError naming the key or block on bad input (two overlapping boxes are both named)."""
+    polyhedra: wall blocks of any convex shape after the boxes, a list of vertex lists (each a (k, 3) array or a
+        list of [x, y, z] rows [m]): each block the convex hull of its vertices (at least 4 off one plane).
+    supports: fixed blocks of any convex shape, vertex lists as polyhedra (an abutment, an inclined plane); with
+        supports the default base is False (no foundation unless base=True).
+    Block indices: the boxes in the order given, then the polyhedra, then the base, then the top beam, then the
+    supports. Raises InputError naming the key or block on bad input (`polyhedra[3]: ...` for a list that makes no
+    convex block; two overlapping blocks are both named)."""
 
     def __init__(
         self,
-        boxes: npt.ArrayLike,
+        boxes: Optional[npt.ArrayLike] = None,
         density: Optional[float] = None,
         base: Optional[bool] = None,
         top: Optional[float] = None,  # None: no top beam; else its height [m]
@@ -493,6 +506,8 @@ class Model3D:
         live: Optional[Literal["horizontal_weight", "none"]] = None,
         direction: Optional[float] = None,
         carried: Optional[Sequence[tuple[int, Sequence[float], float]]] = None,
+        polyhedra: Optional[Sequence[npt.ArrayLike]] = None,
+        supports: Optional[Sequence[npt.ArrayLike]] = None,
     ) -> None: ...
     @property
     def dimension(self) -> Literal[3]:
@@ -523,7 +538,8 @@ class Model3D:
         """Index of the top beam among the blocks; None without one."""
     @property
     def boxes(self) -> FloatArray:
-        """(n_all, 6) boxes [x0, y0, z0, x1, y1, z1] of all blocks [m], wall blocks first, then base, then top beam."""
+        """(n_all, 6) boxes [x0, y0, z0, x1, y1, z1] of all blocks [m], wall blocks first, then base, then top beam, then
+        supports; a polyhedron's is the box around it (block_vertices and block_faces give its shape)."""
     @property
     def centroids(self) -> FloatArray:
         """(n_all, 3) centroid of each block [m] (where its dofs are and its moments are taken): its centre of mass (the box's centre, moved by the loads it carries)."""
@@ -550,7 +566,24 @@ class Model3D:
         """(m, 3) centroid of each interface [m]."""
     @property
     def interface_corners(self) -> FloatArray:
-        """(m, 4, 3) corners of each interface's rectangle [m], counter-clockwise seen from the tip of its normal."""
+        """(m, 4, 3) corners of each interface's rectangle [m], counter-clockwise seen from the tip of its normal (a
+        polygon of other than four corners padded with NaN or cut to four: interface_polygons gives them all)."""
+    @property
+    def interface_polygons(self) -> list[FloatArray]:
+        """Each interface's polygon [m]: a list of (k, 3) arrays, its k >= 3 corners counter-clockwise seen from the tip
+        of its normal (between boxes the rectangle of interface_corners; between polyhedra any convex polygon, whose
+        corners interface_corners cuts to four)."""
+    @property
+    def block_vertices(self) -> list[FloatArray]:
+        """Each block's vertices [m] (wall blocks, base, top beam, supports, as boxes): a list of (k, 3) arrays."""
+    @property
+    def block_faces(self) -> list[list[list[int]]]:
+        """Each block's faces: per block a list of faces, each the indices of its vertices in block_vertices,
+        counter-clockwise seen from outside."""
+    @property
+    def block_is_box(self) -> list[bool]:
+        """Whether each block is a box with sides along the axes (its row of boxes is the block itself, not the box
+        around it)."""
     @property
     def interface_areas(self) -> FloatArray:
         """(m,) area of each interface [m2]."""

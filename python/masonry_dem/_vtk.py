@@ -1,15 +1,18 @@
 """What the VTK exports of the two dimensions share (:mod:`masonry_dem.export` in the plane,
-:mod:`masonry_dem.space.export` in 3D): the codes of the interface families and the writing of meshes as .vtu
-files, atomically. Below both exports; meshio is the caller's (a mesh's own ``write``).
+:mod:`masonry_dem.space.export` in 3D): the codes of the interface families, the writing of meshes as .vtu files,
+atomically, and of a time series of them with its ParaView collection (.pvd). Below both exports; meshio is the
+caller's (a mesh's own ``write``).
 """
 
 from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Any, List, Tuple, Union
+from typing import Any, Callable, List, Tuple, Union
 
-from .atomic import atomic_path, check_target
+import numpy as np
+
+from .atomic import atomic_file, atomic_path, check_target
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -24,3 +27,31 @@ def write_meshes(meshes: List[Tuple[Path, Any]], inputs: List[PathLike]) -> None
     for path, mesh in meshes:
         path.parent.mkdir(parents=True, exist_ok=True)
         atomic_path(path, lambda tmp, mesh=mesh: mesh.write(tmp, file_format="vtu"), inputs=inputs)
+
+
+def write_series(prefix: str, times: Any, mesh_of: Callable[[int], Any],
+                 inputs: List[PathLike]) -> Tuple[Path, List[Path]]:
+    """A time series for ParaView: ``PREFIX-blocks-NNNN.vtu``, the mesh ``mesh_of(k)`` of each record k (numbered
+    from 0, at least four digits), and ``PREFIX.pvd``, the collection listing them with their ``times`` [s]; every
+    target checked first, each file written atomically. Returns the ``.pvd`` path and the blocks files' paths."""
+    times = np.asarray(times, dtype=np.float64).reshape(-1)
+    digits = max(4, len(str(len(times) - 1)))
+    paths = [Path(f"{prefix}-blocks-{k:0{digits}d}.vtu") for k in range(len(times))]
+    pvd_path = Path(prefix + ".pvd")
+    check_target(pvd_path, inputs)
+    write_meshes([(p, mesh_of(k)) for k, p in enumerate(paths)], inputs)
+    lines = ['<?xml version="1.0"?>', '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
+             "  <Collection>"]
+    for t, p in zip(times, paths):
+        lines.append(f'    <DataSet timestep="{t:.17g}" group="" part="0" file="{_xml_attribute(p.name)}"/>')
+    lines += ["  </Collection>", "</VTKFile>"]
+    pvd_path.parent.mkdir(parents=True, exist_ok=True)
+    with atomic_file(pvd_path, "w", encoding="utf-8", newline="\n", inputs=inputs) as f:
+        f.write("\n".join(lines) + "\n")
+    return pvd_path, paths
+
+
+def _xml_attribute(text: str) -> str:
+    """``text`` as the value of a double-quoted XML attribute (``xml.sax.saxutils.escape`` with the quote:
+    that module imports urllib and the email package, a tenth of a second at ``import masonry_dem``)."""
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace('"', "&quot;")

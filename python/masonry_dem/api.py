@@ -42,6 +42,7 @@ from ._shapes import shapes
 from .case.result_file import JOINT_STATE_KEYS, certificate_dict, json_float as _float, write_result_json
 from .ground_motion import GroundMotion, one_sine, read_at2, ricker
 from .ground_motion import read as read_ground_motion
+from .space.report import block_shapes, contact_polygons
 from .units import (
     GPa, J_per_m2, MN, MN_per_m3, MPa, N, N_per_m, N_per_m3, N_per_mm, N_per_mm3, Pa, cm, kg, kg_per_m3, km, kN,
     kN_per_m3, kPa, m, m_per_s2, mm, ms, parse_quantity, s, t_per_m3,
@@ -257,8 +258,12 @@ def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dic
     The results of a 3D wall (``Results.dimension`` 3, a :class:`masonry_dem.Model3D`) have the same keys with
     ``"dimension": 3``: displacements and mechanism (n_all, 6) ux, uy, uz [m], rx, ry, rz [rad] (the mechanism's
     velocities), interface_forces (m, 6) N, T1, T2 [N], M_n, M_t1, M_t2 [N m] in the contact's axes; with ``model``
-    block_boxes ((n_all, 6) [x0, y0, z0, x1, y1, z1] m) instead of block_rects, and interface_centroids ((m, 3) [m]),
-    interface_normals ((m, 3)) and interface_areas ((m,) [m2]) instead of interface_geometry.
+    block_boxes ((n_all, 6) [x0, y0, z0, x1, y1, z1] m: each block's bounding box, the block itself for a box)
+    instead of block_rects, block_vertices (every block's vertices [[x, y, z], ...] m) and block_faces (every
+    block's faces, each the indices of its vertices counter-clockwise seen from outside) instead of block_polygons,
+    and interface_centroids ((m, 3) [m]), interface_normals ((m, 3)), interface_areas ((m,) [m2]) and
+    interface_polygons (every contact's corners [[x, y, z], ...] m, counter-clockwise about its normal) instead of
+    interface_geometry.
     """
     states = getattr(results, "joint_states", None) or {}
     out: Dict[str, Any] = {}
@@ -302,10 +307,14 @@ def to_dict(results: Any, model: Any = None, title: Optional[str] = None) -> Dic
             "interface_blocks": [[int(a), int(b)] for a, b in np.asarray(model.interface_blocks).reshape(-1, 2)],
         })
         if space:
+            solids = block_shapes(model)
             out.update({
+                "block_vertices": [_floats(v) for v, _ in solids],
+                "block_faces": [[[int(k) for k in f] for f in faces] for _, faces in solids],
                 "interface_centroids": _floats(np.asarray(model.interface_centroids).reshape(-1, 3)),
                 "interface_normals": _floats(np.asarray(model.interface_normals).reshape(-1, 3)),
                 "interface_areas": _floats(model.interface_areas),
+                "interface_polygons": [_floats(p) for p in contact_polygons(model)],
             })
         else:
             out["interface_geometry"] = _floats(np.asarray(model.interface_geometry).reshape(-1, 5))

@@ -41,7 +41,7 @@ from typing import Any, Dict, Iterable, List, Tuple, Union
 
 import numpy as np
 
-from ._vtk import FAMILY_CODES as FAMILY_CODES, write_meshes as _write_meshes
+from ._vtk import FAMILY_CODES as FAMILY_CODES, write_meshes as _write_meshes, write_series
 from ._core import InputError
 from ._shapes import Shapes, shapes, support_indices
 from .api import check_model
@@ -188,7 +188,8 @@ def write_vtk(
 
     Args:
         model: the :class:`masonry_dem.Model` analysed; a :class:`masonry_dem.Model3D` writes its blocks as
-            hexahedra and its contacts as quads (:func:`masonry_dem.space.export.write_vtk`).
+            hexahedra (polyhedra when some block is no box) and its contacts as their polygons, or the series of a
+            time history (:func:`masonry_dem.space.export.write_vtk`).
         results: its :class:`masonry_dem.Results` (the last converged step), or a
             :class:`masonry_dem.TimeHistory` (``Model.simulate``): then one blocks file per recorded time
             (:func:`history_block_mesh`: displacements relative to the ground, from the undeformed wall,
@@ -212,11 +213,15 @@ def write_vtk(
     problem = prefix_problem(prefix)
     if problem:
         raise InputError(f"write_vtk: path_prefix: {problem}")
-    if is_time_history(results):
-        check_plane(model, "write_vtk")
-    else:
+    space = int(getattr(model, "dimension", 2)) == 3
+    if not is_time_history(results):
         check_model("write_vtk", results, model)
-    if int(getattr(model, "dimension", 2)) == 3:  # a wall of boxes: hexahedra and contact quads
+    elif int(getattr(results, "dimension", 2)) != int(getattr(model, "dimension", 2)) or (
+            np.shape(results.displacements)[1:] != (len(np.asarray(model.boxes if space else model.rects)),
+                                                    6 if space else 3)):
+        raise InputError("write_vtk: model does not match results: the time history is of another model (another "
+                         "dimension or number of blocks)")
+    if space:  # a 3D wall: its blocks and contacts, or its time series
         from .space.export import write_vtk as write_vtk_3d
 
         return write_vtk_3d(model, results, prefix, inputs=inputs)
@@ -230,21 +235,7 @@ def write_vtk(
 
 def _write_vtk_series(model: Any, history: Any, prefix: str, inputs: List[PathLike]) -> Tuple[Path, List[Path]]:
     """The time series of :func:`write_vtk`: a blocks file per record and the ``.pvd`` collection."""
-    times = np.asarray(history.times, dtype=np.float64).reshape(-1)
-    digits = max(4, len(str(len(times) - 1)))
-    paths = [Path(f"{prefix}-blocks-{k:0{digits}d}.vtu") for k in range(len(times))]
-    pvd_path = Path(prefix + ".pvd")
-    check_target(pvd_path, inputs)
-    _write_meshes([(p, history_block_mesh(model, history, k)) for k, p in enumerate(paths)], inputs)
-    lines = ['<?xml version="1.0"?>', '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
-             "  <Collection>"]
-    for t, p in zip(times, paths):
-        lines.append(f'    <DataSet timestep="{t:.17g}" group="" part="0" file="{_xml_attribute(p.name)}"/>')
-    lines += ["  </Collection>", "</VTKFile>"]
-    pvd_path.parent.mkdir(parents=True, exist_ok=True)
-    with atomic_file(pvd_path, "w", encoding="utf-8", newline="\n", inputs=inputs) as f:
-        f.write("\n".join(lines) + "\n")
-    return pvd_path, paths
+    return write_series(prefix, history.times, lambda k: history_block_mesh(model, history, k), inputs)
 
 
 def write_curve_csv(
@@ -295,9 +286,3 @@ def _write_columns(path: PathLike, header: str, columns: List[np.ndarray], input
         for row in zip(*columns):
             f.write(",".join(f"{v:.17g}" for v in row) + "\n")
     return path
-
-
-def _xml_attribute(text: str) -> str:
-    """``text`` as the value of a double-quoted XML attribute (``xml.sax.saxutils.escape`` with the quote:
-    that module imports urllib and the email package, a tenth of a second at ``import masonry_dem``)."""
-    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace('"', "&quot;")

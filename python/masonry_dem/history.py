@@ -53,9 +53,9 @@ def check_plane(model: Any, what: str = "this output of a time history") -> None
     """Refuse a 3D wall's time history (``model`` a :class:`masonry_dem.Model3D`) where only the plane's is read
     (the exports, the figures and the response of this module's users), with InputError naming ``what``."""
     if int(getattr(model, "dimension", 2)) == 3:
-        raise InputError(f"{what}: a 3D wall's time history (Model3D.simulate) is not drawn or exported in this "
-                         "version: read its TimeHistory's arrays (displacements (k, n_all, 6), base_shear, "
-                         "base_shear_y, the energies)")
+        raise InputError(f"{what}: a 3D wall's time history (Model3D.simulate) is not drawn or written as a curve in "
+                         "this version: read its TimeHistory's arrays (displacements (k, n_all, 6), base_shear, "
+                         "base_shear_y, the energies), or write its VTK series (write_vtk)")
 
 
 def default_control_block(model: Any) -> int:

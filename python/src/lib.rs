@@ -144,6 +144,8 @@ fn defaults_3d(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("live", live)?;
     d.set_item("direction", direction)?;
     d.set_item("carried", py.None())?;
+    d.set_item("polyhedra", py.None())?;
+    d.set_item("supports", py.None())?;
     Ok(d)
 }
 
@@ -168,6 +170,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(u_wall, m)?)?;
     m.add_function(wrap_pyfunction!(corner_wall, m)?)?;
     m.add_function(wrap_pyfunction!(cut_openings_3d, m)?)?;
+    m.add_function(wrap_pyfunction!(convex_hulls, m)?)?;
     m.add_class::<PyModel>()?;
     m.add_class::<PyModel3D>()?;
     m.add_class::<PyResults>()?;

@@ -26,6 +26,38 @@ pub(crate) fn boxes_from(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Box
         .collect()
 }
 
+/// Convex blocks as vertex lists: a list whose items are each a (k, 3) array or a list of
+/// [x, y, z] rows (None: none); `what` names them (`polyhedra`, `supports`).
+fn vertex_lists(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Vec<Vec<[f64; 3]>>> {
+    let Some(obj) = obj.filter(|o| !o.is_none()) else { return Ok(vec![]) };
+    let items: Vec<Bound<'_, PyAny>> = obj
+        .extract()
+        .map_err(|_| InputError::new_err(format!("{what}: expected a list of blocks, each a list of [x, y, z] vertices")))?;
+    items
+        .iter()
+        .enumerate()
+        .map(|(i, item)| {
+            let rows: Vec<Vec<f64>> = if let Ok(a) = item.extract::<PyReadonlyArray2<f64>>() {
+                a.as_array().rows().into_iter().map(|r| r.to_vec()).collect()
+            } else {
+                item.extract().map_err(|_| {
+                    InputError::new_err(format!("{what}[{i}]: expected a list of [x, y, z] vertices of numbers"))
+                })?
+            };
+            rows.iter()
+                .enumerate()
+                .map(|(k, v)| match v[..] {
+                    [x, y, z] => Ok([x, y, z]),
+                    _ => Err(InputError::new_err(format!(
+                        "{what}[{i}][{k}]: expected a vertex [x, y, z] of 3 numbers, got {}",
+                        v.len()
+                    ))),
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// Boxes as an (n, 6) array [x0, y0, z0, x1, y1, z1].
 fn boxes_to_py<'py>(py: Python<'py>, boxes: &[Box3]) -> Bound<'py, PyArray2<f64>> {
     let rows: Vec<[f64; 6]> = boxes
@@ -177,10 +209,34 @@ pub(crate) fn cut_openings_3d<'py>(
     with_openings(py, blocks, &openings, "openings")
 }
 
-/// A wall of rigid axis-aligned boxes in 3D, z up, joined by dry Mohr-Coulomb contacts (limit analysis, the explicit
-/// solver and time histories).
+/// A convex block for Python: its vertices (k, 3) [m] and its faces, each the indices of its vertices.
+type Hull<'py> = (Bound<'py, PyArray2<f64>>, Vec<Vec<usize>>);
+
+/// The convex hull of each block's vertices: a list of (vertices (k, 3) [m], faces, each a list of indices into
+/// them counter-clockwise seen from outside), as Model3D makes its polyhedra (the contact tolerance of the box around
+/// every vertex given). blocks: a list of vertex lists (each a (k, 3) array or a list of [x, y, z] rows [m]); key:
+/// the name of the list in the refusals, which name the block (`polyhedra[3]: fewer than 4 vertices off one plane:
+/// it has no volume ...`, `polyhedra[0]: vertex 2 (...): coordinate NaN is not finite`) and carry the key.
+#[pyfunction]
+#[pyo3(signature = (blocks, key="polyhedra"))]
+pub(crate) fn convex_hulls<'py>(
+    py: Python<'py>,
+    blocks: &Bound<'py, PyAny>,
+    key: &str,
+) -> PyResult<Vec<Hull<'py>>> {
+    let lists = vertex_lists(Some(blocks), key)?;
+    let made = space::hulls(&[(&lists[..], key)], &[]).map_err(to_py)?;
+    Ok(made[0]
+        .iter()
+        .map(|p| (rows_of(py, p.vertices()), p.faces().iter().map(|f| f.vertices.clone()).collect()))
+        .collect())
+}
+
+/// A wall of rigid blocks in 3D (axis-aligned boxes and convex polyhedra), z up, joined by dry Mohr-Coulomb contacts
+/// (limit analysis, the explicit solver and time histories).
 ///
-/// boxes: (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] in m (running_bond_3d, u_wall, corner_wall).
+/// boxes: (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] in m (running_bond_3d, u_wall, corner_wall); None or
+///     left out with polyhedra only.
 /// density [kg/m3] of the blocks and the top beam (default 2000).
 /// base: True (the default) puts a fixed rigid foundation under the wall's footprint (the box around the blocks in
 ///     plan, as deep as the tallest block); the lowest blocks stand on it.
@@ -195,8 +251,13 @@ pub(crate) fn cut_openings_3d<'py>(
 /// carried: loads carried by wall blocks (a floor's reaction), a list of (block, [x, y, z], weight): a weight [N]
 ///     along -z resting at a point [m] of the box (0-based), whose mass weight / gravity moves with it, as Model's.
 ///     A time history refuses a load off the box's axes through its centroid (its products of inertia).
-/// Block indices: the boxes in the order given, then the base, then the top beam.
-/// Raises InputError naming the key or block on bad input (two overlapping boxes are both named).
+/// polyhedra: wall blocks of any convex shape after the boxes, a list of vertex lists (each a (k, 3) array or a
+///     list of [x, y, z] rows [m]): each block the convex hull of its vertices (at least 4 off one plane).
+/// supports: fixed blocks of any convex shape, vertex lists as polyhedra (an abutment, an inclined plane); with
+///     supports the default base is False (no foundation unless base=True).
+/// Block indices: the boxes in the order given, then the polyhedra, then the base, then the top beam, then the
+/// supports. Raises InputError naming the key or block on bad input (`polyhedra[3]: ...` for a list that makes no
+/// convex block; two overlapping blocks are both named).
 #[pyclass(name = "Model3D", module = "masonry_dem._core", subclass)]
 pub(crate) struct PyModel3D {
     pub(crate) inner: Arc<Model3>,
@@ -225,11 +286,11 @@ fn contact_vectors<'py>(py: Python<'py>, model: &Model3, f: impl Fn(&space::Cont
 #[pymethods]
 impl PyModel3D {
     #[new]
-    #[pyo3(signature = (boxes, density=None, base=None, top=None, joints=None, gravity=None, live=None, direction=None, carried=None))]
+    #[pyo3(signature = (boxes=None, density=None, base=None, top=None, joints=None, gravity=None, live=None, direction=None, carried=None, polyhedra=None, supports=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
-        boxes: &Bound<'_, PyAny>,
+        boxes: Option<&Bound<'_, PyAny>>,
         density: Option<f64>,
         base: Option<bool>,
         top: Option<f64>,
@@ -238,18 +299,29 @@ impl PyModel3D {
         live: Option<&str>,
         direction: Option<f64>,
         carried: Option<&Bound<'_, PyAny>>,
+        polyhedra: Option<&Bound<'_, PyAny>>,
+        supports: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let d = ModelSpec3::default();
+        let blocks = match boxes {
+            Some(b) if !b.is_none() => boxes_from(b, "boxes")?,
+            _ => vec![],
+        };
+        let (given, fixed) = (vertex_lists(polyhedra, "polyhedra")?, vertex_lists(supports, "supports")?);
+        let around: Vec<_> = blocks.iter().map(|b| masonry_dem::shape::Aabb { min: b.min, max: b.max }).collect();
+        let made = space::hulls(&[(&given[..], "polyhedra"), (&fixed[..], "supports")], &around).map_err(to_py)?;
+        let [polyhedra, supports]: [Vec<_>; 2] = made.try_into().expect("two lists");
         let spec = ModelSpec3 {
-            blocks: boxes_from(boxes, "boxes")?,
+            blocks,
+            polyhedra,
+            base: base.unwrap_or(supports.is_empty()),
+            supports,
             density: density.unwrap_or(d.density),
-            base: base.unwrap_or(d.base),
             top,
             joints: laws_from(joints)?,
             gravity: gravity.unwrap_or(d.gravity),
             live: live_from(live, direction)?,
             carried: carried_from(carried)?,
-            ..d
         };
         // the GIL released, polling Ctrl-C in this thread
         let mut raised = None;
@@ -322,7 +394,8 @@ impl PyModel3D {
     fn top_index(&self) -> Option<usize> {
         self.inner.top()
     }
-    /// (n_all, 6) boxes [x0, y0, z0, x1, y1, z1] of all blocks [m], wall blocks first, then base, then top beam.
+    /// (n_all, 6) boxes [x0, y0, z0, x1, y1, z1] of all blocks [m], wall blocks first, then base, then top beam, then
+    /// supports; a polyhedron's is the box around it (block_vertices and block_faces give its shape).
     #[getter]
     fn boxes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         boxes_to_py(py, self.inner.boxes())
@@ -370,7 +443,8 @@ impl PyModel3D {
     fn interface_centroids<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         contact_vectors(py, &self.inner, |c| c.centroid)
     }
-    /// (m, 4, 3) corners of each interface's rectangle [m], counter-clockwise seen from the tip of its normal.
+    /// (m, 4, 3) corners of each interface's rectangle [m], counter-clockwise seen from the tip of its normal (a
+    /// polygon of other than four corners padded with NaN or cut to four: interface_polygons gives them all).
     #[getter]
     fn interface_corners<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
         let c = self.inner.contacts();
@@ -379,6 +453,30 @@ impl PyModel3D {
             .flat_map(|k| (0..4).flat_map(move |q| k.corners.get(q).copied().unwrap_or([f64::NAN; 3])))
             .collect();
         numpy::ndarray::Array3::from_shape_vec((c.len(), 4, 3), flat).unwrap().into_pyarray(py)
+    }
+    /// Each interface's polygon [m]: a list of (k, 3) arrays, its k >= 3 corners counter-clockwise seen from the tip
+    /// of its normal (between boxes the rectangle of interface_corners; between polyhedra any convex polygon, whose
+    /// corners interface_corners cuts to four).
+    #[getter]
+    fn interface_polygons<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray2<f64>>> {
+        self.inner.contacts().iter().map(|c| rows_of(py, &c.corners)).collect()
+    }
+    /// Each block's vertices [m] (wall blocks, base, top beam, supports, as boxes): a list of (k, 3) arrays.
+    #[getter]
+    fn block_vertices<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray2<f64>>> {
+        self.inner.shapes().iter().map(|p| rows_of(py, p.vertices())).collect()
+    }
+    /// Each block's faces: per block a list of faces, each the indices of its vertices in block_vertices,
+    /// counter-clockwise seen from outside.
+    #[getter]
+    fn block_faces(&self) -> Vec<Vec<Vec<usize>>> {
+        self.inner.shapes().iter().map(|p| p.faces().iter().map(|f| f.vertices.clone()).collect()).collect()
+    }
+    /// Whether each block is a box with sides along the axes (its row of boxes is the block itself, not the box
+    /// around it).
+    #[getter]
+    fn block_is_box(&self) -> Vec<bool> {
+        self.inner.shapes().iter().map(|p| p.as_box().is_some()).collect()
     }
     /// (m,) area of each interface [m2].
     #[getter]

@@ -153,6 +153,37 @@ fn contact(a: usize, b: usize, c: FaceContact, family: Family) -> Contact {
     }
 }
 
+/// Convex polyhedra from vertex lists, each block the convex hull of its vertices \[m\]
+/// ([`Polyhedron::hull`]), with the contact tolerance of the box around every finite vertex of
+/// `lists` and `more` (the model's other blocks): the tolerance with which the model then finds
+/// their contacts. `keys` names each list in the refusals (`"polyhedra"`, `"supports"`), and a
+/// refusal names the block as `polyhedra[3]`: a coordinate not finite (with the vertex), fewer
+/// than 4 vertices off one plane. The error's key is the list's.
+///
+/// ```
+/// use masonry_dem::space::hulls;
+/// let wedge = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [0.2, 0.2, 0.0]];
+/// let made = hulls(&[(&[wedge][..], "polyhedra")], &[]).unwrap();
+/// assert_eq!((made[0][0].vertices().len(), made[0][0].faces().len()), (4, 4)); // (0.2, 0.2, 0) is inside a face
+/// let flat = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]];
+/// let err = hulls(&[(&[flat][..], "supports")], &[]).unwrap_err();
+/// assert_eq!(err.key(), Some("supports"));
+/// assert!(err.to_string().starts_with("supports[0]: fewer than 4 vertices off one plane"));
+/// ```
+pub fn hulls(lists: &[(&[Vec<[f64; 3]>], &str)], more: &[Aabb<3>]) -> Result<Vec<Vec<Polyhedron>>> {
+    let finite = lists.iter().flat_map(|(l, _)| l.iter().flatten()).filter(|p| p.iter().all(|v| v.is_finite()));
+    let around = Aabb::around(finite);
+    let mut every = more.to_vec();
+    if around.min[0] <= around.max[0] {
+        every.push(around); // not empty: some vertex is finite
+    }
+    let tol = tolerance(&every);
+    let hull = |key: &str, i: usize, v: &[[f64; 3]]| {
+        Polyhedron::hull(v, tol).map_err(|d| Error::input_at(key, format!("{key}[{i}]: {}", d.reason)))
+    };
+    lists.iter().map(|&(list, key)| list.iter().enumerate().map(|(i, v)| hull(key, i, v)).collect()).collect()
+}
+
 /// The contact tolerance is at least `10 REL_TOL` times this fraction of the largest coordinate:
 /// a hundred times the rounding of coordinates (about 1e-16 of them), for a model small beside
 /// its distance from the origin.

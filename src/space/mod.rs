@@ -33,7 +33,7 @@ mod walls;
 #[cfg(test)]
 mod tests;
 
-pub use detect::{detect, detect_polyhedra};
+pub use detect::{detect, detect_polyhedra, hulls};
 pub use model::Model3;
 pub use walls::{corner, cut_openings, running_bond_3d, u_wall};
 

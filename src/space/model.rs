@@ -416,7 +416,7 @@ fn cos_sin_deg(deg: f64) -> (f64, f64) {
 fn check_spec(spec: &ModelSpec3) -> Result<()> {
     positive("density", spec.density)?;
     non_negative("gravity", spec.gravity)?;
-    crate::model::check_carried(&spec.carried, spec.blocks.len(), spec.gravity)?;
+    crate::model::check_carried(&spec.carried, spec.blocks.len() + spec.polyhedra.len(), spec.gravity)?;
     if let Some(h) = spec.top {
         positive("top", h)?;
     }

@@ -189,3 +189,36 @@ fn a_false_poll_interrupts_the_search() {
     let e = Model3::new_with(&ModelSpec3 { blocks, ..ModelSpec3::default() }, &mut || false).unwrap_err();
     assert_eq!(e, crate::error::Error::Interrupted);
 }
+
+#[test]
+fn hulls_take_the_tolerance_of_the_whole_model_and_name_the_block_refused() {
+    // a corner of a tetrahedron given twice, 1.7e-7 m apart: two vertices in a model of 1 m (tolerance 1e-8 m), one
+    // in a model 100 m wide (its other blocks given as boxes: tolerance 1e-6 m), the first given kept
+    let off = -1e-7;
+    let tet = vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [off, off, off]];
+    let lists = [tet];
+    let alone = hulls(&[(&lists[..], "polyhedra")], &[]).unwrap();
+    assert_eq!(alone[0][0].vertices().len(), 4);
+    assert!(alone[0][0].vertices().contains(&[off; 3]) && !alone[0][0].vertices().contains(&[0.0; 3]));
+    let far = crate::shape::Aabb { min: [0.0; 3], max: [100.0, 1.0, 1.0] };
+    let wide = hulls(&[(&lists[..], "polyhedra")], &[far]).unwrap();
+    assert!(wide[0][0].vertices().contains(&[0.0; 3]) && !wide[0][0].vertices().contains(&[off; 3]));
+    // the refusal names the list, the block and the vertex, and carries the list's key
+    let bad = [vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, f64::INFINITY, 0.0], [0.0, 0.0, 1.0]]];
+    let err = hulls(&[(&lists[..], "polyhedra"), (&bad[..], "supports")], &[]).unwrap_err();
+    assert_eq!(err.key(), Some("supports"));
+    assert_eq!(err.to_string(), "supports[0]: vertex 2 (0, inf, 0): coordinate inf is not finite");
+}
+
+#[test]
+fn a_polyhedron_after_the_boxes_carries_a_load() {
+    // a box, then a cube given as a polyhedron (block 1) carrying 1 kN on its top: its mass takes it, block 2 (the
+    // base) is refused as the wall's blocks are two
+    let cube = Box3::new(1.0, 0.0, 0.0, 2.0, 1.0, 1.0).polyhedron();
+    let load = |block: usize| crate::model::CarriedLoad { block, point: [1.5, 0.5, 1.0], weight: 1000.0 };
+    let spec = ModelSpec3 { blocks: vec![Box3::new(0.0, 0.0, 0.0, 1.0, 1.0, 1.0)], polyhedra: vec![cube], ..ModelSpec3::default() };
+    let m = Model3::new(&ModelSpec3 { carried: vec![load(1)], ..spec.clone() }).unwrap();
+    assert!((m.mass()[1] - (2000.0 + 1000.0 / 9.81)).abs() < 1e-9);
+    let err = Model3::new(&ModelSpec3 { carried: vec![load(2)], ..spec }).unwrap_err();
+    assert!(err.to_string().contains("block 2 is not a wall block (the wall has 2"), "{err}");
+}

@@ -606,6 +606,79 @@ def test_linear_check_of_a_3d_leaf_overturning_out_of_plane() -> None:
     assert close(check.a0_star, 0.1 / 1.05 * model.gravity / (e_star * 1.35), 1e-9)
 
 
+def _facade_with_return(t: float, h: float, courses: int, facade: float, dragged: float, far: float,
+                         gap: float) -> np.ndarray:
+    """An L of boxes t thick and h high per course: a facade along x (y in [0, t], x in [0, facade]) and a return
+    wall along +y at x in [0, t], bonded at the corner: in the odd courses the facade's box runs over the corner and
+    the return's starts behind it (y from t), in the even ones (the lowest among them) the return's box runs over the
+    corner (y from 0) and the facade's starts beside it (x from t). The return reaches y = dragged, then an open
+    vertical crack ``gap`` wide, then its far part to y = far. Per course: the facade's box, the return's near box,
+    its far box."""
+    boxes = []
+    for k in range(courses):
+        z0, z1 = k * h, (k + 1) * h
+        if k % 2:
+            boxes += [[0.0, 0.0, z0, facade, t, z1], [0.0, t, z0, t, dragged, z1]]
+        else:
+            boxes += [[t, 0.0, z0, facade, t, z1], [0.0, 0.0, z0, t, dragged, z1]]
+        boxes.append([0.0, dragged + gap, z0, t, far, z1])
+    return np.array(boxes)
+
+
+def test_linear_check_of_a_3d_facade_overturning_with_part_of_its_return_wall() -> None:
+    # the facade, pushed outwards (towards -y, direction 270), turns about its outer base edge (the x axis) and drags
+    # the near part of the return wall bonded to it, up to the vertical crack: the corner's boxes of the even courses
+    # sit across the facade's bed joints, and the return's near boxes of the odd courses sit on them. It is the least
+    # mechanism: the facade cannot leave the corner's boxes (their bed joints with the facade's boxes would slip
+    # by omega z at y = 0, where a rotation about the x axis opens nothing), nor these leave the return's boxes under
+    # them (a bed joint at z = h that opens by omega y >= omega t and slips by omega z = omega h needs t >= mu h, and
+    # t = 0.3 < 0.8 x 0.5); the far part, past the crack, stays (with it alpha0 would rise: its centroids are far
+    # from the hinge). Turning about the hinge moves the centroid (y_i, z_i) of each moving block by omega z_i
+    # horizontally and omega y_i upwards, so by virtual work (dry joints dissipate nothing) alpha0 = sum P_i y_i /
+    # sum P_i z_i, and the check's dx_i = z_i (any scale).
+    t, h, courses, facade, dragged, far, gap = 0.3, 0.5, 6, 2.0, 1.0, 2.0, 0.01
+    density, g, mu = 1800.0, 9.81, 0.8
+    boxes = _facade_with_return(t, h, courses, facade, dragged, far, gap)
+    model = md.Model3D(boxes, density=density, gravity=g, direction=270,
+                       joints={"default": md.dry_joint(mu, dilatancy=mu)})
+    results = model.solve_limit(tolerance=1e-12)
+    assert results.status == "collapse"
+    # the hand calculation: the facade's box and the return's near box of each course move
+    moving = [i for i in range(len(boxes)) if i % 3 != 2]
+    lo, hi = boxes[moving, :3], boxes[moving, 3:]
+    P = density * g * np.prod(hi - lo, axis=1)
+    y, z = 0.5 * (lo[:, 1] + hi[:, 1]), 0.5 * (lo[:, 2] + hi[:, 2])
+    # per course the two boxes weigh rho g t h (facade + dragged - t) together
+    assert np.allclose(P[0::2] + P[1::2], density * g * t * h * (facade + dragged - t), rtol=1e-14)
+    alpha0 = (P @ y) / (P @ z)
+    M_star = (P @ z) ** 2 / (g * (P @ z**2))
+    e_star = g * M_star / P.sum()
+    site = _site(q=2.0, confidence_factor=1.35)
+    a0_star = alpha0 * g / (e_star * 1.35)
+    demand = 0.25 * G * 1.2 / 2.0  # a_g S / q, EC8 type 1 ground B
+    # limit analysis returns this mechanism: the moving blocks, each turning with the rotation vector (w, 0, 0), w > 0
+    # (the top goes to -y), about the hinge (y, z) = (0, 0): v = w (0, -z, y) at its centroid
+    mech = np.asarray(results.mechanism)[: len(boxes)]
+    w = mech[moving[0], 3]
+    assert w > 0
+    at_rest = [i for i in range(len(boxes)) if i not in moving]
+    assert np.abs(mech[at_rest]).max() < 1e-6 * w
+    rigid = w * np.stack([0 * y, -z, y, np.ones_like(y), 0 * y, 0 * y], axis=1)
+    assert np.abs(mech[moving] - rigid).max() < 1e-6 * w
+    check = sa.linear_check(model, results, site)
+    assert check.moving_blocks == len(moving) == 12
+    assert close(check.alpha0, alpha0, 1e-9)
+    assert close(check.participating_mass, M_star, 1e-9)
+    assert close(check.mass_fraction, e_star, 1e-9)
+    assert close(check.a0_star, a0_star, 1e-9)
+    assert close(check.demand, demand) and close(check.ratio, a0_star / demand, 1e-9)
+    assert check.verdict == "pass" and a0_star / demand > 1.05
+    # a stronger site fails it: a_g = 0.35 g
+    stronger = sa.linear_check(model, results, sa.AssessmentParameters(spectrum=sa.ec8_spectrum(0.35 * G, "B")))
+    assert close(stronger.ratio, a0_star / (0.35 * G * 1.2 / 2.0), 1e-9)
+    assert stronger.verdict == "fail" and a0_star / (0.35 * G * 1.2 / 2.0) < 0.95
+
+
 # -- the nonlinear check of several bodies, the 2019 rule at height, N2 in 3D -------------------------------------------
 
 def _turned(r: np.ndarray, phi: float) -> np.ndarray:

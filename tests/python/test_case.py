@@ -76,10 +76,12 @@ def test_examples_load() -> None:
         assert case.title
         text = f.read_text()
         assert "Reference" in text and "docs/references.md" in text, f.name
-        if case.dimension == 3:  # a 3D wall: limit analysis, boxes (tests/python/test_space.py)
+        if case.dimension == 3:  # a 3D wall: limit analysis, boxes or polyhedra (tests/python/test_space*.py)
             assert case.method == "limit"
             boxes = case.model_kwargs["boxes"]
-            assert boxes.ndim == 2 and boxes.shape[1] == 6 and len(boxes) >= 1
+            solids = case.model_kwargs["polyhedra"] or []
+            assert boxes.ndim == 2 and boxes.shape[1] == 6 and len(boxes) + len(solids) >= 1
+            assert all(len(b) >= 4 and all(len(v) == 3 for v in b) for b in solids)
             continue
         assert case.method == "static"
         blocks = case.model_kwargs["blocks"]

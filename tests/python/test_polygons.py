@@ -321,8 +321,9 @@ POLYGON_CASE = """format = 1
          "geometry.supports: expected at least one support"),
         ("blocks = [[0, 0, 1, 1]]\nsupports = [[[1, 0], [2, 0], [1.5, 0], [1.5, 1]]]", "geometry.supports[0]",
          "geometry.supports[0]: vertex 1 (2, 0) turns the outline back on itself"),
-        ("boxes = [[0, 0, 0, 1, 1, 1]]\nsupports = [[[1, 0], [2, 0], [1.5, 1]]]", "geometry.supports",
-         "geometry.supports: are polygons of a wall in the plane"),
+        # a 3D wall's supports are polyhedra: vertices [x, y, z]
+        ("boxes = [[0, 0, 0, 1, 1, 1]]\nsupports = [[[1, 0], [2, 0], [1.5, 1]]]", "geometry.supports[0][0]",
+         "geometry.supports[0][0]: expected 3 numbers [x, y, z], got 2"),
         ("polygons = [[[0, 0], [1, 0], [0, 1]]]\ndxf = \"wall.dxf\"", None,
          "[geometry] needs exactly one of running_bond, pattern, blocks, dxf, polygons, arch, gable, stone_wall "
          "(blocks and polygons may be given together); dxf and polygons are both given"),

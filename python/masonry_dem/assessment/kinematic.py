@@ -28,7 +28,7 @@ from .._core import InputError
 from .._mechanism import MOVING_FRACTION
 from .._shapes import area_centroid, shapes
 from ..report import corner_motion as corner_motion_2d
-from ..space.report import corner_motion as corner_motion_3d, dof_points
+from ..space.report import all_boxes, dof_points, own_centroids, vertex_motion
 from .parameters import AssessmentParameters
 from .spectra import Spectrum, _refuse
 
@@ -71,11 +71,14 @@ def participating_mass(weights: Any, dx: Any, gravity: float) -> Tuple[float, fl
 def block_weights(model: Any, blocks: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The weights of ``blocks`` (distinct indices) and of the loads they carry (``model.carried``): (the block of
     each (k,), the weights P_i [N] (k,), their points [m] (k, 2) or (k, 3)): each block's own weight (its weight
-    without its loads) at its own centroid (its polygon's or its box's), then each load at its point."""
+    without its loads) at its own centroid (its polygon's, its box's or its polyhedron's), then each load at its
+    point."""
     weights = np.array(model.weights, dtype=np.float64)  # with the loads the blocks carry
     if int(getattr(model, "dimension", 2)) == 3:
         boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
         points = 0.5 * (boxes[:, :3] + boxes[:, 3:])
+        if not all_boxes(model):  # a polyhedron's own centroid: its centre of mass without the loads it carries
+            points = own_centroids(model, points)
     else:
         every = shapes(model)
         points = np.array([area_centroid(every.polygon(int(i))) for i in range(len(every))]).reshape(-1, 2)
@@ -115,9 +118,8 @@ def mechanism_weights(model: Any, results: Any, gravity: Optional[float] = None)
     # the dofs are at the centres of mass (the blocks' centroids, moved by the loads they carry): the virtual
     # displacement along the live load of a point p of block i is that of the small motion at the dofs
     if three_d:
-        boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
         dofs = dof_points(model)
-        corner = corner_motion_3d(boxes, mech, dofs)
+        corner = vertex_motion(model, mech)
         angle = math.radians(float(getattr(model, "direction", 0.0) or 0.0))
         along = np.array([math.cos(angle), math.sin(angle), 0.0])
 

@@ -61,7 +61,7 @@ RECTANGLE_KINDS = GEOMETRY_KINDS[:4]
 # inclined plane), as polygons
 SUPPORT_KEYS = ("supports",)
 # The [geometry] forms of a 3D wall (masonry_dem.space.case): any of them makes the case 3D
-GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner")
+GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner", "polyhedra")
 # Keys of [geometry] besides its kinds: the wall's, and the options of a drawing (dxf)
 DXF_KEYS = ("dxf_layer", "dxf_units")
 RUNNING_BOND_KEYS = ("block_length", "block_height", "courses", "height", "length", "first_course", "openings")
@@ -294,7 +294,8 @@ def _geometry(top: _Table, base_dir: Optional[PathLike]) -> Tuple[str, Dict[str,
     geo = top.table("geometry", ("thickness", "density") + every + DXF_KEYS + SUPPORT_KEYS, required=True)
     assert geo is not None
     given = [k for k in every if k in geo]
-    forms = [k for k in given if not (k == "polygons" and "blocks" in given)]  # blocks and polygons: one list
+    # blocks and polygons: one list; boxes and polyhedra too
+    forms = [k for k in given if not (k == "polygons" and "blocks" in given or k == "polyhedra" and "boxes" in given)]
     if not forms:
         raise geo.error(f"[geometry] needs exactly one of {', '.join(RECTANGLE_KINDS)}; none is given (polygons "
                         "also make a wall, alone or beside blocks, [geometry.arch] an arch, [geometry.gable] a gable "
@@ -306,16 +307,14 @@ def _geometry(top: _Table, base_dir: Optional[PathLike]) -> Tuple[str, Dict[str,
                           if all(k in GEOMETRY_KINDS for k in given) else every)
         count = {3: "all three", 4: "all four"}.get(len(given), ", ".join(given))
         named = f"{' and '.join(given)} are both given" if len(given) == 2 else f"{count} are given"
-        both = " (blocks and polygons may be given together)" if "polygons" in given else ""
+        both = (" (blocks and polygons may be given together)" if "polygons" in given else
+                " (boxes and polyhedra may be given together)" if "polyhedra" in given else "")
         raise geo.error(f"[geometry] needs exactly one of {kinds}{both}; {named}")
-    kind = "blocks" if "blocks" in given else forms[0]
+    kind = "blocks" if "blocks" in given else "boxes" if "boxes" in given else forms[0]
     for key in DXF_KEYS:
         if key in geo and kind != "dxf":
             raise geo.key_error(key, f"applies to a drawing (dxf), not to {kind}")
-    if kind in GEOMETRY_KINDS_3D:
-        if "supports" in geo:
-            raise geo.key_error("supports", f"are polygons of a wall in the plane; a 3D wall ([geometry] {kind}) has "
-                                            "no supports in this version")
+    if kind in GEOMETRY_KINDS_3D:  # its supports polyhedra
         from ..space.case import read_geometry
 
         return kind, read_geometry(geo, kind), {"density": geo.number("density", None, _positive, unit="density")}

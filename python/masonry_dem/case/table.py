@@ -255,25 +255,28 @@ class _Table:
             rects.append([x0, y0, x1, y1])
         return rects
 
-    def polygons(self, key: str, what: str = "block") -> Optional[List[List[List[float]]]]:
+    def polygons(self, key: str, what: str = "block", dimension: int = 2) -> Optional[List[List[List[float]]]]:
         """An array of at least one convex polygon, each an array of vertices [x, y] (m; each a number [m] or a
         length with its unit), in either orientation; an outline that is no block (:func:`masonry_dem._shapes.
         polygon_problem`: fewer than 3 distinct vertices, all on a line, turning back, concave or crossing itself) is
         refused naming the polygon and the vertex at fault. ``what``: the word for one polygon in the messages. None when
-        the key is absent."""
+        the key is absent. ``dimension`` 3: an array of convex polyhedra, each an array of vertices [x, y, z], checked
+        here as numbers only (the core makes each the convex hull of its vertices, and refuses those that are none)."""
         items = self.array(key, required=False)
         if items is None:
             return None
+        names = "[x, y]" if dimension == 2 else "[x, y, z]"
         if not items:
-            raise self.key_error(key, f"expected at least one {what}, each an array of vertices [x, y] (or leave the "
+            raise self.key_error(key, f"expected at least one {what}, each an array of vertices {names} (or leave the "
                                       "key out)")
         polygons = []
         for i, item in enumerate(items):
             label = f"{self.where(key)}[{i}]"
             if not isinstance(item, list):
-                raise self.error(f"{label}: expected an array of vertices [x, y], got {_type_name(item)}", label)
-            vertices = [self.numbers(f"{label}[{j}]", v, 2, " [x, y]", unit="length") for j, v in enumerate(item)]
-            problem = polygon_problem(vertices)
+                raise self.error(f"{label}: expected an array of vertices {names}, got {_type_name(item)}", label)
+            vertices = [self.numbers(f"{label}[{j}]", v, dimension, f" {names}", unit="length")
+                        for j, v in enumerate(item)]
+            problem = polygon_problem(vertices) if dimension == 2 else None
             if problem:
                 raise self.error(f"{label}: {problem}", label)
             polygons.append(vertices)

@@ -1,20 +1,25 @@
-"""3D walls: walls of rigid axis-aligned boxes (z up) joined by dry Mohr-Coulomb contacts, analysed by limit analysis
-and the explicit solver (the out-of-plane collapse of a leaf, a facade with its return walls; their motion in time).
-The package's 2D side is a wall in the plane (:class:`masonry_dem.Model`); this one is its counterpart in space, with
-the same joint laws, the same :class:`masonry_dem.Results` and :class:`masonry_dem.TimeHistory` (``dimension`` 3:
-arrays of 6 columns where the plane has 3) and the same case files, command line and result file.
+"""3D walls: walls of rigid blocks (axis-aligned boxes and convex polyhedra, z up) joined by dry Mohr-Coulomb
+contacts, analysed by limit analysis and the explicit solver (the out-of-plane collapse of a leaf, a facade with its
+return walls; their motion in time). The package's 2D side is a wall in the plane (:class:`masonry_dem.Model`); this
+one is its counterpart in space, with the same joint laws, the same :class:`masonry_dem.Results` and
+:class:`masonry_dem.TimeHistory` (``dimension`` 3: arrays of 6 columns where the plane has 3) and the same case
+files, command line and result file.
 
-* :class:`Model3D` (``masonry_dem.Model3D``): the model, from an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] (m);
+* :class:`Model3D` (``masonry_dem.Model3D``): the model, from an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] (m)
+  and lists of the vertices of convex polyhedra (``polyhedra``, and fixed ones: ``supports``);
   ``Model3D.solve_limit()`` is its limit analysis, ``Model3D.solve_dynamic()`` the explicit solver's quasi-static
   pushover (load control) and ``Model3D.simulate()`` a time history (initial conditions, base accelerations along
   x, y and z), with the names and keywords of ``Model``'s.
 * Generators, each returning an (n, 6) array of boxes [m]: :func:`running_bond_3d` (a single leaf in running bond),
   :func:`u_wall` (a facade with two bonded return walls), :func:`corner_wall` (with one), :func:`cut_openings`
   (openings [x0, z0, x1, z1] through a facade).
-* :mod:`.case`: the case files' 3D tables (``[geometry] boxes``, ``[geometry.leaf]``, ``[geometry.u_wall]``,
-  ``[geometry.corner]``, ``[top] height``, ``[loads] direction``; docs/case-format.md, "3D walls").
-* :mod:`.plot` (matplotlib's mplot3d, imported on first use): :func:`plot_mechanism_3d`, :func:`mechanism_figure`.
-* :mod:`.export` (meshio, on first use): :func:`write_vtk` (the blocks as hexahedra, the contacts as quads).
+* :mod:`.case`: the case files' 3D tables (``[geometry] boxes``, ``polyhedra``, ``supports``, ``[geometry.leaf]``,
+  ``[geometry.u_wall]``, ``[geometry.corner]``, ``[top] height``, ``[loads] direction``; docs/case-format.md, "3D
+  walls").
+* :mod:`.plot` (matplotlib's mplot3d, imported on first use): :func:`plot_mechanism_3d` (the mechanism or the
+  deformed shape), :func:`mechanism_figure`, :func:`plot_contacts_3d` (the contacts by state), :func:`contacts_figure`.
+* :mod:`.export` (meshio, on first use): :func:`write_vtk` (the blocks as hexahedra, or polyhedra, the contacts as
+  their polygons; a time history as a ParaView series).
 * :mod:`.report`: :func:`describe_mechanism`, the one-line description of a 3D mechanism.
 
 In this version a 3D wall takes dry joints, and no static (Newton) solver; its explicit pushover is load-controlled,
@@ -35,7 +40,7 @@ from .model import Model3D, corner_wall, cut_openings, running_bond_3d, u_wall
 
 if TYPE_CHECKING:
     from .export import write_vtk
-    from .plot import mechanism_figure, plot_mechanism_3d
+    from .plot import contacts_figure, mechanism_figure, plot_contacts_3d, plot_mechanism_3d
     from .report import describe_mechanism
 
 __all__ = [
@@ -46,6 +51,8 @@ __all__ = [
     "cut_openings",
     "plot_mechanism_3d",
     "mechanism_figure",
+    "plot_contacts_3d",
+    "contacts_figure",
     "write_vtk",
     "describe_mechanism",
 ]
@@ -55,6 +62,8 @@ __all__ = [
 _LAZY = {
     "plot_mechanism_3d": ".plot",
     "mechanism_figure": ".plot",
+    "plot_contacts_3d": ".plot",
+    "contacts_figure": ".plot",
     "write_vtk": ".export",
     "describe_mechanism": ".report",
 }

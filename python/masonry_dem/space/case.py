@@ -39,6 +39,7 @@ from .model import (
 
 __all__ = [
     "GEOMETRY_KINDS_3D",
+    "SOLID_KEYS",
     "LEAF_KEYS",
     "BONDED_KEYS",
     "METHODS_3D",
@@ -50,15 +51,20 @@ __all__ = [
     "ModelParameters3D",
     "read_geometry",
     "generate_boxes",
+    "check_hulls",
     "case_from_tables",
 ]
 
-#: The [geometry] forms of a 3D wall: an explicit list of boxes, and the generators' tables.
-GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner")
+#: The [geometry] forms of a 3D wall: an explicit list of boxes, the generators' tables, and a list of convex
+#: polyhedra (alone or beside boxes).
+GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner", "polyhedra")
 #: Keys of [geometry.leaf]: a single leaf in running bond.
 LEAF_KEYS = ("length", "height", "thickness", "block_length", "block_height", "first_course", "openings")
 #: Keys of [geometry.u_wall] and [geometry.corner]: a facade with two return walls, or one.
 BONDED_KEYS = ("facade", "height", "returns", "thickness", "block_length", "block_height", "openings")
+
+#: The [geometry] keys of convex polyhedra given by their vertices: wall blocks, and fixed ones.
+SOLID_KEYS = ("polyhedra", "supports")
 
 # The core's generator of each [geometry] table, and the name its messages give the table.
 _GENERATORS = {"leaf": "running_bond_3d", "u_wall": "u_wall", "corner": "corner"}
@@ -77,8 +83,11 @@ def read_geometry(geo: _Table, kind: str) -> Dict[str, Any]:
             f"is the out-of-plane thickness of a wall in the plane; a 3D wall ([geometry] {kind}) has its thickness in "
             "its boxes" + ("" if kind == "boxes" else f" or in [geometry.{kind}] thickness"),
         )
-    if kind == "boxes":
-        return dict(boxes=_boxes(geo))
+    # vertex lists: each block the convex hull of its vertices, made (and refused) by the core (check_hulls)
+    named = (("polyhedra", "block"), ("supports", "support"))
+    solids = {key: geo.polygons(key, what, dimension=3) for key, what in named if key in geo}
+    if kind in ("boxes", "polyhedra"):
+        return dict(boxes=_boxes(geo) if "boxes" in geo else [], **solids)
     if kind == "leaf":
         table = geo.table("leaf", LEAF_KEYS)
         assert table is not None
@@ -91,7 +100,18 @@ def read_geometry(geo: _Table, kind: str) -> Dict[str, Any]:
         names = ("facade", "height", "returns", "thickness", "block_length", "block_height")
         args = {name: table.number(name, check=_positive, unit="length") for name in names}
     args["openings"] = _openings(table)
-    return args
+    return dict(args, **solids)
+
+
+def check_hulls(geometry: Mapping[str, Any], source: str) -> None:
+    """The core's refusals of the vertex lists of ``polyhedra`` and ``supports`` (fewer than 4 vertices off one
+    plane), named by their keys in the case file (``geometry.polyhedra[3]: ...``) after the file name."""
+    for key in SOLID_KEYS:
+        if geometry.get(key):
+            try:
+                _core.convex_hulls(geometry[key], f"geometry.{key}")
+            except InputError as exc:
+                raise InputError(f"{source}: {exc}", getattr(exc, "key", None)) from exc
 
 
 def _boxes(geo: _Table) -> List[List[float]]:
@@ -146,9 +166,9 @@ def _openings(table: _Table) -> Optional[List[List[float]]]:
 def generate_boxes(kind: str, arguments: Mapping[str, Any], source: str) -> np.ndarray:
     """The boxes of a checked 3D [geometry] of ``kind``; the core's refusals (a last course too thin, a return
     too short, an opening over a corner) get the file name in front and the case file's key names."""
-    if kind == "boxes":
+    if kind in ("boxes", "polyhedra"):
         return np.asarray(arguments["boxes"], dtype=np.float64).reshape(-1, 6)
-    given = {key: value for key, value in arguments.items() if value is not None}
+    given = {key: value for key, value in arguments.items() if value is not None and key not in SOLID_KEYS}
     make = {"leaf": _core.running_bond_3d, "u_wall": _core.u_wall, "corner": _core.corner_wall}[kind]
     try:
         return np.asarray(make(**given), dtype=np.float64).reshape(-1, 6)
@@ -184,6 +204,9 @@ def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any
             raise top.error(f"[{name}]: a time history is refused: {NO_CASE_HISTORY_3D} (this case is 3D: [geometry] "
                             f"{kind})", name)
     base = _base(top)
+    if base is None and geometry.get("supports"):
+        base = False  # a wall on supports has no foundation unless a [base] table puts one
+    check_hulls(geometry, top.source)
     beam = _top_beam(top)
     joints = _joints(top)
     _dry_joints(top, joints)
@@ -204,7 +227,8 @@ def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any
             raise table.key_error("methods", f"{_quote(others[0])}: {IN_3D}")
     boxes = generate_boxes(kind, geometry, top.source)
     model = ModelParameters3D(boxes=boxes, density=density, base=base, top=beam, joints=joints, gravity=gravity,
-                              live=live, direction=direction, carried=carried)
+                              live=live, direction=direction, carried=carried, polyhedra=geometry.get("polyhedra"),
+                              supports=geometry.get("supports"))
     assert isinstance(analysis, AnalysisParameters)
     return Case(title=title, model=model, analysis=analysis, method=method, source=top.source, reference=reference)
 

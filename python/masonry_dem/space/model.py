@@ -43,8 +43,9 @@ NO_CASE_HISTORY_3D = ("3D time histories run from Python in this version (masonr
 CORE_DEFAULTS_3D: Mapping[str, Any] = MappingProxyType(dict(_core.DEFAULTS_3D))
 
 
-def _real_boxes(func: str, boxes: Any) -> None:
-    """Refuse boxes that are booleans or complex numbers (which the core would take as numbers), or none."""
+def _real_boxes(func: str, boxes: Any, others: bool = False) -> None:
+    """Refuse boxes that are booleans or complex numbers (which the core would take as numbers), or none unless
+    ``others`` (polyhedra are given)."""
     if boxes is None:
         return
     try:
@@ -55,8 +56,8 @@ def _real_boxes(func: str, boxes: Any) -> None:
         raise InputError(f"{func}: boxes must be real numbers [m], got an array of {array.dtype}")
     if array.dtype == object and any(isinstance(x, (bool, np.bool_, complex, np.complexfloating)) for x in array.ravel()):
         raise InputError(f"{func}: boxes must be real numbers [m], got booleans or complex numbers")
-    if array.size == 0:
-        raise InputError(f"{func}: no boxes: give at least one box [x0, y0, z0, x1, y1, z1]")
+    if array.size == 0 and not others:
+        raise InputError(f"{func}: no boxes: give at least one box [x0, y0, z0, x1, y1, z1] (or polyhedra)")
 
 
 running_bond_3d = input_errors(_core.running_bond_3d, "running_bond_3d")
@@ -70,7 +71,7 @@ class Model3D(_core.Model3D):
     __module__ = "masonry_dem"
 
     def __new__(cls, *args: Any, **kwargs: Any) -> "Model3D":
-        _real_boxes("Model3D", args[0] if args else kwargs.get("boxes"))
+        _real_boxes("Model3D", args[0] if args else kwargs.get("boxes"), kwargs.get("polyhedra") is not None)
         refuse_booleans("Model3D", _MODEL3D_SIGNATURE, args, kwargs)
         return input_errors(_core.Model3D.__new__, "Model3D")(cls, *args, **kwargs)  # type: ignore[no-any-return]
 
@@ -90,10 +91,12 @@ del _name
 class ModelParameters3D:
     """The 3D wall of a case, as the arguments of :class:`masonry_dem.Model3D`.
 
-    ``boxes`` is an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] (m); the others are those the case gives,
-    None when it leaves them out (the core's default, :data:`CORE_DEFAULTS_3D`; for top: no top beam; for
-    joints: the default law everywhere): density [kg/m3], base, top (the top beam's height [m]), joints, gravity
-    [m/s2], live, direction [deg], carried (the loads carried by wall blocks: (block, [x, y, z] m, weight N)).
+    ``boxes`` is an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] (m; none when the case gives polyhedra only);
+    the others are those the case gives, None when it leaves them out (the core's default, :data:`CORE_DEFAULTS_3D`;
+    for top: no top beam; for joints: the default law everywhere): density [kg/m3], base, top (the top beam's
+    height [m]), joints, gravity [m/s2], live, direction [deg], carried (the loads carried by wall blocks: (block,
+    [x, y, z] m, weight N)), polyhedra and supports (convex blocks, free and fixed, each a list of its vertices
+    [x, y, z] m).
     """
 
     dimension: ClassVar[int] = 3
@@ -107,6 +110,8 @@ class ModelParameters3D:
     live: Optional[str] = None
     direction: Optional[float] = None
     carried: Optional[List[Tuple[int, List[float], float]]] = None
+    polyhedra: Optional[List[List[List[float]]]] = None
+    supports: Optional[List[List[List[float]]]] = None
 
     def arguments(self) -> Dict[str, Any]:
         """The keyword arguments of ``Model3D``: boxes and the parameters given."""

@@ -1,13 +1,17 @@
 """Plots of a 3D wall's analysis, limit or explicit (matplotlib's mplot3d, imported with this module):
 
-* :func:`plot_mechanism_3d` (ax, model, results, scale=None): on a 3D ``Axes``, the blocks moved along the
-  collapse mechanism (``Results.mechanism``, rigidly: each box turned exactly about its centroid), scaled so that
-  the largest corner motion is :data:`MECHANISM_FRACTION_3D` of the wall's height, their faces coloured by how far
-  each block moves (relative to the largest), over the faint outlines of the wall at rest; the base a grey slab,
-  the live load's direction an arrow over the wall; equal axes.
+* :func:`plot_mechanism_3d` (ax, model, results, scale=None, field="mechanism"): on a 3D ``Axes``, the blocks moved
+  along the collapse mechanism (``Results.mechanism``, rigidly: each block turned exactly about its centroid; or the
+  deformed shape, ``field="displacements"``), scaled so that the largest vertex motion is
+  :data:`MECHANISM_FRACTION_3D` of the wall's height, each block with its own faces (a box's six, a polyhedron's),
+  coloured by how far it moves (relative to the largest), over the faint outlines of the wall at rest; the base and
+  the supports grey, the live load's direction an arrow over the wall; equal axes.
 * :func:`mechanism_figure` (model, results, title=None, path=None): the page ``masonry-dem run --plot`` draws for a
   3D case: two views of the mechanism (one across the load, one along it) with a colour bar, and a title with the
   collapse multiplier and the load's direction.
+* :func:`plot_contacts_3d` (ax, model, results): each contact's polygon where it lies at rest, filled by its state
+  (open, sliding, rocking: the plane's colours); :func:`contacts_figure` (model, results, title=None, path=None): a
+  page of it beside the mechanism (or the deformed shape).
 
 Geometry in m. Without a ``path`` the figure goes through pyplot (for ``plt.show()`` or a notebook); with one it is
 written atomically as the 2D figures are (:func:`masonry_dem.plot.save_figure`, of :mod:`masonry_dem.plot.canvas`,
@@ -18,7 +22,7 @@ from __future__ import annotations
 
 import math
 import os
-from typing import Any, Optional, Tuple, Union
+from typing import Any, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 from matplotlib import colormaps
@@ -28,10 +32,12 @@ from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
 from .._core import InputError
 from ..plot.canvas import _finish, _new_figure
-from ..report import format_multiplier
-from .report import box_corners, corner_motion, direction_text, dof_points, moved_corners
+from ..plot.panels import STATE_STYLES
+from ..report import format_multiplier, interface_categories
+from .report import block_shapes, contact_polygons, direction_text, moved_vertices, vertex_motion
 
-__all__ = ["MECHANISM_FRACTION_3D", "MOTION_COLORMAP", "plot_mechanism_3d", "mechanism_figure"]
+__all__ = ["MECHANISM_FRACTION_3D", "MOTION_COLORMAP", "plot_mechanism_3d", "mechanism_figure", "plot_contacts_3d",
+           "contacts_figure"]
 
 #: The largest corner motion of the drawn mechanism, as a fraction of the wall's height.
 MECHANISM_FRACTION_3D = 0.15
@@ -44,19 +50,36 @@ _FACES = ((0, 1, 2, 3), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), 
 _EDGES = ((0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7))
 
 
-def _mechanism(model: Any, results: Any) -> Tuple[np.ndarray, np.ndarray, float]:
-    """(the mechanism (n_all, 6), each block's corner motion over the largest (n_all,), the largest [per unit
-    mechanism]); zeros when there is none (no collapse)."""
+def _mechanism(model: Any, results: Any, field: str = "mechanism") -> Tuple[np.ndarray, np.ndarray, float]:
+    """(the mechanism (n_all, 6) (or the displacements, ``field``), each block's vertex motion over the largest
+    (n_all,), the largest [per unit mechanism]); zeros when there is none (no collapse)."""
     boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
-    mech = np.asarray(results.mechanism, dtype=np.float64)
+    mech = np.asarray(getattr(results, field), dtype=np.float64)
     if mech.shape != (len(boxes), 6) or not np.all(np.isfinite(mech)):
         mech = np.zeros((len(boxes), 6))
-    motion = corner_motion(boxes, mech, dof_points(model))
-    base = model.base_index
-    if base is not None:
-        motion[int(base)] = 0.0
+    motion = vertex_motion(model, mech)
+    motion[_fixed(model)] = 0.0
     peak = float(motion.max()) if len(motion) else 0.0
     return mech, (motion / peak if peak > 0 else motion), peak
+
+
+def _fixed(model: Any) -> List[int]:
+    """The blocks that never move: the base and the supports (after the wall's blocks, but the top beam)."""
+    n_all = len(np.asarray(model.boxes).reshape(-1, 6))
+    return [i for i in range(int(model.n_blocks), n_all) if i != model.top_index]
+
+
+def _faces(shapes: List[Tuple[np.ndarray, List[List[int]]]], i: int, boxed: bool) -> Sequence[Sequence[int]]:
+    """The faces of block i to draw: a box's in this module's order, a polyhedron's own."""
+    return _FACES if boxed else shapes[i][1]
+
+
+def _edges(shapes: List[Tuple[np.ndarray, List[List[int]]]], i: int, boxed: bool) -> Sequence[Tuple[int, int]]:
+    """The edges of block i: a box's twelve, a polyhedron's those of its faces, each once."""
+    if boxed:
+        return _EDGES
+    pairs = {tuple(sorted((f[k], f[(k + 1) % len(f)]))) for f in shapes[i][1] for k in range(len(f))}
+    return sorted(pairs)  # type: ignore[arg-type]
 
 
 def _wall_height(boxes: np.ndarray, n_wall: int) -> float:
@@ -64,47 +87,57 @@ def _wall_height(boxes: np.ndarray, n_wall: int) -> float:
     return float(wall[:, 5].max() - wall[:, 2].min())
 
 
-def plot_mechanism_3d(ax: Any, model: Any, results: Any, scale: Optional[float] = None, colorbar: bool = False) -> Any:
-    """Draw the collapse mechanism of a 3D wall on the 3D axes ``ax`` (see the module docstring); ``scale``: the
-    factor on the mechanism [m per unit] (default: its largest corner motion drawn as
-    :data:`MECHANISM_FRACTION_3D` of the wall's height). Returns the ScalarMappable of the colours (for a colour
-    bar; drawn on ``ax``'s figure when ``colorbar``). Raises InputError when ``ax`` is not a 3D axes."""
+def plot_mechanism_3d(ax: Any, model: Any, results: Any, scale: Optional[float] = None, colorbar: bool = False,
+                      field: str = "mechanism") -> Any:
+    """Draw the collapse mechanism of a 3D wall on the 3D axes ``ax`` (see the module docstring), each block with
+    its own faces (a box's six, a polyhedron's); ``scale``: the factor on the mechanism [m per unit] (default: its
+    largest vertex motion drawn as :data:`MECHANISM_FRACTION_3D` of the wall's height). ``field="displacements"``
+    draws the deformed shape instead (``Results.displacements``, the explicit solver's last step), on the same
+    scale rule. Returns the ScalarMappable of the colours (for a colour bar; drawn on ``ax``'s figure when
+    ``colorbar``). Raises InputError when ``ax`` is not a 3D axes or ``field`` is another."""
     if not hasattr(ax, "add_collection3d"):
         raise InputError(f"plot_mechanism_3d: ax must be a 3D axes (fig.add_subplot(projection=\"3d\")), got "
                          f"{type(ax).__name__}")
+    if field not in ("mechanism", "displacements"):
+        raise InputError(f'plot_mechanism_3d: field must be "mechanism" or "displacements", got {field!r}')
     boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
     n_wall = int(model.n_blocks)
-    mech, rel, peak = _mechanism(model, results)
+    mech, rel, peak = _mechanism(model, results, field)
     height = _wall_height(boxes, n_wall)
     if scale is None:
         scale = MECHANISM_FRACTION_3D * height / peak if peak > 0 else 0.0
-    base = None if model.base_index is None else int(model.base_index)
-    at_rest = box_corners(boxes)
-    moved = moved_corners(boxes, mech, scale, dof_points(model))
+    fixed = _fixed(model)
+    shapes = block_shapes(model)
+    boxed = list(getattr(model, "block_is_box", None) or [True] * len(boxes))
+    at_rest = [vertices for vertices, _ in shapes]
+    moved = moved_vertices(model, mech, scale)
 
     # the wall at rest: its blocks' edges, faint
-    edges = [at_rest[i][[p, q]] for i in range(len(boxes)) if i != base for p, q in _EDGES]
+    edges = [at_rest[i][[p, q]] for i in range(len(boxes)) if i not in fixed for p, q in _edges(shapes, i, boxed[i])]
     ax.add_collection3d(Line3DCollection(edges, colors="#9a9a9a", linewidths=0.35, alpha=0.55))
-    # the base: a grey slab that does not move
-    if base is not None:
-        slab = [at_rest[base][list(f)] for f in _FACES]
+    # the base and the supports: grey, they do not move; supports (any shape, beside the blocks they carry) are drawn
+    # first and the blocks over them, as mplot3d's depth order of whole collections may not
+    if any(i != model.base_index for i in fixed):
+        ax.computed_zorder = False
+    if fixed:
+        slab = [at_rest[i][list(f)] for i in fixed for f in _faces(shapes, i, boxed[i])]
         ax.add_collection3d(Poly3DCollection(slab, facecolors="#d9d9d9", edgecolors="#a0a0a0", linewidths=0.4,
                                              alpha=0.6))
     # the blocks moved along the mechanism, coloured by their motion
     cmap, norm = colormaps[MOTION_COLORMAP], Normalize(0.0, 1.0)
     faces, colours = [], []
     for i in range(len(boxes)):
-        if i == base:
+        if i in fixed:
             continue
         colour = cmap(norm(rel[i])) if peak > 0 else (0.82, 0.82, 0.82, 1.0)
-        for f in _FACES:
+        for f in _faces(shapes, i, boxed[i]):
             faces.append(moved[i][list(f)])
             colours.append(colour)
     ax.add_collection3d(Poly3DCollection(faces, facecolors=colours, edgecolors="#202020", linewidths=0.3,
                                          alpha=0.95))
     # the live load's direction: an arrow over the wall
     direction = getattr(model, "direction", None)
-    everything = np.concatenate([at_rest.reshape(-1, 3), moved.reshape(-1, 3)])
+    everything = np.concatenate(at_rest + moved)
     lo, hi = everything.min(axis=0), everything.max(axis=0)
     if direction is not None:
         d = math.radians(direction)
@@ -195,4 +228,73 @@ def mechanism_figure(
     heading = f"{results.method}, {status}, {lam}, {load}"
     if peak <= 0:
         heading += " — no mechanism drawn"
+    return _finish(fig, f"{title} — {heading}" if title else heading, path, dpi)
+
+
+def plot_contacts_3d(ax: Any, model: Any, results: Any) -> dict:
+    """Draw the contacts of a 3D wall on the 3D axes ``ax``, each its own polygon (a rectangle between boxes, any
+    convex polygon between polyhedra) where it lies at rest, filled by its state in ``results.interface_states``
+    (the colours of the plane's figures, :data:`masonry_dem.plot.panels.STATE_STYLES`: open, sliding, rocking,
+    sliding + rocking; the elastic ones faint), among the faint edges of the blocks. Returns the count of each
+    state. Raises InputError when ``ax`` is not a 3D axes."""
+    if not hasattr(ax, "add_collection3d"):
+        raise InputError(f"plot_contacts_3d: ax must be a 3D axes (fig.add_subplot(projection=\"3d\")), got "
+                         f"{type(ax).__name__}")
+    boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
+    shapes = block_shapes(model)
+    boxed = list(getattr(model, "block_is_box", None) or [True] * len(boxes))
+    fixed = _fixed(model)
+    edges = [shapes[i][0][[p, q]] for i in range(len(boxes)) if i not in fixed for p, q in _edges(shapes, i, boxed[i])]
+    ax.add_collection3d(Line3DCollection(edges, colors="#9a9a9a", linewidths=0.35, alpha=0.5))
+    polygons = contact_polygons(model)
+    states = np.asarray(results.interface_states, dtype=np.int64).reshape(-1)
+    categories = interface_categories(states) if len(states) == len(polygons) else ["elastic"] * len(polygons)
+    counts = {}
+    for name, colour, _ in STATE_STYLES:
+        chosen = [p for p, c in zip(polygons, categories) if c == name]
+        counts[name] = len(chosen)
+        if chosen:
+            faint = name == "elastic"
+            ax.add_collection3d(Poly3DCollection(chosen, facecolors=colour, edgecolors="#303030",
+                                                 linewidths=0.2 if faint else 0.5, alpha=0.15 if faint else 0.9))
+    points = np.concatenate([v for v, _ in shapes] + polygons) if polygons else boxes.reshape(-1, 3)
+    _equal_axes(ax, points.min(axis=0), points.max(axis=0))
+    from matplotlib.ticker import MaxNLocator
+
+    for axis, label in ((ax.xaxis, "x"), (ax.yaxis, "y"), (ax.zaxis, "z")):
+        axis.set_major_locator(MaxNLocator(nbins=4))
+        axis.set_label_text(f"{label} [m]")
+    return counts
+
+
+def contacts_figure(
+    model: Any,
+    results: Any,
+    title: Optional[str] = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    dpi: int = 150,
+) -> Figure:
+    """A page of a 3D wall's analysis beside :func:`mechanism_figure`: its contacts by state
+    (:func:`plot_contacts_3d`), seen from the side the load comes from, and the blocks moved along the mechanism (or
+    the explicit solver's deformed shape, when it has no mechanism) from above; a legend of the states with their
+    counts. Written to ``path`` (a PNG, atomically) when given, else made through pyplot. Returns the figure."""
+    from matplotlib.patches import Patch
+
+    fig = _new_figure((14.0, 7.0), path is not None)
+    direction = getattr(model, "direction", None)
+    d = 0.0 if direction is None else float(direction)
+    ax = fig.add_subplot(1, 2, 1, projection="3d")
+    ax.view_init(elev=22.0, azim=d - 130.0)
+    counts = plot_contacts_3d(ax, model, results)
+    ax.set_title("contacts by state, at rest", fontsize=10)
+    handles = [Patch(facecolor=colour, edgecolor="#303030", alpha=0.15 if name == "elastic" else 0.9,
+                     label=f"{name} ({counts[name]})") for name, colour, _ in STATE_STYLES]
+    ax.legend(handles=handles, loc="upper left", fontsize=8, frameon=False)
+    _, _, peak = _mechanism(model, results)
+    field = "mechanism" if peak > 0 else "displacements"
+    other = fig.add_subplot(1, 2, 2, projection="3d")
+    other.view_init(elev=35.0, azim=d - 60.0)
+    plot_mechanism_3d(other, model, results, field=field, colorbar=True)
+    other.set_title("the mechanism" if field == "mechanism" else "the deformed shape (exaggerated)", fontsize=10)
+    heading = f"{results.method}, {results.status}, contacts of {model.n_blocks} blocks"
     return _finish(fig, f"{title} — {heading}" if title else heading, path, dpi)

@@ -1,7 +1,7 @@
 """Plain-text reports of a 3D wall's analysis (limit or explicit): the one-line description of its collapse mechanism
 (:func:`describe_mechanism`, what ``masonry-dem run`` prints for a 3D case) and the kinematic helpers the plots share
-(:func:`corner_motion`, :func:`moved_corners`). No matplotlib here. Lengths in m, rotations in rad, directions in
-plan in degrees from +x towards +y.
+(:func:`vertex_motion`, :func:`moved_vertices`, the blocks' faces and the contacts' polygons). No matplotlib here.
+Lengths in m, rotations in rad, directions in plan in degrees from +x towards +y.
 """
 
 from __future__ import annotations
@@ -13,8 +13,12 @@ import numpy as np
 
 from .._mechanism import CRACK_TOLERANCE, MOVING_FRACTION, connected_parts as _connected_parts, mechanism_text
 
-__all__ = ["box_corners", "corner_motion", "dof_points", "contact_motion", "moved_corners", "contact_jumps",
-           "describe_mechanism", "direction_text"]
+__all__ = ["box_corners", "block_shapes", "all_boxes", "own_centroids", "contact_polygons", "padded_polygons",
+           "corner_motion", "vertex_motion", "dof_points", "contact_motion", "moved_vertices",
+           "contact_jumps", "describe_mechanism", "direction_text"]
+
+# The six faces of a box, as indices of its corners (box_corners' order), counter-clockwise seen from outside
+BOX_FACES = ((0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7))
 
 
 def box_corners(boxes: np.ndarray) -> np.ndarray:
@@ -26,6 +30,50 @@ def box_corners(boxes: np.ndarray) -> np.ndarray:
     ys = np.stack([y0, y0, y1, y1, y0, y0, y1, y1], axis=1)
     zs = np.stack([z0, z0, z0, z0, z1, z1, z1, z1], axis=1)
     return np.stack([xs, ys, zs], axis=-1)
+
+
+def all_boxes(model: Any) -> bool:
+    """Whether every block of ``model`` is a box with sides along the axes (a model without ``block_is_box``:
+    a wall of boxes)."""
+    flags = getattr(model, "block_is_box", None)
+    return flags is None or all(flags)
+
+
+def block_shapes(model: Any) -> List[Tuple[np.ndarray, List[List[int]]]]:
+    """Each block's shape: (its vertices (k, 3) [m], its faces, each a list of indices into them counter-clockwise
+    seen from outside), in the order of ``model.boxes``; a box's vertices are its corners in :func:`box_corners`'
+    order, with :data:`BOX_FACES`."""
+    boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
+    corners = box_corners(boxes)
+    flags = getattr(model, "block_is_box", None)
+    if flags is None or all(flags):
+        return [(corners[i], [list(f) for f in BOX_FACES]) for i in range(len(boxes))]
+    vertices, faces = model.block_vertices, model.block_faces
+    return [(corners[i], [list(f) for f in BOX_FACES]) if flags[i]
+            else (np.asarray(vertices[i], dtype=np.float64).reshape(-1, 3), [list(f) for f in faces[i]])
+            for i in range(len(boxes))]
+
+
+def contact_polygons(model: Any) -> List[np.ndarray]:
+    """Each contact's polygon (k, 3) [m], k >= 3 corners counter-clockwise seen from the tip of its normal
+    (``model.interface_polygons``; a model without it: the rectangles of ``interface_corners``)."""
+    polygons = getattr(model, "interface_polygons", None)
+    if polygons is None:
+        return list(np.asarray(model.interface_corners, dtype=np.float64).reshape(-1, 4, 3))
+    return [np.asarray(p, dtype=np.float64).reshape(-1, 3) for p in polygons]
+
+
+def padded_polygons(model: Any) -> np.ndarray:
+    """(m, k, 3) the contacts' polygons (:func:`contact_polygons`) padded to the most corners k by repeating each
+    polygon's first corner (which changes no largest or smallest value over the corners): the rectangles of
+    boxes as they are."""
+    polygons = contact_polygons(model)
+    k = max((len(p) for p in polygons), default=4)
+    out = np.empty((len(polygons), k, 3))
+    for i, p in enumerate(polygons):
+        out[i, : len(p)] = p
+        out[i, len(p):] = p[0]
+    return out
 
 
 def _centroids(boxes: np.ndarray, centroids: Any = None) -> np.ndarray:
@@ -43,6 +91,25 @@ def dof_points(model: Any) -> np.ndarray:
     return _centroids(model.boxes, getattr(model, "centroids", None))
 
 
+def own_centroids(model: Any, boxes_centres: np.ndarray) -> np.ndarray:
+    """(n_all, 3) each block's own centroid [m], without the loads it carries: a box's centre (``boxes_centres``),
+    a polyhedron's from the model's centre of mass with its loads (``model.centroids``, ``model.mass``) less the
+    loads' (each weight / g at its point)."""
+    out = np.array(boxes_centres, dtype=np.float64).reshape(-1, 3)
+    centroids = np.asarray(model.centroids, dtype=np.float64).reshape(-1, 3)
+    mass = np.asarray(model.mass, dtype=np.float64)
+    moment = mass[:, None] * centroids
+    own = mass.copy()
+    g = float(model.gravity)
+    for block, point, weight in getattr(model, "carried", None) or []:
+        moment[block] -= weight / g * np.asarray(point, dtype=np.float64)
+        own[block] -= weight / g
+    flags = getattr(model, "block_is_box", None) or [True] * len(out)
+    shaped = ~np.asarray(flags, dtype=bool)
+    out[shaped] = moment[shaped] / own[shaped, None]
+    return out
+
+
 def corner_motion(boxes: np.ndarray, motion: np.ndarray, centroids: Any = None) -> np.ndarray:
     """(n,) largest corner motion [m] of each box for the small motion (ux, uy, uz, rx, ry, rz) at its centroid
     (``centroids``, the model's, or the boxes' centres)."""
@@ -51,6 +118,20 @@ def corner_motion(boxes: np.ndarray, motion: np.ndarray, centroids: Any = None) 
     m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
     u = m[:, None, :3] + np.cross(m[:, None, 3:], r)
     return np.linalg.norm(u, axis=-1).max(axis=1)  # type: ignore[no-any-return]
+
+
+def vertex_motion(model: Any, motion: np.ndarray) -> np.ndarray:
+    """(n_all,) largest motion [m] of each block at its vertices (a box's corners, a polyhedron's vertices) for the
+    small motion (ux, uy, uz, rx, ry, rz) at its centroid (the model's dofs): :func:`corner_motion` of any shape."""
+    if all_boxes(model):
+        return corner_motion(model.boxes, motion, dof_points(model))
+    centroid = dof_points(model)
+    m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
+    out = np.empty(len(m))
+    for i, (vertices, _) in enumerate(block_shapes(model)):
+        u = m[i, :3] + np.cross(m[i, 3:], vertices - centroid[i])
+        out[i] = np.linalg.norm(u, axis=-1).max()
+    return out
 
 
 def contact_motion(model: Any, motion: np.ndarray) -> np.ndarray:
@@ -62,7 +143,7 @@ def contact_motion(model: Any, motion: np.ndarray) -> np.ndarray:
     centroid = dof_points(model)
     m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
     pairs = np.asarray(model.interface_blocks, dtype=np.int64).reshape(-1, 2)
-    corners = np.asarray(model.interface_corners, dtype=np.float64).reshape(-1, 4, 3)
+    corners = padded_polygons(model)
     out = np.zeros(len(boxes))
     for side in (0, 1):
         i = pairs[:, side]
@@ -72,21 +153,21 @@ def contact_motion(model: Any, motion: np.ndarray) -> np.ndarray:
 
 
 def contact_jumps(model: Any, motion: np.ndarray) -> np.ndarray:
-    """(m, 3) jumps of a motion (n_all, 6) of the blocks across each contact, over its four corners: the largest
+    """(m, 3) jumps of a motion (n_all, 6) of the blocks across each contact, over its corners: the largest
     slip [m] (the jump along the contact's plane), and the largest and the smallest normal gap [m] (positive
     opens). With the normal n from block a to block b, the jump at a corner p is u_b(p) - u_a(p)."""
     boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)
     centroid = dof_points(model)
     m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
     pairs = np.asarray(model.interface_blocks, dtype=np.int64).reshape(-1, 2)
-    corners = np.asarray(model.interface_corners, dtype=np.float64).reshape(-1, 4, 3)
+    corners = padded_polygons(model)
     normals = np.asarray(model.interface_normals, dtype=np.float64).reshape(-1, 3)
     a, b = pairs[:, 0], pairs[:, 1]
 
     def at(i: np.ndarray) -> np.ndarray:
         return m[i, None, :3] + np.cross(m[i, None, 3:], corners - centroid[i, None, :])
 
-    jump = at(b) - at(a)  # (m, 4, 3)
+    jump = at(b) - at(a)  # (m, k, 3)
     gap = np.einsum("kqi,ki->kq", jump, normals)
     slip = np.linalg.norm(jump - gap[..., None] * normals[:, None, :], axis=-1)
     return np.stack([slip.max(axis=1), gap.max(axis=1), gap.min(axis=1)], axis=1)  # type: ignore[no-any-return]
@@ -102,18 +183,13 @@ def _rotation(w: np.ndarray) -> np.ndarray:
     return np.eye(3) + math.sin(angle) * kx + (1.0 - math.cos(angle)) * kx @ kx  # type: ignore[no-any-return]
 
 
-def moved_corners(boxes: np.ndarray, motion: np.ndarray, scale: float, centroids: Any = None) -> np.ndarray:
-    """(n, 8, 3) corners [m] of the boxes moved by ``scale`` times (ux, uy, uz) and turned by ``scale`` times the
-    rotation (rx, ry, rz) about their centroids (``centroids``, the model's, or the boxes' centres), the rotation
-    applied exactly (the boxes keep their shape)."""
-    corners = box_corners(boxes)
-    centroid = _centroids(boxes, centroids)
+def moved_vertices(model: Any, motion: np.ndarray, scale: float) -> List[np.ndarray]:
+    """Each block's vertices (:func:`block_shapes`) [m] moved by ``scale`` times (ux, uy, uz) and turned by ``scale``
+    times the rotation (rx, ry, rz) about its centroid (the model's dofs), the rotation applied exactly."""
+    centroid = dof_points(model)
     m = np.asarray(motion, dtype=np.float64).reshape(-1, 6)
-    out = np.empty_like(corners)
-    for i in range(len(corners)):
-        rot = _rotation(scale * m[i, 3:])
-        out[i] = centroid[i] + scale * m[i, :3] + (corners[i] - centroid[i]) @ rot.T
-    return out
+    return [centroid[i] + scale * m[i, :3] + (vertices - centroid[i]) @ _rotation(scale * m[i, 3:]).T
+            for i, (vertices, _) in enumerate(block_shapes(model))]
 
 
 def direction_text(direction: Optional[float]) -> str:
@@ -192,7 +268,7 @@ def describe_mechanism(model: Any, results: Any) -> str:
         return "none (no collapse)"
     top = model.top_index
     bodies = list(range(n)) + ([int(top)] if top is not None else [])
-    cm = corner_motion(boxes, mech, dof_points(model))
+    cm = vertex_motion(model, mech)
     if top is not None:  # the top beam's motion where it rests on the wall: its top corners may be far above it
         cm[int(top)] = contact_motion(model, mech)[int(top)]
     peak = float(max(cm[i] for i in bodies))
