@@ -68,3 +68,4 @@ fn a_block_turning_about_its_toe_follows_tan_alpha_minus_theta() {
     }
 }
 
+
