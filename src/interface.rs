@@ -22,7 +22,7 @@
 
 use crate::error::{Error, Result};
 use crate::shape::grid::for_each_pair;
-use crate::shape::{contacts, penetration, Aabb, Polygon};
+use crate::shape::{contacts, corner_contacts, penetration, Aabb, Polygon};
 
 /// Which kind of joint an interface is; each family may have its own joint law.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -263,6 +263,23 @@ pub fn detect(
     name: impl Fn(usize) -> String,
     poll: &mut dyn FnMut() -> bool,
 ) -> Result<Vec<Interface>> {
+    detect_with(polygons, centroids, kinds, gravity, tol, false, name, poll)
+}
+
+/// [`detect`], with `corners`: also where two blocks touch at a point ([`corner_contacts`]: a
+/// vertex on an edge, or two vertices at one point): interfaces of length 0, for blocks moved by
+/// finite rotations. A wall as built has none of these (its blocks meet along edges).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn detect_with(
+    polygons: &[Polygon],
+    centroids: &[[f64; 2]],
+    kinds: &[BlockKind],
+    gravity: [f64; 2],
+    tol: f64,
+    corners: bool,
+    name: impl Fn(usize) -> String,
+    poll: &mut dyn FnMut() -> bool,
+) -> Result<Vec<Interface>> {
     let boxes: Vec<Aabb<2>> = polygons.iter().map(Polygon::aabb).collect();
     let up = [-gravity[0], -gravity[1]];
     let side = [-gravity[1], gravity[0]];
@@ -285,7 +302,12 @@ pub fn detect(
         if kinds[i] != BlockKind::Wall && kinds[j] != BlockKind::Wall {
             return Ok(()); // base against top beam, a support on the base: not a joint of the wall
         }
-        for c in contacts(pi, pj, tol) {
+        let mut touching = contacts(pi, pj, tol);
+        if corners {
+            let points = corner_contacts(pi, pj, tol, &touching);
+            touching.extend(points);
+        }
+        for c in touching {
             let (n_up, n_side) = (dot(c.n, up), dot(c.n, side));
             let (a, b, n) = if n_up > 0.0 || (n_up == 0.0 && n_side > 0.0) {
                 (i, j, c.n)

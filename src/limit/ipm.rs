@@ -367,10 +367,12 @@ impl Lp {
         // Theta = 1: in the cones, the scaling of e with itself
         let mut nt = vec![Nt::new([1.0, 0.0, 0.0], [1.0, 0.0, 0.0]); if cone == 3 { nx / 3 } else { 0 }];
         self.assemble(&x, &nt);
+        self.regularize();
         let (mut w, mut u) = (b.clone(), self.f_live.clone());
         let solved = self.normal.factorize().is_ok()
             && self.normal.solve_in_place(&mut w).is_ok()
-            && self.normal.solve_in_place(&mut u).is_ok();
+            && self.normal.solve_in_place(&mut u).is_ok()
+            && w.iter().chain(&u).all(|v| v.is_finite());
         let fu = dot(&self.f_live, &u);
         if solved && fu > 0.0 {
             self.apply_t(&w, &mut x);

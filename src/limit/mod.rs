@@ -318,6 +318,7 @@ struct Solution {
 }
 
 mod cone;
+mod follow;
 mod ipm;
 mod outcome;
 mod plane;
@@ -327,4 +328,5 @@ mod space;
 use ipm::*;
 use plane::*;
 use program::*;
+pub use follow::{follow_mechanism, FollowOptions, MAX_FOLLOW_STEPS};
 pub use space::{limit_analysis_3d, limit_analysis_3d_with};

@@ -162,7 +162,10 @@ impl Plane {
         let slope = coulomb.iter().map(|c| c.1).collect();
         let mut plane = Plane { lp, cols, hc, ht, slope, coulomb };
         plane.lp.acols = vec![0.0; plane.lp.m * 6 * nv];
-        plane.lp.regularize_frictionless(plane.slope.contains(&0.0));
+        // point contacts (blocks moved by finite rotations) carry no moment: a block on points
+        // alone leaves its rotation row to the live load's column, and the normal matrix singular
+        let points = model.interfaces().iter().any(|it| it.l == 0.0);
+        plane.lp.regularize_frictionless(plane.slope.contains(&0.0) || points);
         plane.fill();
         Ok(plane)
     }

@@ -33,6 +33,7 @@
 mod build;
 mod carried;
 mod keys;
+mod moved;
 mod supports;
 
 pub(crate) use build::{check_settlement, law_key};

@@ -47,6 +47,100 @@ pub fn contacts(a: &Polygon, b: &Polygon, tol: f64) -> Vec<EdgeContact> {
     out
 }
 
+/// Where polygons `a` and `b` touch at a point (within `tol` \[m\]) rather than along a stretch of
+/// edge: a vertex of one on the inside of an edge of the other (the normal that edge's), or a
+/// vertex of each at one point whose facing edges there run the same way from it, as two blocks
+/// turned about a common corner (the normal the bisector of the two edges' normals, as for
+/// [`contacts`]). These are the contacts of blocks moved by finite rotations: a block turned
+/// about its toe stands on the toe alone. Each is an [`EdgeContact`] of length 0 whose two ends
+/// are the point, `edges` the edge of each polygon that gives the normal (for a vertex on an
+/// edge, the vertex's first edge). Points of a stretch in `along` (the polygons' [`contacts`])
+/// are not repeated.
+pub fn corner_contacts(a: &Polygon, b: &Polygon, tol: f64, along: &[EdgeContact]) -> Vec<EdgeContact> {
+    let (va, vb) = (a.vertices(), b.vertices());
+    let covered = |x: [f64; 2]| along.iter().any(|c| on_segment(x, c.ends, tol));
+    let mut out: Vec<EdgeContact> = Vec::new();
+    // a vertex of `p` on the inside of an edge of `q`; `flip`: p is b (the normal from a into b)
+    let on_edges = |p: &[[f64; 2]], q: &[[f64; 2]], flip: bool, out: &mut Vec<EdgeContact>| {
+        for (i, &v) in p.iter().enumerate() {
+            for j in 0..q.len() {
+                let e = [q[j], q[(j + 1) % q.len()]];
+                let (d, len) = (sub(e[1], e[0]), dist(e[0], e[1]));
+                let m = outward(e);
+                let gap = dot(sub(v, e[0]), m);
+                let s = dot(sub(v, e[0]), d) / len;
+                if gap.abs() > tol || s <= tol || s >= len - tol {
+                    continue;
+                }
+                let x = [v[0] - 0.5 * gap * m[0], v[1] - 0.5 * gap * m[1]];
+                if covered(x) {
+                    continue;
+                }
+                let (n, edges) = if flip { (m, [j, i]) } else { ([-m[0], -m[1]], [i, j]) };
+                out.push(EdgeContact { edges, n, ends: [x, x], length: 0.0 });
+            }
+        }
+    };
+    on_edges(va, vb, false, &mut out);
+    on_edges(vb, va, true, &mut out);
+    for (i, &v) in va.iter().enumerate() {
+        for (k, &w) in vb.iter().enumerate() {
+            if dist(v, w) > tol {
+                continue;
+            }
+            let x = [0.5 * (v[0] + w[0]), 0.5 * (v[1] + w[1])];
+            if covered(x) {
+                continue;
+            }
+            // the edges at the common point that face each other and run the same way from it:
+            // the pair whose directions are the most nearly opposite
+            let ea = [(i + va.len() - 1) % va.len(), i];
+            let eb = [(k + vb.len() - 1) % vb.len(), k];
+            let edge = |vs: &[[f64; 2]], e: usize| [vs[e], vs[(e + 1) % vs.len()]];
+            let mut best: Option<(f64, usize, usize)> = None;
+            for &ja in &ea {
+                for &jb in &eb {
+                    let (p, q) = (edge(va, ja), edge(vb, jb));
+                    let (dp, dq) = (sub(p[1], p[0]), sub(q[1], q[0]));
+                    let cos = dot(dp, dq) / (dist(p[0], p[1]) * dist(q[0], q[1]));
+                    // from the common point both edges go the same way along their bisector
+                    let (fp, fq) = (far(p, x), far(q, x));
+                    if cos < 0.0 && dot(sub(fp, x), sub(fq, x)) > 0.0 && best.map_or(true, |b| cos < b.0) {
+                        best = Some((cos, ja, jb));
+                    }
+                }
+            }
+            if let Some((_, ja, jb)) = best {
+                let (na, nb) = (outward(edge(va, ja)), outward(edge(vb, jb)));
+                let n = unit([na[0] - nb[0], na[1] - nb[1]]);
+                out.push(EdgeContact { edges: [ja, jb], n, ends: [x, x], length: 0.0 });
+            }
+        }
+    }
+    out
+}
+
+/// The end of edge `e` farther from `x`.
+fn far(e: [[f64; 2]; 2], x: [f64; 2]) -> [f64; 2] {
+    if dist(e[0], x) >= dist(e[1], x) {
+        e[0]
+    } else {
+        e[1]
+    }
+}
+
+/// Whether `x` lies within `tol` of the segment `s`.
+fn on_segment(x: [f64; 2], s: [[f64; 2]; 2], tol: f64) -> bool {
+    let d = sub(s[1], s[0]);
+    let l2 = dot(d, d);
+    let t = if l2 > 0.0 { (dot(sub(x, s[0]), d) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    dist(x, [s[0][0] + t * d[0], s[0][1] + t * d[1]]) <= tol
+}
+
+fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[0] - b[0]).hypot(a[1] - b[1])
+}
+
 /// The contact of edge `p` of one polygon and edge `q` of another, running opposite ways.
 fn edge_pair(p: [[f64; 2]; 2], q: [[f64; 2]; 2], tol: f64) -> Option<EdgeContact> {
     let (na, nb) = (outward(p), outward(q));
@@ -173,6 +267,38 @@ mod tests {
         // a triangle whose tip enters the square by 0.1
         let tri = Polygon::new(vec![[0.5, 0.9], [1.5, 2.0], [-0.5, 2.0]]).checked(TOL).unwrap();
         assert!((penetration(&a, &tri) - 0.1).abs() < 1e-12);
+    }
+
+    #[test]
+    fn blocks_turned_about_a_corner_touch_at_a_point() {
+        let base = rect(-1.0, -1.0, 2.0, 0.0);
+        let block = rect(0.0, 0.0, 0.4, 1.0);
+        // on the base along its bottom edge: a stretch, no point besides
+        let along = contacts(&base, &block, TOL);
+        assert_eq!(along.len(), 1);
+        assert!(corner_contacts(&base, &block, TOL, &along).is_empty());
+        // turned by 0.1 rad about its right toe (0.4, 0): the toe on the inside of the base's
+        // top edge, the normal the edge's
+        let turned_block = turned(&block, -0.1, [0.4, 0.0]);
+        assert!(contacts(&base, &turned_block, TOL).is_empty());
+        let c = corner_contacts(&base, &turned_block, TOL, &[]);
+        assert_eq!(c.len(), 1);
+        assert_eq!((c[0].n, c[0].length), ([0.0, 1.0], 0.0));
+        assert!((c[0].ends[0][0] - 0.4).abs() < 1e-15 && c[0].ends[0][1].abs() < 1e-15 && c[0].ends[0] == c[0].ends[1]);
+        // the other way round, the normal reversed
+        let r = corner_contacts(&turned_block, &base, TOL, &[]);
+        assert!(r.len() == 1 && r[0].n == [0.0, -1.0]);
+        // on a base that ends at the toe: two vertices at one point, the normal the bisector
+        let short = rect(0.0, -1.0, 0.4, 0.0);
+        let c = corner_contacts(&short, &turned_block, TOL, &[]);
+        assert_eq!(c.len(), 1);
+        assert!((c[0].n[0] - 0.05f64.sin()).abs() < 1e-12 && (c[0].n[1] - 0.05f64.cos()).abs() < 1e-12, "{:?}", c[0].n);
+        // blocks that meet corner to corner, diagonally, do not touch
+        let a = rect(0.0, 0.0, 1.0, 1.0);
+        assert!(corner_contacts(&a, &rect(1.0, 1.0, 2.0, 2.0), TOL, &[]).is_empty());
+        // apart by more than the tolerance: nothing
+        let lifted = turned_block.map(|v| [v[0], v[1] + 1e-6]).checked(TOL).unwrap();
+        assert!(corner_contacts(&base, &lifted, TOL, &[]).is_empty());
     }
 
     proptest! {

@@ -1,0 +1,71 @@
+//! Limit analysis along a mechanism: the large-displacement capacity curve lambda(d) against
+//! closed forms.
+
+use masonry_dem::geometry::Rect;
+use masonry_dem::joint::JointLaw;
+use masonry_dem::limit::{follow_mechanism, FollowOptions, LimitOptions};
+use masonry_dem::model::{JointLaws, Model, ModelSpec};
+use masonry_dem::results::Status;
+use masonry_dem::shape::Polygon;
+
+fn law(friction: f64) -> JointLaws {
+    JointLaws::uniform(JointLaw { friction, dilatancy: friction, ..JointLaw::default() })
+}
+
+/// The rotation theta (clockwise) of a block of base b and height h about its right toe that
+/// moves its centroid by `d` along x: d = b/2 (1 - cos theta) + h/2 sin theta, increasing on
+/// [0, pi/2], inverted by bisection.
+fn rotation_of(d: f64, b: f64, h: f64) -> f64 {
+    let f = |t: f64| 0.5 * b * (1.0 - t.cos()) + 0.5 * h * t.sin() - d;
+    let (mut lo, mut hi) = (0.0, std::f64::consts::FRAC_PI_2);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if f(mid) > 0.0 {
+            hi = mid
+        } else {
+            lo = mid
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// One block pushed at its centroid by lambda times its weight turns about its toe:
+/// lambda(theta) = tan(alpha - theta), alpha = atan(b / h), on the geometry moved by theta
+/// (the toe a point contact). On the base (the toe at the base's corner: two vertices at one
+/// point) and on a wider support (the toe on the inside of its top edge).
+#[test]
+fn a_block_turning_about_its_toe_follows_tan_alpha_minus_theta() {
+    let (b, h): (f64, f64) = (0.4, 1.0);
+    let alpha = (b / h).atan();
+    let block: Polygon = Rect::new(0.0, 0.0, b, h).into();
+    let on_base = ModelSpec { blocks: vec![block.clone()], joints: law(5.0), ..ModelSpec::default() };
+    let on_support = ModelSpec {
+        blocks: vec![block],
+        supports: vec![Rect::new(-1.0, -0.5, 2.0, 0.0).into()],
+        base: false,
+        joints: law(5.0),
+        ..ModelSpec::default()
+    };
+    for spec in [on_base, on_support] {
+        let model = Model::new(spec).unwrap();
+        // steps of at most 0.03 m at the block's farthest vertex: about 2.4 degrees
+        let follow = FollowOptions { step: 0.03, max_steps: 1000 };
+        let r = follow_mechanism(&model, &LimitOptions::default(), &follow, &mut |_| true).unwrap();
+        assert_eq!(r.status, Status::Collapse);
+        assert!(r.error.is_none(), "{:?}", r.error);
+        assert!((r.collapse_multiplier - b / h).abs() < 1e-9);
+        let n = r.curve_multiplier.len();
+        assert!(n >= 11, "{n} points");
+        for (&d, &lam) in r.curve_displacement.iter().zip(&r.curve_multiplier) {
+            let theta = rotation_of(d, b, h);
+            assert!((lam - (alpha - theta).tan()).abs() < 1e-6, "d = {d}: lambda {lam} against {}", (alpha - theta).tan());
+        }
+        // the curve ends where lambda reaches zero: theta = alpha
+        let last = rotation_of(r.curve_displacement[n - 1], b, h);
+        assert!(r.curve_multiplier[n - 1] <= 1e-3 * r.collapse_multiplier && (last - alpha).abs() < 1e-3);
+        // the block's own rotation at the end, clockwise
+        assert!((r.displacements[0][2] + last).abs() < 1e-9);
+    }
+}
+
+
