@@ -54,7 +54,7 @@ impl Error {
 
     /// The same error with the key prefix `from` (a generator's, "geometry.arch") read as `to`
     /// in its key and message: a generator called by another names the caller's keys.
-    pub(crate) fn renamed(self, from: &str, to: &str) -> Self {
+    pub fn renamed(self, from: &str, to: &str) -> Self {
         match self {
             Error::Input { key, reason } => Error::Input { key: key.map(|k| k.replace(from, to)), reason: reason.replace(from, to) },
             e => e,

@@ -94,6 +94,7 @@ mod results;
 mod run;
 mod modal;
 mod space;
+mod vaults;
 
 use convert::*;
 use walls::*;
@@ -101,6 +102,7 @@ use model::*;
 use results::*;
 use run::*;
 use space::*;
+use vaults::*;
 
 /// The core's defaults of the arguments Python shows when they are left out (the Rust
 /// `Default`s: `ModelSpec`, `TopBeam`'s constants, `StaticOptions`, `ExplicitOptions`): Python
@@ -168,6 +170,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(u_wall, m)?)?;
     m.add_function(wrap_pyfunction!(corner_wall, m)?)?;
     m.add_function(wrap_pyfunction!(cut_openings_3d, m)?)?;
+    m.add_function(wrap_pyfunction!(barrel_vault, m)?)?;
+    m.add_function(wrap_pyfunction!(dome, m)?)?;
     m.add_class::<PyModel>()?;
     m.add_class::<PyModel3D>()?;
     m.add_class::<PyResults>()?;

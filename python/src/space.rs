@@ -195,7 +195,11 @@ pub(crate) fn cut_openings_3d<'py>(
 /// carried: loads carried by wall blocks (a floor's reaction), a list of (block, [x, y, z], weight): a weight [N]
 ///     along -z resting at a point [m] of the box (0-based), whose mass weight / gravity moves with it, as Model's.
 ///     A time history refuses a load off the box's axes through its centroid (its products of inertia).
-/// Block indices: the boxes in the order given, then the base, then the top beam.
+/// polyhedra: blocks of any convex shape after the boxes, each a list of vertices [x, y, z] (m), the block their
+///     convex hull (barrel_vault, dome); supports: fixed blocks of any convex shape, the same way (beside the base or
+///     instead of it, base=False).
+/// Block indices: the boxes in the order given, then the polyhedra, then the base, then the top beam, then the
+///     supports.
 /// Raises InputError naming the key or block on bad input (two overlapping boxes are both named).
 #[pyclass(name = "Model3D", module = "masonry_dem._core", subclass)]
 pub(crate) struct PyModel3D {
@@ -225,11 +229,11 @@ fn contact_vectors<'py>(py: Python<'py>, model: &Model3, f: impl Fn(&space::Cont
 #[pymethods]
 impl PyModel3D {
     #[new]
-    #[pyo3(signature = (boxes, density=None, base=None, top=None, joints=None, gravity=None, live=None, direction=None, carried=None))]
+    #[pyo3(signature = (boxes=None, density=None, base=None, top=None, joints=None, gravity=None, live=None, direction=None, carried=None, polyhedra=None, supports=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
-        boxes: &Bound<'_, PyAny>,
+        boxes: Option<&Bound<'_, PyAny>>,
         density: Option<f64>,
         base: Option<bool>,
         top: Option<f64>,
@@ -238,10 +242,14 @@ impl PyModel3D {
         live: Option<&str>,
         direction: Option<f64>,
         carried: Option<&Bound<'_, PyAny>>,
+        polyhedra: Option<&Bound<'_, PyAny>>,
+        supports: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let d = ModelSpec3::default();
         let spec = ModelSpec3 {
-            blocks: boxes_from(boxes, "boxes")?,
+            blocks: boxes.filter(|b| !b.is_none()).map_or(Ok(vec![]), |b| boxes_from(b, "boxes"))?,
+            polyhedra: polyhedra_from(polyhedra, "polyhedra")?,
+            supports: polyhedra_from(supports, "supports")?,
             density: density.unwrap_or(d.density),
             base: base.unwrap_or(d.base),
             top,
@@ -409,7 +417,11 @@ impl PyModel3D {
     /// cores); the results are the same to the bit with any number.
     /// progress: optional callable(iteration, multiplier, nan, nan) called after each interior-point iteration; an
     /// exception raised by it stops the analysis and is raised again.
-    #[pyo3(signature = (tolerance=None, max_iterations=None, threads=None, progress=None))]
+    /// along_gravity: True takes lambda times the weights along gravity as the live load instead of the model's (lambda
+    /// a factor on the self-weight): the wall stands under its own weight if the status is "unbounded", and not if it
+    /// is "no_equilibrium" (near a least thickness better posed than the sign of the horizontal multiplier).
+    #[pyo3(signature = (tolerance=None, max_iterations=None, threads=None, progress=None, along_gravity=false))]
+    #[allow(clippy::too_many_arguments)]
     fn solve_limit(
         &self,
         py: Python<'_>,
@@ -417,6 +429,7 @@ impl PyModel3D {
         max_iterations: Option<i64>,
         threads: Option<i64>,
         progress: Option<Py<PyAny>>,
+        along_gravity: bool,
     ) -> PyResult<Py<PyResults>> {
         let defaults = LimitOptions::default();
         let opts = LimitOptions {
@@ -426,9 +439,10 @@ impl PyModel3D {
             ..defaults
         };
         self.inner.check_supports().map_err(to_py)?;
+        let model = if along_gravity { Arc::new(self.inner.with_live_along_gravity()) } else { self.inner.clone() };
         limit_run(
             py,
-            &self.inner,
+            &model,
             progress,
             move |model, monitor| limit::limit_analysis_3d_with(model, &opts, monitor),
             |model, start| {
