@@ -92,7 +92,9 @@ del _name
 class ModelParameters3D:
     """The 3D wall of a case, as the arguments of :class:`masonry_dem.Model3D`.
 
-    ``boxes`` is an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] (m); the others are those the case gives,
+    ``boxes`` is an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] (m) (None: none), ``polyhedra`` and ``supports``
+    the vertex lists of the blocks and fixed supports of other convex shapes (a vault's); the others are those the
+    case gives,
     None when it leaves them out (the core's default, :data:`CORE_DEFAULTS_3D`; for top: no top beam; for
     joints: the default law everywhere): density [kg/m3], base, top (the top beam's height [m]), joints, gravity
     [m/s2], live, direction [deg], carried (the loads carried by wall blocks: (block, [x, y, z] m, weight N)).
@@ -100,7 +102,7 @@ class ModelParameters3D:
 
     dimension: ClassVar[int] = 3
 
-    boxes: np.ndarray
+    boxes: Optional[np.ndarray]
     density: Optional[float] = None
     base: Optional[bool] = None
     top: Optional[float] = None
@@ -109,6 +111,8 @@ class ModelParameters3D:
     live: Optional[str] = None
     direction: Optional[float] = None
     carried: Optional[List[Tuple[int, List[float], float]]] = None
+    polyhedra: Optional[List[List[List[float]]]] = None
+    supports: Optional[List[List[List[float]]]] = None
 
     def arguments(self) -> Dict[str, Any]:
         """The keyword arguments of ``Model3D``: boxes and the parameters given."""
