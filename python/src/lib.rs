@@ -146,6 +146,9 @@ fn defaults_3d(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("live", live)?;
     d.set_item("direction", direction)?;
     d.set_item("carried", py.None())?;
+    for shapes in ["boxes", "polyhedra", "supports"] {
+        d.set_item(shapes, py.None())?;
+    }
     Ok(d)
 }
 

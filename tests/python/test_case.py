@@ -76,9 +76,13 @@ def test_examples_load() -> None:
         assert case.title
         text = f.read_text()
         assert "Reference" in text and "docs/references.md" in text, f.name
-        if case.dimension == 3:  # a 3D wall: limit analysis, boxes (tests/python/test_space.py)
+        if case.dimension == 3:  # a 3D wall: limit analysis, boxes (tests/python/test_space.py) or polyhedra
             assert case.method == "limit"
-            boxes = case.model_kwargs["boxes"]
+            boxes, polyhedra = case.model_kwargs["boxes"], case.model_kwargs["polyhedra"]
+            assert (boxes is None) != (polyhedra is None), f.name
+            if polyhedra is not None:  # a vault's (tests/python/test_vaults.py): vertex lists
+                assert len(polyhedra) >= 1 and all(len(p) >= 4 and all(len(v) == 3 for v in p) for p in polyhedra)
+                continue
             assert boxes.ndim == 2 and boxes.shape[1] == 6 and len(boxes) >= 1
             continue
         assert case.method == "static"
