@@ -149,9 +149,9 @@ pub(crate) fn arch<'py>(
     Ok(d)
 }
 
-/// The arch of the arguments of `arch` (the vault's section too): `what` names its keys
-/// ("geometry.arch"); `sizes` are span, radius and rise, `springing` abutment_width,
-/// abutment_height, pier_width and pier_height [m].
+/// The arch of the arguments of `arch` (a barrel vault's section too), the lengths [m] given as
+/// [span, radius, rise] and [abutment_width, abutment_height, pier_width, pier_height]; `what`
+/// names its keys ("geometry.arch").
 pub(crate) fn arch_from(
     what: &str,
     kind: &str,
