@@ -257,7 +257,6 @@ impl PyModel3D {
             gravity: gravity.unwrap_or(d.gravity),
             live: live_from(live, direction)?,
             carried: carried_from(carried)?,
-            ..d
         };
         // the GIL released, polling Ctrl-C in this thread
         let mut raised = None;

@@ -15,7 +15,8 @@ arrays of 6 columns where the plane has 3) and the same case files, command line
   extruded along its axis in staggered courses, on abutments or walls), :func:`dome` (of meridian and parallel
   joints).
 * :mod:`.case`: the case files' 3D tables (``[geometry] boxes``, ``[geometry.leaf]``, ``[geometry.u_wall]``,
-  ``[geometry.corner]``, ``[geometry.barrel_vault]``, ``[geometry.dome]``, ``[top] height``, ``[loads] direction``; docs/case-format.md, "3D walls").
+  ``[geometry.corner]``, ``[geometry.barrel_vault]``, ``[geometry.dome]``, ``[top] height``, ``[loads]
+  direction``; docs/case-format.md, "3D walls").
 * :mod:`.plot` (matplotlib's mplot3d, imported on first use): :func:`plot_mechanism_3d`, :func:`mechanism_figure`.
 * :mod:`.export` (meshio, on first use): :func:`write_vtk` (the blocks as hexahedra, the contacts as quads).
 * :mod:`.report`: :func:`describe_mechanism`, the one-line description of a 3D mechanism.

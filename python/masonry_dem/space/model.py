@@ -1,6 +1,7 @@
 """The user-facing 3D model and generators: :class:`Model3D` and ``running_bond_3d``, ``u_wall``,
-``corner_wall``, ``cut_openings``, ``barrel_vault``, ``dome`` (the core's, in ``masonry_dem._core``), with a wrong argument type reported as
-:class:`masonry_dem.InputError` naming the function and the argument, as :mod:`masonry_dem._checked` does in 2D.
+``corner_wall``, ``cut_openings``, ``barrel_vault``, ``dome`` (the core's, in ``masonry_dem._core``), with a wrong
+argument type reported as :class:`masonry_dem.InputError` naming the function and the argument, as
+:mod:`masonry_dem._checked` does in 2D.
 
 ``Model3D``'s analyses are the core's methods, each wrapped the same way: ``solve_limit`` (limit analysis),
 ``solve_dynamic`` (the explicit solver's quasi-static pushover, load control) and ``simulate`` (time histories), with
