@@ -59,10 +59,8 @@ def timed(run: Callable[[], Any]) -> tuple[float, Any]:
     return time.perf_counter() - start, result
 
 
-def bench_stones(reps: int, paths: bool) -> None:
-    models = {"rectangles": rectangles(), "stones": stones()}
-    for name, model in models.items():
-        print(f"{name}: {model.n_blocks} blocks", flush=True)
+def alternate(models: Dict[str, Any], reps: int) -> Dict[str, float]:
+    """Limit analysis of each model in turn, ``reps`` rounds, each run printed: the median time of each [s]."""
     times: Dict[str, List[float]] = {name: [] for name in models}
     for rep in range(reps):
         for name, model in models.items():
@@ -70,7 +68,14 @@ def bench_stones(reps: int, paths: bool) -> None:
             times[name].append(seconds)
             print(f"  rep {rep} {name}: {seconds:.3f} s, lambda {result.collapse_multiplier:.6f} ({result.status}, "
                   f"{result.iterations} iterations)", flush=True)
-    medians = {name: statistics.median(t) for name, t in times.items()}
+    return {name: statistics.median(t) for name, t in times.items()}
+
+
+def bench_stones(reps: int, paths: bool) -> None:
+    models = {"rectangles": rectangles(), "stones": stones()}
+    for name, model in models.items():
+        print(f"{name}: {model.n_blocks} blocks", flush=True)
+    medians = alternate(models, reps)
     print(f"medians: rectangles {medians['rectangles']:.3f} s, stones {medians['stones']:.3f} s, "
           f"ratio {medians['stones'] / medians['rectangles']:.3f}", flush=True)
     if paths:

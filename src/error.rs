@@ -52,6 +52,15 @@ impl Error {
         Error::Input { key: Some(key.into()), reason: reason.into() }
     }
 
+    /// The same error with the key prefix `from` (a generator's, "geometry.arch") read as `to`
+    /// in its key and message: a generator called by another names the caller's keys.
+    pub fn renamed(self, from: &str, to: &str) -> Self {
+        match self {
+            Error::Input { key, reason } => Error::Input { key: key.map(|k| k.replace(from, to)), reason: reason.replace(from, to) },
+            e => e,
+        }
+    }
+
     /// The case-file key of an input error, if it concerns one.
     pub fn key(&self) -> Option<&str> {
         match self {

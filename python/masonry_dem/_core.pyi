@@ -137,6 +137,55 @@ def stone_wall(
     joint between them. Every joint is an edge the two stones share. The same seed (an integer in 0..2^64) gives the
     same wall, bit for bit, on any machine. Model(stones) is the wall."""
 
+class _Vaulted(TypedDict):
+    polyhedra: list[list[list[float]]]
+    supports: list[list[list[float]]]
+
+def barrel_vault(
+    kind: Literal["semicircular", "segmental", "pointed", "elliptical"],
+    thickness: float,
+    voussoirs: int,
+    length: float,
+    block_length: Optional[float] = None,
+    span: Optional[float] = None,
+    radius: Optional[float] = None,
+    rise: Optional[float] = None,
+    abutment_width: Optional[float] = None,
+    abutment_height: Optional[float] = None,
+    pier_width: Optional[float] = None,
+    pier_height: Optional[float] = None,
+    pier_courses: Optional[int] = None,
+) -> _Vaulted:
+    """A barrel vault, as a dict: "polyhedra" (its blocks, each a list of vertices [x, y, z], m) and "supports" (the two
+    abutments; empty on walls). Model3D(polyhedra=..., supports=..., base=False) is the vault on abutments,
+    Model3D(polyhedra=...) the vault on walls (they stand on the base).
+
+    Its cross-section is arch()'s (kind, thickness, voussoirs, span, radius, rise, abutment_width, abutment_height,
+    pier_width, pier_height, pier_courses: the same meaning, the same defaults) in the plane (x, z), z up, the
+    springing line z = 0; the piers become walls along the axis. The axis is y, from 0 to length [m]. block_length [m]:
+    each course (a voussoir, or a course of a wall, extruded) is cut into blocks this long along the axis, every other
+    course starting with a half block (the joints staggered by half a block; no piece shorter than 5% of a block);
+    left out: the arch extruded one block deep, each course a single block."""
+
+def dome(
+    kind: Literal["hemispherical", "pointed"],
+    thickness: float,
+    meridians: int,
+    parallels: int,
+    span: Optional[float] = None,
+    radius: Optional[float] = None,
+    rise: Optional[float] = None,
+) -> _Vaulted:
+    """A dome, as a dict: "polyhedra" (its voussoirs ring by ring from the springing up, each a list of vertices
+    [x, y, z], m) and "supports" (empty: it stands on the base). Model3D(polyhedra=...) is the dome on the base.
+
+    kind: "hemispherical" (give radius, the middle surface's [m], or span, the intrados's diameter [m]) or "pointed"
+    (span and rise, the intrados's, rise >= span / 2). Its meridian is the right half of arch()'s of 2 parallels
+    voussoirs (radial joints) revolved about the z axis, the springing at z = 0; thickness [m] along the joints;
+    meridians (3 at least): the voussoirs of each ring, at equal angles; parallels: the rings. Each voussoir is the
+    convex hull of its corners (planar faces: chords of the intrados and extrados), the crown's ring of wedges
+    meeting on the axis; the meridian joints run through every ring."""
+
 def running_bond_3d(
     length: float,
     height: float,
@@ -489,7 +538,7 @@ class Model3D:
         A time history refuses a load off the box's axes through its centroid (its products of inertia).
     polyhedra: wall blocks of any convex shape after the boxes, a list of vertex lists (each a (k, 3) array or a
         list of [x, y, z] rows [m]): each block the convex hull of its vertices (at least 4 off one plane).
-    supports: fixed blocks of any convex shape, vertex lists as polyhedra (an abutment, an inclined plane); with
+    supports: fixed blocks of any convex shape, vertex lists as polyhedra (an abutment, an inclined plane; barrel_vault and dome give both); with
         supports the default base is False (no foundation unless base=True).
     Block indices: the boxes in the order given, then the polyhedra, then the base, then the top beam, then the
     supports. Raises InputError naming the key or block on bad input (`polyhedra[3]: ...` for a list that makes no
@@ -596,6 +645,7 @@ class Model3D:
         max_iterations: Optional[int] = None,
         threads: Optional[int] = None,
         progress: Optional[Callable[[int, float, float, float], None]] = None,
+        along_gravity: bool = False,
     ) -> "Results":
         """Limit analysis in 3D (the static theorem): the largest lambda for which contact forces inside the joints'
         strength domains balance the dead loads plus lambda times the live load, a second-order cone program solved
@@ -614,7 +664,10 @@ class Model3D:
         threads: threads of the interior point's passes over contacts from 2,000 contacts (below, one; default 0: all
         cores); the results are the same to the bit with any number.
         progress: optional callable(iteration, multiplier, nan, nan) called after each interior-point iteration; an
-        exception raised by it stops the analysis and is raised again."""
+        exception raised by it stops the analysis and is raised again.
+        along_gravity: True takes lambda times the weights along gravity as the live load instead of the model's (lambda
+        a factor on the self-weight): the wall stands under its own weight if the status is "unbounded", and not if it
+        is "no_equilibrium" (near a least thickness better posed than the sign of the horizontal multiplier)."""
     def solve_dynamic(
         self,
         control: Optional[Literal["load"]] = None,

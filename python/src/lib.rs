@@ -94,6 +94,7 @@ mod results;
 mod run;
 mod modal;
 mod space;
+mod vaults;
 
 use convert::*;
 use walls::*;
@@ -101,6 +102,7 @@ use model::*;
 use results::*;
 use run::*;
 use space::*;
+use vaults::*;
 
 /// The core's defaults of the arguments Python shows when they are left out (the Rust
 /// `Default`s: `ModelSpec`, `TopBeam`'s constants, `StaticOptions`, `ExplicitOptions`): Python
@@ -144,8 +146,9 @@ fn defaults_3d(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("live", live)?;
     d.set_item("direction", direction)?;
     d.set_item("carried", py.None())?;
-    d.set_item("polyhedra", py.None())?;
-    d.set_item("supports", py.None())?;
+    for shapes in ["boxes", "polyhedra", "supports"] {
+        d.set_item(shapes, py.None())?;
+    }
     Ok(d)
 }
 
@@ -171,6 +174,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(corner_wall, m)?)?;
     m.add_function(wrap_pyfunction!(cut_openings_3d, m)?)?;
     m.add_function(wrap_pyfunction!(convex_hulls, m)?)?;
+    m.add_function(wrap_pyfunction!(barrel_vault, m)?)?;
+    m.add_function(wrap_pyfunction!(dome, m)?)?;
     m.add_class::<PyModel>()?;
     m.add_class::<PyModel3D>()?;
     m.add_class::<PyResults>()?;

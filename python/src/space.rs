@@ -507,7 +507,11 @@ impl PyModel3D {
     /// cores); the results are the same to the bit with any number.
     /// progress: optional callable(iteration, multiplier, nan, nan) called after each interior-point iteration; an
     /// exception raised by it stops the analysis and is raised again.
-    #[pyo3(signature = (tolerance=None, max_iterations=None, threads=None, progress=None))]
+    /// along_gravity: True takes lambda times the weights along gravity as the live load instead of the model's (lambda
+    /// a factor on the self-weight): the wall stands under its own weight if the status is "unbounded", and not if it
+    /// is "no_equilibrium" (near a least thickness better posed than the sign of the horizontal multiplier).
+    #[pyo3(signature = (tolerance=None, max_iterations=None, threads=None, progress=None, along_gravity=false))]
+    #[allow(clippy::too_many_arguments)]
     fn solve_limit(
         &self,
         py: Python<'_>,
@@ -515,6 +519,7 @@ impl PyModel3D {
         max_iterations: Option<i64>,
         threads: Option<i64>,
         progress: Option<Py<PyAny>>,
+        along_gravity: bool,
     ) -> PyResult<Py<PyResults>> {
         let defaults = LimitOptions::default();
         let opts = LimitOptions {
@@ -524,9 +529,10 @@ impl PyModel3D {
             ..defaults
         };
         self.inner.check_supports().map_err(to_py)?;
+        let model = if along_gravity { Arc::new(self.inner.with_live_along_gravity()) } else { self.inner.clone() };
         limit_run(
             py,
-            &self.inner,
+            &model,
             progress,
             move |model, monitor| limit::limit_analysis_3d_with(model, &opts, monitor),
             |model, start| {

@@ -150,30 +150,15 @@ pub(crate) fn arch<'py>(
     wall_thickness: Option<f64>,
     gravity: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let kind: ArchKind = kind.parse().map_err(to_py)?;
-    let voussoirs = count("geometry.arch.voussoirs", voussoirs, 1)?;
-    let piers = pier_width.is_some() || pier_height.is_some() || pier_courses.is_some();
-    let springing = match (piers, pier_width, pier_height) {
-        (false, _, _) => Springing::Abutments { width: abutment_width, height: abutment_height },
-        _ if abutment_width.is_some() || abutment_height.is_some() => {
-            return Err(InputError::new_err("geometry.arch: give abutment_width and abutment_height, or pier_width, pier_height and pier_courses, not both"))
-        }
-        (true, Some(width), Some(height)) => Springing::Piers {
-            width,
-            height,
-            courses: pier_courses.map_or(Ok(1), |c| count("geometry.arch.pier_courses", c, 1))?,
-        },
-        (true, None, _) => return Err(InputError::new_err("geometry.arch.pier_width is required for piers")),
-        (true, _, None) => return Err(InputError::new_err("geometry.arch.pier_height is required for piers")),
-    };
+    let mut a = arch_from("geometry.arch", kind, thickness, voussoirs, [span, radius, rise], [abutment_width, abutment_height, pier_width, pier_height], pier_courses)?;
     let density = match (backfill_level, backfill_density) {
         (Some(_), Some(d)) => Some(d),
         (None, None) => None,
         (Some(_), None) => return Err(required("geometry.arch.backfill.density", "a backfill's level")),
         (None, Some(_)) => return Err(required("geometry.arch.backfill.level", "a backfill's density")),
     };
-    let backfill = backfill_level;
-    let made = guarded(|| geometry::arch(&Arch { kind, span, radius, rise, thickness, voussoirs, springing, backfill }))?;
+    a.backfill = backfill_level;
+    let made = guarded(|| geometry::arch(&a))?;
     let spec = ModelSpec::default();
     let carried = match density {
         Some(d) => guarded(|| made.fill_loads(d, wall_thickness.unwrap_or(spec.thickness), gravity.unwrap_or(spec.gravity)))?,
@@ -191,6 +176,37 @@ pub(crate) fn arch<'py>(
 /// The InputError of `key`, required with `what`.
 fn required(key: &str, what: &str) -> PyErr {
     py_error("InputError", format!("{key} is required with {what}"), Some(key.to_string()))
+}
+
+/// The arch of the arguments of `arch` (a barrel vault's section too), the lengths [m] given as
+/// [span, radius, rise] and [abutment_width, abutment_height, pier_width, pier_height]; `what`
+/// names its keys ("geometry.arch").
+pub(crate) fn arch_from(
+    what: &str,
+    kind: &str,
+    thickness: f64,
+    voussoirs: i64,
+    [span, radius, rise]: [Option<f64>; 3],
+    [abutment_width, abutment_height, pier_width, pier_height]: [Option<f64>; 4],
+    pier_courses: Option<i64>,
+) -> PyResult<Arch> {
+    let kind: ArchKind = kind.parse().map_err(|e: Error| to_py(e.renamed("geometry.arch", what)))?;
+    let voussoirs = count(&format!("{what}.voussoirs"), voussoirs, 1)?;
+    let piers = pier_width.is_some() || pier_height.is_some() || pier_courses.is_some();
+    let springing = match (piers, pier_width, pier_height) {
+        (false, _, _) => Springing::Abutments { width: abutment_width, height: abutment_height },
+        _ if abutment_width.is_some() || abutment_height.is_some() => {
+            return Err(InputError::new_err(format!("{what}: give abutment_width and abutment_height, or pier_width, pier_height and pier_courses, not both")))
+        }
+        (true, Some(width), Some(height)) => Springing::Piers {
+            width,
+            height,
+            courses: pier_courses.map_or(Ok(1), |c| count(&format!("{what}.pier_courses"), c, 1))?,
+        },
+        (true, None, _) => return Err(InputError::new_err(format!("{what}.pier_width is required for piers"))),
+        (true, _, None) => return Err(InputError::new_err(format!("{what}.pier_height is required for piers"))),
+    };
+    Ok(Arch { kind, span, radius, rise, thickness, voussoirs, springing, backfill: None })
 }
 
 /// The blocks as lists of vertices [x, y] (m), counter-clockwise.

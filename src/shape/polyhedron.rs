@@ -58,6 +58,28 @@ impl Polyhedron {
         Polyhedron { vertices, faces }
     }
 
+    /// The prism of the convex polygon `section` of the plane (x, z) (its vertices
+    /// counter-clockwise with x to the right and z up, as a [`super::Polygon`]'s (x, y)) between
+    /// the planes y = `y[0]` and y = `y[1]` \[m\] (not checked: the caller's polygon and y0 < y1
+    /// are): an arch's voussoir extruded along the arch's axis. Its faces are made directly: the
+    /// two ends, normal to y exactly, then one side per edge of the section, in its order.
+    pub fn prism(section: &[[f64; 2]], y: [f64; 2]) -> Polyhedron {
+        let n = section.len();
+        let vertices: Vec<[f64; 3]> = y.iter().flat_map(|&y| section.iter().map(move |v| [v[0], y, v[1]])).collect();
+        // seen from -y the section turns counter-clockwise: the end at y0 keeps its order
+        let mut rings: Vec<Vec<usize>> = vec![(0..n).collect(), (n..2 * n).rev().collect()];
+        rings.extend((0..n).map(|k| vec![k, n + k, n + (k + 1) % n, (k + 1) % n]));
+        Polyhedron::from_rings(vertices, rings)
+    }
+
+    /// The convex polyhedron of `vertices` \[m\] whose faces are `rings` (indices into the
+    /// vertices, each counter-clockwise seen from outside), their normals and offsets computed
+    /// (not checked: the generators' blocks, convex by construction).
+    pub(crate) fn from_rings(vertices: Vec<[f64; 3]>, rings: Vec<Vec<usize>>) -> Polyhedron {
+        let faces = rings.into_iter().map(|r| face(&vertices, r)).collect();
+        Polyhedron { vertices, faces }
+    }
+
     /// The convex hull of `points` \[m\], or why there is none. `tol` \[m\] (the model's contact
     /// tolerance): points within `tol` of one another are one vertex, points within `tol` of a
     /// face's plane lie on it, and a point inside the hull or on a face or an edge between its
@@ -348,6 +370,23 @@ mod tests {
         exact.sort_by(|a, b| a.partial_cmp(b).unwrap());
         assert_eq!(planes, exact);
         well_formed(&Polyhedron::cuboid(min, max));
+    }
+
+    #[test]
+    fn a_prism_is_the_hull_of_its_section_at_both_ends() {
+        // a voussoir-like pentagon of the (x, z) plane, 0.25 m deep along y
+        let section = [[1.0, 0.0], [1.4, 0.1], [1.3, 0.5], [1.0, 0.6], [0.9, 0.3]];
+        let prism = Polyhedron::prism(&section, [-0.1, 0.15]);
+        well_formed(&prism);
+        let ends: Vec<[f64; 3]> = [-0.1, 0.15].iter().flat_map(|&y| section.iter().map(move |v| [v[0], y, v[1]])).collect();
+        let hull = Polyhedron::hull(&ends, TOL).unwrap();
+        let (a, b) = (prism.volume_properties(), hull.volume_properties());
+        let area = crate::shape::Area::of(&section);
+        assert!((a.volume - 0.25 * area.area).abs() < 1e-15, "{} against {}", a.volume, 0.25 * area.area);
+        assert!((a.volume - b.volume).abs() < 1e-15 && (0..3).all(|k| (a.centroid[k] - b.centroid[k]).abs() < 1e-15));
+        assert!((a.centroid[0] - area.centroid[0]).abs() < 1e-15 && (a.centroid[2] - area.centroid[1]).abs() < 1e-15);
+        assert_eq!(prism.faces()[0].normal, [0.0, -1.0, 0.0]);
+        assert_eq!(prism.faces()[1].normal, [0.0, 1.0, 0.0]);
     }
 
     #[test]

@@ -28,6 +28,7 @@
 
 mod detect;
 mod model;
+mod vaults;
 mod walls;
 
 #[cfg(test)]
@@ -35,6 +36,7 @@ mod tests;
 
 pub use detect::{detect, detect_polyhedra, hulls};
 pub use model::Model3;
+pub use vaults::{barrel_vault, dome, BarrelVault, Dome, DomeKind, Vaulted};
 pub use walls::{corner, cut_openings, running_bond_3d, u_wall};
 
 use crate::error::{Error, Result};

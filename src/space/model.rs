@@ -343,6 +343,19 @@ impl Model3 {
     pub fn live(&self) -> LiveLoad3 {
         self.live
     }
+    /// The same model with the live load lambda times the weights, along gravity (lambda a
+    /// factor on the self-weight), as the plane's
+    /// [`Model::with_live_along_gravity`](crate::model::Model::with_live_along_gravity): with
+    /// dry joints limit analysis of it is unbounded if the blocks stand under their own weight
+    /// and finds no equilibrium if not.
+    pub fn with_live_along_gravity(&self) -> Model3 {
+        let mut m = self.clone();
+        m.f_live.fill(0.0);
+        for (d, &f) in self.f_dead.iter().enumerate().skip(2).step_by(6) {
+            m.f_live[d] = f;
+        }
+        m
+    }
     /// The indices of the contacts of block `i` (a linear scan: for tests and reports, not for
     /// solvers' inner loops).
     pub fn contacts_of(&self, i: usize) -> Vec<usize> {

@@ -166,7 +166,7 @@ fn bonded(what: &str, args: [f64; 6], right: bool) -> Result<Vec<Box3>> {
 /// The pieces of a course from `s0` to `s1` \[m\]: joints at `phase + j l` for every integer
 /// `j`, except those within `keep0` of `s0` or `keep1` of `s1` (the end pieces are that long at
 /// least).
-fn pieces(s0: f64, s1: f64, l: f64, phase: f64, keep0: f64, keep1: f64) -> Vec<(f64, f64)> {
+pub(super) fn pieces(s0: f64, s1: f64, l: f64, phase: f64, keep0: f64, keep1: f64) -> Vec<(f64, f64)> {
     let mut cuts = vec![s0];
     let mut j = ((s0 + keep0 - phase) / l).floor() as i64;
     loop {
@@ -187,14 +187,8 @@ fn pieces(s0: f64, s1: f64, l: f64, phase: f64, keep0: f64, keep1: f64) -> Vec<(
 /// The courses (z0, z1) of a wall `height` high of courses `block_height` high \[m\]: the whole
 /// ones, then a last one cut to fit, as in 2D; `what` names the generator in the refusal.
 fn courses(what: &str, height: f64, block_height: f64) -> Result<Vec<(f64, f64)>> {
-    let fit = courses_for_height(block_height, height).map_err(|e| match e {
-        // the 2D fit's message names the 2D generator's keys: name this one's
-        Error::Input { key, reason } => Error::Input {
-            key: key.map(|k| k.replace("geometry.running_bond", what)),
-            reason: reason.replace("geometry.running_bond", what),
-        },
-        e => e,
-    })?;
+    // the 2D fit's message names the 2D generator's keys: name this one's
+    let fit = courses_for_height(block_height, height).map_err(|e| e.renamed("geometry.running_bond", what))?;
     let mut out: Vec<(f64, f64)> =
         (0..fit.whole).map(|k| (k as f64 * block_height, (k + 1) as f64 * block_height)).collect();
     if fit.last.is_some() {

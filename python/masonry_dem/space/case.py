@@ -1,7 +1,7 @@
 """Case files of 3D walls (docs/case-format.md, "3D walls"): the [geometry] forms that make a case 3D (``boxes``
-and the tables ``leaf``, ``u_wall``, ``corner``), the 3D keys of the other tables ([top] height, [loads] direction),
-the methods a 3D case takes (:data:`METHODS_3D`: limit analysis, and the explicit solver's quasi-static pushover
-with the [analysis] keys of 2D), the refusals of what the 3D model does not take in this version (the static
+and the tables ``leaf``, ``u_wall``, ``corner``, ``barrel_vault``, ``dome``), the 3D keys of the other tables ([top]
+height, [loads] direction), the methods a 3D case takes (:data:`METHODS_3D`: limit analysis, and the explicit
+solver's quasi-static pushover with the [analysis] keys of 2D), the refusals of what the 3D model does not take in this version (the static
 solver, displacement control, time histories from a case file, mortar joints, the 2D keys that have no meaning
 there), and :class:`ModelParameters3D`, the arguments of :class:`masonry_dem.Model3D` that a
 :class:`masonry_dem.case.Case` of a 3D wall holds.
@@ -52,12 +52,13 @@ __all__ = [
     "read_geometry",
     "generate_boxes",
     "check_hulls",
+    "generate_polyhedra",
     "case_from_tables",
 ]
 
-#: The [geometry] forms of a 3D wall: an explicit list of boxes, the generators' tables, and a list of convex
-#: polyhedra (alone or beside boxes).
-GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner", "polyhedra")
+#: The [geometry] forms of a 3D wall: an explicit list of boxes, the generators' tables (of boxes, and of a vault's
+#: or a dome's polyhedra), and a list of convex polyhedra (alone or beside boxes).
+GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner", "polyhedra", "barrel_vault", "dome")
 #: Keys of [geometry.leaf]: a single leaf in running bond.
 LEAF_KEYS = ("length", "height", "thickness", "block_length", "block_height", "first_course", "openings")
 #: Keys of [geometry.u_wall] and [geometry.corner]: a facade with two return walls, or one.
@@ -65,6 +66,16 @@ BONDED_KEYS = ("facade", "height", "returns", "thickness", "block_length", "bloc
 
 #: The [geometry] keys of convex polyhedra given by their vertices: wall blocks, and fixed ones.
 SOLID_KEYS = ("polyhedra", "supports")
+#: Keys of [geometry.barrel_vault] (``masonry_dem.barrel_vault``) and [geometry.dome] (``masonry_dem.dome``): their
+#: lengths [m], then their counts.
+VAULT_LENGTHS = {
+    "barrel_vault": ("span", "radius", "rise", "thickness", "length", "block_length", "abutment_width",
+                     "abutment_height", "pier_width", "pier_height"),
+    "dome": ("span", "radius", "rise", "thickness"),
+}
+VAULT_COUNTS = {"barrel_vault": ("voussoirs", "pier_courses"), "dome": ("meridians", "parallels")}
+VAULT_KINDS = {"barrel_vault": ("semicircular", "segmental", "pointed", "elliptical"),
+               "dome": ("hemispherical", "pointed")}
 
 # The core's generator of each [geometry] table, and the name its messages give the table.
 _GENERATORS = {"leaf": "running_bond_3d", "u_wall": "u_wall", "corner": "corner"}
@@ -88,6 +99,8 @@ def read_geometry(geo: _Table, kind: str) -> Dict[str, Any]:
     solids = {key: geo.polygons(key, what, dimension=3) for key, what in named if key in geo}
     if kind in ("boxes", "polyhedra"):
         return dict(boxes=_boxes(geo) if "boxes" in geo else [], **solids)
+    if kind in VAULT_LENGTHS:
+        return _vault(geo, kind)
     if kind == "leaf":
         table = geo.table("leaf", LEAF_KEYS)
         assert table is not None
@@ -112,6 +125,34 @@ def check_hulls(geometry: Mapping[str, Any], source: str) -> None:
                 _core.convex_hulls(geometry[key], f"geometry.{key}")
             except InputError as exc:
                 raise InputError(f"{source}: {exc}", getattr(exc, "key", None)) from exc
+
+
+def _vault(geo: _Table, kind: str) -> Dict[str, Any]:
+    """[geometry.barrel_vault] or [geometry.dome]: the arguments of the core's generator, each checked alone (a length
+    > 0, with its unit or not; a count >= 1; the kind); how they go together is the generator's to check, its
+    messages naming the key."""
+    table = geo.table(kind, ("kind",) + VAULT_LENGTHS[kind] + VAULT_COUNTS[kind])
+    assert table is not None
+    args: Dict[str, Any] = {"kind": table.string("kind", choices=VAULT_KINDS[kind])}
+    args.update({key: table.number(key, None, _positive, unit="length") for key in VAULT_LENGTHS[kind]})
+    args.update({key: table.integer(key, None, minimum=1) for key in VAULT_COUNTS[kind]})
+    for key in ("thickness",) + (("voussoirs", "length") if kind == "barrel_vault" else VAULT_COUNTS[kind]):
+        if args[key] is None:
+            raise table.missing(key)
+    return args
+
+
+def generate_polyhedra(kind: str, arguments: Mapping[str, Any], source: str) -> Dict[str, Any]:
+    """The polyhedra and supports (vertex lists) of a checked [geometry.barrel_vault] or [geometry.dome]; the core's
+    refusals get the file name in front."""
+    given = {key: value for key, value in arguments.items() if value is not None}
+    try:
+        return dict({"barrel_vault": _core.barrel_vault, "dome": _core.dome}[kind](**given))
+    except MasonryError as exc:
+        again = type(exc)(f"{source}: {exc}")
+        if isinstance(exc, InputError):
+            again.key = getattr(exc, "key", None) or f"geometry.{kind}"
+        raise again from exc
 
 
 def _boxes(geo: _Table) -> List[List[float]]:
@@ -225,10 +266,14 @@ def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any
         if others:
             assert table is not None
             raise table.key_error("methods", f"{_quote(others[0])}: {IN_3D}")
-    boxes = generate_boxes(kind, geometry, top.source)
+    if kind in VAULT_LENGTHS:
+        made = generate_polyhedra(kind, geometry, top.source)
+        boxes, polyhedra, supports = None, made["polyhedra"], made["supports"]
+    else:
+        boxes = generate_boxes(kind, geometry, top.source)
+        polyhedra, supports = geometry.get("polyhedra"), geometry.get("supports")
     model = ModelParameters3D(boxes=boxes, density=density, base=base, top=beam, joints=joints, gravity=gravity,
-                              live=live, direction=direction, carried=carried, polyhedra=geometry.get("polyhedra"),
-                              supports=geometry.get("supports"))
+                              live=live, direction=direction, carried=carried, polyhedra=polyhedra, supports=supports)
     assert isinstance(analysis, AnalysisParameters)
     return Case(title=title, model=model, analysis=analysis, method=method, source=top.source, reference=reference)
 

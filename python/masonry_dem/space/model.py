@@ -1,6 +1,7 @@
 """The user-facing 3D model and generators: :class:`Model3D` and ``running_bond_3d``, ``u_wall``,
-``corner_wall``, ``cut_openings`` (the core's, in ``masonry_dem._core``), with a wrong argument type reported as
-:class:`masonry_dem.InputError` naming the function and the argument, as :mod:`masonry_dem._checked` does in 2D.
+``corner_wall``, ``cut_openings``, ``barrel_vault``, ``dome`` (the core's, in ``masonry_dem._core``), with a wrong
+argument type reported as :class:`masonry_dem.InputError` naming the function and the argument, as
+:mod:`masonry_dem._checked` does in 2D.
 
 ``Model3D``'s analyses are the core's methods, each wrapped the same way: ``solve_limit`` (limit analysis),
 ``solve_dynamic`` (the explicit solver's quasi-static pushover, load control) and ``simulate`` (time histories), with
@@ -25,7 +26,7 @@ from .. import _core
 from .._checked import input_errors, refuse_booleans
 from .._core import InputError
 
-__all__ = ["Model3D", "running_bond_3d", "u_wall", "corner_wall", "cut_openings"]
+__all__ = ["Model3D", "running_bond_3d", "u_wall", "corner_wall", "cut_openings", "barrel_vault", "dome"]
 
 #: The methods of a case that a 3D wall takes: limit analysis and the explicit solver (quasi-static, load control).
 METHODS_3D = ("limit", "dynamic")
@@ -64,6 +65,8 @@ running_bond_3d = input_errors(_core.running_bond_3d, "running_bond_3d")
 u_wall = input_errors(_core.u_wall, "u_wall")
 corner_wall = input_errors(_core.corner_wall, "corner_wall")
 cut_openings = input_errors(_core.cut_openings_3d, "cut_openings")
+barrel_vault = input_errors(_core.barrel_vault, "barrel_vault")
+dome = input_errors(_core.dome, "dome")
 
 
 class Model3D(_core.Model3D):
@@ -91,17 +94,17 @@ del _name
 class ModelParameters3D:
     """The 3D wall of a case, as the arguments of :class:`masonry_dem.Model3D`.
 
-    ``boxes`` is an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] (m; none when the case gives polyhedra only);
+    ``boxes`` is an (n, 6) array of boxes [x0, y0, z0, x1, y1, z1] (m; None when the case gives polyhedra only);
     the others are those the case gives, None when it leaves them out (the core's default, :data:`CORE_DEFAULTS_3D`;
     for top: no top beam; for joints: the default law everywhere): density [kg/m3], base, top (the top beam's
     height [m]), joints, gravity [m/s2], live, direction [deg], carried (the loads carried by wall blocks: (block,
     [x, y, z] m, weight N)), polyhedra and supports (convex blocks, free and fixed, each a list of its vertices
-    [x, y, z] m).
+    [x, y, z] m: given, or a vault's or a dome's).
     """
 
     dimension: ClassVar[int] = 3
 
-    boxes: np.ndarray
+    boxes: Optional[np.ndarray]
     density: Optional[float] = None
     base: Optional[bool] = None
     top: Optional[float] = None

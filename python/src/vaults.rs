@@ -1,0 +1,79 @@
+//! The generators of vaults and domes of convex polyhedra, `barrel_vault` and `dome`.
+
+use crate::*;
+use masonry_dem::shape::Polyhedron;
+use masonry_dem::space::{self, BarrelVault, Dome, DomeKind, Vaulted};
+
+/// The dict of a vault or dome made: "polyhedra" (its blocks, each a list of vertices [x, y, z], m) and "supports"
+/// (its fixed supports, the same way).
+fn vaulted_to_py<'py>(py: Python<'py>, v: &Vaulted) -> PyResult<Bound<'py, PyDict>> {
+    let lists = |ps: &[Polyhedron]| -> Vec<Vec<[f64; 3]>> { ps.iter().map(|p| p.vertices().to_vec()).collect() };
+    let d = PyDict::new(py);
+    d.set_item("polyhedra", lists(&v.blocks))?;
+    d.set_item("supports", lists(&v.supports))?;
+    Ok(d)
+}
+
+/// A barrel vault, as a dict: "polyhedra" (its blocks, each a list of vertices [x, y, z], m) and "supports" (the two
+/// abutments; empty on walls). Model3D(polyhedra=..., supports=..., base=False) is the vault on abutments,
+/// Model3D(polyhedra=...) the vault on walls (they stand on the base).
+///
+/// Its cross-section is arch()'s (kind, thickness, voussoirs, span, radius, rise, abutment_width, abutment_height,
+/// pier_width, pier_height, pier_courses: the same meaning, the same defaults) in the plane (x, z), z up, the
+/// springing line z = 0; the piers become walls along the axis. The axis is y, from 0 to length [m]. block_length [m]:
+/// each course (a voussoir, or a course of a wall, extruded) is cut into blocks this long along the axis, every other
+/// course starting with a half block (the joints staggered by half a block; no piece shorter than 5% of a block);
+/// left out: the arch extruded one block deep, each course a single block.
+#[pyfunction]
+#[pyo3(signature = (kind, thickness, voussoirs, length, block_length=None, span=None, radius=None, rise=None, abutment_width=None, abutment_height=None, pier_width=None, pier_height=None, pier_courses=None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn barrel_vault<'py>(
+    py: Python<'py>,
+    kind: &str,
+    thickness: f64,
+    voussoirs: i64,
+    length: f64,
+    block_length: Option<f64>,
+    span: Option<f64>,
+    radius: Option<f64>,
+    rise: Option<f64>,
+    abutment_width: Option<f64>,
+    abutment_height: Option<f64>,
+    pier_width: Option<f64>,
+    pier_height: Option<f64>,
+    pier_courses: Option<i64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let what = "geometry.barrel_vault";
+    let arch = arch_from(what, kind, thickness, voussoirs, [span, radius, rise], [abutment_width, abutment_height, pier_width, pier_height], pier_courses)?;
+    let made = guarded(|| space::barrel_vault(&BarrelVault { arch, length, block_length }))?;
+    vaulted_to_py(py, &made)
+}
+
+/// A dome, as a dict: "polyhedra" (its voussoirs ring by ring from the springing up, each a list of vertices
+/// [x, y, z], m) and "supports" (empty: it stands on the base). Model3D(polyhedra=...) is the dome on the base.
+///
+/// kind: "hemispherical" (give radius, the middle surface's [m], or span, the intrados's diameter [m]) or "pointed"
+/// (span and rise, the intrados's, rise >= span / 2). Its meridian is the right half of arch()'s of 2 parallels
+/// voussoirs (radial joints) revolved about the z axis, the springing at z = 0; thickness [m] along the joints;
+/// meridians (3 at least): the voussoirs of each ring, at equal angles; parallels: the rings. Each voussoir is the
+/// convex hull of its corners (planar faces: chords of the intrados and extrados), the crown's ring of wedges
+/// meeting on the axis; the meridian joints run through every ring.
+#[pyfunction]
+#[pyo3(signature = (kind, thickness, meridians, parallels, span=None, radius=None, rise=None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn dome<'py>(
+    py: Python<'py>,
+    kind: &str,
+    thickness: f64,
+    meridians: i64,
+    parallels: i64,
+    span: Option<f64>,
+    radius: Option<f64>,
+    rise: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let kind: DomeKind = kind.parse().map_err(to_py)?;
+    let meridians = count("geometry.dome.meridians", meridians, 3)?;
+    let parallels = count("geometry.dome.parallels", parallels, 1)?;
+    let made = guarded(|| space::dome(&Dome { kind, span, radius, rise, thickness, meridians, parallels }))?;
+    vaulted_to_py(py, &made)
+}
