@@ -234,26 +234,6 @@ impl Model3 {
     pub fn carried(&self) -> &[CarriedLoad<3>] {
         &self.carried
     }
-    /// Refuses, for `what` (a time history), a block whose carried loads give it products of
-    /// inertia about x, y and z: the integrator turns each block about its principal axes,
-    /// those of its box. A load on an axis of the box through its centroid (over its centre,
-    /// say) keeps them; a load off those axes does not (the pushover and limit analysis, which
-    /// do not turn blocks dynamically, take it).
-    pub fn check_principal(&self, what: &str) -> Result<()> {
-        for &(i, [yz, xz, xy]) in &self.products {
-            let scale = self.inertia[i].iter().fold(0.0f64, |a, &v| a.max(v));
-            if [yz, xz, xy].iter().any(|p| p.abs() > 1e-9 * scale) {
-                return Err(Error::input_at(
-                    "loads.carried",
-                    format!(
-                        "{what} turns each block about the axes of its box, and the loads carried by {} give it products of inertia (yz {yz:.3e}, xz {xz:.3e}, xy {xy:.3e} kg m2): put its loads on an axis of its box through the box's centroid (over its centre, say), or run limit analysis or the pushover",
-                        self.block_name(i)
-                    ),
-                ));
-            }
-        }
-        Ok(())
-    }
     /// The contacts, sorted by their blocks (a, b).
     pub fn contacts(&self) -> &[Contact] {
         &self.contacts
