@@ -246,21 +246,6 @@ impl Model3 {
     pub fn laws(&self) -> &JointLaws {
         &self.laws
     }
-    /// Refuses joints with cohesion or tensile strength: `what` (an analysis in 3D) takes dry joints.
-    pub fn check_dry(&self, what: &str) -> Result<()> {
-        for (k, c) in self.contacts.iter().enumerate() {
-            let law = self.law(k);
-            if law.cohesion > 0.0 || law.tensile_strength > 0.0 {
-                return Err(Error::input(format!(
-                    "{what} takes dry joints (cohesion and tensile_strength 0); the {} joints have cohesion {} Pa and tensile_strength {} Pa",
-                    c.family.name(),
-                    law.cohesion,
-                    law.tensile_strength
-                )));
-            }
-        }
-        Ok(())
-    }
     /// Refuses, for `what` (an analysis that raises lambda, the live load's multiplier), a model
     /// without a live load: it has nothing to raise (a pushover of zero loads would take every
     /// level it may before it gave up).
