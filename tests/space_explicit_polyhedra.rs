@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::dry;
+use common::{dry, on_slope, sign_changes};
 use masonry_dem::explicit::{simulate_3d, solve_3d, DynamicOptions, ExplicitOptions, Recording};
 use masonry_dem::geometry::{arch, Arch, ArchKind, Springing};
 use masonry_dem::joint::JointLaw;
@@ -60,24 +60,6 @@ fn a_box_turned_in_plan_overturns_where_the_resultant_leaves_its_footprint() {
     close(explicit(&m), 2.0 * r / h, 1e-2, &format!("overturning turned by {theta:.3} deg"));
 }
 
-/// A b x d x h box standing on a slope rising towards +x at `alpha` degrees (its base along the
-/// slope), on a fixed wedge under the slope.
-fn on_slope(alpha: f64, b: f64, d: f64, h: f64, friction: f64, direction: f64) -> Model3 {
-    let (sa, ca) = alpha.to_radians().sin_cos();
-    let (s, n) = ([ca, 0.0, sa], [-sa, 0.0, ca]);
-    let at = |u: f64, v: f64, w: f64| -> [f64; 3] { std::array::from_fn(|k| 2.0 + u * s[k] + w * n[k] + if k == 1 { v } else { 0.0 }) };
-    let block: Vec<[f64; 3]> = (0..8).map(|i| at(if i & 1 == 1 { b } else { 0.0 }, if i & 2 == 2 { d } else { 0.0 }, if i & 4 == 4 { h } else { 0.0 })).collect();
-    let block = Polyhedron::hull(&block, 1e-9).unwrap();
-    let (lo, hi) = (at(-0.5, 0.0, 0.0), at(b + 0.5, 0.0, 0.0));
-    let floor = lo[2] - 1.0;
-    let mut wedge = vec![];
-    for y in [1.5, 2.0 + d + 0.5] {
-        wedge.extend([[lo[0], y, lo[2]], [hi[0], y, hi[2]], [hi[0], y, floor], [lo[0], y, floor]]);
-    }
-    let wedge = Polyhedron::hull(&wedge, 1e-9).unwrap();
-    Model3::new(&spec(vec![block], vec![wedge], dry(friction, friction, 1e9), direction)).unwrap()
-}
-
 #[test]
 fn a_box_on_an_inclined_support_slides_and_overturns_at_the_closed_forms() {
     // a squat block (b / h = 4) of friction 0.6 on a 12 deg slope: it slides up the slope at
@@ -92,14 +74,6 @@ fn a_box_on_an_inclined_support_slides_and_overturns_at_the_closed_forms() {
     let (a, beta) = (alpha.to_radians(), (b / h).atan());
     close(explicit(&on_slope(alpha, b, 0.5, h, 3.0, 0.0)), (a + beta).tan(), 1e-2, "overturning up the slope");
     close(explicit(&on_slope(alpha, b, 0.5, h, 3.0, 180.0)), (beta - a).tan(), 1e-2, "overturning down the slope");
-}
-
-/// The times at which a rotation record changes sign (interpolated).
-fn sign_changes(times: &[f64], rot: &[f64]) -> Vec<f64> {
-    (1..times.len())
-        .filter(|&k| rot[k - 1] != 0.0 && rot[k - 1] * rot[k] < 0.0)
-        .map(|k| times[k - 1] + (times[k] - times[k - 1]) * rot[k - 1] / (rot[k - 1] - rot[k]))
-        .collect()
 }
 
 #[test]

@@ -32,8 +32,8 @@ use nalgebra::{Matrix3, SymmetricEigen, UnitQuaternion, Vector3};
 const GRAIN_CONTACTS: usize = 512;
 /// Below this many contacts a step runs on one thread.
 const PAR_MIN_CONTACTS: usize = 1024;
-/// The most corners a contact may have (the pass's buffers on the stack).
-pub const MAX_CORNERS: usize = 64;
+// the most corners a contact may have (the pass's buffers on the stack, as the joint law's)
+use crate::joint::MAX_POINTS as MAX_CORNERS;
 
 /// A contact as the pass reads it: its blocks, its law (by family) and its frame (n, t1, t2).
 #[derive(Debug, Clone, Copy)]
@@ -284,7 +284,11 @@ impl<'a> Integrator3<'a> {
         if nb >= u32::MAX as usize / 2 || 2 * m >= u32::MAX as usize || np >= u32::MAX as usize {
             return Err(Error::input(format!("{nb} blocks and {m} contacts: the explicit solver takes fewer than 2^31 of each")));
         }
-        let (axes, inertia) = if principal { principal_axes(model) } else { (vec![], model.inertia().to_vec()) };
+        let (mut axes, inertia) = if principal { principal_axes(model) } else { (vec![], model.inertia().to_vec()) };
+        if axes.iter().all(Option::is_none) {
+            // every block's axes are x, y, z (boxes): none to turn
+            axes.clear();
+        }
         let (pool, par, _) = start_pool(threads, m, PAR_MIN_CONTACTS)?;
         let motion = Motion::new(6, masses_3d(model, &inertia), model.fixed(), vec![0.0; 6 * nb], dt, damping, pool, par)?;
         let cen = model.centroids();
@@ -455,8 +459,11 @@ impl<'a> Integrator3<'a> {
                 let frame = if large { c.frame.map(|w| mat(ra_m, w)) } else { c.frame };
                 let ua = [u[6 * a], u[6 * a + 1], u[6 * a + 2]];
                 let ub = [u[6 * b], u[6 * b + 1], u[6 * b + 2]];
-                let ta = to_world(axes, a, [u[6 * a + 3], u[6 * a + 4], u[6 * a + 5]]);
-                let tb = to_world(axes, b, [u[6 * b + 3], u[6 * b + 4], u[6 * b + 5]]);
+                let (ta, tb) = if large {
+                    ([0.0; 3], [0.0; 3])
+                } else {
+                    (to_world(axes, a, [u[6 * a + 3], u[6 * a + 4], u[6 * a + 5]]), to_world(axes, b, [u[6 * b + 3], u[6 * b + 4], u[6 * b + 5]]))
+                };
                 let law = &laws[k];
                 let (q0, q1) = (at[k] as usize, at[k + 1] as usize);
                 let np = q1 - q0;

@@ -51,6 +51,9 @@
 
 use super::{JointLaw, OPEN, SLIDING};
 
+/// The most corners a contact may have in [`corner_map`] (its buffers on the stack).
+pub const MAX_POINTS: usize = 64;
+
 /// A joint law at the corners of a contact of area `A`: `kN A`, the share of it in the
 /// corners' own stiffness (`alpha`), `kT A`, friction, dilatancy, and the contact's strengths
 /// `c A` and `ft A`, which the corners share by their shares.
@@ -153,41 +156,38 @@ impl CornerLaw {
 #[inline(always)]
 fn normals(a: f64, b: f64, h: f64, w: &[f64], f: &mut [[f64; 3]], flags: &mut [u8]) {
     let n = w.len();
-    let r = |i: usize, f: &[[f64; 3]]| f[i][0] / w[i] - h;
     let (mut worst, mut scale) = (0.0f64, 0.0f64);
     for i in 0..n {
-        let ri = r(i, f);
+        let ri = f[i][0] / w[i] - h;
         worst = worst.max(ri);
         scale = scale.max(ri.abs());
     }
     if !(worst > 0.0) {
         return;
     }
+    // the excesses per share, once (the buffer's tail unused)
+    let mut r = [0.0; MAX_POINTS];
+    for i in 0..n {
+        r[i] = f[i][0] / w[i] - h;
+    }
+    let r = &r[..n];
     let tol = 1e-12 * scale;
-    for k in 0..n {
-        let rk = r(k, f);
+    for &rk in r {
         if !(rk > 0.0) {
             continue;
         }
         let (mut excess, mut share) = (0.0, 0.0);
         for i in 0..n {
-            if r(i, f) >= rk {
+            if r[i] >= rk {
                 excess += f[i][0] - h * w[i];
                 share += w[i];
             }
         }
         let tau = b * excess / (a + b * share);
-        let fits = (0..n).all(|i| {
-            let ri = r(i, f);
-            if ri >= rk {
-                ri >= tau - tol
-            } else {
-                ri <= tau + tol
-            }
-        });
+        let fits = r.iter().all(|&ri| if ri >= rk { ri >= tau - tol } else { ri <= tau + tol });
         if fits {
             for i in 0..n {
-                if r(i, f) >= rk {
+                if r[i] >= rk {
                     f[i][0] = h * w[i];
                     flags[i] = OPEN;
                 } else {
@@ -210,7 +210,8 @@ fn normals(a: f64, b: f64, h: f64, w: &[f64], f: &mut [[f64; 3]], flags: &mut [u
 /// slip along t1, slip along t2 at each corner) \[m\] and committed plastic jumps `p` (updated:
 /// each call is an increment), into `out`, with each corner's state in `flags` ([`OPEN`],
 /// [`SLIDING`] or 0: stuck). `broken`: whether the contact has lost its strength (set at its
-/// first failure). No allocation: every slice holds one entry per corner.
+/// first failure). No allocation: every slice holds one entry per corner, at most
+/// [`MAX_POINTS`].
 #[inline(always)]
 pub fn corner_map(law: &CornerLaw, w: &[f64], e: &[[f64; 3]], p: &mut [[f64; 3]], broken: &mut bool, out: &mut [[f64; 3]], flags: &mut [u8]) {
     let n = w.len();
