@@ -894,7 +894,7 @@ fn check_brittle(model: &Model3) -> Result<(), Error> {
     for (k, c) in model.contacts().iter().enumerate() {
         if model.law(k).is_softening() {
             return Err(Error::input_at(
-                &format!("{}.fracture_energy_tension", crate::model::law_key(model.laws(), c.family)),
+                format!("{}.fracture_energy_tension", crate::model::law_key(model.laws(), c.family)),
                 "the explicit solver in 3D takes brittle joints (fracture energies 0: cohesion and tensile strength lost at the first failure); softening joints are the plane's",
             ));
         }

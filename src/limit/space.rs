@@ -100,7 +100,7 @@ impl Space {
             discs.tangents.push([c.t1, c.t2]);
             if strong && r > 0.0 {
                 radii.extend(w.iter().map(|wi| r * wi));
-                discs.contact.extend(std::iter::repeat_n(k as u32, w.len()));
+                discs.contact.extend(std::iter::repeat(k as u32).take(w.len()));
                 discs.corner.extend(0..w.len());
             }
             strength.push(strong.then_some((h, w)));
@@ -124,7 +124,7 @@ impl Space {
             }
             let own = discs.of(k);
             dofs.extend(own.clone().map(|d| (n_dofs + d) as u32));
-            dofs.extend(std::iter::repeat_n(NO_EQ, most - own.len()));
+            dofs.extend(std::iter::repeat(NO_EQ).take(most - own.len()));
         }
         let mut lp = Lp::new(eq, n, rows, 0, None, dofs, f_dead, f_live, (force, length, live))?;
         lp.cone = 3;
