@@ -156,19 +156,16 @@ impl CornerLaw {
 #[inline(always)]
 fn normals(a: f64, b: f64, h: f64, w: &[f64], f: &mut [[f64; 3]], flags: &mut [u8]) {
     let n = w.len();
-    let (mut worst, mut scale) = (0.0f64, 0.0f64);
-    for i in 0..n {
-        let ri = f[i][0] / w[i] - h;
-        worst = worst.max(ri);
-        scale = scale.max(ri.abs());
-    }
-    if !(worst > 0.0) {
+    // the common case, every corner within its cut-off: no division
+    if (0..n).all(|i| !(f[i][0] > h * w[i])) {
         return;
     }
     // the excesses per share, once (the buffer's tail unused)
     let mut r = [0.0; MAX_POINTS];
+    let mut scale = 0.0f64;
     for i in 0..n {
         r[i] = f[i][0] / w[i] - h;
+        scale = scale.max(r[i].abs());
     }
     let r = &r[..n];
     let tol = 1e-12 * scale;
