@@ -49,7 +49,7 @@ fn main() {
         println!(
             "{} blocks, {} contact points, {}: {}",
             model.n_wall(),
-            4 * model.contacts().len(),
+            model.contacts().iter().map(|c| c.corners.len()).sum::<usize>(),
             if large { "finite rotations" } else { "small rotations" },
             line.join("; ")
         );

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{dry, ferris, ferris_blocks};
+use common::{dry, ferris, ferris_blocks, sign_changes};
 use masonry_dem::explicit::{solve, solve_3d, ExplicitOptions};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::limit::{limit_analysis_3d, LimitOptions};
@@ -110,14 +110,6 @@ fn a_pushover_takes_as_many_time_steps_at_any_size() {
         close(mm, km, 1e-2, "the steps at 1,000 km against 1 km");
         assert!(mm <= 2.0 * metre, "{mm} time steps at 1,000 km, {metre} at 1 m");
     }
-}
-
-/// The times at which a rotation record changes sign (interpolated).
-fn sign_changes(times: &[f64], rot: &[f64]) -> Vec<f64> {
-    (1..times.len())
-        .filter(|&k| rot[k - 1] != 0.0 && rot[k - 1] * rot[k] < 0.0)
-        .map(|k| times[k - 1] + (times[k] - times[k - 1]) * rot[k - 1] / (rot[k - 1] - rot[k]))
-        .collect()
 }
 
 #[test]

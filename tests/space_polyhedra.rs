@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::dry;
+use common::{dry, on_slope};
 use masonry_dem::limit::{limit_analysis_3d, LimitOptions};
 use masonry_dem::model::JointLaws;
 use masonry_dem::results::Status;
@@ -57,25 +57,6 @@ fn a_box_turned_in_plan_overturns_where_the_resultant_leaves_its_footprint() {
         let r = (0.5 * b / c).min(0.5 * d / s);
         close(lambda(&m), 2.0 * r / h, 1e-9, &format!("overturning turned by {theta} deg"));
     }
-}
-
-/// A b x d x h box standing on a slope rising towards +x at `alpha` degrees (its base along the
-/// slope), on a fixed wedge under the slope.
-fn on_slope(alpha: f64, b: f64, d: f64, h: f64, friction: f64, direction: f64) -> Model3 {
-    let (sa, ca) = alpha.to_radians().sin_cos();
-    let (s, n) = ([ca, 0.0, sa], [-sa, 0.0, ca]);
-    let at = |u: f64, v: f64, w: f64| -> [f64; 3] { std::array::from_fn(|k| 2.0 + u * s[k] + w * n[k] + if k == 1 { v } else { 0.0 }) };
-    let block: Vec<[f64; 3]> = (0..8).map(|i| at(if i & 1 == 1 { b } else { 0.0 }, if i & 2 == 2 { d } else { 0.0 }, if i & 4 == 4 { h } else { 0.0 })).collect();
-    let block = Polyhedron::hull(&block, 1e-9).unwrap();
-    // the wedge: the slope from 0.5 m before the block to 0.5 m past it, down to 1 m below its foot
-    let (lo, hi) = (at(-0.5, 0.0, 0.0), at(b + 0.5, 0.0, 0.0));
-    let floor = lo[2] - 1.0;
-    let mut wedge = vec![];
-    for y in [1.5, 2.0 + d + 0.5] {
-        wedge.extend([[lo[0], y, lo[2]], [hi[0], y, hi[2]], [hi[0], y, floor], [lo[0], y, floor]]);
-    }
-    let wedge = Polyhedron::hull(&wedge, 1e-9).unwrap();
-    Model3::new(&spec(vec![block], vec![wedge], friction, direction)).unwrap()
 }
 
 #[test]
@@ -144,8 +125,4 @@ fn overlapping_polyhedra_are_refused_naming_both() {
         .unwrap_err()
         .to_string();
     assert_eq!(e, "block 1 [0, 0, 3, 1, 1, 4] touches no other block");
-    // the explicit solver refuses what it does not take yet, naming it
-    let m = on_slope(10.0, 0.8, 0.5, 0.3, 0.8, 0.0);
-    let e = masonry_dem::explicit::solve_3d(&m, &Default::default()).map(|_| ()).unwrap_err().to_string();
-    assert!(e.starts_with("block 0 (polyhedron of 8 vertices: ") && e.contains("principal axes of inertia are x, y and z"), "{e}");
 }

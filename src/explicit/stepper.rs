@@ -97,7 +97,7 @@ pub struct Stepper3<'a> {
 impl<'a> Stepper3<'a> {
     /// The integrator of `model` on `threads` threads (0: all cores).
     pub fn new(model: &'a crate::space::Model3, live_multiplier: f64, damping: Damping, large_rotations: bool, threads: usize) -> Result<Self, Error> {
-        let mut s = super::space::Integrator3::new(model, None, 0.8, damping, threads)?;
+        let mut s = super::space::Integrator3::new(model, None, 0.8, damping, threads, large_rotations)?;
         s.set_large(large_rotations);
         let f = loaded(&mut s, model.dead_load(), model.live_load(), live_multiplier);
         Ok(Stepper3 { s, f })
@@ -108,9 +108,9 @@ impl<'a> Stepper3<'a> {
         run(&mut self.s, &self.f, k);
     }
 
-    /// Number of contact points (four per contact).
+    /// Number of contact points (a contact's corners).
     pub fn n_points(&self) -> usize {
-        4 * self.s.model.contacts().len()
+        self.s.n_points()
     }
 
     /// The time step \[s\].

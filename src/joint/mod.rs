@@ -261,4 +261,4 @@ pub use kinds::Prepared;
 pub(crate) use kinds::Kinds;
 use lu::*;
 pub use mapping::*;
-pub use point::{corner_map, CornerLaw};
+pub use point::{corner_map, corner_shares, CornerLaw, MAX_POINTS};

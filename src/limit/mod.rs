@@ -46,7 +46,8 @@
 //!
 //! Walls of 3D blocks ([`crate::space::Model3`]) go through the same interior point
 //! ([`limit_analysis_3d`]): each corner of a contact carries a force in Coulomb's cone (the
-//! point-contact form; dry joints), six equations per block. The program is then a
+//! point-contact form; joints with strength add a vertex at the tension cut-off and a disc of
+//! cohesion, each corner its tributary share of the contact's), six equations per block. The program is then a
 //! second-order cone program: its variables lie in cones `z0 >= |(z1, z2)|` rather than the
 //! orthant, and Theta is the 3 x 3 block `W^2` of each cone's Nesterov-Todd scaling.
 //!

@@ -128,10 +128,11 @@ impl Lp {
         self.nv * i + self.bounded.unwrap_or(0)
     }
 
-    /// The number of variables: `nv` per element, or in [`Corners`] form `sides` per corner.
+    /// The number of variables: `nv` per element, or in [`Corners`] form `sides` per corner and
+    /// three per disc.
     pub(super) fn n_vars(&self) -> usize {
         match &self.corners {
-            Some(cf) => cf.sides * cf.start[self.m],
+            Some(cf) => cf.sides * cf.start[self.m] + 3 * cf.discs.corner.len(),
             None => self.nv * self.m,
         }
     }
@@ -167,6 +168,11 @@ impl Lp {
 /// it and its moment on b, plus on a). Per contact of 4 corners 33 numbers where `A_k` has 144:
 /// the interior point's products stream memory. Each contact has its own number of corners
 /// (the vertices of its polygon, 3 or more), its variables one after the other's.
+///
+/// Contacts with cohesion add at some corners a disc of shear forces of a bounded radius
+/// ([`Discs`]): a cone `(z0, z1, z2)`, its force `z1 t1 + z2 t2` at the corner, and `z0` held
+/// at the radius by an equation of its own, which the element's rows after its twelve dofs'
+/// hold.
 pub(super) struct Corners {
     /// The first corner of each contact, then the number of corners: contact k's corners are
     /// `start[k]..start[k + 1]`.
@@ -178,6 +184,35 @@ pub(super) struct Corners {
     /// Per corner, its position from a's centroid then from b's, over the length scale (the
     /// moment rows are scaled by it).
     pub(super) arms: Vec<[[f64; 3]; 2]>,
+    /// The discs of cohesion (none for dry joints).
+    pub(super) discs: Discs,
+}
+
+/// The discs of shear forces of bounded radius that cohesion adds at contact corners: their
+/// variables follow every corner's, three per disc, in the order of the contacts; disc `q` of
+/// contact k (`start[k] + q`) has its radius's equation at the element's row `12 + q`.
+#[derive(Default)]
+pub(super) struct Discs {
+    /// The first disc of each contact, then the number of discs (empty: none).
+    pub(super) start: Vec<usize>,
+    /// Per disc, its corner.
+    pub(super) corner: Vec<usize>,
+    /// Per disc, its contact.
+    pub(super) contact: Vec<u32>,
+    /// Per contact with discs, its tangents (t1, t2) in global axes (empty: none).
+    pub(super) tangents: Vec<[[f64; 3]; 2]>,
+}
+
+impl Discs {
+    /// The discs of contact k.
+    #[inline]
+    pub(super) fn of(&self, k: usize) -> std::ops::Range<usize> {
+        if self.start.is_empty() {
+            0..0
+        } else {
+            self.start[k]..self.start[k + 1]
+        }
+    }
 }
 
 impl Corners {
@@ -192,6 +227,20 @@ impl Corners {
     pub(super) fn var(&self, c: usize) -> usize {
         self.sides * c
     }
+
+    /// The variables of disc d start here, after every corner's.
+    #[inline]
+    pub(super) fn disc_var(&self, d: usize) -> usize {
+        self.sides * self.start[self.start.len() - 1] + 3 * d
+    }
+}
+
+/// The twelve rows (a's force and moment, then b's) of a force `f` at a corner of arms `ra`,
+/// `rb`: what it does to the two bodies.
+#[inline(always)]
+fn force_rows(f: [f64; 3], ra: [f64; 3], rb: [f64; 3]) -> [f64; 12] {
+    let (ma, mb) = (cross(ra, f), cross(rb, f));
+    [f[0], f[1], f[2], ma[0], ma[1], ma[2], -f[0], -f[1], -f[2], -mb[0], -mb[1], -mb[2]]
 }
 
 /// Contacts per task of the parallel passes over contacts.
@@ -273,8 +322,14 @@ impl Lp {
     pub(super) fn apply_corners(&self, cf: &Corners, x: &[f64], out: &mut [f64]) {
         // contact k's forces added into `out`, whose first equation is `e0`
         let contact = |k: usize, out: &mut [f64], e0: usize| {
-            let d = &self.dofs[12 * k..12 * k + 12];
+            let d = &self.dofs[self.rows * k..self.rows * (k + 1)];
             let g = &cf.gens[cf.sides * k..cf.sides * (k + 1)];
+            // a support's NO_EQ wraps beyond every range
+            let mut add = |e: u32, v: f64| {
+                if let Some(o) = out.get_mut((e as usize).wrapping_sub(e0)) {
+                    *o += v;
+                }
+            };
             for c in cf.of(k) {
                 let xq = &x[cf.var(c)..cf.var(c) + cf.sides];
                 let mut f = [0.0; 3];
@@ -282,14 +337,19 @@ impl Lp {
                     (0..3).for_each(|i| f[i] += xj * gj[i]);
                 }
                 let [ra, rb] = cf.arms[c];
-                let (ma, mb) = (cross(ra, f), cross(rb, f));
-                let rows = [f[0], f[1], f[2], ma[0], ma[1], ma[2], -f[0], -f[1], -f[2], -mb[0], -mb[1], -mb[2]];
-                for (&e, v) in d.iter().zip(rows) {
-                    // a support's NO_EQ wraps beyond every range
-                    if let Some(o) = out.get_mut((e as usize).wrapping_sub(e0)) {
-                        *o += v;
-                    }
+                for (&e, v) in d.iter().zip(force_rows(f, ra, rb)) {
+                    add(e, v);
                 }
+            }
+            for (q, dd) in cf.discs.of(k).enumerate() {
+                let xq = &x[cf.disc_var(dd)..cf.disc_var(dd) + 3];
+                let [t1, t2] = cf.discs.tangents[k];
+                let f: [f64; 3] = std::array::from_fn(|i| xq[1] * t1[i] + xq[2] * t2[i]);
+                let [ra, rb] = cf.arms[cf.discs.corner[dd]];
+                for (&e, v) in d.iter().zip(force_rows(f, ra, rb)) {
+                    add(e, v);
+                }
+                add(d[12 + q], xq[0]);
             }
         };
         match &self.par {
@@ -311,8 +371,7 @@ impl Lp {
             let v0 = cf.var(cf.start[k0]);
             for k in k0..k1 {
                 let o = &mut out[cf.var(cf.start[k]) - v0..cf.var(cf.start[k + 1]) - v0];
-                let d = &self.dofs[12 * k..12 * k + 12];
-                let yv: [f64; 12] = std::array::from_fn(|r| if d[r] == NO_EQ { 0.0 } else { y[d[r] as usize] });
+                let yv = self.dual_of(k, y);
                 let g = &cf.gens[cf.sides * k..cf.sides * (k + 1)];
                 for (q, c) in cf.of(k).enumerate() {
                     let [ra, rb] = cf.arms[c];
@@ -326,15 +385,46 @@ impl Lp {
                 }
             }
         };
+        let (out, discs) = out.split_at_mut(cf.disc_var(0));
+        // the discs d0.. into their variables `out`: (the radius's equation's dual, the jump at
+        // the disc's corner along t1 and t2)
+        let disc = |d0: usize, out: &mut [f64]| {
+            for (j, o) in out.chunks_exact_mut(3).enumerate() {
+                let d = d0 + j;
+                let k = cf.discs.contact[d] as usize;
+                let yv = self.dual_of(k, y);
+                let [ra, rb] = cf.arms[cf.discs.corner[d]];
+                let (wa, wb) = (cross([yv[3], yv[4], yv[5]], ra), cross([yv[9], yv[10], yv[11]], rb));
+                let jump: [f64; 3] = std::array::from_fn(|i| yv[i] + wa[i] - yv[6 + i] - wb[i]);
+                let e = self.dofs[self.rows * k + 12 + d - cf.discs.start[k]];
+                let [t1, t2] = cf.discs.tangents[k];
+                o[0] = if e == NO_EQ { 0.0 } else { y[e as usize] };
+                o[1] = t1[0] * jump[0] + t1[1] * jump[1] + t1[2] * jump[2];
+                o[2] = t2[0] * jump[0] + t2[1] * jump[1] + t2[2] * jump[2];
+            }
+        };
         match &self.par {
-            None => contacts(0, self.m, out),
+            None => {
+                contacts(0, self.m, out);
+                disc(0, discs);
+            }
             Some(p) => {
                 let firsts: Vec<usize> = (0..self.m).step_by(GRAIN_CONTACTS).chain([self.m]).collect();
                 let bounds: Vec<usize> = firsts.iter().map(|&k| cf.var(cf.start[k])).collect();
                 let parts = Par::cut(out, &bounds);
-                p.pool.install(|| parts.into_par_iter().zip(firsts.par_windows(2)).for_each(|(o, w)| contacts(w[0], w[1], o)))
+                p.pool.install(|| {
+                    parts.into_par_iter().zip(firsts.par_windows(2)).for_each(|(o, w)| contacts(w[0], w[1], o));
+                    discs.par_chunks_mut(3 * GRAIN_CONTACTS).enumerate().for_each(|(c, o)| disc(c * GRAIN_CONTACTS, o));
+                })
             }
         }
+    }
+
+    /// The duals of contact k's twelve dof rows (0 at a support's).
+    #[inline(always)]
+    fn dual_of(&self, k: usize, y: &[f64]) -> [f64; 12] {
+        let d = &self.dofs[self.rows * k..self.rows * k + 12];
+        std::array::from_fn(|r| if d[r] == NO_EQ { 0.0 } else { y[d[r] as usize] })
     }
 
     /// `sum_k A_k Theta_k A_k^T` for a program in corner form, each corner's variables a
@@ -353,10 +443,10 @@ impl Lp {
             std::array::from_fn(|i| std::array::from_fn(|j| c[j][i]))
         };
         let all_slots = &self.slots;
+        let rows = self.rows;
         // contact k's block added into `vals`, whose first slot is `s0`
         let contact = |k: usize, vals: &mut [f64], s0: usize| {
-            let slots = &all_slots[144 * k..144 * (k + 1)];
-            let g = &cf.gens[cf.sides * k..cf.sides * (k + 1)];
+            let slots = &all_slots[rows * rows * k..rows * rows * (k + 1)];
             let mut block = [[0.0; 12]; 12];
             let mut add = |bi: usize, bj: usize, m: &[[f64; 3]; 3], sign: f64| {
                 for i in 0..3 {
@@ -365,8 +455,13 @@ impl Lp {
                     }
                 }
             };
-            for c in cf.of(k) {
-                let th = nt[cf.var(c) / 3].theta();
+            // each corner's cone, then each disc's (its generators (0, t1, t2) on the dofs' rows)
+            let t = cf.discs.tangents.get(k).copied().unwrap_or_default();
+            let disc_gens = [[0.0; 3], t[0], t[1]];
+            let cones = cf.of(k).map(|c| (c, cf.var(c), &cf.gens[cf.sides * k..cf.sides * (k + 1)]));
+            let discs = cf.discs.of(k).map(|d| (cf.discs.corner[d], cf.disc_var(d), &disc_gens[..]));
+            for (c, var, g) in cones.chain(discs) {
+                let th = nt[var / 3].theta();
                 let gt: [[f64; 3]; 3] =
                     std::array::from_fn(|i| std::array::from_fn(|b| g[0][i] * th[0][b] + g[1][i] * th[1][b] + g[2][i] * th[2][b]));
                 let m: [[f64; 3]; 3] =
@@ -394,12 +489,27 @@ impl Lp {
             };
             for r in 0..12 {
                 for s in r..12 {
-                    let slot = slots[12 * r + s];
+                    let slot = slots[rows * r + s];
                     if slot != u32::MAX {
                         put(slot, block[r][s]);
                         if s != r {
-                            put(slots[12 * s + r], block[r][s]);
+                            put(slots[rows * s + r], block[r][s]);
                         }
+                    }
+                }
+            }
+            // each disc's radius's row: W^2_00 on its diagonal, and against the dofs' rows the
+            // force W^2_01 t1 + W^2_02 t2 at its corner
+            for (q, d) in cf.discs.of(k).enumerate() {
+                let th = nt[cf.disc_var(d) / 3].theta();
+                let f: [f64; 3] = std::array::from_fn(|i| th[0][1] * t[0][i] + th[0][2] * t[1][i]);
+                let [ra, rb] = cf.arms[cf.discs.corner[d]];
+                let e = 12 + q;
+                put(slots[rows * e + e], th[0][0]);
+                for (r, v) in force_rows(f, ra, rb).into_iter().enumerate() {
+                    if slots[rows * e + r] != u32::MAX {
+                        put(slots[rows * e + r], v);
+                        put(slots[rows * r + e], v);
                     }
                 }
             }

@@ -8,19 +8,31 @@
 //! inscribed pyramid of eight sides would keep cos(22.5 deg) = 0.924 of it midway between two
 //! sides, with 32 variables per contact against the cones' 12.)
 //!
-//! Dry joints only (no cohesion, no tensile strength): a corner's domain is then the cone
-//! alone, with no vertex to carry.
+//! Joints with strength: the contact's cohesion `c A` and tensile strength `ft A` are shared by
+//! its corners as the explicit solver's joint law shares them ([`crate::joint::corner_shares`],
+//! tributary areas: a share `w_i` each), and a corner's domain is the plane's at one of its two
+//! points: `N_i <= h w_i` (a tension cut-off, `h = min(ft A, c A / mu)`) and `|T_i| <= c A w_i -
+//! mu N_i`. That is a vertex (the cut-off's tension, a constant), Coulomb's cone from it, and a
+//! disc of shear of radius `r_i = (c A - mu h) w_i` (a cone whose first coordinate an equation
+//! of its own holds at `r_i`): `{N >= -h, |T| <= r + mu (N + h)}` in compression is exactly the
+//! cone plus the disc. The shares' centroid being the polygon's, the corners' tension is the
+//! polygon's uniform tensile strength in N and in bending about both axes. Strengths enter at
+//! their peak (no loss at failure), as in the plane.
 
 use super::*;
+use crate::joint::corner_shares;
 use crate::space::{Contact, Model3};
 
-/// Equations per contact: the six dofs of each of its two blocks.
+/// Equations per contact: the six dofs of each of its two blocks (then one per disc of
+/// cohesion, see [`Discs`]).
 const ROWS3: usize = 12;
 
 /// The program of a model in 3D: the generic [`Lp`] whose corners carry each contact's cone
 /// generators (unit normal, mu times each tangent, in global axes).
 pub(super) struct Space {
     pub(super) lp: Lp,
+    /// per contact with strength, its cut-off (scaled) and its corners' shares
+    vertex: Vec<Option<(f64, Vec<f64>)>>,
 }
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -41,7 +53,6 @@ impl Space {
     pub(super) fn new(model: &Model3) -> Result<Space> {
         let nb = model.n_blocks();
         let contacts = model.contacts();
-        model.check_dry("limit analysis in 3D")?;
         let (what, bytes) = memory_need(model);
         crate::error::check_memory(&what, bytes)?;
         // equations: one per free dof
@@ -54,6 +65,7 @@ impl Space {
                 n += 1;
             }
         }
+        let n_dofs = n;
         let (fd, fl) = (model.dead_load(), model.live_load());
         let trans = |v: &[f64]| (0..nb).flat_map(|i| (0..3).map(move |r| v[6 * i + r].abs())).fold(0.0, f64::max);
         let live_max = trans(fl);
@@ -67,17 +79,54 @@ impl Space {
         let live = if live_max > 0.0 { live_max } else { 1.0 };
         let row = |d: usize| if d % 6 >= 3 { 1.0 / length } else { 1.0 };
         let free = |d: &usize| eq[*d].is_some();
-        let f_dead = (0..6 * nb).filter(free).map(|d| fd[d] * row(d) / force).collect();
-        let f_live = (0..6 * nb).filter(free).map(|d| fl[d] * row(d) / live).collect();
-        let mut dofs = crate::error::try_with_capacity("the program's equations", ROWS3 * m)?;
-        for c in contacts {
+        let mut f_dead: Vec<f64> = (0..6 * nb).filter(free).map(|d| fd[d] * row(d) / force).collect();
+        let mut f_live: Vec<f64> = (0..6 * nb).filter(free).map(|d| fl[d] * row(d) / live).collect();
+        // each contact's strengths over the force scale (capped as the plane's, see
+        // `STRENGTH_CAP`): its cut-off h and its corners' shares, and the discs' radii
+        let total = f_dead.iter().map(|f| f.abs()).sum::<f64>() + f_live.iter().map(|f| f.abs()).sum::<f64>();
+        let cap = STRENGTH_CAP * total.max(1.0);
+        let mut strength = Vec::with_capacity(m);
+        let mut radii = vec![];
+        let mut discs = Discs::default();
+        for (k, c) in contacts.iter().enumerate() {
+            let law = model.law(k);
+            let (ca, fa) = ((law.cohesion * c.area / force).min(cap), (law.tensile_strength * c.area / force).min(cap));
+            let strong = ca > 0.0 || fa > 0.0;
+            let h = if law.friction * fa > ca { ca / law.friction } else { fa };
+            let w = if strong { corner_shares(&c.corners, c.centroid, c.n).0 } else { vec![] };
+            // a disc at each corner where the cone from the cut-off leaves a radius
+            let r = ca - law.friction * h;
+            discs.start.push(radii.len());
+            discs.tangents.push([c.t1, c.t2]);
+            if strong && r > 0.0 {
+                radii.extend(w.iter().map(|wi| r * wi));
+                discs.contact.extend(std::iter::repeat(k as u32).take(w.len()));
+                discs.corner.extend(0..w.len());
+            }
+            strength.push(strong.then_some((h, w)));
+        }
+        discs.start.push(radii.len());
+        if radii.is_empty() {
+            discs = Discs::default();
+        }
+        // the discs' radii are held by equations after the dofs'
+        f_dead.extend_from_slice(&radii);
+        f_live.resize(f_dead.len(), 0.0);
+        let n = n_dofs + radii.len();
+        let most = (0..m).map(|k| discs.of(k).len()).max().unwrap_or(0);
+        let rows = ROWS3 + most;
+        let mut dofs = crate::error::try_with_capacity("the program's equations", rows * m)?;
+        for (k, c) in contacts.iter().enumerate() {
             for blk in [c.a, c.b] {
                 for r in 0..6 {
                     dofs.push(eq[6 * blk + r].map_or(NO_EQ, |e| e as u32));
                 }
             }
+            let own = discs.of(k);
+            dofs.extend(own.clone().map(|d| (n_dofs + d) as u32));
+            dofs.extend(std::iter::repeat(NO_EQ).take(most - own.len()));
         }
-        let mut lp = Lp::new(eq, n, ROWS3, 0, None, dofs, f_dead, f_live, (force, length, live))?;
+        let mut lp = Lp::new(eq, n, rows, 0, None, dofs, f_dead, f_live, (force, length, live))?;
         lp.cone = 3;
         let centroids = model.centroids();
         let mut gens = crate::error::try_with_capacity("the program's generators", 3 * m)?;
@@ -88,15 +137,32 @@ impl Space {
         for (k, c) in contacts.iter().enumerate() {
             let mu = model.law(k).friction;
             gens.extend_from_slice(&[c.n, c.t1.map(|v| mu * v), c.t2.map(|v| mu * v)]);
+            let first = arms.len();
             for &p in &c.corners {
                 let arm = |i: usize| sub(p, centroids[i]).map(|v| v / length);
                 arms.push([arm(c.a), arm(c.b)]);
             }
+            // the cut-off's tension at each corner: a constant force -h w_i n on b (the rows'
+            // convention: a force f on b is +f on a's rows, -f on b's)
+            if let Some((h, w)) = &strength[k] {
+                let pv = &mut lp.pv[rows * k..rows * k + ROWS3];
+                for (j, wi) in w.iter().enumerate() {
+                    let [ra, rb] = arms[first + j];
+                    let f = c.n.map(|v| -h * wi * v);
+                    let (ma, mb) = (cross(ra, f), cross(rb, f));
+                    let v = [f[0], f[1], f[2], ma[0], ma[1], ma[2], -f[0], -f[1], -f[2], -mb[0], -mb[1], -mb[2]];
+                    pv.iter_mut().zip(v).for_each(|(p, v)| *p += v);
+                }
+            }
             start.push(arms.len());
         }
-        lp.corners = Some(Corners { start, sides: 3, gens, arms });
+        // the discs' corners, numbered among every corner
+        for d in 0..discs.corner.len() {
+            discs.corner[d] += start[discs.contact[d] as usize];
+        }
+        lp.corners = Some(Corners { start, sides: 3, gens, arms, discs });
         lp.regularize_frictionless((0..m).any(|k| model.law(k).friction == 0.0));
-        Ok(Space { lp })
+        Ok(Space { lp, vertex: strength })
     }
 
     /// Each contact's resultants in their own units: the force and moment (about the contact's
@@ -112,18 +178,27 @@ impl Space {
                 let (mut force, mut moment) = ([0.0; 3], [0.0; 3]);
                 let cf = self.lp.corners.as_ref().expect("a program in corner form");
                 let sides = cf.sides;
-                for (q, &p) in cf.of(k).zip(&c.corners) {
-                    let g = &cf.gens[sides * k..sides * (k + 1)];
-                    let mut fp = [0.0; 3];
-                    for (j, gj) in g.iter().enumerate() {
-                        let r = x[cf.var(q) + j] * f;
-                        (0..3).for_each(|i| fp[i] -= r * gj[i]);
-                    }
+                let mut add = |p: [f64; 3], fp: [f64; 3]| {
                     let mp = cross(sub(p, c.centroid), fp);
                     (0..3).for_each(|i| {
                         force[i] += fp[i];
                         moment[i] += mp[i];
                     });
+                };
+                for (j, (q, &p)) in cf.of(k).zip(&c.corners).enumerate() {
+                    let g = &cf.gens[sides * k..sides * (k + 1)];
+                    // the cut-off's tension, then the cone's generators
+                    let mut fp = self.vertex.get(k).and_then(|v| v.as_ref()).map_or([0.0; 3], |(h, w)| c.n.map(|v| h * w[j] * f * v));
+                    for (j, gj) in g.iter().enumerate() {
+                        let r = x[cf.var(q) + j] * f;
+                        (0..3).for_each(|i| fp[i] -= r * gj[i]);
+                    }
+                    add(p, fp);
+                }
+                for d in cf.discs.of(k) {
+                    let [t1, t2] = cf.discs.tangents[k];
+                    let (z1, z2) = (x[cf.disc_var(d) + 1] * f, x[cf.disc_var(d) + 2] * f);
+                    add(c.corners[cf.discs.corner[d] - cf.start[k]], std::array::from_fn(|i| -z1 * t1[i] - z2 * t2[i]));
                 }
                 let axes = [c.n, c.t1, c.t2];
                 let mut s = [0.0; 6];
@@ -283,7 +358,7 @@ pub fn limit_analysis_3d_with(
         upper_bound: if non_assoc { space.lp.lambda_of(&sol) } else { f64::NAN },
         sequence: 0,
         sequence_converged: false,
-        peak_strengths: false,
+        peak_strengths: (0..model.contacts().len()).any(|k| model.law(k).is_strong()),
     };
     let mut res = space.results(model, &sol, cert, start);
     if let Some(c) = res.certificate.as_mut() {
@@ -333,22 +408,25 @@ mod tests {
     #[test]
     fn the_threads_give_the_same_results_to_the_bit() {
         // a U wall (facade 12 m, returns 4 m, 5 m high) of more contacts than the passes need to
-        // run on several threads, pushed out of the facade's plane
-        let law = JointLaw { friction: 0.7, dilatancy: 0.7, ..JointLaw::default() };
-        let model = Model3::new(&ModelSpec3 {
-            blocks: crate::space::u_wall(12.0, 5.0, 4.0, 0.25, 0.5, 0.25).unwrap(),
-            joints: JointLaws::uniform(law),
-            live: LiveLoad3::HorizontalWeight { direction: 90.0 },
-            ..ModelSpec3::default()
-        })
-        .unwrap();
-        assert!(model.contacts().len() >= 2000, "{} contacts", model.contacts().len());
-        let run = |threads| limit_analysis_3d(&model, &LimitOptions { threads, ..LimitOptions::default() }).unwrap();
-        let (one, two) = (run(1), run(2));
-        assert_eq!(one.status, Status::Collapse);
-        assert_eq!(one.iterations, two.iterations);
-        assert_eq!(one.collapse_multiplier.to_bits(), two.collapse_multiplier.to_bits());
-        let bits = |r: &Results<[f64; 6]>| r.mechanism.iter().chain(&r.interface_forces).flatten().map(|v| v.to_bits()).collect::<Vec<_>>();
-        assert!(bits(&one) == bits(&two), "the mechanisms or the forces differ");
+        // run on several threads, pushed out of the facade's plane; dry, and with mortar (the
+        // discs of cohesion and their equations on the threads too)
+        let dry = JointLaw { friction: 0.7, dilatancy: 0.7, ..JointLaw::default() };
+        for law in [dry, JointLaw { cohesion: 2e4, tensile_strength: 5e3, ..dry }] {
+            let model = Model3::new(&ModelSpec3 {
+                blocks: crate::space::u_wall(12.0, 5.0, 4.0, 0.25, 0.5, 0.25).unwrap(),
+                joints: JointLaws::uniform(law),
+                live: LiveLoad3::HorizontalWeight { direction: 90.0 },
+                ..ModelSpec3::default()
+            })
+            .unwrap();
+            assert!(model.contacts().len() >= 2000, "{} contacts", model.contacts().len());
+            let run = |threads| limit_analysis_3d(&model, &LimitOptions { threads, ..LimitOptions::default() }).unwrap();
+            let (one, two) = (run(1), run(2));
+            assert_eq!(one.status, Status::Collapse);
+            assert_eq!(one.iterations, two.iterations);
+            assert_eq!(one.collapse_multiplier.to_bits(), two.collapse_multiplier.to_bits());
+            let bits = |r: &Results<[f64; 6]>| r.mechanism.iter().chain(&r.interface_forces).flatten().map(|v| v.to_bits()).collect::<Vec<_>>();
+            assert!(bits(&one) == bits(&two), "the mechanisms or the forces differ");
+        }
     }
 }

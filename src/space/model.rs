@@ -234,26 +234,6 @@ impl Model3 {
     pub fn carried(&self) -> &[CarriedLoad<3>] {
         &self.carried
     }
-    /// Refuses, for `what` (a time history), a block whose carried loads give it products of
-    /// inertia about x, y and z: the integrator turns each block about its principal axes,
-    /// those of its box. A load on an axis of the box through its centroid (over its centre,
-    /// say) keeps them; a load off those axes does not (the pushover and limit analysis, which
-    /// do not turn blocks dynamically, take it).
-    pub fn check_principal(&self, what: &str) -> Result<()> {
-        for &(i, [yz, xz, xy]) in &self.products {
-            let scale = self.inertia[i].iter().fold(0.0f64, |a, &v| a.max(v));
-            if [yz, xz, xy].iter().any(|p| p.abs() > 1e-9 * scale) {
-                return Err(Error::input_at(
-                    "loads.carried",
-                    format!(
-                        "{what} turns each block about the axes of its box, and the loads carried by {} give it products of inertia (yz {yz:.3e}, xz {xz:.3e}, xy {xy:.3e} kg m2): put its loads on an axis of its box through the box's centroid (over its centre, say), or run limit analysis or the pushover",
-                        self.block_name(i)
-                    ),
-                ));
-            }
-        }
-        Ok(())
-    }
     /// The contacts, sorted by their blocks (a, b).
     pub fn contacts(&self) -> &[Contact] {
         &self.contacts
@@ -265,21 +245,6 @@ impl Model3 {
     /// The joint laws of the families.
     pub fn laws(&self) -> &JointLaws {
         &self.laws
-    }
-    /// Refuses joints with cohesion or tensile strength: `what` (an analysis in 3D) takes dry joints.
-    pub fn check_dry(&self, what: &str) -> Result<()> {
-        for (k, c) in self.contacts.iter().enumerate() {
-            let law = self.law(k);
-            if law.cohesion > 0.0 || law.tensile_strength > 0.0 {
-                return Err(Error::input(format!(
-                    "{what} takes dry joints (cohesion and tensile_strength 0); the {} joints have cohesion {} Pa and tensile_strength {} Pa",
-                    c.family.name(),
-                    law.cohesion,
-                    law.tensile_strength
-                )));
-            }
-        }
-        Ok(())
     }
     /// Refuses, for `what` (an analysis that raises lambda, the live load's multiplier), a model
     /// without a live load: it has nothing to raise (a pushover of zero loads would take every

@@ -73,3 +73,42 @@ pub fn ferris_wall5_blocks() -> Vec<Rect> {
     }
     masonry_dem::geometry::pattern(0.4, 0.175, &rows).unwrap()
 }
+
+/// A b x d x h box standing on a slope rising towards +x at `alpha` degrees (its base along the
+/// slope), on a fixed wedge under the slope, no base: dry associative joints of friction
+/// `friction`, g = 10, pushed at `direction` degrees in plan.
+pub fn on_slope(alpha: f64, b: f64, d: f64, h: f64, friction: f64, direction: f64) -> masonry_dem::space::Model3 {
+    use masonry_dem::shape::Polyhedron;
+    use masonry_dem::space::{LiveLoad3, Model3, ModelSpec3};
+    let (sa, ca) = alpha.to_radians().sin_cos();
+    let (s, n) = ([ca, 0.0, sa], [-sa, 0.0, ca]);
+    let at = |u: f64, v: f64, w: f64| -> [f64; 3] { std::array::from_fn(|k| 2.0 + u * s[k] + w * n[k] + if k == 1 { v } else { 0.0 }) };
+    let block: Vec<[f64; 3]> = (0..8).map(|i| at(if i & 1 == 1 { b } else { 0.0 }, if i & 2 == 2 { d } else { 0.0 }, if i & 4 == 4 { h } else { 0.0 })).collect();
+    let block = Polyhedron::hull(&block, 1e-9).unwrap();
+    // the wedge: the slope from 0.5 m before the block to 0.5 m past it, down to 1 m below its foot
+    let (lo, hi) = (at(-0.5, 0.0, 0.0), at(b + 0.5, 0.0, 0.0));
+    let floor = lo[2] - 1.0;
+    let mut wedge = vec![];
+    for y in [1.5, 2.0 + d + 0.5] {
+        wedge.extend([[lo[0], y, lo[2]], [hi[0], y, hi[2]], [hi[0], y, floor], [lo[0], y, floor]]);
+    }
+    let wedge = Polyhedron::hull(&wedge, 1e-9).unwrap();
+    Model3::new(&ModelSpec3 {
+        polyhedra: vec![block],
+        supports: vec![wedge],
+        base: false,
+        gravity: 10.0,
+        joints: JointLaws::uniform(dry(friction, friction, 1e9)),
+        live: LiveLoad3::HorizontalWeight { direction },
+        ..ModelSpec3::default()
+    })
+    .unwrap()
+}
+
+/// The times at which a rotation record changes sign (interpolated).
+pub fn sign_changes(times: &[f64], rot: &[f64]) -> Vec<f64> {
+    (1..times.len())
+        .filter(|&k| rot[k - 1] != 0.0 && rot[k - 1] * rot[k] < 0.0)
+        .map(|k| times[k - 1] + (times[k] - times[k - 1]) * rot[k - 1] / (rot[k - 1] - rot[k]))
+        .collect()
+}

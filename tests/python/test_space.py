@@ -136,9 +136,9 @@ def test_wrong_argument_types_are_input_errors() -> None:
         md.Model3D(boxes, live="none", direction=90)
     with pytest.raises(md.InputError, match="max_iterations"):
         md.Model3D(boxes).solve_limit(max_iterations="many")
-    # mortar: the core's 3D limit analysis takes dry joints, and says so
-    with pytest.raises(md.InputError, match="dry joints"):
-        md.Model3D(boxes, joints={"default": {"cohesion": 1e5}}).solve_limit()
+    # mortar: the core's 3D limit analysis takes it at its peak strengths, and says so
+    mortar = md.Model3D(boxes, joints={"default": {"cohesion": 1e5, "friction": 0.65, "dilatancy": 0.65}}).solve_limit()
+    assert mortar.status == "collapse" and mortar.certificate is not None and mortar.certificate["peak_strengths"] is True
 
 
 def test_limit_analysis_on_threads_gives_the_same_results_to_the_bit(tmp_path: Path) -> None:
@@ -293,9 +293,9 @@ def test_the_explicit_solver_in_3d_refuses_what_it_does_not_model() -> None:
         model.solve_dynamic(control="displacement")
     with pytest.raises(md.InputError, match="applies to displacement control only"):
         model.solve_dynamic(max_displacement=0.01)
-    mortar = md.Model3D(box, joints={"default": {"cohesion": 1e5}})
-    for run in (mortar.solve_dynamic, lambda: mortar.simulate(0.01)):
-        with pytest.raises(md.InputError, match="the explicit solver in 3D takes dry joints.*cohesion 100000 Pa"):
+    softening = md.Model3D(box, joints={"default": {"cohesion": 1e5, "fracture_energy_tension": 10.0, "fracture_energy_shear": 10.0}})
+    for run in (softening.solve_dynamic, lambda: softening.simulate(0.01)):
+        with pytest.raises(md.InputError, match="the explicit solver in 3D takes brittle joints"):
             run()
     with pytest.raises(md.InputError, match="stiffness-proportional damping is the plane's only"):
         model.simulate(0.01, rayleigh=(1.0, 1e-4))
