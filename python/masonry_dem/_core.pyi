@@ -528,8 +528,9 @@ class Model3D:
     top: None (the default: no top beam) or the height [m] of a rigid top beam of the blocks' density over the box
         around the blocks in plan, resting on the highest blocks, free to move; it weighs and takes the live load.
     joints: as Model's, {family: law} with family in "default", "bed", "head", "base", "top"; the 3D analyses take
-        dry joints (cohesion and tensile_strength 0): limit analysis reads friction and dilatancy, the explicit
-        solver the stiffnesses too (and restitution, in time histories).
+        joints with cohesion and tensile_strength too (brittle: fracture energies 0; shared by a contact's corners by
+        tributary area): limit analysis reads their strengths, friction and dilatancy, the explicit solver the
+        stiffnesses too (and restitution, in time histories).
     gravity [m/s2], along -z (default 9.81); live: "horizontal_weight" (the default: lambda * W_i on every block
         that weighs, horizontal) or "none"; direction: the live load's direction in plan [deg], from +x towards +y
         (default 0: towards +x; 90 pushes a facade along x out of its plane, towards +y).
@@ -651,7 +652,7 @@ class Model3D:
         strength domains balance the dead loads plus lambda times the live load, a second-order cone program solved
         by the interior point of Model.solve_limit. Each corner of a contact carries a force in Coulomb's cone
         (|T| <= mu N, the same in every direction of sliding, as in solve_dynamic); torsion and biaxial bending come
-        from the corners' positions. Dry joints only: cohesion or tensile_strength is refused (InputError), and so is
+        from the corners' positions. Mortar joints (cohesion, tensile_strength) enter with their peak strengths. Refused
         a wall that nothing holds (no base, or blocks that no chain of contacts joins to it). Exact for dry associative joints (dilatancy = friction), status
         "collapse"; for dilatancy below friction the associative optimum, an upper bound, with status "estimate".
 
@@ -690,7 +691,7 @@ class Model3D:
         the blocks' rotations are small, as in limit analysis. Load control only: each load level is relaxed until
         |unbalanced| <= unbalanced_ratio * |applied|, and the collapse multiplier is bracketed to `tolerance`
         (Results.bracket: the highest level that settled, the lowest that ran away); control="displacement" is
-        refused (InputError), and so are cohesion or tensile_strength (dry joints only) and a wall that nothing holds.
+        refused (InputError), and so is a wall that nothing holds; joints with strength are brittle (fracture energies 0).
         The curve follows control_block (default: the highest wall block) along x, or along y when the live load's
         direction is nearer y; a control block held along that axis (the base) is refused. damping,
         damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in Model.solve_dynamic
@@ -723,7 +724,7 @@ class Model3D:
         vertical_acceleration (upwards), each (times [s], accelerations [m/s2]), linear between samples and zero
         outside them; the blocks move in the frame of the base. Finite rotations (unit quaternions, Euler's
         equations) unless large_rotations is False. Impacts lose energy by the joints' restitution (the time step is
-        lowered for the contact dashpots this takes). Dry joints only (cohesion or tensile_strength is refused);
+        lowered for the contact dashpots this takes). Joints with strength are brittle (fracture energies 0);
         damping "local", "viscous" or "none": stiffness-proportional damping is the plane's only (rayleigh takes
         beta = 0 only). Returns a TimeHistory of dimension 3, with the ground's acceleration and the base shear along
         y too. Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory computed so far

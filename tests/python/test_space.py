@@ -374,8 +374,6 @@ def test_the_boxes_key_and_the_3d_keys_of_other_tables() -> None:
         (LEAF_TABLE + "[time_history]\nduration = 1.0\n", "time_history", "a time history is refused"),
         (LEAF_TABLE + '[ground_motion]\npulse = "ricker"\namplitude_g = 0.3\nperiod = 0.2\n', "ground_motion",
          "a time history is refused"),
-        (LEAF_TABLE + '[joints]\ncohesion = "0.1 MPa"\n', "joints.cohesion", "mortar joints are refused"),
-        (LEAF_TABLE + "[joints.bed]\ntensile_strength = 1000\n", "joints.bed.tensile_strength", "dry joints"),
         (LEAF_TABLE + '[reference]\ncollapse_multiplier = 0.1\nmethods = ["static"]\n', "reference.methods",
          "limit analysis"),
         (LEAF_TABLE + '[loads]\nlive = "top_horizontal"\n', "loads.live", "horizontal_weight"),
@@ -604,3 +602,17 @@ def test_the_script_example_in_3d(tmp_path: Path) -> None:
     leaf = re.search(r"free leaf: lambda = ([0-9.]+), t / H = ([0-9.]+)", proc.stdout)
     assert leaf and abs(float(leaf.group(1)) - 0.1) <= 1e-6
     assert png.stat().st_size > 0 and (tmp_path / "u-blocks.vtu").exists()
+
+
+def test_a_3d_case_with_mortar_joints_reaches_the_core(tmp_path: Path) -> None:
+    """Cohesion and tensile strength in a 3D case file are the Model3D's joints: the same multiplier as the model built
+    from Python with those joints, to 1e-12 (the physics: tests/space_mortar.rs)."""
+    text = 'format = 1\ntitle = "mortar leaf"\n' + LEAF_TABLE + "[joints]\nfriction = 0.6\ndilatancy = 0.6\ncohesion = 500\ntensile_strength = 200\n"
+    path = tmp_path / "mortar.toml"
+    path.write_text(text)
+    case = md.load_case(path)
+    res = case.run()
+    law = {"default": {"friction": 0.6, "dilatancy": 0.6, "cohesion": 500.0, "tensile_strength": 200.0}}
+    direct = md.Model3D(md.running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175), joints=law).solve_limit()
+    assert res.status == "collapse" and direct.status == "collapse"
+    assert abs(res.collapse_multiplier - direct.collapse_multiplier) <= 1e-12 * direct.collapse_multiplier

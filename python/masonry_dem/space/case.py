@@ -29,7 +29,6 @@ from ..case.mapping import AnalysisParameters, Case
 from ..case.table import _got, _non_negative, _positive, _quote, _Table
 from .model import (
     CORE_DEFAULTS_3D as CORE_DEFAULTS_3D,
-    DRY_3D,
     IN_3D,
     LOAD_CONTROL_3D,
     METHODS_3D,
@@ -44,7 +43,6 @@ __all__ = [
     "BONDED_KEYS",
     "METHODS_3D",
     "IN_3D",
-    "DRY_3D",
     "LOAD_CONTROL_3D",
     "NO_CASE_HISTORY_3D",
     "CORE_DEFAULTS_3D",
@@ -250,7 +248,6 @@ def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any
     check_hulls(geometry, top.source)
     beam = _top_beam(top)
     joints = _joints(top)
-    _dry_joints(top, joints)
     gravity, live, direction, carried = _loads(top)
     method, analysis = _analysis(top, default_method="limit")
     if method not in METHODS_3D:
@@ -291,17 +288,6 @@ def _top_beam(top: _Table) -> Optional[float]:
         raise table.error("missing key 'height' in [top] (the top beam's height [m]: a 3D wall's beam has a size "
                           "and a weight)", table.where("height"))
     return float(table.number("height", check=_positive, unit="length"))
-
-
-def _dry_joints(top: _Table, joints: Optional[Dict[str, Dict[str, float]]]) -> None:
-    """Refuse mortar (cohesion or tensile strength) in a 3D case, naming the key: the 3D analyses (limit analysis,
-    the explicit solver) take dry joints only."""
-    for family, law in (joints or {}).items():
-        for key in ("cohesion", "tensile_strength"):
-            value = law.get(key, 0.0)
-            if value > 0:
-                name = f"joints.{key}" if family == "default" else f"joints.{family}.{key}"
-                raise top.error(f"{name} = {value:g} Pa: {DRY_3D}: mortar joints are refused", name)
 
 
 def _loads(top: _Table) -> Any:

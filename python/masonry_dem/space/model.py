@@ -10,7 +10,7 @@ the names and keywords of :class:`masonry_dem.Model`'s (``simulate`` adds ``base
 Also what a case of a 3D wall hands the model (:mod:`masonry_dem.space.case` reads it, a
 :class:`masonry_dem.case.Case` holds it): :class:`ModelParameters3D`, the core's defaults of its arguments
 (:data:`CORE_DEFAULTS_3D`), the methods it takes (:data:`METHODS_3D`) and the words of what it refuses
-(:data:`IN_3D`, :data:`DRY_3D`, :data:`LOAD_CONTROL_3D`, :data:`NO_CASE_HISTORY_3D`).
+(:data:`IN_3D`, :data:`LOAD_CONTROL_3D`, :data:`NO_CASE_HISTORY_3D`).
 """
 
 from __future__ import annotations
@@ -32,8 +32,6 @@ __all__ = ["Model3D", "running_bond_3d", "u_wall", "corner_wall", "cut_openings"
 METHODS_3D = ("limit", "dynamic")
 #: The words of the refusals of a method the 3D model does not take in this version (the static solver).
 IN_3D = 'the 3D model takes limit analysis and the explicit solver (method "limit" or "dynamic") in this version'
-#: The words of the refusal of mortar joints in 3D (cohesion or tensile strength).
-DRY_3D = "the 3D model takes dry joints (cohesion and tensile_strength 0) in this version"
 #: The words of the refusal of displacement control in 3D (the explicit solver's pushover is load-controlled).
 LOAD_CONTROL_3D = 'the explicit solver in 3D is load-controlled in this version (analysis.control = "load")'
 #: The words of the refusal of a time history in a 3D case file (``masonry-dem simulate``, [ground_motion],
