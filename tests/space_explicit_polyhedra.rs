@@ -154,6 +154,7 @@ fn arches_extruded_one_block_deep_collapse_at_the_planes_limit_multiplier() {
         thickness,
         voussoirs,
         springing: Springing::Abutments { width: None, height: None },
+        backfill: None,
     };
     let law = JointLaw { friction: 2.0, dilatancy: 2.0, ..JointLaw::default() };
     for (name, a) in [("semicircular", on(ArchKind::Semicircular, None, Some(1.0), None, 0.15, 12)), ("pointed", on(ArchKind::Pointed, Some(3.0), None, Some(2.2), 0.25, 12))] {
