@@ -539,7 +539,7 @@ class Model3D:
         A time history refuses a load off the box's axes through its centroid (its products of inertia).
     polyhedra: wall blocks of any convex shape after the boxes, a list of vertex lists (each a (k, 3) array or a
         list of [x, y, z] rows [m]): each block the convex hull of its vertices (at least 4 off one plane).
-    supports: fixed blocks of any convex shape, vertex lists as polyhedra (an abutment, an inclined plane; barrel_vault and dome give both); with
+    supports: fixed blocks of any convex shape, vertex lists as polyhedra (an abutment, an inclined plane); with
         supports the default base is False (no foundation unless base=True).
     Block indices: the boxes in the order given, then the polyhedra, then the base, then the top beam, then the
     supports. Raises InputError naming the key or block on bad input (`polyhedra[3]: ...` for a list that makes no

@@ -191,7 +191,7 @@ def test_validate_examples_static(tmp_path: Path) -> None:
         assert cells[3] == "-", cells  # the explicit solver was not run
     assert float(rows["ferris-tinloi-wall1"][2]) == pytest.approx(0.6429, rel=0.01)
     assert float(rows["ferris-tinloi-wall2"][2]) == pytest.approx(0.5800, rel=0.01)
-    assert "10 cases with a reference: 8 passed, 0 failed, 2 not run" in proc.stdout
+    assert "11 cases with a reference: 8 passed, 0 failed, 3 not run" in proc.stdout
     assert "skipped lact3-tilting-wall.toml: no [reference] table" in proc.stdout
 
 

@@ -266,6 +266,8 @@ def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any
     if kind in VAULT_LENGTHS:
         made = generate_polyhedra(kind, geometry, top.source)
         boxes, polyhedra, supports = None, made["polyhedra"], made["supports"]
+        if supports and base is None:  # a vault on its abutments: no base unless [base] asks for one
+            base = False
     else:
         boxes = generate_boxes(kind, geometry, top.source)
         polyhedra, supports = geometry.get("polyhedra"), geometry.get("supports")
