@@ -12,7 +12,7 @@ use masonry_dem::joint::JointLaw;
 use masonry_dem::limit::{limit_analysis, LimitOptions};
 use masonry_dem::model::{JointLaws, Model, ModelSpec};
 use masonry_dem::results::Status;
-use masonry_dem::shape::{Polygon, Polyhedron};
+use masonry_dem::shape::Polyhedron;
 use masonry_dem::space::{Box3, LiveLoad3, Model3, ModelSpec3};
 
 /// The explicit collapse multiplier of a 3D model (bracket 1e-3 wide, the default); asserts a
@@ -134,13 +134,6 @@ fn a_leaning_block_with_products_of_inertia_rocks_about_its_edge_as_the_energy_i
     assert!(worst < 0.01 * e0, "energy balance off by {worst:.3e} J of {e0:.3e} J");
 }
 
-/// The polygon `p` of the plane (x, y) extruded from y = 0 to `depth` in 3D (x, y, z = the
-/// plane's y).
-fn extrude(p: &Polygon, depth: f64) -> Polyhedron {
-    let pts: Vec<[f64; 3]> = [0.0, depth].iter().flat_map(|&y| p.vertices().iter().map(move |v| [v[0], y, v[1]])).collect();
-    Polyhedron::hull(&pts, 1e-9).unwrap()
-}
-
 #[test]
 fn arches_extruded_one_block_deep_collapse_at_the_planes_limit_multiplier() {
     // a semicircular and a pointed arch of the plane's generator on their abutments, friction 2
@@ -172,8 +165,8 @@ fn arches_extruded_one_block_deep_collapse_at_the_planes_limit_multiplier() {
         assert_eq!(lp.status, Status::Collapse);
         let depth = 0.5;
         let space = Model3::new(&spec(
-            geo.blocks.iter().map(|p| extrude(p, depth)).collect(),
-            geo.supports.iter().map(|p| extrude(p, depth)).collect(),
+            geo.blocks.iter().map(|p| Polyhedron::prism(p.vertices(), [0.0, depth])).collect(),
+            geo.supports.iter().map(|p| Polyhedron::prism(p.vertices(), [0.0, depth])).collect(),
             law,
             0.0,
         ))
