@@ -237,17 +237,23 @@ fn close_contacts(model: &Model, mechanism: &[[f64; 3]], motion: &mut [[f64; 3]]
         }
     }
     let tol = 0.01 * crate::shape::contact_tolerance(model.size());
+    let turn = |v: [f64; 2], phi: f64| {
+        let (s, co) = phi.sin_cos();
+        [co * v[0] - s * v[1], s * v[0] + co * v[1]]
+    };
     // where point p of block i goes under motion m, and the arm from its moved centroid
     let place = |i: usize, m: [f64; 3], p: [f64; 2]| {
         let c = centroids[i];
-        let (s, co) = m[2].sin_cos();
-        let (x, y) = (p[0] - c[0], p[1] - c[1]);
-        let r = [co * x - s * y, s * x + co * y];
+        let r = turn([p[0] - c[0], p[1] - c[1]], m[2]);
         ([c[0] + m[0] + r[0], c[1] + m[1] + r[1]], r)
     };
-    let turn = |v: [f64; 2], m: [f64; 3]| {
-        let (s, co) = m[2].sin_cos();
-        [co * v[0] - s * v[1], s * v[0] + co * v[1]]
+    // block i moved by g along d, turned by g j, if it is free
+    let nudge = |m: &mut [f64; 3], free: bool, g: f64, d: [f64; 2], j: f64| {
+        if free {
+            m[0] += g * d[0];
+            m[1] += g * d[1];
+            m[2] += g * j;
+        }
     };
     for _ in 0..SWEEPS {
         let mut worst = 0.0f64;
@@ -255,28 +261,21 @@ fn close_contacts(model: &Model, mechanism: &[[f64; 3]], motion: &mut [[f64; 3]]
             let (pa, ra) = place(k.a, motion[k.a], k.p);
             let (pb, rb) = place(k.b, motion[k.b], k.p);
             let gap = [pb[0] - pa[0], pb[1] - pa[1]];
-            let n = turn(k.n, motion[k.a]);
+            let n = turn(k.n, motion[k.a][2]);
             let dirs: &[[f64; 2]] = if k.hinge { &[n, [n[1], -n[0]]] } else { &[n] };
-            for d in dirs {
+            let (fa, fb) = (free(k.a), free(k.b));
+            for &d in dirs {
                 let c = gap[0] * d[0] + gap[1] * d[1];
                 worst = worst.max(c.abs());
                 // the gradient of c: -(d, ra x d) on a's (u, phi), +(d, rb x d) on b's
                 let (ja, jb) = (ra[0] * d[1] - ra[1] * d[0], rb[0] * d[1] - rb[1] * d[0]);
-                let (wa, wb) = (free(k.a) as u8 as f64, free(k.b) as u8 as f64);
-                let norm = wa * (1.0 + ja * ja) + wb * (1.0 + jb * jb);
+                let norm = if fa { 1.0 + ja * ja } else { 0.0 } + if fb { 1.0 + jb * jb } else { 0.0 };
                 if norm == 0.0 {
                     continue;
                 }
-                let g = -c / norm;
-                let (ma, mb) = (&mut motion[k.a], &mut [0.0; 3]);
-                ma[0] -= wa * g * d[0];
-                ma[1] -= wa * g * d[1];
-                ma[2] -= wa * g * ja;
-                *mb = motion[k.b];
-                mb[0] += wb * g * d[0];
-                mb[1] += wb * g * d[1];
-                mb[2] += wb * g * jb;
-                motion[k.b] = *mb;
+                let g = c / norm;
+                nudge(&mut motion[k.a], fa, g, d, ja);
+                nudge(&mut motion[k.b], fb, -g, d, jb);
             }
         }
         if worst <= tol {

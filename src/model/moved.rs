@@ -5,7 +5,7 @@ use super::Model;
 use crate::error::{Error, Result};
 use crate::interface::detect_with;
 use crate::joint::Section;
-use crate::shape::{contact_tolerance, Polygon};
+use crate::shape::contact_tolerance;
 
 impl Model {
     /// The model with block `i` moved by the finite rigid motion `motion[i]` = (u1, u2 \[m\],
@@ -43,7 +43,7 @@ impl Model {
             if *m == [0.0; 3] {
                 continue;
             }
-            let moved = Polygon::new(self.polygons[i].vertices().iter().map(|&v| carry(i, v)).collect());
+            let moved = self.polygons[i].map(|v| carry(i, v));
             out.polygons[i] = moved.checked(tol).map_err(|d| Error::input(format!("{} moved: {}", self.block_name(i), d.reason)))?;
             out.centroids[i] = carry(i, self.centroids[i]);
         }
