@@ -69,3 +69,38 @@ fn a_block_turning_about_its_toe_follows_tan_alpha_minus_theta() {
 }
 
 
+
+/// A portal frame: two columns b x h on the base and a lintel resting on them, pushed by lambda
+/// times each block's weight. The columns rock about their toes and the lintel rides, without
+/// turning, on their top inner corners: every block's centroid moves as a point of a column at
+/// the angle alpha from the toe's vertical, so lambda(theta) = tan(alpha - theta) as for one
+/// column, whatever the lintel's weight (the rocking frame of Makris and Vassiliou 2013). Three
+/// blocks and four point hinges, found again at each step.
+#[test]
+fn a_rocking_portal_frame_follows_tan_alpha_minus_theta() {
+    let (b, h, span): (f64, f64, f64) = (0.4, 2.0, 2.0);
+    let alpha = (b / h).atan();
+    let blocks: Vec<Polygon> =
+        vec![Rect::new(0.0, 0.0, b, h).into(), Rect::new(span - b, 0.0, span, h).into(), Rect::new(0.0, h, span, h + 0.4).into()];
+    let model = Model::new(ModelSpec { blocks, joints: law(5.0), ..ModelSpec::default() }).unwrap();
+    let follow = FollowOptions { step: 0.04, max_steps: 1000 };
+    let r = follow_mechanism(&model, &LimitOptions::default(), &follow, &mut |_| true).unwrap();
+    assert_eq!(r.status, Status::Collapse);
+    assert!(r.error.is_none(), "{:?}", r.error);
+    assert!((r.collapse_multiplier - b / h).abs() < 1e-9);
+    let n = r.curve_multiplier.len();
+    assert!(n >= 11, "{n} points");
+    // the control block's horizontal displacement against theta: a column's centroid, or the
+    // lintel's, which moves as the column's top inner corner
+    let theta_of = |d: f64| if r.control_block == 2 { rotation_of(d, 2.0 * b, 2.0 * h) } else { rotation_of(d, b, h) };
+    for (&d, &lam) in r.curve_displacement.iter().zip(&r.curve_multiplier) {
+        let theta = theta_of(d);
+        assert!((lam - (alpha - theta).tan()).abs() < 1e-6, "d = {d}: lambda {lam} against {}", (alpha - theta).tan());
+    }
+    let last = theta_of(r.curve_displacement[n - 1]);
+    assert!(r.curve_multiplier[n - 1] <= 1e-3 * r.collapse_multiplier && (last - alpha).abs() < 1e-3);
+    // both columns turned clockwise by theta, the lintel not turned
+    for (i, turn) in [(0, -last), (1, -last), (2, 0.0)] {
+        assert!((r.displacements[i][2] - turn).abs() < 1e-6, "block {i}: {:?}", r.displacements[i]);
+    }
+}

@@ -3,7 +3,8 @@
 //! about its instantaneous centre), the interfaces are found again where the blocks now touch
 //! (along edges or at points: [`Model::moved`]), and the limit analysis is solved again on the
 //! moved geometry, its mechanism giving the next step, until no equilibrium remains (lambda
-//! has reached zero) or the steps run out.
+//! has reached zero) or the steps run out. A step that fails is halved: the curve's end is
+//! found within a small fraction of a step.
 
 use super::{limit_analysis_with, LimitOptions, LimitProgress};
 use crate::error::{Error, Result};
@@ -40,6 +41,10 @@ const GAP: f64 = 1e-3;
 /// Halvings of the last step, at most, to find where no equilibrium begins.
 const HALVINGS: usize = 30;
 
+/// Where the steps' halvings end with lambda above this fraction of the first multiplier, the
+/// curve has not reached zero: the equilibrium is lost to a change of mechanism.
+const ZERO_SNAP: f64 = 1e-2;
+
 /// The largest `max_steps` accepted.
 pub const MAX_FOLLOW_STEPS: usize = 100_000;
 
@@ -49,10 +54,12 @@ pub const MAX_FOLLOW_STEPS: usize = 100_000;
 /// control block's horizontal displacement \[m\] and `curve_multiplier` the multiplier on the
 /// moved geometry at each step, from (0, lambda_0); `displacements` the blocks' finite motion at
 /// the curve's last point (u1, u2 of the centre of mass \[m\], phi \[rad\]); `steps` the steps
-/// taken. Where no equilibrium remains after a step, the step is halved until lambda is within
-/// 1e-3 of lambda_0 of zero: the curve ends where lambda reaches zero. The status is the first
-/// analysis's; a curve that stops short of zero (the steps ran out, the blocks met in a way
-/// the model refuses, a program that did not converge) says why in `error`.
+/// taken. Where a step fails (no equilibrium on the moved geometry, a program that does not
+/// converge, blocks that would overlap or lose their support), it is halved, at most 30 times,
+/// and the following steps grow back: the curve ends where lambda reaches zero (within 1e-3 of
+/// lambda_0). The status is the first analysis's; a curve that stops short of zero (the steps
+/// ran out; every step failed with lambda above 1e-2 of lambda_0, where the mechanism changes in
+/// a way the steps do not follow) says why in `error`.
 pub fn follow_mechanism(
     model: &Model,
     opts: &LimitOptions,
@@ -83,28 +90,43 @@ pub fn follow_mechanism(
     let mut iterations = res.iterations;
     let mut fraction = 1.0;
     let mut steps = 0;
+    // why the last step tried failed, while its halvings go on
+    let mut failure = String::new();
     let end = loop {
         if steps >= follow.max_steps {
             break Some(format!("the steps ran out (analysis.follow_steps = {}) before lambda reached zero", follow.max_steps));
         }
-        let Some(motion) = step_motion(&current, &mechanism, fraction * step) else {
+        let Some(mut motion) = step_motion(&current, &mechanism, fraction * step) else {
             break Some("the mechanism has stopped moving".into());
         };
-        let mut motion = motion;
         close_contacts(&current, &mechanism, &mut motion);
-        let next = match current.moved(&motion, GAP * fraction * step) {
-            Ok(m) => m,
-            Err(e @ Error::Input { .. }) => break Some(format!("the blocks cannot move on: {e}")),
+        // the full step's gap: the contacts a longer step left open by up to it are kept
+        let next = match current.moved(&motion, GAP * step) {
+            Ok(m) => Ok(m),
+            Err(e @ Error::Input { .. }) => Err(format!("moved blocks were refused: {e}")),
             Err(e) => return Err(e),
         };
-        let r = match limit_analysis_with(&next, opts, monitor) {
-            Ok(r) => r,
-            Err(e @ Error::Input { .. }) => break Some(format!("the blocks cannot move on: {e}")),
-            Err(e) => return Err(e),
+        let analysed = match next {
+            Ok(next) => match limit_analysis_with(&next, opts, monitor) {
+                Ok(r) => Ok((next, r)),
+                Err(e @ Error::Input { .. }) => Err(format!("moved blocks were refused: {e}")),
+                Err(e) => return Err(e),
+            },
+            Err(why) => Err(why),
         };
-        iterations += r.iterations;
-        match r.status {
-            Status::Collapse => {
+        let outcome = match analysed {
+            Ok((next, r)) => {
+                iterations += r.iterations;
+                if r.status == Status::Collapse {
+                    Ok((next, r))
+                } else {
+                    Err(format!("limit analysis ended {}: {}", r.status.as_str(), r.error.unwrap_or_default()))
+                }
+            }
+            Err(why) => Err(why),
+        };
+        match outcome {
+            Ok((next, r)) => {
                 steps += 1;
                 for (t, m) in total.iter_mut().zip(&motion) {
                     t[0] += m[0];
@@ -120,16 +142,22 @@ pub fn follow_mechanism(
                 mechanism = r.mechanism;
                 fraction = (2.0 * fraction).min(1.0);
             }
-            // lambda has reached zero within this step: it is halved until the curve's end is
-            // within ZERO of it, or the halvings run out (the last point is then the end)
-            Status::NoEquilibrium if fraction < 0.5f64.powi(HALVINGS as i32) => break None,
-            Status::NoEquilibrium => fraction *= 0.5,
-            _ => {
+            // no equilibrium, or blocks that would meet, within this step: it is halved until
+            // the last point is within a 2^-HALVINGS fraction of the step of where that begins
+            Err(why) if fraction >= 0.5f64.powi(HALVINGS as i32) => {
+                failure = why;
+                fraction *= 0.5;
+            }
+            // lambda reached zero there: the curve's end
+            Err(_) if res.curve_multiplier[steps] <= ZERO_SNAP * lambda0 => break None,
+            Err(_) => {
                 break Some(format!(
-                    "the limit analysis after step {} ended {}: {}",
-                    steps + 1,
-                    r.status.as_str(),
-                    r.error.unwrap_or_default()
+                    "every step past it, down to {:.1e} m, failed, with lambda still {:.3} of the first multiplier: the \
+                     mechanism changes there in a way that limit analysis along it does not follow (a sudden change, \
+                     such as blocks that turn back until they meet others, has no equilibrium at any lambda in \
+                     between); on the last step, {failure}",
+                    fraction * step,
+                    res.curve_multiplier[steps] / lambda0
                 ))
             }
         }
