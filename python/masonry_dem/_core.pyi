@@ -17,6 +17,7 @@ IntArray = npt.NDArray[np.int64]
 
 __version__: str
 JOINT_LAW_KEYS: list[str]  # the keys of a joint-law dict (and of [joints] tables)
+MAX_FOLLOW_STEPS: int  # the largest follow_steps of Model.solve_limit
 DEFAULTS: dict[str, object]  # the core's defaults of Model's and the solvers' arguments that Python shows
 DEFAULTS_3D: dict[str, object]  # the core's defaults of Model3D's arguments that Python shows
 
@@ -433,6 +434,9 @@ class Model:
         max_iterations: Optional[int] = None,
         max_sequence: Optional[int] = None,
         progress: Optional[Callable[[int, float, float, float], None]] = None,
+        follow_mechanism: bool = False,
+        follow_step: Optional[float] = None,
+        follow_steps: Optional[int] = None,
     ) -> "Results":
         """Limit analysis (the static theorem): the largest lambda for which interface forces inside
         the joints' strength domains balance the dead loads plus lambda times the live load, as a
@@ -461,7 +465,19 @@ class Model:
         user" (no multiplier, no certificate).
         progress: optional callable(iteration, multiplier, nan, nan) called after each
         interior-point iteration (iterations counted over all the programs; multiplier: the
-        current estimate). An exception raised by it stops the analysis and is raised again."""
+        current estimate). An exception raised by it stops the analysis and is raised again.
+
+        follow_mechanism=True: the collapse mechanism is then followed to the end, the blocks
+        moved by finite steps of it (each turned exactly about its instantaneous centre), the
+        contacts found again (along edges and at points) and the limit analysis solved again on
+        the moved geometry: the large-displacement capacity curve. The Results are the first
+        analysis's (multiplier, mechanism, certificate) with `curve_displacement` (the control
+        block's horizontal displacement [m]) and `curve_multiplier` (lambda on the moved geometry)
+        from (0, lambda_0) down to lambda = 0, `displacements` the blocks' finite motion at the
+        curve's end (u1, u2 [m], phi [rad]) and `steps` the steps taken; a curve that stops short
+        of zero says why in Results.error (the status stays the first analysis's). follow_step:
+        the largest displacement of a block's vertex in one step [m] (default: the model's size
+        over 200); a step that fails is halved. follow_steps: steps at most (default 1000)."""
     def simulate(
         self,
         duration: float,

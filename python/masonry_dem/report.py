@@ -343,7 +343,9 @@ def summary(
     """The short human summary printed by ``masonry-dem run`` (several lines, no trailing newline).
 
     A limit analysis (method "limit") has no load path: its joint states are those of the collapse
-    mechanism, and a ``certificate`` line (or lines) replaces the count of steps. A static or explicit run checked
+    mechanism, and a ``certificate`` line (or lines) replaces the count of steps; one that followed its mechanism
+    gets an ``along the mechanism`` line (the curve's ends and steps) and, when the curve stopped short of
+    lambda = 0, a ``stopped short`` line with the reason. A static or explicit run checked
     against limit analysis (associative dry joints) gets a ``checked against`` line with the exact value (in 3D a
     lower bound). A 3D wall (a :class:`masonry_dem.Model3D`) gets a line with the live load's direction in plan, and
     its mechanism is described in 3D (:func:`masonry_dem.space.report.describe_mechanism`). A wall in the plane's
@@ -403,6 +405,14 @@ def summary(
     if limit:
         for k, text in enumerate(certificate_text(results, live)):
             lines.append(f"  {'certificate:' if k == 0 else '':<21}{text}")
+        curve = np.asarray(results.curve_multiplier, dtype=float)
+        if collapse and curve.size > 1:  # the mechanism followed on the moved geometry
+            d = float(np.asarray(results.curve_displacement, dtype=float)[-1])
+            lines.append(f"  along the mechanism: λ from {format_multiplier(float(curve[0]), live)} to "
+                         f"{format_multiplier(float(curve[-1]), live)} at a displacement of {d:.4g} m of the control "
+                         f"point, in {results.steps} steps")
+            if results.error:
+                lines.append(f"  stopped short:       {results.error}")
         lines.append(f"  elapsed:             {results.elapsed_s:.3g} s ({results.iterations} interior-point iterations)")
     else:
         cert = getattr(results, "certificate", None)

@@ -157,6 +157,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("JOINT_LAW_KEYS", JointLaw::KEYS.to_vec())?;
+    m.add("MAX_FOLLOW_STEPS", limit::MAX_FOLLOW_STEPS)?;
     m.add("DEFAULTS", defaults(py)?)?;
     m.add("DEFAULTS_3D", defaults_3d(py)?)?;
     let errors = py.import("masonry_dem.errors")?;

@@ -308,7 +308,20 @@ impl PyModel {
     /// progress: optional callable(iteration, multiplier, nan, nan) called after each
     /// interior-point iteration (iterations counted over all the programs; multiplier: the
     /// current estimate). An exception raised by it stops the analysis and is raised again.
-    #[pyo3(signature = (tolerance=None, max_iterations=None, max_sequence=None, progress=None))]
+    ///
+    /// follow_mechanism=True: the collapse mechanism is then followed to the end, the blocks
+    /// moved by finite steps of it (each turned exactly about its instantaneous centre), the
+    /// contacts found again (along edges and at points) and the limit analysis solved again on
+    /// the moved geometry: the large-displacement capacity curve. The Results are the first
+    /// analysis's (multiplier, mechanism, certificate) with `curve_displacement` (the control
+    /// block's horizontal displacement [m]) and `curve_multiplier` (lambda on the moved geometry)
+    /// from (0, lambda_0) down to lambda = 0, `displacements` the blocks' finite motion at the
+    /// curve's end (u1, u2 [m], phi [rad]) and `steps` the steps taken; a curve that stops short
+    /// of zero says why in Results.error (the status stays the first analysis's). follow_step:
+    /// the largest displacement of a block's vertex in one step [m] (default: the model's size
+    /// over 200); a step that fails is halved. follow_steps: steps at most (default 1000).
+    #[pyo3(signature = (tolerance=None, max_iterations=None, max_sequence=None, progress=None, follow_mechanism=false, follow_step=None, follow_steps=None))]
+    #[allow(clippy::too_many_arguments)]
     fn solve_limit(
         &self,
         py: Python<'_>,
@@ -316,6 +329,9 @@ impl PyModel {
         max_iterations: Option<i64>,
         max_sequence: Option<i64>,
         progress: Option<Py<PyAny>>,
+        follow_mechanism: bool,
+        follow_step: Option<f64>,
+        follow_steps: Option<i64>,
     ) -> PyResult<Py<PyResults>> {
         let defaults = LimitOptions::default();
         let opts = LimitOptions {
@@ -324,8 +340,10 @@ impl PyModel {
             max_sequence: max_sequence.map_or(Ok(defaults.max_sequence), |v| count("max_sequence", v, 0))?,
             ..defaults
         };
-        limit_run(py, &self.inner, progress, move |model, monitor| {
-            limit::limit_analysis_with(model, &opts, monitor)
+        let follow = follow_options(follow_mechanism, follow_step, follow_steps)?;
+        limit_run(py, &self.inner, progress, move |model, monitor| match follow {
+            Some(follow) => limit::follow_mechanism(model, &opts, &follow, monitor),
+            None => limit::limit_analysis_with(model, &opts, monitor),
         }, |model, start| interrupted_limit(model.n_blocks(), model.interfaces().len(), model.default_control_block(), [0.0; 3], start))
     }
 
@@ -485,6 +503,28 @@ pub(crate) fn explicit_options(
         control_block,
         ..defaults
     })
+}
+
+/// The options of limit analysis along the mechanism, or None when it is not asked for (the
+/// step and the steps are then refused if given: they would be ignored).
+fn follow_options(follow: bool, step: Option<f64>, steps: Option<i64>) -> PyResult<Option<limit::FollowOptions>> {
+    if !follow {
+        if step.is_some() || steps.is_some() {
+            return Err(InputError::new_err("follow_step and follow_steps are options of follow_mechanism=True"));
+        }
+        return Ok(None);
+    }
+    let defaults = limit::FollowOptions::default();
+    let step = match step {
+        Some(v) if !(v.is_finite() && v > 0.0) => return Err(InputError::new_err(format!("follow_step must be a length > 0 m, got {v}"))),
+        Some(v) => v,
+        None => defaults.step,
+    };
+    let max_steps = steps.map_or(Ok(defaults.max_steps), |v| count("follow_steps", v, 1))?;
+    if max_steps > limit::MAX_FOLLOW_STEPS {
+        return Err(InputError::new_err(format!("follow_steps must be at most {}, got {max_steps}", limit::MAX_FOLLOW_STEPS)));
+    }
+    Ok(Some(limit::FollowOptions { step, max_steps }))
 }
 
 /// The recording of a time history: `record_every` steps or `record_interval` seconds (not

@@ -94,7 +94,7 @@ pub fn follow_mechanism(
     let mut failure = String::new();
     let end = loop {
         if steps >= follow.max_steps {
-            break Some(format!("the steps ran out (analysis.follow_steps = {}) before lambda reached zero", follow.max_steps));
+            break Some(format!("the steps ran out (follow_steps = {}) before lambda reached zero", follow.max_steps));
         }
         let Some(mut motion) = step_motion(&current, &mechanism, fraction * step) else {
             break Some("the mechanism has stopped moving".into());

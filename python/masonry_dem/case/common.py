@@ -19,6 +19,8 @@ FAMILIES = ("bed", "head", "base", "top")
 # Keys of [analysis]: those of the incremental methods (static and dynamic), then those of the explicit solver
 # only. Limit analysis (method = "limit") has no load path: it uses none of them (they are checked, then ignored).
 ANALYSIS_KEYS = ("method", "control", "control_point", "max_displacement", "steps", "tolerance")
+# Keys of limit analysis along the mechanism (in the plane; refused for a 3D wall).
+FOLLOW_KEYS = ("follow_mechanism", "follow_step", "follow_steps")
 DYNAMIC_KEYS = EXPLICIT_OPTIONS  # the explicit solver's options, by the same names
 DAMPINGS = ("local", "viscous", "none")
 # Keys of the optional [reference] table (a published or exact answer, checked by ``masonry-dem validate``).
@@ -74,7 +76,7 @@ def _law(table: _Table) -> Dict[str, float]:
 def _analysis(top: _Table, default_method: str = "static") -> Tuple[str, AnalysisParameters]:
     """[analysis]: the method (``default_method`` when left out: "static"; a 3D wall's, "limit") and the
     solvers' options given."""
-    table = top.table("analysis", ANALYSIS_KEYS + DYNAMIC_KEYS)
+    table = top.table("analysis", ANALYSIS_KEYS + DYNAMIC_KEYS + FOLLOW_KEYS)
     if table is None:
         return default_method, AnalysisParameters()
     method = table.string("method", default_method, METHODS)
@@ -86,7 +88,19 @@ def _analysis(top: _Table, default_method: str = "static") -> Tuple[str, Analysi
         steps=table.integer("steps", None, minimum=1),
         tolerance=table.number("tolerance", None, _open_unit),
     )
-    return method, AnalysisParameters(**options, **_dynamic_options(table))
+    return method, AnalysisParameters(**options, **_dynamic_options(table), **_follow_options(table))
+
+
+def _follow_options(table: _Table) -> Dict[str, Any]:
+    """The keys of limit analysis along the mechanism, checked (None: left out); follow_step and follow_steps
+    only with follow_mechanism = true."""
+    follow = table.boolean("follow_mechanism", None)
+    step = table.number("follow_step", None, _positive, unit="length")
+    steps = table.integer("follow_steps", None, minimum=1, maximum=_core.MAX_FOLLOW_STEPS)
+    for key, value in (("follow_step", step), ("follow_steps", steps)):
+        if value is not None and not follow:
+            raise table.key_error(key, "needs follow_mechanism = true")
+    return dict(follow_mechanism=follow, follow_step=step, follow_steps=steps)
 
 
 def _dynamic_options(table: _Table) -> Dict[str, Any]:

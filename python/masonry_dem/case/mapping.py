@@ -37,8 +37,11 @@ INCREMENTAL_OPTIONS = ("control", "steps", "max_displacement", "control_block", 
 #: The options of the explicit solver only (``solve_dynamic``); the static solver ignores them.
 EXPLICIT_OPTIONS = ("damping", "damping_coefficient", "time_step", "unbalanced_ratio", "threads")
 #: The options each method takes from a case: limit analysis has no load path and takes none of the load
-#: path's; in 3D it takes ``threads`` (:data:`LIMIT_3D_OPTIONS`).
-SOLVER_OPTIONS = {"static": INCREMENTAL_OPTIONS, "dynamic": INCREMENTAL_OPTIONS + EXPLICIT_OPTIONS, "limit": ()}
+#: path's, only whether to follow its mechanism (:data:`LIMIT_OPTIONS`); in 3D it takes ``threads``
+#: (:data:`LIMIT_3D_OPTIONS`).
+#: The options of limit analysis in the plane: along the mechanism (``Model.solve_limit``).
+LIMIT_OPTIONS = ("follow_mechanism", "follow_step", "follow_steps")
+SOLVER_OPTIONS = {"static": INCREMENTAL_OPTIONS, "dynamic": INCREMENTAL_OPTIONS + EXPLICIT_OPTIONS, "limit": LIMIT_OPTIONS}
 #: The options limit analysis in 3D takes from a case (``Model3D.solve_limit``).
 LIMIT_3D_OPTIONS = ("threads",)
 
@@ -116,7 +119,8 @@ class AnalysisParameters:
     :data:`INCREMENTAL_OPTIONS` (control, steps, max_displacement [m], control_block, tolerance) are those
     of both incremental solvers, :data:`EXPLICIT_OPTIONS` (damping, damping_coefficient, time_step [s],
     unbalanced_ratio, threads) the explicit solver's only; limit analysis takes none of them, but in 3D
-    threads (:data:`LIMIT_3D_OPTIONS`).
+    threads (:data:`LIMIT_3D_OPTIONS`). :data:`LIMIT_OPTIONS` (follow_mechanism, follow_step [m],
+    follow_steps) are limit analysis's in the plane: its mechanism followed to the end.
     """
 
     control: Optional[str] = None
@@ -129,6 +133,9 @@ class AnalysisParameters:
     time_step: Optional[float] = None
     unbalanced_ratio: Optional[float] = None
     threads: Optional[int] = None
+    follow_mechanism: Optional[bool] = None
+    follow_step: Optional[float] = None
+    follow_steps: Optional[int] = None
 
     def arguments(self, method: str, dimension: int = 2) -> Dict[str, Any]:
         """The keyword arguments of the solver of ``method`` in ``dimension``: the options given that it takes."""

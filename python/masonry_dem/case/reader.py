@@ -580,9 +580,7 @@ def _time_history(table: Optional[_Table]) -> TimeHistoryParameters:
             raise table.key_error(
                 "damping_coefficient", f'must be < 1 with damping = "local" (alpha in [0, 1)), got {coefficient}'
             )
-    large = table.data.get("large_rotations")
-    if large is not None and not isinstance(large, bool):
-        raise table.key_error("large_rotations", f"expected true or false, {_got(large)}")
+    large = table.boolean("large_rotations", None)
     return TimeHistoryParameters(
         duration=table.number("duration", None, _positive, unit="time"),
         record_interval=table.number("record_interval", None, _positive, unit="time"),

@@ -198,6 +198,15 @@ class _Table:
             raise self.key_error(key, f"must be <= {maximum}, got {_int_text(value)}")
         return value
 
+    def boolean(self, key: str, default: Any = REQUIRED) -> Any:
+        """true or false, or ``default`` when absent."""
+        value = self._get(key, default is REQUIRED)
+        if value is None:
+            return default
+        if not isinstance(value, bool):
+            raise self.key_error(key, f"expected true or false, {_got(value)}")
+        return value
+
     def string(self, key: str, default: Any = REQUIRED, choices: Optional[Sequence[str]] = None) -> Any:
         """A string, one of ``choices`` if given, or ``default`` when absent."""
         value = self._get(key, default is REQUIRED)

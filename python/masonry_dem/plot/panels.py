@@ -239,10 +239,22 @@ def plot_deformed(ax: Any, model: Any, results: Any, scale: Optional[float] = No
     if disp.shape != (len(blocks), 3) or not np.all(np.isfinite(disp)):
         disp = np.zeros((len(blocks), 3))
     peak = float(blocks.vertex_motion(disp).max()) if len(blocks) else 0.0
+    followed = _followed(results)
     if scale is None:
-        scale = DEFORMED_FRACTION * wall_height(model) / peak if peak > 0 else 0.0
+        # a mechanism followed moves the blocks by finite motions: drawn as they are
+        scale = 1.0 if followed else DEFORMED_FRACTION * wall_height(model) / peak if peak > 0 else 0.0
     _draw_blocks(ax, model, disp, float(scale))
     _wall_axes(ax, model)
+    if followed:
+        # the limits widened to the moved blocks, which may leave the wall's box
+        vertices = np.concatenate([np.asarray(v) for v in blocks.polygons(blocks.moved(disp, float(scale)))])
+        (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+        pad = 0.05 * wall_height(model)
+        ax.set_xlim(min(x0, vertices[:, 0].min() - pad), max(x1, vertices[:, 0].max() + pad))
+        ax.set_ylim(min(y0, vertices[:, 1].min() - pad), max(y1, vertices[:, 1].max() + pad))
+        factor = "true scale" if scale == 1.0 else f"×{scale:.3g}"
+        ax.set_title(f"at the curve's end ({factor})\nlargest displacement {peak * 1e3:.3g} mm", fontsize=10)
+        return float(scale)
     if _is_limit(results):
         ax.set_title("no deformed shape\n(limit analysis: rigid blocks, no load path)", fontsize=10)
         return float(scale)
@@ -252,8 +264,15 @@ def plot_deformed(ax: Any, model: Any, results: Any, scale: Optional[float] = No
 
 
 def _is_limit(results: Any) -> bool:
-    """Whether ``results`` come from a limit analysis (no curve, no displacements)."""
+    """Whether ``results`` come from a limit analysis (no curve, no displacements, unless it followed its
+    mechanism: :func:`_followed`)."""
     return str(getattr(results, "method", "")) == "limit"
+
+
+def _followed(results: Any) -> bool:
+    """Whether ``results`` come from a limit analysis that followed its mechanism (``follow_mechanism``): a curve
+    of lambda on the moved geometry, and the blocks' finite motion at its end."""
+    return _is_limit(results) and len(np.asarray(getattr(results, "curve_multiplier", ()))) > 1
 
 
 def plot_cracks(
@@ -418,6 +437,16 @@ def _draw_curve(ax: Any, results: Any, live: str) -> None:
         if hi > lo:
             ax.set_ylim(lo, hi + 0.12 * (hi - lo))  # room for the collapse label
     ax.grid(True, alpha=0.3)
+    if _followed(results):
+        if results.error:
+            ax.text(0.02, 0.02, f"stopped short: {results.error}", transform=ax.transAxes, fontsize=8,
+                    color="#d62728", wrap=True)
+        ax.set_title(
+            f"limit analysis along the mechanism: {results.steps} steps\n{results.iterations} interior-point "
+            f"iterations, {results.elapsed_s:.3g} s",
+            fontsize=10,
+        )
+        return
     if _is_limit(results):
         ax.set_xticks([])
         ax.set_xlabel("no load path: the limit multiplier")
