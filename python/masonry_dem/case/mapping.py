@@ -36,11 +36,11 @@ METHODS = ("static", "dynamic", "limit")
 INCREMENTAL_OPTIONS = ("control", "steps", "max_displacement", "control_block", "tolerance")
 #: The options of the explicit solver only (``solve_dynamic``); the static solver ignores them.
 EXPLICIT_OPTIONS = ("damping", "damping_coefficient", "time_step", "unbalanced_ratio", "threads")
+#: The options of limit analysis in the plane: along the mechanism (``Model.solve_limit``).
+LIMIT_OPTIONS = ("follow_mechanism", "follow_step", "follow_steps")
 #: The options each method takes from a case: limit analysis has no load path and takes none of the load
 #: path's, only whether to follow its mechanism (:data:`LIMIT_OPTIONS`); in 3D it takes ``threads``
 #: (:data:`LIMIT_3D_OPTIONS`).
-#: The options of limit analysis in the plane: along the mechanism (``Model.solve_limit``).
-LIMIT_OPTIONS = ("follow_mechanism", "follow_step", "follow_steps")
 SOLVER_OPTIONS = {"static": INCREMENTAL_OPTIONS, "dynamic": INCREMENTAL_OPTIONS + EXPLICIT_OPTIONS, "limit": LIMIT_OPTIONS}
 #: The options limit analysis in 3D takes from a case (``Model3D.solve_limit``).
 LIMIT_3D_OPTIONS = ("threads",)

@@ -55,15 +55,16 @@ def result_dict(results: Any, model: Any, title: str) -> Dict[str, Any]:
     "no_equilibrium" or "unbounded") is written as null. ``curve.displacement`` and ``elapsed_s`` are in m
     and s.
 
-    A limit analysis (method "limit": its curve is empty unless it followed the mechanism) also gets ``certificate``: an object with the
-    keys of :data:`CERTIFICATE_KEYS` (``upper_bound`` null unless some joint is non-associative), or null
+    A limit analysis (method "limit": its curve is empty unless it followed the mechanism) also gets
+    ``certificate``: an object with the keys of :data:`CERTIFICATE_KEYS` (``upper_bound`` null unless some joint is
+    non-associative), or null
     when the run was interrupted; so does a static load-control analysis of associative dry joints, whose
     collapse is checked against limit analysis (its certificate is the evidence). ``error`` is written with
     the statuses that have a reason: "failed", "interrupted", "no_equilibrium", "unbounded", "stalled" and
     "displacement_limit"; ``note`` with "estimate" (a limit analysis of joints with dilatancy below friction:
     what the number in ``last_equilibrium`` is), and with a collapse whose mechanism was followed
-    (``follow_mechanism``) when its curve stopped short of lambda = 0 (why). ``bracket`` (explicit load control ending in a collapse):
-    the highest level that settled and the lowest that ran away. ``collapse_multiplier`` is null unless the
+    (``follow_mechanism``) when its curve stopped short of lambda = 0 (why). ``bracket`` (explicit load control
+    ending in a collapse): the highest level that settled and the lowest that ran away. ``collapse_multiplier`` is null unless the
     status is "collapse";
     ``last_equilibrium`` is the largest multiplier at which the wall was found in equilibrium (equal to
     ``collapse_multiplier`` on a collapse; null when none was found). The results of a 3D wall (a
