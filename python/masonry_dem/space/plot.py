@@ -9,6 +9,9 @@
 * :func:`mechanism_figure` (model, results, title=None, path=None): the page ``masonry-dem run --plot`` draws for a
   3D case: two views of the mechanism (one across the load, one along it) with a colour bar, and a title with the
   collapse multiplier and the load's direction.
+* :func:`plot_mode_3d` (ax, model, modes, i): mode ``i`` of :func:`masonry_dem.modes` of a 3D model, its blocks
+  moved along the shape as the mechanism's; :func:`modes_figure_3d` (model, modes, index, path=None): a panel per
+  mode (``masonry_dem.plot_modes`` of a 3D model).
 * :func:`plot_contacts_3d` (ax, model, results): each contact's polygon where it lies at rest, filled by its state
   (open, sliding, rocking: the plane's colours); :func:`contacts_figure` (model, results, title=None, path=None): a
   page of it beside the mechanism (or the deformed shape).
@@ -37,7 +40,7 @@ from ..report import format_multiplier, interface_categories
 from .report import block_shapes, contact_polygons, direction_text, moved_vertices, vertex_motion
 
 __all__ = ["MECHANISM_FRACTION_3D", "MOTION_COLORMAP", "plot_mechanism_3d", "mechanism_figure", "plot_contacts_3d",
-           "contacts_figure"]
+           "contacts_figure", "plot_mode_3d", "modes_figure_3d"]
 
 #: The largest corner motion of the drawn mechanism, as a fraction of the wall's height.
 MECHANISM_FRACTION_3D = 0.15
@@ -88,13 +91,14 @@ def _wall_height(boxes: np.ndarray, n_wall: int) -> float:
 
 
 def plot_mechanism_3d(ax: Any, model: Any, results: Any, scale: Optional[float] = None, colorbar: bool = False,
-                      field: str = "mechanism") -> Any:
+                      field: str = "mechanism", arrow: bool = True) -> Any:
     """Draw the collapse mechanism of a 3D wall on the 3D axes ``ax`` (see the module docstring), each block with
     its own faces (a box's six, a polyhedron's); ``scale``: the factor on the mechanism [m per unit] (default: its
     largest vertex motion drawn as :data:`MECHANISM_FRACTION_3D` of the wall's height). ``field="displacements"``
     draws the deformed shape instead (``Results.displacements``, the explicit solver's last step), on the same
-    scale rule. Returns the ScalarMappable of the colours (for a colour bar; drawn on ``ax``'s figure when
-    ``colorbar``). Raises InputError when ``ax`` is not a 3D axes or ``field`` is another."""
+    scale rule. ``arrow``: the live load's arrow (not over a mode shape). Returns the ScalarMappable of the colours
+    (for a colour bar; drawn on ``ax``'s figure when ``colorbar``). Raises InputError when ``ax`` is not a 3D axes
+    or ``field`` is another."""
     if not hasattr(ax, "add_collection3d"):
         raise InputError(f"plot_mechanism_3d: ax must be a 3D axes (fig.add_subplot(projection=\"3d\")), got "
                          f"{type(ax).__name__}")
@@ -136,7 +140,7 @@ def plot_mechanism_3d(ax: Any, model: Any, results: Any, scale: Optional[float] 
     ax.add_collection3d(Poly3DCollection(faces, facecolors=colours, edgecolors="#202020", linewidths=0.3,
                                          alpha=0.95))
     # the live load's direction: an arrow over the wall
-    direction = getattr(model, "direction", None)
+    direction = getattr(model, "direction", None) if arrow else None
     everything = np.concatenate(at_rest + moved)
     lo, hi = everything.min(axis=0), everything.max(axis=0)
     if direction is not None:
@@ -298,3 +302,53 @@ def contacts_figure(
     other.set_title("the mechanism" if field == "mechanism" else "the deformed shape (exaggerated)", fontsize=10)
     heading = f"{results.method}, {results.status}, contacts of {model.n_blocks} blocks"
     return _finish(fig, f"{title} — {heading}" if title else heading, path, dpi)
+
+
+def plot_mode_3d(ax: Any, model: Any, modes: Any, i: int, scale: Optional[float] = None) -> Any:
+    """Draw mode ``i`` of ``modes`` (:func:`masonry_dem.modes` of the 3D ``model``) on the 3D axes ``ax``: the blocks
+    moved along its mass-normalized shape (:func:`plot_mechanism_3d`'s drawing, coloured by their motion over the
+    largest, without the live load's arrow), scaled so that the largest vertex motion is
+    :data:`MECHANISM_FRACTION_3D` of the wall's height unless ``scale`` is given; a title with the frequency, the
+    period and the effective masses along x, y and z (fractions of the free mass). Returns the ScalarMappable."""
+    from types import SimpleNamespace
+
+    shape = np.asarray(modes.shapes[i], dtype=np.float64)
+    mappable = plot_mechanism_3d(ax, model, SimpleNamespace(mechanism=shape), scale=scale, arrow=False)
+    f = float(modes.frequencies_hz[i])
+    free = np.asarray(modes.free_mass, dtype=np.float64)
+    share = np.divide(np.asarray(modes.effective_mass[i], dtype=np.float64), free, out=np.zeros(len(free)),
+                      where=free > 0)
+    period = f"T = {1.0 / f:.4g} s" if f > 0 else "rigid-body mode"
+    masses = ", ".join(f"{axis} {s:.1%}" for axis, s in zip("xyz", share))
+    ax.set_title(f"mode {i + 1}: f = {f:.4g} Hz, {period}\neffective mass {masses}", fontsize=10)
+    return mappable
+
+
+def modes_figure_3d(
+    model: Any,
+    modes: Any,
+    index: Sequence[int],
+    scale: Optional[float] = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    dpi: int = 150,
+) -> Figure:
+    """The modes ``index`` of a 3D model (:func:`masonry_dem.plot_modes` of a :class:`masonry_dem.Model3D`): a 3D
+    panel per mode (:func:`plot_mode_3d`), two to a row, with a colour bar of the blocks' motion. Written to
+    ``path`` (a PNG, atomically) when given, else made through pyplot. Returns the figure."""
+    columns = min(len(index), 2)
+    rows = math.ceil(len(index) / columns)
+    fig = _new_figure((7.0 * columns + 0.4, 6.0 * rows + 1.0), path is not None)
+    direction = getattr(model, "direction", None)
+    d = 0.0 if direction is None else float(direction)
+    axes, mappable = [], None
+    for n, i in enumerate(index):
+        ax = fig.add_subplot(rows, columns, n + 1, projection="3d")
+        ax.view_init(elev=22.0, azim=d - 130.0)
+        mappable = plot_mode_3d(ax, model, modes, i, scale)
+        axes.append(ax)
+    fig.colorbar(mappable, ax=axes, shrink=0.55, location="bottom", aspect=40,
+                 label="block motion in the mode, over the largest (the drawing is exaggerated: the largest is drawn "
+                       f"as {MECHANISM_FRACTION_3D:.0%} of the wall's height)")
+    walls = int(model.n_blocks)
+    heading = f"Natural modes of {walls} block{'s' if walls != 1 else ''} in 3D (elastic joints; shapes magnified)"
+    return _finish(fig, heading, path, dpi)
