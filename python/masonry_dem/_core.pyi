@@ -729,6 +729,15 @@ class Model3D:
         beta = 0 only). Returns a TimeHistory of dimension 3, with the ground's acceleration and the base shear along
         y too. Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory computed so far
         as its `results` attribute. progress: optional callable(step, time [s], nan, fraction done)."""
+    def record_size(
+        self,
+        duration: float,
+        time_step: Optional[float] = None,
+        record_every: Optional[int] = None,
+        record_interval: Optional[float] = None,
+    ) -> tuple[int, float]:
+        """(records, bytes) that Model3D.simulate with these options would hold (its time step as simulate chooses
+        it), as Model.record_size; refuses what simulate refuses of them."""
     def critical_time_step(self, time_history: bool = False) -> float:
         """The stability limit of the explicit solver's time step in 3D [s] (Gershgorin bound on the contact points'
         elastic stiffnesses), as Model.critical_time_step(); with time_history=True, that of Model3D.simulate:

@@ -846,6 +846,18 @@ pub fn history_time_step_limit_3d(model: &Model3) -> f64 {
     critical_time_step_3d(model) * super::contact::stability_factor(3.0 * zeta)
 }
 
+/// The bytes a time history of a 3D `model` under `opts` will hold, and its number of records
+/// (as the plane's [`super::record_size`]): per record, the displacements and velocities of
+/// every block (96 bytes a block) and 15 numbers (times, the ground's accelerations, the base
+/// shears, energies). Checks the options as [`simulate_3d`] does before it builds the integrator.
+pub fn record_size_3d(model: &Model3, opts: &DynamicOptions<[f64; 6]>) -> Result<(usize, f64), Error> {
+    super::time_history::check_common(opts, model.n_blocks())?;
+    let dt = super::time_history::dashpot_time_step(critical_time_step_3d(model), history_time_step_limit_3d(model), opts)?;
+    let n_steps = super::time_history::count_time_steps(opts.duration, dt)?;
+    let records = super::record_count(opts.record, dt, n_steps);
+    Ok((records, records as f64 * (96.0 * model.n_blocks() as f64 + 8.0 * 15.0)))
+}
+
 /// Integrates the equations of motion of a 3D model in time: free motion from initial
 /// conditions, base accelerations along x, y and z; finite rotations (unit quaternions) unless
 /// `large_rotations` is false. Dry joints; no stiffness-proportional damping.

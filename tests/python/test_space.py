@@ -371,9 +371,8 @@ def test_the_boxes_key_and_the_3d_keys_of_other_tables() -> None:
          'the 3D model takes limit analysis and the explicit solver (method "limit" or "dynamic")'),
         (LEAF_TABLE + '[analysis]\nmethod = "dynamic"\ncontrol = "displacement"\n', "analysis.control",
          "the explicit solver in 3D is load-controlled"),
-        (LEAF_TABLE + "[time_history]\nduration = 1.0\n", "time_history", "a time history is refused"),
-        (LEAF_TABLE + '[ground_motion]\npulse = "ricker"\namplitude_g = 0.3\nperiod = 0.2\n', "ground_motion",
-         "a time history is refused"),
+        (LEAF_TABLE + '[time_history]\ndamping = "rayleigh"\ndamping_ratio = 0.05\n', "time_history.damping",
+         '"rayleigh" is refused in 3D'),
         (LEAF_TABLE + '[reference]\ncollapse_multiplier = 0.1\nmethods = ["static"]\n', "reference.methods",
          "limit analysis"),
         (LEAF_TABLE + '[loads]\nlive = "top_horizontal"\n', "loads.live", "horizontal_weight"),
@@ -453,7 +452,7 @@ def test_a_2d_case_keeps_its_meaning() -> None:
     assert c.dimension == 2 and c.method == "static" and "direction" not in c.model_kwargs
     with pytest.raises(md.InputError, match="3D model takes limit analysis"):
         case(LEAF_TABLE).run("static")
-    with pytest.raises(md.InputError, match="time history is refused"):
+    with pytest.raises(md.InputError, match=r"no \[ground_motion\] table"):
         case(LEAF_TABLE).simulate_kwargs()
 
 
@@ -534,7 +533,7 @@ def test_refusals_on_the_command_line(tmp_path: Path, capsys: pytest.CaptureFixt
         (["run", str(LEAF), "--method", "static"], "the 3D model takes limit analysis and the explicit solver"),
         (["run", str(displacement), "--method", "dynamic"], 'analysis.control = "displacement": the explicit solver in 3D'),
         (["run", str(static)], 'analysis.method = "static": the 3D model takes limit analysis'),
-        (["simulate", str(LEAF)], "simulate (a time history) is refused"),
+        (["simulate", str(LEAF)], "no [ground_motion] table"),
         (["run", str(plane)], "loads.direction: got 45"),
     ]:
         assert cli.main(args) == 2
