@@ -570,6 +570,28 @@ def test_the_plot_of_a_mechanism(tmp_path: Path) -> None:
     assert "no mechanism drawn" in fig._suptitle.get_text()
 
 
+def test_the_report_page_of_a_3d_case(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
+    # run --plot of a 3D case: the mechanism's two views, the contacts by state and the load curve
+    out = tmp_path / "leaf.png"
+    assert cli.main(["run", str(LEAF), "--plot", str(out), "--quiet"]) == 0
+    assert out.read_bytes()[:8] == PNG
+    model, r = limit(md.running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175), direction=90)
+    fig = md.plot.report_figure(model, r, title="leaf", path=tmp_path / "limit.png")
+    assert len([ax for ax in fig.axes if ax.name == "3d"]) == 3
+    curve = [ax for ax in fig.axes if ax.name != "3d" and ax.get_ylabel().startswith("load multiplier")]
+    assert len(curve) == 1 and "along y" in curve[0].get_xlabel()
+    assert fig._suptitle.get_text().startswith("leaf — limit, collapse")
+    # the explicit pushover's curve: its points drawn (a box tipping about its long edge at b / h)
+    box = md.Model3D([[0.0, 0.0, 0.0, 0.4, 0.6, 1.0]], joints=DRY, direction=90.0)
+    res = box.solve_dynamic()
+    fig = md.plot.report_figure(box, res, title="box", path=tmp_path / "dynamic.png")
+    curve = [ax for ax in fig.axes if ax.name != "3d" and ax.get_ylabel().startswith("load multiplier")][0]
+    drawn = [line for line in curve.get_lines() if len(line.get_xdata()) == len(res.curve_multiplier) > 1]
+    assert drawn and np.allclose(drawn[0].get_ydata(), res.curve_multiplier)
+    legend = [ax for ax in fig.axes if ax.name == "3d" and ax.get_legend() is not None][0].get_legend()
+    assert any(t.get_text().startswith("rocking (") for t in legend.get_texts())
+
+
 def test_import_stays_light() -> None:
     code = ("import sys, masonry_dem as md; md.Model3D; md.running_bond_3d; "
             "print(sorted(m for m in ('matplotlib', 'meshio', 'mpl_toolkits') if m in sys.modules))")

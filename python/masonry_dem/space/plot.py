@@ -6,9 +6,10 @@
   :data:`MECHANISM_FRACTION_3D` of the wall's height, each block with its own faces (a box's six, a polyhedron's),
   coloured by how far it moves (relative to the largest), over the faint outlines of the wall at rest; the base and
   the supports grey, the live load's direction an arrow over the wall; equal axes.
-* :func:`mechanism_figure` (model, results, title=None, path=None): the page ``masonry-dem run --plot`` draws for a
-  3D case: two views of the mechanism (one across the load, one along it) with a colour bar, and a title with the
-  collapse multiplier and the load's direction.
+* :func:`mechanism_figure` (model, results, title=None, path=None): two views of the mechanism (one across the load,
+  one along it) with a colour bar, and a title with the collapse multiplier and the load's direction;
+  :func:`report_figure_3d` (model, results, title=None, path=None), the page ``masonry-dem run --plot`` draws for a
+  3D case: those two views above, the contacts by state and the load curve below.
 * :func:`plot_mode_3d` (ax, model, modes, i): mode ``i`` of :func:`masonry_dem.modes` of a 3D model, its blocks
   moved along the shape as the mechanism's; :func:`modes_figure_3d` (model, modes, index, path=None): a panel per
   mode (``masonry_dem.plot_modes`` of a 3D model).
@@ -40,7 +41,7 @@ from ..report import format_multiplier, interface_categories
 from .report import block_shapes, contact_polygons, direction_text, moved_vertices, vertex_motion
 
 __all__ = ["MECHANISM_FRACTION_3D", "MOTION_COLORMAP", "plot_mechanism_3d", "mechanism_figure", "plot_contacts_3d",
-           "contacts_figure", "plot_mode_3d", "modes_figure_3d"]
+           "contacts_figure", "report_figure_3d", "plot_mode_3d", "modes_figure_3d"]
 
 #: The largest corner motion of the drawn mechanism, as a fraction of the wall's height.
 MECHANISM_FRACTION_3D = 0.15
@@ -183,29 +184,18 @@ def _equal_axes(ax: Any, lo: np.ndarray, hi: np.ndarray) -> None:
     ax.set_box_aspect(tuple(float(s + 2 * pad) for s in span))
 
 
-def mechanism_figure(
-    model: Any,
-    results: Any,
-    title: Optional[str] = None,
-    path: Optional[Union[str, "os.PathLike[str]"]] = None,
-    dpi: int = 150,
-) -> Figure:
-    """The page of a 3D wall's analysis (``masonry-dem run --plot`` of a 3D case): the collapse mechanism
-    (:func:`plot_mechanism_3d`) seen from two sides, one across the live load and one along it, a colour bar of the
-    blocks' motion, and a title with the status, the collapse multiplier and the load's direction. Written to
-    ``path`` (a PNG, atomically) when given, else made through pyplot. Returns the figure."""
-    fig = _new_figure((14.0, 7.5), path is not None)
-    grid = fig.add_gridspec(1, 2, width_ratios=[1.6, 1.0])
+def _mechanism_views(fig: Any, cells: Sequence[Any], model: Any, results: Any) -> Tuple[List[Any], Any]:
+    """The mechanism (:func:`plot_mechanism_3d`) seen from two sides in ``cells`` of ``fig``: obliquely from the side
+    the load comes from, and in profile across the load (without perspective). Returns the axes and the
+    ScalarMappable of the colours."""
     direction = getattr(model, "direction", None)
     d = 0.0 if direction is None else float(direction)
-    # the first view looks at the wall from the side the load comes from, obliquely; the second across the load,
-    # without perspective: the mechanism's profile
     views = ((22.0, d - 130.0, "seen from the side the load comes from"),
              (0.0, d - 90.0, "profile, seen across the load (no perspective)"))
     mappable = None
     axes = []
     for k, (elev, azim, label) in enumerate(views):
-        ax = fig.add_subplot(grid[0, k], projection="3d")
+        ax = fig.add_subplot(cells[k], projection="3d")
         ax.view_init(elev=elev, azim=azim)
         mappable = plot_mechanism_3d(ax, model, results)
         if k == 1:
@@ -218,11 +208,22 @@ def mechanism_figure(
                     axis.set_label_text("")
         ax.set_title(label, fontsize=10)
         axes.append(ax)
+    return axes, mappable
+
+
+def _motion_colorbar(fig: Any, model: Any, results: Any, axes: List[Any], mappable: Any) -> float:
+    """The colour bar of the blocks' motion under ``axes`` when there is a mechanism; returns its largest motion."""
     _, _, peak = _mechanism(model, results)
     if peak > 0:
         fig.colorbar(mappable, ax=axes, shrink=0.55, location="bottom", aspect=40,
                      label="block motion in the mechanism, over the largest (the drawing is exaggerated: the largest "
                            f"is drawn as {MECHANISM_FRACTION_3D:.0%} of the wall's height)")
+    return peak
+
+
+def _heading(model: Any, results: Any, peak: float) -> str:
+    """The method, the status, the collapse multiplier and the load's direction (and "no mechanism drawn")."""
+    direction = getattr(model, "direction", None)
     status = str(results.status)
     if status == "estimate":
         lam = "~" + format_multiplier(float(results.last_equilibrium)) + " (estimate, neither bound)"
@@ -232,6 +233,65 @@ def mechanism_figure(
     heading = f"{results.method}, {status}, {lam}, {load}"
     if peak <= 0:
         heading += " — no mechanism drawn"
+    return heading
+
+
+def mechanism_figure(
+    model: Any,
+    results: Any,
+    title: Optional[str] = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    dpi: int = 150,
+) -> Figure:
+    """The collapse mechanism of a 3D wall's analysis (:func:`plot_mechanism_3d`) seen from two sides, one across
+    the live load and one along it, a colour bar of the blocks' motion, and a title with the status, the collapse
+    multiplier and the load's direction. Written to ``path`` (a PNG, atomically) when given, else made through
+    pyplot. Returns the figure."""
+    fig = _new_figure((14.0, 7.5), path is not None)
+    grid = fig.add_gridspec(1, 2, width_ratios=[1.6, 1.0])
+    axes, mappable = _mechanism_views(fig, [grid[0, 0], grid[0, 1]], model, results)
+    peak = _motion_colorbar(fig, model, results, axes, mappable)
+    heading = _heading(model, results, peak)
+    return _finish(fig, f"{title} — {heading}" if title else heading, path, dpi)
+
+
+def report_figure_3d(
+    model: Any,
+    results: Any,
+    title: Optional[str] = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    dpi: int = 150,
+) -> Figure:
+    """The page ``masonry-dem run --plot`` draws for a 3D case (``masonry_dem.plot.report_figure`` of a
+    :class:`masonry_dem.Model3D`), the plane's report where it has a meaning in 3D: above, the collapse mechanism
+    seen from two sides (:func:`mechanism_figure`'s views, with their colour bar); below, the contacts by state at
+    rest (:func:`plot_contacts_3d`, the plane's crack pattern) with the count of each state, and the load curve
+    (the plane's :func:`masonry_dem.plot.plot_curve`: the explicit pushover's path of the control block, the
+    highest wall block, along x or y; limit analysis's multiplier alone). A title with the status, the collapse
+    multiplier and the load's direction. Written to ``path`` (a PNG, atomically) when given, else made through
+    pyplot. Returns the figure."""
+    from matplotlib.patches import Patch
+
+    from ..plot.panels import plot_curve
+
+    fig = _new_figure((14.0, 13.5), path is not None)
+    grid = fig.add_gridspec(2, 2, width_ratios=[1.4, 1.0], height_ratios=[1.0, 0.9])
+    axes, mappable = _mechanism_views(fig, [grid[0, 0], grid[0, 1]], model, results)
+    peak = _motion_colorbar(fig, model, results, axes, mappable)
+    direction = getattr(model, "direction", None)
+    ax = fig.add_subplot(grid[1, 0], projection="3d")
+    ax.view_init(elev=22.0, azim=(0.0 if direction is None else float(direction)) - 130.0)
+    counts = plot_contacts_3d(ax, model, results)
+    ax.set_title("contacts by state, at rest", fontsize=10)
+    handles = [Patch(facecolor=colour, edgecolor="#303030", alpha=0.15 if name == "elastic" else 0.9,
+                     label=f"{name} ({counts[name]})") for name, colour, _ in STATE_STYLES]
+    ax.legend(handles=handles, loc="upper left", fontsize=8, frameon=False)
+    curve = fig.add_subplot(grid[1, 1])
+    plot_curve(curve, results)
+    axis = "y" if direction is not None and abs(math.sin(math.radians(direction))) > abs(math.cos(math.radians(direction))) else "x"
+    curve.set_xlabel(f"displacement of the control block along {axis} [mm]")
+    curve.set_box_aspect(0.8)
+    heading = _heading(model, results, peak)
     return _finish(fig, f"{title} — {heading}" if title else heading, path, dpi)
 
 
