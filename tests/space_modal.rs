@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::assert_close;
+use common::{assert_close, eig2};
 use masonry_dem::geometry::{polygons, Rect};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::modal::{modes, modes_3d, Modes};
@@ -28,14 +28,6 @@ fn law() -> JointLaw {
 
 fn spec3(boxes: Vec<Box3>, polyhedra: Vec<Polyhedron>) -> ModelSpec3 {
     ModelSpec3 { blocks: boxes, polyhedra, density: DENSITY, joints: JointLaws::uniform(law()), ..ModelSpec3::default() }
-}
-
-/// The two roots of det(K - lambda M) = 0 of a symmetric 2 x 2 K and diagonal M, ascending.
-fn eig2(k11: f64, k12: f64, k22: f64, m1: f64, m2: f64) -> [f64; 2] {
-    let (a, b, c) = (m1 * m2, -(k11 * m2 + k22 * m1), k11 * k22 - k12 * k12);
-    let disc = (b * b - 4.0 * a * c).sqrt();
-    let big = (-b + disc) / (2.0 * a);
-    [c / (a * big), big]
 }
 
 /// `phi_i^T M phi_j = delta_ij` with each block's full inertia tensor (the shapes' rotations

@@ -270,8 +270,6 @@ def report_figure_3d(
     highest wall block, along x or y; limit analysis's multiplier alone). A title with the status, the collapse
     multiplier and the load's direction. Written to ``path`` (a PNG, atomically) when given, else made through
     pyplot. Returns the figure."""
-    from matplotlib.patches import Patch
-
     from ..plot.panels import plot_curve
 
     fig = _new_figure((14.0, 13.5), path is not None)
@@ -279,13 +277,7 @@ def report_figure_3d(
     axes, mappable = _mechanism_views(fig, [grid[0, 0], grid[0, 1]], model, results)
     peak = _motion_colorbar(fig, model, results, axes, mappable)
     direction = getattr(model, "direction", None)
-    ax = fig.add_subplot(grid[1, 0], projection="3d")
-    ax.view_init(elev=22.0, azim=(0.0 if direction is None else float(direction)) - 130.0)
-    counts = plot_contacts_3d(ax, model, results)
-    ax.set_title("contacts by state, at rest", fontsize=10)
-    handles = [Patch(facecolor=colour, edgecolor="#303030", alpha=0.15 if name == "elastic" else 0.9,
-                     label=f"{name} ({counts[name]})") for name, colour, _ in STATE_STYLES]
-    ax.legend(handles=handles, loc="upper left", fontsize=8, frameon=False)
+    _contacts_panel(fig, grid[1, 0], model, results)
     curve = fig.add_subplot(grid[1, 1])
     plot_curve(curve, results)
     axis = "y" if direction is not None and abs(math.sin(math.radians(direction))) > abs(math.cos(math.radians(direction))) else "x"
@@ -331,6 +323,23 @@ def plot_contacts_3d(ax: Any, model: Any, results: Any) -> dict:
     return counts
 
 
+def _contacts_panel(fig: Any, cell: Any, model: Any, results: Any) -> Any:
+    """The contacts by state at rest (:func:`plot_contacts_3d`) on a 3D axes of ``fig`` at ``cell`` (a subplot spec,
+    or the (rows, columns, index) of ``add_subplot``), seen from the side the load comes from, with a legend of
+    the states and their counts. Returns the axes."""
+    from matplotlib.patches import Patch
+
+    direction = getattr(model, "direction", None)
+    ax = fig.add_subplot(*(cell if isinstance(cell, tuple) else (cell,)), projection="3d")
+    ax.view_init(elev=22.0, azim=(0.0 if direction is None else float(direction)) - 130.0)
+    counts = plot_contacts_3d(ax, model, results)
+    ax.set_title("contacts by state, at rest", fontsize=10)
+    handles = [Patch(facecolor=colour, edgecolor="#303030", alpha=0.15 if name == "elastic" else 0.9,
+                     label=f"{name} ({counts[name]})") for name, colour, _ in STATE_STYLES]
+    ax.legend(handles=handles, loc="upper left", fontsize=8, frameon=False)
+    return ax
+
+
 def contacts_figure(
     model: Any,
     results: Any,
@@ -342,18 +351,10 @@ def contacts_figure(
     (:func:`plot_contacts_3d`), seen from the side the load comes from, and the blocks moved along the mechanism (or
     the explicit solver's deformed shape, when it has no mechanism) from above; a legend of the states with their
     counts. Written to ``path`` (a PNG, atomically) when given, else made through pyplot. Returns the figure."""
-    from matplotlib.patches import Patch
-
     fig = _new_figure((14.0, 7.0), path is not None)
     direction = getattr(model, "direction", None)
     d = 0.0 if direction is None else float(direction)
-    ax = fig.add_subplot(1, 2, 1, projection="3d")
-    ax.view_init(elev=22.0, azim=d - 130.0)
-    counts = plot_contacts_3d(ax, model, results)
-    ax.set_title("contacts by state, at rest", fontsize=10)
-    handles = [Patch(facecolor=colour, edgecolor="#303030", alpha=0.15 if name == "elastic" else 0.9,
-                     label=f"{name} ({counts[name]})") for name, colour, _ in STATE_STYLES]
-    ax.legend(handles=handles, loc="upper left", fontsize=8, frameon=False)
+    _contacts_panel(fig, (1, 2, 1), model, results)
     _, _, peak = _mechanism(model, results)
     field = "mechanism" if peak > 0 else "displacements"
     other = fig.add_subplot(1, 2, 2, projection="3d")
