@@ -86,7 +86,9 @@ def largest_translation(history: Any) -> np.ndarray:
     disp = np.asarray(history.displacements, dtype=np.float64)
     if disp.size == 0:
         return np.zeros(len(np.asarray(history.times)))
-    return np.asarray(np.linalg.norm(disp[..., : 3 if disp.shape[-1] == 6 else 2], axis=-1).max(axis=1))
+    if disp.shape[-1] == 6:
+        return np.asarray(np.linalg.norm(disp[..., :3], axis=-1).max(axis=1))
+    return np.asarray(np.hypot(disp[..., 0], disp[..., 1]).max(axis=1))
 
 
 def peak_record(model: Any, history: Any) -> int:
