@@ -8,6 +8,13 @@
 //! - `M`: the diagonal mass, `(m, m, J)` per block ([`Model::mass`], [`Model::inertia`]).
 //! - Fixed dofs ([`Model::fixed`]: the base, the supports) are left out, and are zero in the
 //!   shapes.
+//! - In 3D ([`modes_3d`], a [`Model3`] of boxes and polyhedra): 6 dofs per block, `K` each
+//!   contact's elastic stiffness at its corners as the 3D explicit solver has it
+//!   ([`crate::joint::corner_map`]: `kN A (alpha W + (1 - alpha) w w^T)` on the corners' normal
+//!   jumps, `W` the diagonal of their shares `w`, and `kT A w_i` on each corner's slip along
+//!   both tangents), `M` each block's mass and full inertia tensor. The rotation dofs are about
+//!   each block's principal axes of inertia (as in a time history), where the mass is
+//!   diagonal; the shapes give the rotations about x, y and z.
 //!
 //! Method: shift-invert Lanczos with full reorthogonalization, in the mass inner product, on
 //! the sparse Cholesky of `K - sigma M` (`sigma` slightly negative by default, so that the
@@ -38,8 +45,11 @@
 //! ```
 
 use crate::error::{check_memory, Error, Result};
+use crate::explicit::jump_rows;
+use crate::joint::{corner_shares, CornerLaw};
 use crate::linalg::{symmetric_eigen, SparseLu};
 use crate::model::Model;
+use crate::space::Model3;
 
 /// The natural modes of a model, lowest frequency first.
 #[derive(Debug, Clone, PartialEq)]
@@ -51,9 +61,11 @@ pub struct Modes {
     pub angular: Vec<f64>,
     /// The eigenvalues `omega^2` as computed \[rad2/s2\].
     pub eigenvalues: Vec<f64>,
-    /// The mode shapes, 3 numbers per block (u1, u2 \[m\], phi \[rad\] at index `3 i + k`, as
-    /// the model's dofs), scaled so that `phi^T M phi = 1` (each value per square root of a
-    /// kilogram); fixed dofs are 0. The sign makes the largest entry positive.
+    /// The mode shapes, 3 numbers per block in the plane (u1, u2 \[m\], phi \[rad\] at index
+    /// `3 i + k`, as the model's dofs), 6 in 3D (ux, uy, uz \[m\], then the rotations about x,
+    /// y, z \[rad\] at index `6 i + k`), scaled so that `phi^T M phi = 1` (each value per square
+    /// root of a kilogram; in 3D with the full inertia tensor); fixed dofs are 0. The sign makes
+    /// the largest entry positive.
     pub shapes: Vec<Vec<f64>>,
     /// `||K phi - omega^2 M phi|| / ||K phi||` of each mode (Euclidean norms over the free
     /// dofs); the denominator is at least [`SOFT`] times `lambda_max ||M phi||`, `lambda_max`
@@ -61,13 +73,14 @@ pub struct Modes {
     /// stiffness (a mechanism, a model without supports) is measured against the model's scale
     /// instead of against its own rounding errors.
     pub residuals: Vec<f64>,
-    /// The effective modal mass of each mode for a ground motion along x and along y \[kg\]:
-    /// `(phi^T M r)^2` with `r` the unit translation of every block. Over all the modes they add
-    /// up to the mass of the blocks free to move in that direction.
-    pub effective_mass: Vec<[f64; 2]>,
-    /// The mass free to move along x and along y \[kg\]: what the effective masses of all the
-    /// modes add up to.
-    pub free_mass: [f64; 2],
+    /// The effective modal mass of each mode for a ground motion along x and along y (the
+    /// plane), or along x, y and z (3D) \[kg\]: `(phi^T M r)^2` with `r` the unit translation of
+    /// every block. Over all the modes they add up to the mass of the blocks free to move in
+    /// that direction.
+    pub effective_mass: Vec<Vec<f64>>,
+    /// The mass free to move along each direction of [`Modes::effective_mass`] \[kg\]: what the
+    /// effective masses of all the modes add up to.
+    pub free_mass: Vec<f64>,
     /// The shift `sigma` the operator `(K - sigma M)^-1 M` was built with \[rad2/s2\].
     pub shift: f64,
     /// The size of the Lanczos basis the modes were extracted from.
@@ -107,14 +120,33 @@ pub const SHIFT_FRACTION: f64 = 1e-10;
 /// `K - shift M` is singular (a shift of 0 on a model with a mechanism);
 /// [`Error::Convergence`] if some mode's residual stays above [`ACCEPTABLE`].
 pub fn modes(model: &Model, n: usize, shift: Option<f64>) -> Result<Modes> {
+    check_count(n)?;
+    solve(&Problem::plane(model)?, n, shift)
+}
+
+/// The lowest `n` natural modes of a 3D model ([`Model3`]: boxes and polyhedra), or with a
+/// `shift` the `n` nearest it, as [`modes`] in the plane: 6 dofs per block, the mass with each
+/// block's full inertia tensor, the stiffness of the contacts' corners as the 3D explicit
+/// solver's elastic law (see the [module docs](self)). The same errors as [`modes`].
+pub fn modes_3d(model: &Model3, n: usize, shift: Option<f64>) -> Result<Modes> {
+    check_count(n)?;
+    solve(&Problem::space(model)?, n, shift)
+}
+
+fn check_count(n: usize) -> Result<()> {
     if n == 0 {
         return Err(Error::input("modal analysis: the number of modes must be at least 1"));
     }
-    let problem = Problem::new(model)?;
+    Ok(())
+}
+
+/// The modes of a problem (see [`modes`]).
+fn solve(problem: &Problem, n: usize, shift: Option<f64>) -> Result<Modes> {
     let nf = problem.dofs.len();
     if n > nf {
         return Err(Error::input(format!(
-            "modal analysis: {n} modes asked for, but the model has only {nf} free dofs (3 per block not fixed)"
+            "modal analysis: {n} modes asked for, but the model has only {nf} free dofs ({} per block not fixed)",
+            problem.per
         )));
     }
     let sigma = match shift {
@@ -213,23 +245,117 @@ struct Pair {
     residual: f64,
 }
 
-/// The model's elastic problem on its free dofs (its equations).
-struct Problem<'a> {
-    model: &'a Model,
+/// A model's elastic problem on its free dofs (its equations), in either dimension: the
+/// stiffness as dense element matrices (an interface's 6 x 6 in the plane, a contact's 12 x 12
+/// in 3D) on their global dofs, and a diagonal mass.
+struct Problem {
+    /// dofs per block: 3 in the plane, 6 in 3D (of which 2 or 3 translations)
+    per: usize,
     /// the global dof of each equation, and the equation of each global dof
     dofs: Vec<usize>,
     eq: Vec<Option<usize>>,
     /// the diagonal mass of each equation \[kg or kg m2\]
     mass: Vec<f64>,
-    /// each interface's elastic stiffness D (its diagonal)
-    d: Vec<[f64; 3]>,
+    /// the number of dofs of an element, each element's global dofs (`width` each) and its
+    /// stiffness (`width^2` each, row-major, symmetric exactly)
+    width: usize,
+    el_dofs: Vec<usize>,
+    el_k: Vec<f64>,
+    /// 3D: each block's principal axes where they are not x, y, z (its rotation dofs are about
+    /// them, which makes the mass diagonal); the plane: empty
+    axes: Vec<Option<[f64; 9]>>,
     /// the largest `K_ii / M_ii` of the free dofs [1/s2]
     lambda_max: f64,
 }
 
-impl<'a> Problem<'a> {
-    fn new(model: &'a Model) -> Result<Self> {
-        let fixed = model.fixed();
+impl Problem {
+    /// The plane's problem: each interface's `B^T D B`, the blocks' `(m, m, J)`.
+    fn plane(model: &Model) -> Result<Self> {
+        let its = model.interfaces();
+        let mut el_dofs = Vec::with_capacity(6 * its.len());
+        let mut el_k = Vec::with_capacity(36 * its.len());
+        for (k, it) in its.iter().enumerate() {
+            let d = crate::joint::stiffness(model.law(k), &model.sections()[k]);
+            let b = &it.b_mat;
+            el_dofs.extend(it.dofs());
+            let mut kk = [0.0; 36];
+            for i in 0..6 {
+                for j in i..6 {
+                    let v = d[0] * b[0][i] * b[0][j] + d[1] * b[1][i] * b[1][j] + d[2] * b[2][i] * b[2][j];
+                    kk[6 * i + j] = v;
+                    kk[6 * j + i] = v;
+                }
+            }
+            el_k.extend(kk);
+        }
+        let mass = (0..3 * model.n_blocks()).map(|g| if g % 3 == 2 { model.inertia()[g / 3] } else { model.mass()[g / 3] }).collect();
+        Problem::new(3, model.fixed(), mass, 6, el_dofs, el_k, vec![])
+    }
+
+    /// The 3D problem: each contact's elastic stiffness at its corners, the 3D explicit solver's
+    /// ([`crate::joint::corner_map`]: `kN A (alpha W + (1 - alpha) w w^T)` on the corners'
+    /// normal jumps, `kT A w_i` on each corner's slip along both tangents), and each block's
+    /// mass and principal moments of inertia, the rotation dofs about its principal axes (those
+    /// of a time history).
+    fn space(model: &Model3) -> Result<Self> {
+        let (axes, inertia) = crate::explicit::principal_axes(model);
+        let contacts = model.contacts();
+        check_memory(&format!("the modal analysis's stiffness of {} contacts", contacts.len()), contacts.len() as f64 * 156.0 * 8.0)?;
+        let mut el_dofs = Vec::with_capacity(12 * contacts.len());
+        let mut el_k = Vec::with_capacity(144 * contacts.len());
+        let cen = model.centroids();
+        for (k, c) in contacts.iter().enumerate() {
+            let (w, alpha) = corner_shares(&c.corners, c.centroid, c.n);
+            let law = CornerLaw::new(model.law(k), c.area, alpha);
+            let frame = [c.n, c.t1, c.t2];
+            let turned = [axes[c.a].as_ref(), axes[c.b].as_ref()];
+            let mut kk = [0.0; 144];
+            // the shares' mean of the corners' normal rows: the contact's normal jump
+            let mut mean = [0.0; 12];
+            let add = |kk: &mut [f64; 144], s: f64, r: &[f64; 12]| {
+                for i in 0..12 {
+                    for j in i..12 {
+                        kk[12 * i + j] += s * r[i] * r[j];
+                    }
+                }
+            };
+            for (x, wi) in c.corners.iter().zip(&w) {
+                let rel = |o: [f64; 3]| [x[0] - o[0], x[1] - o[1], x[2] - o[2]];
+                let rows = jump_rows(rel(cen[c.a]), rel(cen[c.b]), &frame, turned);
+                add(&mut kk, law.alpha * law.kn * wi, &rows[0]);
+                add(&mut kk, law.kt * wi, &rows[1]);
+                add(&mut kk, law.kt * wi, &rows[2]);
+                mean.iter_mut().zip(&rows[0]).for_each(|(m, r)| *m += wi * r);
+            }
+            add(&mut kk, (1.0 - law.alpha) * law.kn, &mean);
+            for i in 0..12 {
+                for j in 0..i {
+                    kk[12 * i + j] = kk[12 * j + i];
+                }
+            }
+            el_dofs.extend((0..6).map(|j| 6 * c.a + j).chain((0..6).map(|j| 6 * c.b + j)));
+            el_k.extend(kk);
+        }
+        let mass = (0..model.n_blocks())
+            .flat_map(|i| {
+                let (m, j) = (model.mass()[i], inertia[i]);
+                [m, m, m, j[0], j[1], j[2]]
+            })
+            .collect();
+        Problem::new(6, model.fixed(), mass, 12, el_dofs, el_k, axes)
+    }
+
+    /// The problem of `per` dofs per block, the dofs `fixed`, `mass` of every dof, and the
+    /// elements of `width` dofs.
+    fn new(
+        per: usize,
+        fixed: &[bool],
+        mass: Vec<f64>,
+        width: usize,
+        el_dofs: Vec<usize>,
+        el_k: Vec<f64>,
+        axes: Vec<Option<[f64; 9]>>,
+    ) -> Result<Self> {
         let mut eq = vec![None; fixed.len()];
         let mut dofs = vec![];
         for (g, e) in eq.iter_mut().enumerate() {
@@ -241,30 +367,27 @@ impl<'a> Problem<'a> {
         if dofs.is_empty() {
             return Err(Error::input("modal analysis: every dof of the model is fixed: nothing vibrates"));
         }
-        let stiff = model.interfaces().iter().any(|it| it.dofs().iter().any(|&g| eq[g].is_some()));
-        if !stiff {
+        if !el_dofs.iter().any(|&g| eq[g].is_some()) {
             return Err(Error::input("modal analysis: no interface acts on a free dof: the model has no stiffness"));
         }
-        let mass = dofs.iter().map(|&g| if g % 3 == 2 { model.inertia()[g / 3] } else { model.mass()[g / 3] }).collect();
-        let d = (0..model.interfaces().len()).map(|k| crate::joint::stiffness(model.law(k), &model.sections()[k])).collect();
-        let mut problem = Problem { model, dofs, eq, mass, d, lambda_max: 0.0 };
+        let mass = dofs.iter().map(|&g| mass[g]).collect();
+        let mut problem = Problem { per, dofs, eq, mass, width, el_dofs, el_k, axes, lambda_max: 0.0 };
         problem.lambda_max = problem.largest_ratio();
         Ok(problem)
     }
 
-    /// Entry (i, j) of interface k's elastic stiffness `B^T D B` (local dofs 0..6).
-    fn entry(&self, k: usize, i: usize, j: usize) -> f64 {
-        let (b, d) = (&self.model.interfaces()[k].b_mat, &self.d[k]);
-        d[0] * b[0][i] * b[0][j] + d[1] * b[1][i] * b[1][j] + d[2] * b[2][i] * b[2][j]
+    /// The elements: each one's global dofs and its stiffness (row-major).
+    fn elements(&self) -> impl Iterator<Item = (&[usize], &[f64])> {
+        self.el_dofs.chunks_exact(self.width).zip(self.el_k.chunks_exact(self.width * self.width))
     }
 
     /// The largest `K_ii / M_ii` of the free dofs [1/s2].
     fn largest_ratio(&self) -> f64 {
         let mut diag = vec![0.0; self.dofs.len()];
-        for (k, it) in self.model.interfaces().iter().enumerate() {
-            for (i, &g) in it.dofs().iter().enumerate() {
+        for (d, k) in self.elements() {
+            for (i, &g) in d.iter().enumerate() {
                 if let Some(e) = self.eq[g] {
-                    diag[e] += self.entry(k, i, i);
+                    diag[e] += k[i * self.width + i];
                 }
             }
         }
@@ -273,22 +396,18 @@ impl<'a> Problem<'a> {
 
     /// The sparse matrix `K - sigma M` on the free dofs (assembled, not factorized).
     fn matrix(&self, sigma: f64) -> Result<SparseLu> {
-        let its = self.model.interfaces();
         let free = |g: &usize| self.eq[*g];
-        let pattern = its.iter().flat_map(|it| {
-            let e: Vec<usize> = it.dofs().iter().filter_map(free).collect();
+        let pattern = self.el_dofs.chunks_exact(self.width).flat_map(|d| {
+            let e: Vec<usize> = d.iter().filter_map(free).collect();
             e.iter().flat_map(|&r| e.iter().map(move |&c| (r, c))).collect::<Vec<_>>()
         });
         let mut a = SparseLu::new(self.dofs.len(), pattern)?;
         let mut slots = vec![];
-        for (k, it) in its.iter().enumerate() {
-            let d = it.dofs();
-            for i in 0..6 {
-                for j in 0..6 {
+        for (d, k) in self.elements() {
+            for i in 0..self.width {
+                for j in 0..self.width {
                     if let (Some(r), Some(c)) = (self.eq[d[i]], self.eq[d[j]]) {
-                        // the upper entry's value on both sides: the matrix is symmetric exactly
-                        let v = self.entry(k, i.min(j), i.max(j));
-                        slots.push((a.slot(r, c).expect("pattern entry"), v));
+                        slots.push((a.slot(r, c).expect("pattern entry"), k[i * self.width + j]));
                     }
                 }
             }
@@ -304,24 +423,18 @@ impl<'a> Problem<'a> {
         Ok(a)
     }
 
-    /// `K x` on the free dofs, through the interfaces' jumps and forces.
+    /// `K x` on the free dofs, element by element.
     fn stiffness_times(&self, x: &[f64]) -> Vec<f64> {
         let mut u = vec![0.0; self.eq.len()];
         for (&g, v) in self.dofs.iter().zip(x) {
             u[g] = *v;
         }
-        let forces: Vec<[f64; 3]> = self
-            .model
-            .interfaces()
-            .iter()
-            .zip(&self.d)
-            .map(|(it, d)| {
-                let e = it.jumps(&u);
-                [d[0] * e[0], d[1] * e[1], d[2] * e[2]]
-            })
-            .collect();
         let mut f = vec![0.0; self.eq.len()];
-        self.model.internal_forces(&forces, &mut f);
+        for (d, k) in self.elements() {
+            for (i, &gi) in d.iter().enumerate() {
+                f[gi] += k[i * self.width..(i + 1) * self.width].iter().zip(d).map(|(k, &gj)| k * u[gj]).sum::<f64>();
+            }
+        }
         self.dofs.iter().map(|&g| f[g]).collect()
     }
 
@@ -359,9 +472,13 @@ impl<'a> Problem<'a> {
         }
     }
 
-    /// The modes of the pairs, sorted by frequency, with their full shapes and effective masses.
+    /// The modes of the pairs, sorted by frequency, with their full shapes (rotations about x,
+    /// y, z) and effective masses.
     fn modes(&self, mut pairs: Vec<Pair>, sigma: f64, basis: usize) -> Modes {
         pairs.sort_by(|a, b| a.lambda.total_cmp(&b.lambda));
+        let per = self.per;
+        // the translations: x, y in the plane, x, y, z in 3D
+        let directions = if per == 3 { 2 } else { 3 };
         let mut out = Modes {
             frequencies: vec![],
             angular: vec![],
@@ -369,23 +486,32 @@ impl<'a> Problem<'a> {
             shapes: vec![],
             residuals: vec![],
             effective_mass: vec![],
-            free_mass: [0, 1].map(|dir| self.dofs.iter().zip(&self.mass).filter(|(&g, _)| g % 3 == dir).map(|(_, m)| m).sum()),
+            free_mass: (0..directions).map(|dir| self.dofs.iter().zip(&self.mass).filter(|(&g, _)| g % per == dir).map(|(_, m)| m).sum()).collect(),
             shift: sigma,
             basis,
         };
         for p in pairs {
             let w = p.lambda.max(0.0).sqrt();
-            // the sign that makes the largest entry positive (the first of equal ones)
-            let big = p.shape.iter().copied().fold(0.0, |a: f64, v| if v.abs() > a.abs() { v } else { a });
-            let sign = if big < 0.0 { -1.0 } else { 1.0 };
             let mut full = vec![0.0; self.eq.len()];
             for (&g, v) in self.dofs.iter().zip(&p.shape) {
-                full[g] = sign * v;
+                full[g] = *v;
+            }
+            // the rotations about a block's principal axes, about x, y and z
+            for (i, q) in self.axes.iter().enumerate() {
+                if q.is_some() {
+                    let r = crate::explicit::to_world(&self.axes, i, [full[6 * i + 3], full[6 * i + 4], full[6 * i + 5]]);
+                    full[6 * i + 3..6 * i + 6].copy_from_slice(&r);
+                }
+            }
+            // the sign that makes the largest entry positive (the first of equal ones)
+            let big = full.iter().copied().fold(0.0, |a: f64, v| if v.abs() > a.abs() { v } else { a });
+            if big < 0.0 {
+                full.iter_mut().for_each(|v| *v = -*v);
             }
             let participation = |dir: usize| -> f64 {
-                self.dofs.iter().zip(&self.mass).filter(|(&g, _)| g % 3 == dir).map(|(&g, m)| m * full[g]).sum()
+                self.dofs.iter().zip(&self.mass).filter(|(&g, _)| g % per == dir).map(|(&g, m)| m * full[g]).sum()
             };
-            out.effective_mass.push([participation(0).powi(2), participation(1).powi(2)]);
+            out.effective_mass.push((0..directions).map(|dir| participation(dir).powi(2)).collect());
             out.frequencies.push(w / (2.0 * std::f64::consts::PI));
             out.angular.push(w);
             out.eigenvalues.push(p.lambda);

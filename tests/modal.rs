@@ -38,16 +38,6 @@ fn modes_along(m: &Modes, model: &Model, dof: usize) -> Vec<usize> {
     (0..m.shapes.len()).filter(|&k| share(&m.shapes[k]) > 0.999).collect()
 }
 
-/// The two roots of det(K - lambda M) = 0 of a symmetric 2 x 2 K and diagonal M, ascending.
-fn eig2(k11: f64, k12: f64, k22: f64, m1: f64, m2: f64) -> [f64; 2] {
-    // m1 m2 l^2 - (k11 m2 + k22 m1) l + (k11 k22 - k12^2) = 0
-    let (a, b, c) = (m1 * m2, -(k11 * m2 + k22 * m1), k11 * k22 - k12 * k12);
-    let disc = (b * b - 4.0 * a * c).sqrt();
-    // the smaller root from the product of the roots, without cancellation
-    let big = (-b + disc) / (2.0 * a);
-    [c / (a * big), big]
-}
-
 fn check_orthonormal(m: &Modes, model: &Model) {
     let mass = |g: usize| if g % 3 == 2 { model.inertia()[g / 3] } else { model.mass()[g / 3] };
     for (i, a) in m.shapes.iter().enumerate() {

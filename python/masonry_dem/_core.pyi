@@ -745,6 +745,15 @@ class Model3D:
         beta = 0 only). Returns a TimeHistory of dimension 3, with the ground's acceleration and the base shear along
         y too. Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory computed so far
         as its `results` attribute. progress: optional callable(step, time [s], nan, fraction done)."""
+    def record_size(
+        self,
+        duration: float,
+        time_step: Optional[float] = None,
+        record_every: Optional[int] = None,
+        record_interval: Optional[float] = None,
+    ) -> tuple[int, float]:
+        """(records, bytes) that Model3D.simulate with these options would hold (its time step as simulate chooses
+        it), as Model.record_size; refuses what simulate refuses of them."""
     def critical_time_step(self, time_history: bool = False) -> float:
         """The stability limit of the explicit solver's time step in 3D [s] (Gershgorin bound on the contact points'
         elastic stiffnesses), as Model.critical_time_step(); with time_history=True, that of Model3D.simulate:
@@ -888,22 +897,27 @@ class Modes:
     eigenvalues: FloatArray
     """(n,) omega^2 as computed [rad2/s2]."""
     shapes: FloatArray
-    """(n, n_all, 3): u1, u2, phi of every block (as Model.rects); phi^T M phi = 1, fixed dofs 0."""
+    """(n, n_all, 3): u1, u2, phi of every block (as Model.rects); in 3D (n, n_all, 6): ux, uy, uz, rx, ry,
+    rz. phi^T M phi = 1, fixed dofs 0."""
+    dimension: int
+    """2 for the modes of a wall in the plane (Model), 3 for those of a 3D model (Model3D)."""
     residuals: FloatArray
     """(n,) ||K phi - omega^2 M phi|| / ||K phi||."""
     effective_mass: FloatArray
-    """(n, 2) effective modal masses along x and y [kg]."""
-    free_mass: tuple[float, float]
-    """The mass free to move along x and y [kg] (the effective masses' sum over all modes)."""
+    """(n, 2) effective modal masses along x and y [kg]; in 3D (n, 3), along x, y and z."""
+    free_mass: tuple[float, ...]
+    """The mass free to move along x and y [kg] (in 3D along x, y and z): the effective masses' sum over all
+    modes."""
     shift: float
     """The shift sigma of the operator (K - sigma M)^-1 M [rad2/s2]."""
     basis: int
     """Size of the Lanczos basis."""
     def __len__(self) -> int: ...
 
-def modes(model: Model, n: int, shift: Optional[float] = None) -> Modes:
+def modes(model: Union[Model, Model3D], n: int, shift: Optional[float] = None) -> Modes:
     """The n lowest natural modes of the model's elastic joints (K phi = omega^2 M phi on the free dofs), or
-    with a shift [rad2/s2] the n whose omega^2 are nearest to it. Releases the GIL."""
+    with a shift [rad2/s2] the n whose omega^2 are nearest to it; the model a Model or a Model3D. Releases the
+    GIL."""
 
 def rayleigh(f1_hz: float, f2_hz: float, zeta1: float, zeta2: Optional[float] = None) -> tuple[float, float]:
     """Rayleigh damping C = alpha M + beta K: (alpha [1/s], beta [s]) giving the damping ratio zeta1 at f1_hz

@@ -147,14 +147,15 @@ def _simulate(args: Any) -> int:
         case = load_case(args.case)
     except OSError as exc:
         return _error(f"cannot read {args.case}: {exc.strerror or exc}", EXIT_INPUT)
-    if case.dimension == 3:
-        from .space.case import NO_CASE_HISTORY_3D
-
-        raise InputError(f"{args.case}: simulate (a time history) is refused: {NO_CASE_HISTORY_3D} (this case is 3D; "
-                         "masonry-dem run takes its limit analysis or its explicit pushover)")
     if case.ground_motion is None:
         raise InputError(f"{args.case}: no [ground_motion] table: simulate needs a ground motion (a record file "
                          "or a pulse; see docs/case-format.md)")
+    if case.dimension == 3:
+        planar = [name for name, given in (("--plot", args.plot), ("--csv", args.csv), ("--gif", args.gif)) if given]
+        if planar:
+            raise InputError(f"{args.case}: simulate {planar[0]}: the figures, the animation and the curve of a time "
+                             "history are the plane's in this version (this case is 3D: --json and --vtk write its "
+                             "response and its motion)")
     inputs = [args.case] + [str(p) for p in case.ground_motion.files]
     kwargs = case.simulate_kwargs(args.scale, args.duration)  # checks the arguments before any run
     targets, plot_file = _output_targets(args.json, args.plot, None, args.csv)
@@ -176,8 +177,8 @@ def _simulate(args: Any) -> int:
         # the memory the records will take, before the run (the time step as simulate chooses it)
         records, size = model.record_size(kwargs["duration"], time_step=kwargs.get("time_step"),
                                           record_interval=kwargs.get("record_interval"))
-        print(f"recording {records:,} states of the {len(model.rects):,} blocks: {size / 2**20:.1f} MB",
-              file=sys.stderr)
+        blocks = len(model.boxes) if case.dimension == 3 else len(model.rects)
+        print(f"recording {records:,} states of the {blocks:,} blocks: {size / 2**20:.1f} MB", file=sys.stderr)
     label = f"simulate {kwargs['duration']:.4g} s"
     with progress_bar(label, enabled=_show_progress(args.quiet), time_history=True) as bar:
         history, interrupted = _interruptible(lambda: case.simulate(model, args.scale, args.duration,

@@ -1,7 +1,8 @@
 """Time histories (:class:`masonry_dem.TimeHistory`, from ``Model.simulate``) as results: the response of the
 control block, shared by the exports (:mod:`masonry_dem.export`) and the figures (:mod:`masonry_dem.plot`).
-These read a wall in the plane's: a 3D wall's time history (``Model3D.simulate``, ``TimeHistory.dimension`` 3) is
-refused there with :func:`check_plane` (its arrays are read directly in this version).
+The response (:func:`default_control_block`, :func:`control_response`) reads either dimension; the figures, the
+animation and the curve's CSV read a wall in the plane's: a 3D wall's time history (``Model3D.simulate``,
+``TimeHistory.dimension`` 3) is refused there with :func:`check_plane`.
 
 Displacements of a time history (``TimeHistory.displacements``, (k, n_all, 3): u1 [m], u2 [m], phi [rad]) are
 relative to the ground: the blocks move in the frame of the base (a base acceleration acts as the inertial
@@ -59,25 +60,34 @@ def check_plane(model: Any, what: str = "this output of a time history") -> None
 
 
 def default_control_block(model: Any) -> int:
-    """The model's default control block, the solvers' own (``Model.default_control_block``); a 3D model's time
-    history is refused (:func:`check_plane`)."""
-    check_plane(model)
+    """The model's default control block, the solvers' own (``Model.default_control_block``); of a 3D model
+    (:class:`masonry_dem.Model3D`) the highest wall block (the top of its bounding box, the first of equal ones),
+    the 3D explicit pushover's."""
+    if int(getattr(model, "dimension", 2)) == 3:
+        boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)[: int(model.n_blocks)]
+        return int(np.argmax(boxes[:, 5]))
     return int(model.default_control_block)
 
 
 def control_response(model: Any, history: Any) -> Tuple[np.ndarray, np.ndarray]:
     """((k,) horizontal displacement u1 [m], (k,) rotation phi [rad]) of the default control block at each
-    recorded time, relative to the ground (see the module docstring)."""
+    recorded time, relative to the ground (see the module docstring). Of a 3D model: the length of the control
+    block's horizontal displacement sqrt(ux^2 + uy^2) [m] and of its rotation vector [rad] (both >= 0)."""
     disp = np.asarray(history.displacements, dtype=np.float64)
     c = default_control_block(model)
+    if int(getattr(model, "dimension", 2)) == 3:
+        return np.hypot(disp[:, c, 0], disp[:, c, 1]), np.linalg.norm(disp[:, c, 3:6], axis=-1)
     return disp[:, c, 0].copy(), disp[:, c, 2].copy()
 
 
 def largest_translation(history: Any) -> np.ndarray:
-    """(k,) the largest translation sqrt(u1^2 + u2^2) [m] of any block's centroid at each recorded time."""
+    """(k,) the largest translation sqrt(u1^2 + u2^2) [m] of any block's centroid at each recorded time (of a 3D
+    history, sqrt(ux^2 + uy^2 + uz^2))."""
     disp = np.asarray(history.displacements, dtype=np.float64)
     if disp.size == 0:
         return np.zeros(len(np.asarray(history.times)))
+    if disp.shape[-1] == 6:
+        return np.asarray(np.linalg.norm(disp[..., :3], axis=-1).max(axis=1))
     return np.asarray(np.hypot(disp[..., 0], disp[..., 1]).max(axis=1))
 
 

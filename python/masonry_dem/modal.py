@@ -3,7 +3,9 @@
 
 The modes solve ``K phi = omega^2 M phi`` on the free dofs: ``K`` the elastic stiffness of every interface
 (every joint closed and elastic, as in the undeformed wall), ``M`` the blocks' masses and rotary inertias
-(docs/modal.md). The compiled core computes them (shift-invert block Lanczos on a sparse Cholesky):
+(docs/modal.md). A 3D model (:class:`masonry_dem.Model3D`, boxes and polyhedra) has 6 dofs per block, each
+block's full inertia tensor and the elastic law of the 3D explicit solver at its contacts' corners. The compiled
+core computes them (shift-invert block Lanczos on a sparse Cholesky):
 
 >>> import masonry_dem as md
 >>> model = md.Model([[0.0, 0.0, 0.4, 1.0]])
@@ -38,8 +40,8 @@ def modes(model: Any, n: int = 6, shift: Optional[float] = None) -> Modes:
     """The ``n`` lowest natural modes of ``model``'s elastic joints.
 
     Args:
-        model: a :class:`masonry_dem.Model`.
-        n: the number of modes, from 1 to the number of free dofs (3 per block not fixed).
+        model: a :class:`masonry_dem.Model`, or a :class:`masonry_dem.Model3D`.
+        n: the number of modes, from 1 to the number of free dofs (3 per block not fixed; 6 in 3D).
         shift: ``omega^2`` [rad2/s2] around which the modes are sought: the ``n`` modes whose ``omega^2`` are
             nearest to it are returned. None (default): slightly below 0, so the lowest ``n`` (and a model
             with a mechanism or without supports is solved too: its rigid-body modes have frequency 0).
@@ -48,7 +50,9 @@ def modes(model: Any, n: int = 6, shift: Optional[float] = None) -> Modes:
         [rad/s], ``eigenvalues`` (n,) [rad2/s2], ``shapes`` (n, n_all, 3) (u1, u2, phi of every block, the
         base and top beam included as in ``Model.rects``; mass-normalized, ``phi^T M phi = 1``, fixed dofs
         0), ``residuals`` (n,) (``||K phi - omega^2 M phi|| / ||K phi||``), ``effective_mass`` (n, 2) [kg]
-        (x, y) and ``free_mass`` (x, y) [kg].
+        (x, y) and ``free_mass`` (x, y) [kg]. Of a 3D model: ``shapes`` (n, n_all, 6) (ux, uy, uz, then the
+        rotations about x, y, z, as ``Model3D.boxes``; ``phi^T M phi = 1`` with the full inertia tensors),
+        ``effective_mass`` (n, 3) and ``free_mass`` along x, y and z; ``Modes.dimension`` is 3.
     Raises:
         InputError: ``n`` out of range, a non-finite shift, a shift at which ``K - shift M`` is singular,
             or a model with nothing free to vibrate.
@@ -67,7 +71,7 @@ def rayleigh_damping(
 
     Args:
         frequencies: a :class:`Modes` (its modes ``pair`` give the two frequencies), a :class:`masonry_dem.Model`
-            (its modes are computed), or two frequencies ``(f1, f2)`` [Hz].
+            or :class:`masonry_dem.Model3D` (its modes are computed), or two frequencies ``(f1, f2)`` [Hz].
         zeta1: the damping ratio at the first frequency [-] (default 5%).
         zeta2: the ratio at the second (default: ``zeta1``).
         pair: which two modes of a :class:`Modes` or a model (default the first two).
@@ -78,7 +82,7 @@ def rayleigh_damping(
     Raises:
         InputError: frequencies not > 0 or equal, ratios < 0, or ratios needing a negative coefficient.
     """
-    if isinstance(frequencies, _core.Model):
+    if isinstance(frequencies, (_core.Model, _core.Model3D)):
         frequencies = modes(frequencies, max(pair) + 1)
     if isinstance(frequencies, Modes):
         f = np.asarray(frequencies.frequencies_hz)

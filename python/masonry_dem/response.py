@@ -9,6 +9,11 @@ base shear, the energy balance and their peaks, as ``masonry-dem simulate`` prin
 * the **energy balance error** is the largest |``TimeHistory.energy_error``| (initial energy + external work -
   kinetic - elastic - dissipated) over the largest of the energies [J], a check of the time integration.
 
+Of a 3D wall (``Model3D.simulate``): the control block is the highest wall block, its displacement and rotation
+the lengths of its horizontal displacement and of its rotation vector (>= 0), the base shear and the ground's
+acceleration the lengths of their horizontal vectors (x, y); the JSON records add ``base_shear_y`` and
+``ground_acceleration_y``.
+
 Quantities a TimeHistory does not carry (an older core) are NaN / None.
 """
 
@@ -51,10 +56,30 @@ def _array(history: Any, name: str) -> Optional[np.ndarray]:
     return None if value is None else np.asarray(value, dtype=np.float64)
 
 
+def _three(model: Any) -> bool:
+    return int(getattr(model, "dimension", 2)) == 3
+
+
 def wall_height(model: Any) -> float:
     """The height of the wall blocks [m] (the base and the top beam not counted)."""
+    if _three(model):
+        boxes = np.asarray(model.boxes, dtype=np.float64).reshape(-1, 6)[: int(model.n_blocks)]
+        return float(boxes[:, 5].max() - boxes[:, 2].min())
     wall = shapes(model).bounds[: int(model.n_blocks)]
     return float(wall[:, 3].max() - wall[:, 1].min())
+
+
+def _horizontal(model: Any, history: Any, name: str) -> Optional[np.ndarray]:
+    """(k,) the record ``name`` (``base_shear``, or the horizontal column of ``ground_acceleration``); of a 3D
+    history the length of the vector with its ``_y`` record."""
+    x = _array(history, name)
+    if x is None:
+        return None
+    x = x.reshape(len(x), -1)[:, 0] if x.ndim > 1 else x
+    y = _array(history, name + "_y") if _three(model) else None
+    if y is None or y.size != x.size:
+        return x
+    return np.hypot(x, y.reshape(-1))
 
 
 def drift(model: Any, history: Any) -> np.ndarray:
@@ -100,12 +125,16 @@ def peaks(model: Any, history: Any) -> Dict[str, Any]:
     u, phi = control_response(model, history)
     disp = np.asarray(history.displacements, dtype=np.float64)
     n_wall = int(model.n_blocks)
-    rotations = disp[:, :n_wall, 2] if disp.size else np.zeros((len(times), 0))
+    if not disp.size:
+        rotations = np.zeros((len(times), 0))
+    elif _three(model):
+        rotations = np.linalg.norm(disp[:, :n_wall, 3:6], axis=-1)
+    else:
+        rotations = disp[:, :n_wall, 2]
     block_rotation: Dict[str, Any] = {"value": None, "time": None, "block": None}
     if rotations.size:
         k, b = np.unravel_index(int(np.argmax(np.abs(rotations))), rotations.shape)
         block_rotation = {"value": float(rotations[k, b]), "time": float(times[k]), "block": int(b)}
-    ground = _array(history, "ground_acceleration")
     weights = np.asarray(model.weights, dtype=np.float64).reshape(-1)
     if model.base_index is not None:
         weights = np.delete(weights, int(model.base_index))
@@ -117,8 +146,8 @@ def peaks(model: Any, history: Any) -> Dict[str, Any]:
         "displacement": _peak(u, times),
         "rotation": _peak(phi, times),
         "block_rotation": block_rotation,
-        "base_shear": _peak(_array(history, "base_shear"), times),
-        "ground_acceleration": _peak(None if ground is None else ground.reshape(len(times), -1)[:, 0], times),
+        "base_shear": _peak(_horizontal(model, history, "base_shear"), times),
+        "ground_acceleration": _peak(_horizontal(model, history, "ground_acceleration"), times),
         "energy_balance_error": energy_balance_error(history),
     }
 
@@ -178,6 +207,9 @@ def history_dict(model: Any, history: Any, title: str, motion: Any = None) -> Di
     if ground is not None:
         records["ground_acceleration"] = [[float(x) if math.isfinite(x) else None for x in row]
                                           for row in ground.reshape(len(times), -1)]
+    if _three(model):
+        records["base_shear_y"] = _floats(_array(history, "base_shear_y"))
+        records["ground_acceleration_y"] = _floats(_array(history, "ground_acceleration_y"))
     for name in [n for n, _ in ENERGY_TERMS] + ["gravity_work", "dissipated", "energy_error"]:
         records[name] = _floats(_array(history, name))
     out["records"] = {k: v for k, v in records.items() if v is not None}

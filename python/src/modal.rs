@@ -9,6 +9,8 @@ use masonry_dem::modal::{self, Modes};
 pub(crate) struct PyModes {
     inner: Modes,
     n_blocks: usize,
+    /// 2 for a wall in the plane, 3 for a 3D model
+    dimension: usize,
 }
 
 #[pymethods]
@@ -28,30 +30,42 @@ impl PyModes {
     fn eigenvalues<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.eigenvalues.clone().into_pyarray(py)
     }
-    /// (n, n_all, 3): u1, u2, phi of every block (as Model.rects); phi^T M phi = 1, fixed dofs 0.
+    /// (n, n_all, 3): u1, u2, phi of every block (as Model.rects); in 3D (n, n_all, 6): ux, uy, uz, rx, ry,
+    /// rz. phi^T M phi = 1, fixed dofs 0.
     #[getter]
     fn shapes<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray3<f64>> {
+        if self.dimension == 3 {
+            let rows: Vec<[f64; 6]> = self.inner.shapes.iter().flat_map(|s| s.chunks_exact(6).map(|c| std::array::from_fn(|k| c[k]))).collect();
+            return history_of(py, &rows, self.n_blocks);
+        }
         let rows: Vec<[f64; 3]> = self.inner.shapes.iter().flat_map(|s| s.chunks_exact(3).map(|c| [c[0], c[1], c[2]])).collect();
         history_of(py, &rows, self.n_blocks)
+    }
+    /// 2 for the modes of a wall in the plane (Model), 3 for those of a 3D model (Model3D).
+    #[getter]
+    fn dimension(&self) -> usize {
+        self.dimension
     }
     /// (n,) ||K phi - omega^2 M phi|| / ||K phi||.
     #[getter]
     fn residuals<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.inner.residuals.clone().into_pyarray(py)
     }
-    /// (n, 2) effective modal masses along x and y [kg].
+    /// (n, 2) effective modal masses along x and y [kg]; in 3D (n, 3), along x, y and z.
     #[getter]
     fn effective_mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let d = self.dimension;
         let flat: Vec<f64> = self.inner.effective_mass.iter().flatten().copied().collect();
         // the shape matches the data by construction: no panic can come from here
-        Array2::from_shape_vec((self.inner.effective_mass.len(), 2), flat)
-            .unwrap_or_else(|_| Array2::zeros((0, 2)))
+        Array2::from_shape_vec((self.inner.effective_mass.len(), d), flat)
+            .unwrap_or_else(|_| Array2::zeros((0, d)))
             .into_pyarray(py)
     }
-    /// The mass free to move along x and y [kg] (the effective masses' sum over all modes).
+    /// The mass free to move along x and y [kg] (in 3D along x, y and z): the effective masses' sum over all
+    /// modes.
     #[getter]
-    fn free_mass(&self) -> (f64, f64) {
-        (self.inner.free_mass[0], self.inner.free_mass[1])
+    fn free_mass<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, pyo3::types::PyTuple>> {
+        pyo3::types::PyTuple::new(py, &self.inner.free_mass)
     }
     /// The shift sigma of the operator (K - sigma M)^-1 M [rad2/s2].
     #[getter]
@@ -74,14 +88,24 @@ impl PyModes {
 }
 
 /// The n lowest natural modes of the model's elastic joints (K phi = omega^2 M phi on the free dofs), or
-/// with a shift [rad2/s2] the n whose omega^2 are nearest to it. Releases the GIL.
+/// with a shift [rad2/s2] the n whose omega^2 are nearest to it; the model a Model or a Model3D. Releases the
+/// GIL.
 #[pyfunction]
 #[pyo3(signature = (model, n, shift=None))]
-pub(crate) fn modes(py: Python<'_>, model: PyRef<'_, PyModel>, n: i64, shift: Option<f64>) -> PyResult<PyModes> {
+pub(crate) fn modes(py: Python<'_>, model: &Bound<'_, PyAny>, n: i64, shift: Option<f64>) -> PyResult<PyModes> {
     let n = count("n", n, 1)?;
-    let model = Arc::clone(&model.inner);
+    if let Ok(m) = model.cast::<PyModel3D>() {
+        let model = Arc::clone(&m.borrow().inner);
+        let inner = py.detach(|| guarded(|| modal::modes_3d(&model, n, shift)))?;
+        return Ok(PyModes { inner, n_blocks: model.n_blocks(), dimension: 3 });
+    }
+    let m = model.cast::<PyModel>().map_err(|_| {
+        let kind = model.get_type().name().map(|n| n.to_string()).unwrap_or_else(|_| "object".into());
+        InputError::new_err(format!("modes: model must be a Model or a Model3D, got {kind}"))
+    })?;
+    let model = Arc::clone(&m.borrow().inner);
     let inner = py.detach(|| guarded(|| modal::modes(&model, n, shift)))?;
-    Ok(PyModes { inner, n_blocks: model.n_blocks() })
+    Ok(PyModes { inner, n_blocks: model.n_blocks(), dimension: 2 })
 }
 
 /// Rayleigh damping C = alpha M + beta K: (alpha [1/s], beta [s]) giving the damping ratio zeta1 at f1_hz

@@ -529,7 +529,7 @@ fn follow_options(follow: bool, step: Option<f64>, steps: Option<i64>) -> PyResu
 
 /// The recording of a time history: `record_every` steps or `record_interval` seconds (not
 /// both); neither: the core's default.
-fn recording(record_every: Option<i64>, record_interval: Option<f64>) -> PyResult<Recording> {
+pub(crate) fn recording(record_every: Option<i64>, record_interval: Option<f64>) -> PyResult<Recording> {
     match (record_every, record_interval) {
         (Some(_), Some(_)) => Err(InputError::new_err("give record_every (steps) or record_interval (seconds), not both")),
         (Some(k), None) => Ok(Recording::Every(count("record_every", k, 1)?)),

@@ -638,6 +638,14 @@ impl PyModel3D {
         })
     }
 
+    /// (records, bytes) that Model3D.simulate with these options would hold (its time step as simulate chooses
+    /// it), as Model.record_size; refuses what simulate refuses of them.
+    #[pyo3(signature = (duration, time_step=None, record_every=None, record_interval=None))]
+    fn record_size(&self, duration: f64, time_step: Option<f64>, record_every: Option<i64>, record_interval: Option<f64>) -> PyResult<(usize, f64)> {
+        let opts = DynamicOptions::<[f64; 6]> { duration, time_step, record: recording(record_every, record_interval)?, ..DynamicOptions::default() };
+        explicit::record_size_3d(&self.inner, &opts).map_err(to_py)
+    }
+
     /// The stability limit of the explicit solver's time step in 3D [s] (Gershgorin bound on the contact points'
     /// elastic stiffnesses), as Model.critical_time_step(); with time_history=True, that of Model3D.simulate:
     /// lowered for the contact dashpots of the joints' restitution.

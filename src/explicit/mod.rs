@@ -308,5 +308,7 @@ use pass::*;
 pub use stepper::{Stepper, Stepper3};
 pub(crate) use quasi_static::{relax_at_displacement, relax_dead_state};
 pub use quasi_static::{solve, solve_with};
-pub use space::{critical_time_step_3d, history_time_step_limit_3d, simulate_3d, simulate_3d_with, solve_3d, solve_3d_with};
+// the modal analysis in 3D takes the same kinematics and rotation dofs as a time history
+pub(crate) use space::{jump_rows, principal_axes, to_world};
+pub use space::{critical_time_step_3d, history_time_step_limit_3d, record_size_3d, simulate_3d, simulate_3d_with, solve_3d, solve_3d_with};
 pub use time_history::{history_time_step_limit, record_count, record_size, simulate, simulate_with};

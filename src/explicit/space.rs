@@ -142,7 +142,7 @@ fn mat_t(r: &[f64; 9], x: [f64; 3]) -> [f64; 3] {
 /// `x` (a rotation's components about block i's dofs' axes) in x, y, z: `axes[i] x` where the
 /// block's axes are turned.
 #[inline(always)]
-fn to_world(axes: &[Option<[f64; 9]>], i: usize, x: [f64; 3]) -> [f64; 3] {
+pub(crate) fn to_world(axes: &[Option<[f64; 9]>], i: usize, x: [f64; 3]) -> [f64; 3] {
     match axes.get(i) {
         Some(Some(q)) => mat(q, x),
         _ => x,
@@ -161,7 +161,7 @@ fn to_axes(axes: &[Option<[f64; 9]>], i: usize, x: [f64; 3]) -> [f64; 3] {
 /// The rows of the map from the 12 dofs of a contact's blocks (a's, then b's) to the jumps of a
 /// point along each axis of `frame`: `(-w, -(ra x w), w, rb x w)`, the rotations' about the
 /// blocks' dofs' axes (`axes`, see [`principal_axes`]).
-fn jump_rows(ra: [f64; 3], rb: [f64; 3], frame: &[[f64; 3]; 3], axes: [Option<&[f64; 9]>; 2]) -> [[f64; 12]; 3] {
+pub(crate) fn jump_rows(ra: [f64; 3], rb: [f64; 3], frame: &[[f64; 3]; 3], axes: [Option<&[f64; 9]>; 2]) -> [[f64; 12]; 3] {
     frame.map(|w| {
         let turn = |q: Option<&[f64; 9]>, v: [f64; 3]| q.map_or(v, |q| mat_t(q, v));
         let (ma, mb) = (turn(axes[0], cross(ra, w)), turn(axes[1], cross(rb, w)));
@@ -172,7 +172,7 @@ fn jump_rows(ra: [f64; 3], rb: [f64; 3], frame: &[[f64; 3]; 3], axes: [Option<&[
 /// Each block's principal axes of inertia and moments: `None` and the tensor's diagonal where
 /// it has no products of inertia (a box), else the eigenvectors as the columns of a rotation
 /// (row-major) and the eigenvalues.
-fn principal_axes(model: &Model3) -> (Vec<Option<[f64; 9]>>, Vec<[f64; 3]>) {
+pub(crate) fn principal_axes(model: &Model3) -> (Vec<Option<[f64; 9]>>, Vec<[f64; 3]>) {
     model
         .inertia_tensor()
         .iter()
@@ -844,6 +844,18 @@ pub fn history_time_step_limit_3d(model: &Model3) -> f64 {
         .map(|&f| super::contact::damping_ratio(model.laws().of(f).restitution))
         .fold(0.0, f64::max);
     critical_time_step_3d(model) * super::contact::stability_factor(3.0 * zeta)
+}
+
+/// The bytes a time history of a 3D `model` under `opts` will hold, and its number of records
+/// (as the plane's [`super::record_size`]): per record, the displacements and velocities of
+/// every block (96 bytes a block) and 15 numbers (times, the ground's accelerations, the base
+/// shears, energies). Checks the options as [`simulate_3d`] does before it builds the integrator.
+pub fn record_size_3d(model: &Model3, opts: &DynamicOptions<[f64; 6]>) -> Result<(usize, f64), Error> {
+    super::time_history::check_common(opts, model.n_blocks())?;
+    let dt = super::time_history::dashpot_time_step(critical_time_step_3d(model), history_time_step_limit_3d(model), opts)?;
+    let n_steps = super::time_history::count_time_steps(opts.duration, dt)?;
+    let records = super::record_count(opts.record, dt, n_steps);
+    Ok((records, records as f64 * (96.0 * model.n_blocks() as f64 + 8.0 * 15.0)))
 }
 
 /// Integrates the equations of motion of a 3D model in time: free motion from initial

@@ -47,7 +47,7 @@ pub use contact2::{contacts, corner_contacts, penetration, EdgeContact};
 pub use contact3::{bisector, face_contacts, facing, penetration as penetration3, shared, FaceContact};
 pub use mass::{Area, Volume};
 pub use polygon::{Defect, Polygon};
-pub use polyhedron::{Face, Polyhedron};
+pub use polyhedron::{Face, Polyhedron, MAX_HULL_POINTS};
 
 /// Relative tolerance on coordinates used by the generators and the contact search.
 pub(crate) const REL_TOL: f64 = 1e-9;

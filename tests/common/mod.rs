@@ -112,3 +112,13 @@ pub fn sign_changes(times: &[f64], rot: &[f64]) -> Vec<f64> {
         .map(|k| times[k - 1] + (times[k] - times[k - 1]) * rot[k - 1] / (rot[k - 1] - rot[k]))
         .collect()
 }
+
+/// The two roots of det(K - lambda M) = 0 of a symmetric 2 x 2 K and diagonal M, ascending.
+pub fn eig2(k11: f64, k12: f64, k22: f64, m1: f64, m2: f64) -> [f64; 2] {
+    // m1 m2 l^2 - (k11 m2 + k22 m1) l + (k11 k22 - k12^2) = 0
+    let (a, b, c) = (m1 * m2, -(k11 * m2 + k22 * m1), k11 * k22 - k12 * k12);
+    let disc = (b * b - 4.0 * a * c).sqrt();
+    // the smaller root from the product of the roots, without cancellation
+    let big = (-b + disc) / (2.0 * a);
+    [c / (a * big), big]
+}

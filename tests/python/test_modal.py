@@ -128,3 +128,64 @@ def test_rayleigh_damping_runs_in_a_time_history() -> None:
     assert history.damping_dissipation[-1] > 0 and history.impact_dissipation[-1] == 0
     with pytest.raises(md.InputError, match="not both"):
         model.simulate(0.001, rayleigh=(alpha, beta), damping="viscous")
+
+
+BX, BY, BZ = 0.6, 0.4, 1.5  # a box in 3D [m]
+
+
+def box_3d(turned: float = 0.0) -> md.Model3D:
+    """The box BX x BY x BZ on its base as a polyhedron, turned by ``turned`` degrees about the vertical."""
+    c, s = math.cos(math.radians(turned)), math.sin(math.radians(turned))
+    corners = [[x, y, z] for z in (0.0, BZ) for x, y in ((-BX / 2, -BY / 2), (BX / 2, -BY / 2), (BX / 2, BY / 2),
+                                                         (-BX / 2, BY / 2))]
+    vertices = [[c * x - s * y, s * x + c * y, z] for x, y, z in corners]
+    law = {"normal_stiffness": KN, "shear_stiffness": KT, "friction": 0.6}
+    return md.Model3D(polyhedra=[vertices], density=DENSITY, joints={"default": law})
+
+
+def closed_form_3d() -> list:
+    """The six angular frequencies [rad/s] of a box on springs at its base's corners, ascending: vertical
+    (kN A / m), torsion (each corner's kT A / 4 at (BX^2 + BY^2) / 4 over m (BX^2 + BY^2) / 12: 3 kT A / m) and the
+    two sliding-rocking pairs (2 x 2 eigenproblems, shear lever arm h / 2, rocking stiffness kN A b^2 / 12)."""
+    m, area = DENSITY * BX * BY * BZ, BX * BY
+    out = [KN * area / m, 3.0 * KT * area / m]
+    for b in (BX, BY):
+        j = m * (b * b + BZ * BZ) / 12.0
+        k11, k12, k22 = KT * area, KT * area * BZ / 2, KT * area * BZ * BZ / 4 + KN * area * b * b / 12.0
+        a, bb, c = m * j, -(k11 * j + k22 * m), k11 * k22 - k12 * k12
+        big = (-bb + math.sqrt(bb * bb - 4 * a * c)) / (2 * a)
+        out += [c / (a * big), big]
+    return sorted(math.sqrt(v) for v in out)
+
+
+@pytest.mark.parametrize("turned", [0.0, 45.0])
+def test_a_box_in_3d_matches_the_closed_form(turned: float) -> None:
+    model = box_3d(turned)
+    m = md.modes(model, 6)
+    assert m.dimension == 3
+    np.testing.assert_allclose(m.angular_frequencies, closed_form_3d(), rtol=1e-9)
+    assert m.shapes.shape == (6, 2, 6) and m.effective_mass.shape == (6, 3) and len(m.free_mass) == 3
+    mass = DENSITY * BX * BY * BZ
+    np.testing.assert_allclose(m.effective_mass.sum(axis=0), [mass] * 3, rtol=1e-9)
+    assert np.all(m.shapes[:, 1] == 0.0)  # the base is fixed
+    alpha, beta = md.rayleigh_damping(model, 0.05)
+    w1, w2 = closed_form_3d()[:2]
+    assert alpha / (2 * w1) + beta * w1 / 2 == pytest.approx(0.05, rel=1e-9)
+    assert alpha / (2 * w2) + beta * w2 / 2 == pytest.approx(0.05, rel=1e-9)
+
+
+def test_modes_of_anything_else_are_refused() -> None:
+    with pytest.raises(md.InputError, match="model must be a Model or a Model3D, got str"):
+        md.modes("wall", 3)  # type: ignore[arg-type]
+    with pytest.raises(md.InputError, match="only 6 free dofs"):
+        md.modes(box_3d(), 7)
+
+
+def test_plot_of_3d_modes_writes_a_png(tmp_path: Path, block: md.Model) -> None:
+    model = box_3d(30.0)
+    m = md.modes(model, 6)
+    out = tmp_path / "modes3d.png"
+    md.plot_modes(model, m, k=[0, 1, 2, 3], path=out)
+    assert out.stat().st_size > 10_000 and out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    with pytest.raises(md.InputError, match="not of this model"):
+        md.plot_modes(block, m, path=tmp_path / "wrong.png")

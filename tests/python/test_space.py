@@ -371,9 +371,8 @@ def test_the_boxes_key_and_the_3d_keys_of_other_tables() -> None:
          'the 3D model takes limit analysis and the explicit solver (method "limit" or "dynamic")'),
         (LEAF_TABLE + '[analysis]\nmethod = "dynamic"\ncontrol = "displacement"\n', "analysis.control",
          "the explicit solver in 3D is load-controlled"),
-        (LEAF_TABLE + "[time_history]\nduration = 1.0\n", "time_history", "a time history is refused"),
-        (LEAF_TABLE + '[ground_motion]\npulse = "ricker"\namplitude_g = 0.3\nperiod = 0.2\n', "ground_motion",
-         "a time history is refused"),
+        (LEAF_TABLE + '[time_history]\ndamping = "rayleigh"\ndamping_ratio = 0.05\n', "time_history.damping",
+         '"rayleigh" is refused in 3D'),
         (LEAF_TABLE + '[reference]\ncollapse_multiplier = 0.1\nmethods = ["static"]\n', "reference.methods",
          "limit analysis"),
         (LEAF_TABLE + '[loads]\nlive = "top_horizontal"\n', "loads.live", "horizontal_weight"),
@@ -453,7 +452,7 @@ def test_a_2d_case_keeps_its_meaning() -> None:
     assert c.dimension == 2 and c.method == "static" and "direction" not in c.model_kwargs
     with pytest.raises(md.InputError, match="3D model takes limit analysis"):
         case(LEAF_TABLE).run("static")
-    with pytest.raises(md.InputError, match="time history is refused"):
+    with pytest.raises(md.InputError, match=r"no \[ground_motion\] table"):
         case(LEAF_TABLE).simulate_kwargs()
 
 
@@ -534,7 +533,7 @@ def test_refusals_on_the_command_line(tmp_path: Path, capsys: pytest.CaptureFixt
         (["run", str(LEAF), "--method", "static"], "the 3D model takes limit analysis and the explicit solver"),
         (["run", str(displacement), "--method", "dynamic"], 'analysis.control = "displacement": the explicit solver in 3D'),
         (["run", str(static)], 'analysis.method = "static": the 3D model takes limit analysis'),
-        (["simulate", str(LEAF)], "simulate (a time history) is refused"),
+        (["simulate", str(LEAF)], "no [ground_motion] table"),
         (["run", str(plane)], "loads.direction: got 45"),
     ]:
         assert cli.main(args) == 2
@@ -569,6 +568,28 @@ def test_the_plot_of_a_mechanism(tmp_path: Path) -> None:
     assert r.status == "no_equilibrium"
     fig = md.plot.report_figure(held, r, title="held", path=tmp_path / "held.png")
     assert "no mechanism drawn" in fig._suptitle.get_text()
+
+
+def test_the_report_page_of_a_3d_case(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
+    # run --plot of a 3D case: the mechanism's two views, the contacts by state and the load curve
+    out = tmp_path / "leaf.png"
+    assert cli.main(["run", str(LEAF), "--plot", str(out), "--quiet"]) == 0
+    assert out.read_bytes()[:8] == PNG
+    model, r = limit(md.running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175), direction=90)
+    fig = md.plot.report_figure(model, r, title="leaf", path=tmp_path / "limit.png")
+    assert len([ax for ax in fig.axes if ax.name == "3d"]) == 3
+    curve = [ax for ax in fig.axes if ax.name != "3d" and ax.get_ylabel().startswith("load multiplier")]
+    assert len(curve) == 1 and "along y" in curve[0].get_xlabel()
+    assert fig._suptitle.get_text().startswith("leaf — limit, collapse")
+    # the explicit pushover's curve: its points drawn (a box tipping about its long edge at b / h)
+    box = md.Model3D([[0.0, 0.0, 0.0, 0.4, 0.6, 1.0]], joints=DRY, direction=90.0)
+    res = box.solve_dynamic()
+    fig = md.plot.report_figure(box, res, title="box", path=tmp_path / "dynamic.png")
+    curve = [ax for ax in fig.axes if ax.name != "3d" and ax.get_ylabel().startswith("load multiplier")][0]
+    drawn = [line for line in curve.get_lines() if len(line.get_xdata()) == len(res.curve_multiplier) > 1]
+    assert drawn and np.allclose(drawn[0].get_ydata(), res.curve_multiplier)
+    legend = [ax for ax in fig.axes if ax.name == "3d" and ax.get_legend() is not None][0].get_legend()
+    assert any(t.get_text().startswith("rocking (") for t in legend.get_texts())
 
 
 def test_import_stays_light() -> None:

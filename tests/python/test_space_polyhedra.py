@@ -117,6 +117,8 @@ def test_convex_hulls_drop_inner_and_repeated_vertices() -> None:
     ([[[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, float("nan")]]], "polyhedra[0]: vertex 3 (0, 0, NaN): coordinate NaN is "
                                                                  "not finite"),
     ([[[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0]]], "polyhedra[0][3]: expected a vertex [x, y, z] of 3 numbers, got 2"),
+    ([cube(0, 0, 0, 1), cube(0, 0, 1, 1) + [[0.5, 0.5, 1.5]] * 100],
+     "polyhedra[1]: 108 vertices: a block takes at most 100 (its hull is found by the planes"),
     ([cube(0, 0, 0, 1), cube(0.5, 0.5, 0.5, 1)], "block 0 (polyhedron of 8 vertices"),
 ])
 def test_refusals_name_the_block(polyhedra: Any, words: str) -> None:

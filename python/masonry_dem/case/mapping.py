@@ -26,7 +26,7 @@ from .. import _core
 from .._core import InputError, MasonryError
 from ..assessment.parameters import AssessmentParameters
 from ..ground_motion import GroundMotion, simulate_arguments
-from ..space.model import CORE_DEFAULTS_3D, IN_3D, LOAD_CONTROL_3D, METHODS_3D, NO_CASE_HISTORY_3D, ModelParameters3D
+from ..space.model import CORE_DEFAULTS_3D, IN_3D, LOAD_CONTROL_3D, METHODS_3D, ModelParameters3D
 from .table import _quote
 
 #: The methods of a case, each the name of one of the core's solvers.
@@ -156,6 +156,8 @@ class GroundMotionParameters:
         files: the record files read (never to be overwritten by an output).
         pulse: "one-sine" or "ricker" for a built-in pulse, else None.
         period: the pulse's period [s], else None.
+        direction: of a 3D case, the horizontal component's direction in plan [deg] from +x towards +y; None:
+            along x.
     """
 
     horizontal: GroundMotion
@@ -165,6 +167,7 @@ class GroundMotionParameters:
     files: tuple = ()
     pulse: Optional[str] = None
     period: Optional[float] = None
+    direction: Optional[float] = None
 
     def components(self, scale: Optional[float] = None) -> "tuple[GroundMotion, Optional[GroundMotion]]":
         """(horizontal, vertical or None), scaled: the horizontal by ``scale`` (default: the case's), the
@@ -447,13 +450,13 @@ class Case:
         given (record_interval [s], damping, damping_coefficient, time_step [s], large_rotations; the others are
         left to the core's defaults). Rayleigh damping (damping "rayleigh") is ``rayleigh=(alpha, beta)`` for
         damping_ratio at the first two modes of ``model`` (:func:`masonry_dem.rayleigh_damping`), which it needs.
+        Of a 3D case, ``Model3D.simulate``'s: the horizontal component along x, or split along x and y
+        (``base_acceleration_y``) by [ground_motion] direction.
 
         Raises:
             masonry_dem.InputError: the case has no [ground_motion], or ``scale`` / ``duration`` is not a
                 finite number (duration > 0), or Rayleigh damping without ``model``.
         """
-        if self.dimension == 3:
-            raise InputError(f"{self.source}: a time history is refused: {NO_CASE_HISTORY_3D} (this case is 3D)")
         if self.ground_motion is None:
             raise InputError(f"{self.source}: no [ground_motion] table: a time history needs a ground motion "
                              "(a record file or a pulse)", "ground_motion")
@@ -467,6 +470,13 @@ class Case:
             length = self.ground_motion.default_duration
         kwargs: Dict[str, Any] = {"duration": float(length)}
         kwargs.update(simulate_arguments(*self.ground_motion.components(scale)))
+        if self.ground_motion.direction is not None and "base_acceleration" in kwargs:
+            times, values = kwargs.pop("base_acceleration")
+            c, s = _cos_sin_deg(self.ground_motion.direction)
+            if c != 0.0:
+                kwargs["base_acceleration"] = (times, values * c)
+            if s != 0.0:
+                kwargs["base_acceleration_y"] = (times, values * s)
         kwargs.update(_given(options, ("record_interval", "damping", "damping_coefficient", "time_step",
                                        "large_rotations")))
         if options.damping == "rayleigh":
@@ -498,6 +508,17 @@ class Case:
             return model.simulate(**kwargs)
         except MasonryError as exc:
             raise _in_file(exc, self.source) from exc
+
+
+def _cos_sin_deg(degrees: float) -> "tuple[float, float]":
+    """(cos, sin) of an angle in degrees, exact at the multiples of 90 (a motion along y has no x part at all)."""
+    import math
+
+    quarter = degrees / 90.0
+    if quarter == round(quarter):
+        return ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[int(round(quarter)) % 4]
+    a = math.radians(degrees)
+    return math.cos(a), math.sin(a)
 
 
 def _checked_number(name: str, value: Any, source: str, positive: bool) -> float:

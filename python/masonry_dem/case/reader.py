@@ -81,6 +81,7 @@ STONE_WALL_KEYS = STONE_WALL_LENGTHS + ("irregularity", "head_angle", "bed_angle
 # Keys of the optional [ground_motion] table: a record file (and a vertical one), or a built-in pulse.
 GROUND_MOTION_KEYS = (
     "file", "units", "scale", "vertical_file", "vertical_scale", "pulse", "amplitude", "amplitude_g", "period",
+    "direction",
 )
 #: The built-in pulses of [ground_motion] pulse.
 PULSES = ("one-sine", "ricker")
@@ -234,6 +235,10 @@ def case_from_dict(
 
         case = case_from_tables(top, title, kind, geometry, wall["density"])
         case.assessment = assessment
+        case.time_history = _time_history(top.table("time_history", TIME_HISTORY_KEYS), three=True)
+        gravity = case.model.gravity if case.model.gravity is not None else float(_core.DEFAULTS_3D["gravity"])
+        case.ground_motion = _ground_motion(top.table("ground_motion", GROUND_MOTION_KEYS), gravity, base_dir,
+                                            three=True)
         return case  # type: ignore[no-any-return]
     base = _base(top)
     if base is None and wall["supports"] is not None:
@@ -479,13 +484,20 @@ def _loads(top: _Table, beam: bool) -> Dict[str, Any]:
     return dict(gravity=gravity, live=live, carried=_carried(table, 2))
 
 
-def _ground_motion(table: Optional[_Table], gravity: float, base_dir: Optional[PathLike]) -> Optional[GroundMotionParameters]:
+def _ground_motion(table: Optional[_Table], gravity: float, base_dir: Optional[PathLike],
+                   three: bool = False) -> Optional[GroundMotionParameters]:
     """[ground_motion]: a record file (``file``, ``units``, and optionally ``vertical_file``) or a built-in
-    ``pulse`` (``amplitude`` or ``amplitude_g``, ``period``), and the factors ``scale`` / ``vertical_scale``.
-    The files are read now (relative to ``base_dir``); values in g are converted with ``gravity`` [m/s2], the
-    case's."""
+    ``pulse`` (``amplitude`` or ``amplitude_g``, ``period``), and the factors ``scale`` / ``vertical_scale``; of
+    a 3D case (``three``) the horizontal component's ``direction`` in plan [deg]. The files are read now (relative
+    to ``base_dir``); values in g are converted with ``gravity`` [m/s2], the case's."""
     if table is None:
         return None
+    direction = None
+    if "direction" in table:
+        if not three:
+            raise table.key_error("direction", "belongs to a 3D case (the direction in plan of the ground's "
+                                               "horizontal motion); a wall in the plane shakes along x")
+        direction = table.number("direction")
     if ("file" in table) == ("pulse" in table):
         raise table.error("[ground_motion] needs exactly one of file (a record) and pulse (a built-in pulse); "
                           + ("both are given" if "file" in table else "neither is given"), table.where("file"))
@@ -510,7 +522,7 @@ def _ground_motion(table: Optional[_Table], gravity: float, base_dir: Optional[P
         motion = build(amplitude, period)
         if gravity > 0:
             motion = replace(motion, gravity=gravity)  # its peak in g told against the case's gravity
-        return GroundMotionParameters(horizontal=motion, scale=scale, pulse=pulse, period=period)
+        return GroundMotionParameters(horizontal=motion, scale=scale, pulse=pulse, period=period, direction=direction)
     for key in ("amplitude", "amplitude_g", "period"):
         if key in table:
             raise table.key_error(key, "applies to a pulse, not to a record file")
@@ -523,7 +535,8 @@ def _ground_motion(table: Optional[_Table], gravity: float, base_dir: Optional[P
         vertical, vertical_path = _record(table, "vertical_file", units, gravity, base_dir)
         files += (vertical_path,)
     return GroundMotionParameters(
-        horizontal=horizontal, scale=scale, vertical=vertical, vertical_scale=vertical_scale, files=files
+        horizontal=horizontal, scale=scale, vertical=vertical, vertical_scale=vertical_scale, files=files,
+        direction=direction,
     )
 
 
@@ -558,11 +571,15 @@ def _record(
         raise table.key_error(key, str(exc)) from None
 
 
-def _time_history(table: Optional[_Table]) -> TimeHistoryParameters:
-    """[time_history]: the options of ``Model.simulate`` given (None: left out)."""
+def _time_history(table: Optional[_Table], three: bool = False) -> TimeHistoryParameters:
+    """[time_history]: the options of ``Model.simulate`` given (None: left out); of a 3D case (``three``),
+    ``Model3D.simulate``'s, which has no Rayleigh damping."""
     if table is None:
         return TimeHistoryParameters()
     damping = table.string("damping", None, TIME_HISTORY_DAMPINGS)
+    if three and damping == "rayleigh":
+        raise table.key_error("damping", '"rayleigh" is refused in 3D: its stiffness-proportional part is the '
+                                         'plane\'s only (a 3D case takes "none", "viscous" or "local")')
     coefficient = table.number("damping_coefficient", None, _non_negative)
     ratio = table.number("damping_ratio", None, _non_negative)
     if (damping == "rayleigh") != (ratio is not None):

@@ -90,7 +90,8 @@ def report_figure(
 ) -> Figure:
     """A one-page report: the crack pattern, the collapse mechanism, the deformed shape and the load curve;
     of a time history, its response (:func:`history_figure`); of a 3D wall (a :class:`masonry_dem.Model3D`), its
-    collapse mechanism in 3D (:func:`masonry_dem.space.plot.mechanism_figure`).
+    collapse mechanism in 3D, its contacts by state and its load curve
+    (:func:`masonry_dem.space.plot.report_figure_3d`).
 
     Args:
         model: the :class:`masonry_dem.Model` analysed.
@@ -109,10 +110,10 @@ def report_figure(
     """
     if is_time_history(results):
         return history_figure(model, results, title=title, path=path, dpi=dpi)
-    if int(getattr(model, "dimension", 2)) == 3:  # a wall of boxes: its mechanism in 3D
-        from ..space.plot import mechanism_figure
+    if int(getattr(model, "dimension", 2)) == 3:  # a 3D wall: its mechanism, contacts and curve in 3D
+        from ..space.plot import report_figure_3d
 
-        return mechanism_figure(model, results, title=title, path=path, dpi=dpi)
+        return report_figure_3d(model, results, title=title, path=path, dpi=dpi)
     aspect = _aspect(model)
     if aspect > 1.1:
         # a wide wall: two rows, the crack pattern and the mechanism above, the deformed shape and the curve

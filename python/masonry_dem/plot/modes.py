@@ -77,7 +77,8 @@ def plot_modes(
     """Draw mode shapes as deformed walls: each mode's blocks moved along its shape, over the dashed outline.
 
     Args:
-        model: the :class:`masonry_dem.Model` of the modes.
+        model: the :class:`masonry_dem.Model` of the modes, or a :class:`masonry_dem.Model3D` (a 3D panel per mode,
+            :func:`masonry_dem.space.plot.modes_figure_3d`; ``ax`` then a 3D axes).
         modes: its :class:`masonry_dem.Modes` (:func:`masonry_dem.modes`).
         k: which modes (0-based): an index, a sequence of them, or None for the first four.
         ax: a matplotlib ``Axes`` to draw one mode on (``k`` an index, default 0); None makes a figure with a
@@ -91,14 +92,26 @@ def plot_modes(
         The figure (of ``ax`` when given). Each panel's title gives the mode's frequency [Hz], its period [s]
         and its effective masses along x and y (fractions of the free mass); its legend the frequency again.
     """
+    three = int(getattr(model, "dimension", 2)) == 3
+    if three != (int(getattr(modes, "dimension", 2)) == 3):
+        raise InputError("plot_modes: the modes are not of this model (one is 3D, the other in the plane)")
     if ax is not None:
         if path is not None:
             raise InputError("plot_modes: give either ax (draw on it) or path (write a figure), not both")
         index = _mode_indices(modes, 0 if k is None else k)
         if len(index) != 1:
             raise InputError(f"plot_modes: one mode can be drawn on an ax, got k = {k!r}")
-        _draw_mode(ax, model, modes, index[0], scale)
+        if three:
+            from ..space.plot import plot_mode_3d
+
+            plot_mode_3d(ax, model, modes, index[0], scale)
+        else:
+            _draw_mode(ax, model, modes, index[0], scale)
         return ax.figure
+    if three:
+        from ..space.plot import modes_figure_3d
+
+        return modes_figure_3d(model, modes, _mode_indices(modes, k), scale, path, dpi)
     from .canvas import _finish, _new_figure
     from .figures import _aspect
 

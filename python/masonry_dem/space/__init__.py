@@ -18,15 +18,17 @@ files, command line and result file.
   joints).
 * :mod:`.case`: the case files' 3D tables (``[geometry] boxes``, ``polyhedra``, ``supports``, ``[geometry.leaf]``,
   ``[geometry.u_wall]``, ``[geometry.corner]``, ``[geometry.barrel_vault]``, ``[geometry.dome]``, ``[top] height``,
-  ``[loads] direction``; docs/case-format.md, "3D walls").
+  ``[loads] direction``, ``[ground_motion] direction``; docs/case-format.md, "3D walls").
 * :mod:`.plot` (matplotlib's mplot3d, imported on first use): :func:`plot_mechanism_3d` (the mechanism or the
-  deformed shape), :func:`mechanism_figure`, :func:`plot_contacts_3d` (the contacts by state), :func:`contacts_figure`.
+  deformed shape), :func:`mechanism_figure`, :func:`plot_contacts_3d` (the contacts by state), :func:`contacts_figure`,
+  :func:`plot_mode_3d` and :func:`modes_figure_3d` (the natural modes, ``masonry_dem.plot_modes`` of a 3D model).
 * :mod:`.export` (meshio, on first use): :func:`write_vtk` (the blocks as hexahedra, or polyhedra, the contacts as
   their polygons; a time history as a ParaView series).
 * :mod:`.report`: :func:`describe_mechanism`, the one-line description of a 3D mechanism.
 
 In this version a 3D wall takes dry joints, and no static (Newton) solver; its explicit pushover is load-controlled,
-and its time histories run from Python (``Model3D.simulate``), not from a case file.
+and its time histories run from Python (``Model3D.simulate``) and from case files ([ground_motion], [time_history];
+``masonry-dem simulate``).
 
 >>> import masonry_dem as md
 >>> boxes = md.running_bond_3d(2.0, 1.05, 0.1, 0.4, 0.175)   # a 2 m x 1.05 m x 0.1 m leaf
@@ -43,7 +45,7 @@ from .model import Model3D, barrel_vault, corner_wall, cut_openings, dome, runni
 
 if TYPE_CHECKING:
     from .export import write_vtk
-    from .plot import contacts_figure, mechanism_figure, plot_contacts_3d, plot_mechanism_3d
+    from .plot import contacts_figure, mechanism_figure, modes_figure_3d, plot_contacts_3d, plot_mechanism_3d, plot_mode_3d
     from .report import describe_mechanism
 
 __all__ = [
@@ -58,6 +60,8 @@ __all__ = [
     "mechanism_figure",
     "plot_contacts_3d",
     "contacts_figure",
+    "plot_mode_3d",
+    "modes_figure_3d",
     "write_vtk",
     "describe_mechanism",
 ]
@@ -69,6 +73,8 @@ _LAZY = {
     "mechanism_figure": ".plot",
     "plot_contacts_3d": ".plot",
     "contacts_figure": ".plot",
+    "plot_mode_3d": ".plot",
+    "modes_figure_3d": ".plot",
     "write_vtk": ".export",
     "describe_mechanism": ".report",
 }

@@ -1,9 +1,8 @@
 """Case files of 3D walls (docs/case-format.md, "3D walls"): the [geometry] forms that make a case 3D (``boxes``
 and the tables ``leaf``, ``u_wall``, ``corner``, ``barrel_vault``, ``dome``), the 3D keys of the other tables ([top]
-height, [loads] direction), the methods a 3D case takes (:data:`METHODS_3D`: limit analysis, and the explicit
+height, [loads] direction; [ground_motion] direction and [time_history], which the reader reads), the methods a 3D case takes (:data:`METHODS_3D`: limit analysis, and the explicit
 solver's quasi-static pushover with the [analysis] keys of 2D), the refusals of what the 3D model does not take in this version (the static
-solver, displacement control, time histories from a case file, mortar joints, the 2D keys that have no meaning
-there), and :class:`ModelParameters3D`, the arguments of :class:`masonry_dem.Model3D` that a
+solver, displacement control, Rayleigh damping, the 2D keys that have no meaning there), and :class:`ModelParameters3D`, the arguments of :class:`masonry_dem.Model3D` that a
 :class:`masonry_dem.case.Case` of a 3D wall holds.
 
 :mod:`masonry_dem.case.reader` reads every case file and hands a 3D one to :func:`case_from_tables` once its
@@ -32,7 +31,6 @@ from .model import (
     IN_3D,
     LOAD_CONTROL_3D,
     METHODS_3D,
-    NO_CASE_HISTORY_3D,
     ModelParameters3D,
 )
 
@@ -44,7 +42,6 @@ __all__ = [
     "METHODS_3D",
     "IN_3D",
     "LOAD_CONTROL_3D",
-    "NO_CASE_HISTORY_3D",
     "CORE_DEFAULTS_3D",
     "ModelParameters3D",
     "read_geometry",
@@ -238,10 +235,6 @@ def _renamed(text: str, kind: str) -> str:
 def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any], density: Optional[float]) -> Any:
     """The :class:`masonry_dem.case.Case` of a 3D wall: its [geometry] already read (``kind``, ``geometry``,
     ``density``), the other tables read here with the keys both dimensions share, and the refusals."""
-    for name in ("ground_motion", "time_history"):
-        if name in top:
-            raise top.error(f"[{name}]: a time history is refused: {NO_CASE_HISTORY_3D} (this case is 3D: [geometry] "
-                            f"{kind})", name)
     base = _base(top)
     if base is None and geometry.get("supports"):
         base = False  # a wall on supports has no foundation unless a [base] table puts one

@@ -10,7 +10,7 @@ the names and keywords of :class:`masonry_dem.Model`'s (``simulate`` adds ``base
 Also what a case of a 3D wall hands the model (:mod:`masonry_dem.space.case` reads it, a
 :class:`masonry_dem.case.Case` holds it): :class:`ModelParameters3D`, the core's defaults of its arguments
 (:data:`CORE_DEFAULTS_3D`), the methods it takes (:data:`METHODS_3D`) and the words of what it refuses
-(:data:`IN_3D`, :data:`LOAD_CONTROL_3D`, :data:`NO_CASE_HISTORY_3D`).
+(:data:`IN_3D`, :data:`LOAD_CONTROL_3D`).
 """
 
 from __future__ import annotations
@@ -34,10 +34,6 @@ METHODS_3D = ("limit", "dynamic")
 IN_3D = 'the 3D model takes limit analysis and the explicit solver (method "limit" or "dynamic") in this version'
 #: The words of the refusal of displacement control in 3D (the explicit solver's pushover is load-controlled).
 LOAD_CONTROL_3D = 'the explicit solver in 3D is load-controlled in this version (analysis.control = "load")'
-#: The words of the refusal of a time history in a 3D case file (``masonry-dem simulate``, [ground_motion],
-#: [time_history]): ``Model3D.simulate`` runs it from Python.
-NO_CASE_HISTORY_3D = ("3D time histories run from Python in this version (masonry_dem.Model3D.simulate), not from a "
-                      "case file")
 #: The core's defaults of ``Model3D``'s arguments (``ModelSpec3::default()``), for those a case leaves out.
 CORE_DEFAULTS_3D: Mapping[str, Any] = MappingProxyType(dict(_core.DEFAULTS_3D))
 

@@ -6,9 +6,13 @@
   :data:`MECHANISM_FRACTION_3D` of the wall's height, each block with its own faces (a box's six, a polyhedron's),
   coloured by how far it moves (relative to the largest), over the faint outlines of the wall at rest; the base and
   the supports grey, the live load's direction an arrow over the wall; equal axes.
-* :func:`mechanism_figure` (model, results, title=None, path=None): the page ``masonry-dem run --plot`` draws for a
-  3D case: two views of the mechanism (one across the load, one along it) with a colour bar, and a title with the
-  collapse multiplier and the load's direction.
+* :func:`mechanism_figure` (model, results, title=None, path=None): two views of the mechanism (one across the load,
+  one along it) with a colour bar, and a title with the collapse multiplier and the load's direction;
+  :func:`report_figure_3d` (model, results, title=None, path=None), the page ``masonry-dem run --plot`` draws for a
+  3D case: those two views above, the contacts by state and the load curve below.
+* :func:`plot_mode_3d` (ax, model, modes, i): mode ``i`` of :func:`masonry_dem.modes` of a 3D model, its blocks
+  moved along the shape as the mechanism's; :func:`modes_figure_3d` (model, modes, index, path=None): a panel per
+  mode (``masonry_dem.plot_modes`` of a 3D model).
 * :func:`plot_contacts_3d` (ax, model, results): each contact's polygon where it lies at rest, filled by its state
   (open, sliding, rocking: the plane's colours); :func:`contacts_figure` (model, results, title=None, path=None): a
   page of it beside the mechanism (or the deformed shape).
@@ -37,7 +41,7 @@ from ..report import format_multiplier, interface_categories
 from .report import block_shapes, contact_polygons, direction_text, moved_vertices, vertex_motion
 
 __all__ = ["MECHANISM_FRACTION_3D", "MOTION_COLORMAP", "plot_mechanism_3d", "mechanism_figure", "plot_contacts_3d",
-           "contacts_figure"]
+           "contacts_figure", "report_figure_3d", "plot_mode_3d", "modes_figure_3d"]
 
 #: The largest corner motion of the drawn mechanism, as a fraction of the wall's height.
 MECHANISM_FRACTION_3D = 0.15
@@ -88,13 +92,14 @@ def _wall_height(boxes: np.ndarray, n_wall: int) -> float:
 
 
 def plot_mechanism_3d(ax: Any, model: Any, results: Any, scale: Optional[float] = None, colorbar: bool = False,
-                      field: str = "mechanism") -> Any:
+                      field: str = "mechanism", arrow: bool = True) -> Any:
     """Draw the collapse mechanism of a 3D wall on the 3D axes ``ax`` (see the module docstring), each block with
     its own faces (a box's six, a polyhedron's); ``scale``: the factor on the mechanism [m per unit] (default: its
     largest vertex motion drawn as :data:`MECHANISM_FRACTION_3D` of the wall's height). ``field="displacements"``
     draws the deformed shape instead (``Results.displacements``, the explicit solver's last step), on the same
-    scale rule. Returns the ScalarMappable of the colours (for a colour bar; drawn on ``ax``'s figure when
-    ``colorbar``). Raises InputError when ``ax`` is not a 3D axes or ``field`` is another."""
+    scale rule. ``arrow``: the live load's arrow (not over a mode shape). Returns the ScalarMappable of the colours
+    (for a colour bar; drawn on ``ax``'s figure when ``colorbar``). Raises InputError when ``ax`` is not a 3D axes
+    or ``field`` is another."""
     if not hasattr(ax, "add_collection3d"):
         raise InputError(f"plot_mechanism_3d: ax must be a 3D axes (fig.add_subplot(projection=\"3d\")), got "
                          f"{type(ax).__name__}")
@@ -136,7 +141,7 @@ def plot_mechanism_3d(ax: Any, model: Any, results: Any, scale: Optional[float] 
     ax.add_collection3d(Poly3DCollection(faces, facecolors=colours, edgecolors="#202020", linewidths=0.3,
                                          alpha=0.95))
     # the live load's direction: an arrow over the wall
-    direction = getattr(model, "direction", None)
+    direction = getattr(model, "direction", None) if arrow else None
     everything = np.concatenate(at_rest + moved)
     lo, hi = everything.min(axis=0), everything.max(axis=0)
     if direction is not None:
@@ -179,29 +184,18 @@ def _equal_axes(ax: Any, lo: np.ndarray, hi: np.ndarray) -> None:
     ax.set_box_aspect(tuple(float(s + 2 * pad) for s in span))
 
 
-def mechanism_figure(
-    model: Any,
-    results: Any,
-    title: Optional[str] = None,
-    path: Optional[Union[str, "os.PathLike[str]"]] = None,
-    dpi: int = 150,
-) -> Figure:
-    """The page of a 3D wall's analysis (``masonry-dem run --plot`` of a 3D case): the collapse mechanism
-    (:func:`plot_mechanism_3d`) seen from two sides, one across the live load and one along it, a colour bar of the
-    blocks' motion, and a title with the status, the collapse multiplier and the load's direction. Written to
-    ``path`` (a PNG, atomically) when given, else made through pyplot. Returns the figure."""
-    fig = _new_figure((14.0, 7.5), path is not None)
-    grid = fig.add_gridspec(1, 2, width_ratios=[1.6, 1.0])
+def _mechanism_views(fig: Any, cells: Sequence[Any], model: Any, results: Any) -> Tuple[List[Any], Any]:
+    """The mechanism (:func:`plot_mechanism_3d`) seen from two sides in ``cells`` of ``fig``: obliquely from the side
+    the load comes from, and in profile across the load (without perspective). Returns the axes and the
+    ScalarMappable of the colours."""
     direction = getattr(model, "direction", None)
     d = 0.0 if direction is None else float(direction)
-    # the first view looks at the wall from the side the load comes from, obliquely; the second across the load,
-    # without perspective: the mechanism's profile
     views = ((22.0, d - 130.0, "seen from the side the load comes from"),
              (0.0, d - 90.0, "profile, seen across the load (no perspective)"))
     mappable = None
     axes = []
     for k, (elev, azim, label) in enumerate(views):
-        ax = fig.add_subplot(grid[0, k], projection="3d")
+        ax = fig.add_subplot(cells[k], projection="3d")
         ax.view_init(elev=elev, azim=azim)
         mappable = plot_mechanism_3d(ax, model, results)
         if k == 1:
@@ -214,11 +208,22 @@ def mechanism_figure(
                     axis.set_label_text("")
         ax.set_title(label, fontsize=10)
         axes.append(ax)
+    return axes, mappable
+
+
+def _motion_colorbar(fig: Any, model: Any, results: Any, axes: List[Any], mappable: Any) -> float:
+    """The colour bar of the blocks' motion under ``axes`` when there is a mechanism; returns its largest motion."""
     _, _, peak = _mechanism(model, results)
     if peak > 0:
         fig.colorbar(mappable, ax=axes, shrink=0.55, location="bottom", aspect=40,
                      label="block motion in the mechanism, over the largest (the drawing is exaggerated: the largest "
                            f"is drawn as {MECHANISM_FRACTION_3D:.0%} of the wall's height)")
+    return peak
+
+
+def _heading(model: Any, results: Any, peak: float) -> str:
+    """The method, the status, the collapse multiplier and the load's direction (and "no mechanism drawn")."""
+    direction = getattr(model, "direction", None)
     status = str(results.status)
     if status == "estimate":
         lam = "~" + format_multiplier(float(results.last_equilibrium)) + " (estimate, neither bound)"
@@ -228,6 +233,57 @@ def mechanism_figure(
     heading = f"{results.method}, {status}, {lam}, {load}"
     if peak <= 0:
         heading += " — no mechanism drawn"
+    return heading
+
+
+def mechanism_figure(
+    model: Any,
+    results: Any,
+    title: Optional[str] = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    dpi: int = 150,
+) -> Figure:
+    """The collapse mechanism of a 3D wall's analysis (:func:`plot_mechanism_3d`) seen from two sides, one across
+    the live load and one along it, a colour bar of the blocks' motion, and a title with the status, the collapse
+    multiplier and the load's direction. Written to ``path`` (a PNG, atomically) when given, else made through
+    pyplot. Returns the figure."""
+    fig = _new_figure((14.0, 7.5), path is not None)
+    grid = fig.add_gridspec(1, 2, width_ratios=[1.6, 1.0])
+    axes, mappable = _mechanism_views(fig, [grid[0, 0], grid[0, 1]], model, results)
+    peak = _motion_colorbar(fig, model, results, axes, mappable)
+    heading = _heading(model, results, peak)
+    return _finish(fig, f"{title} — {heading}" if title else heading, path, dpi)
+
+
+def report_figure_3d(
+    model: Any,
+    results: Any,
+    title: Optional[str] = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    dpi: int = 150,
+) -> Figure:
+    """The page ``masonry-dem run --plot`` draws for a 3D case (``masonry_dem.plot.report_figure`` of a
+    :class:`masonry_dem.Model3D`), the plane's report where it has a meaning in 3D: above, the collapse mechanism
+    seen from two sides (:func:`mechanism_figure`'s views, with their colour bar); below, the contacts by state at
+    rest (:func:`plot_contacts_3d`, the plane's crack pattern) with the count of each state, and the load curve
+    (the plane's :func:`masonry_dem.plot.plot_curve`: the explicit pushover's path of the control block, the
+    highest wall block, along x or y; limit analysis's multiplier alone). A title with the status, the collapse
+    multiplier and the load's direction. Written to ``path`` (a PNG, atomically) when given, else made through
+    pyplot. Returns the figure."""
+    from ..plot.panels import plot_curve
+
+    fig = _new_figure((14.0, 13.5), path is not None)
+    grid = fig.add_gridspec(2, 2, width_ratios=[1.4, 1.0], height_ratios=[1.0, 0.9])
+    axes, mappable = _mechanism_views(fig, [grid[0, 0], grid[0, 1]], model, results)
+    peak = _motion_colorbar(fig, model, results, axes, mappable)
+    direction = getattr(model, "direction", None)
+    _contacts_panel(fig, grid[1, 0], model, results)
+    curve = fig.add_subplot(grid[1, 1])
+    plot_curve(curve, results)
+    axis = "y" if direction is not None and abs(math.sin(math.radians(direction))) > abs(math.cos(math.radians(direction))) else "x"
+    curve.set_xlabel(f"displacement of the control block along {axis} [mm]")
+    curve.set_box_aspect(0.8)
+    heading = _heading(model, results, peak)
     return _finish(fig, f"{title} — {heading}" if title else heading, path, dpi)
 
 
@@ -267,6 +323,23 @@ def plot_contacts_3d(ax: Any, model: Any, results: Any) -> dict:
     return counts
 
 
+def _contacts_panel(fig: Any, cell: Any, model: Any, results: Any) -> Any:
+    """The contacts by state at rest (:func:`plot_contacts_3d`) on a 3D axes of ``fig`` at ``cell`` (a subplot spec,
+    or the (rows, columns, index) of ``add_subplot``), seen from the side the load comes from, with a legend of
+    the states and their counts. Returns the axes."""
+    from matplotlib.patches import Patch
+
+    direction = getattr(model, "direction", None)
+    ax = fig.add_subplot(*(cell if isinstance(cell, tuple) else (cell,)), projection="3d")
+    ax.view_init(elev=22.0, azim=(0.0 if direction is None else float(direction)) - 130.0)
+    counts = plot_contacts_3d(ax, model, results)
+    ax.set_title("contacts by state, at rest", fontsize=10)
+    handles = [Patch(facecolor=colour, edgecolor="#303030", alpha=0.15 if name == "elastic" else 0.9,
+                     label=f"{name} ({counts[name]})") for name, colour, _ in STATE_STYLES]
+    ax.legend(handles=handles, loc="upper left", fontsize=8, frameon=False)
+    return ax
+
+
 def contacts_figure(
     model: Any,
     results: Any,
@@ -278,18 +351,10 @@ def contacts_figure(
     (:func:`plot_contacts_3d`), seen from the side the load comes from, and the blocks moved along the mechanism (or
     the explicit solver's deformed shape, when it has no mechanism) from above; a legend of the states with their
     counts. Written to ``path`` (a PNG, atomically) when given, else made through pyplot. Returns the figure."""
-    from matplotlib.patches import Patch
-
     fig = _new_figure((14.0, 7.0), path is not None)
     direction = getattr(model, "direction", None)
     d = 0.0 if direction is None else float(direction)
-    ax = fig.add_subplot(1, 2, 1, projection="3d")
-    ax.view_init(elev=22.0, azim=d - 130.0)
-    counts = plot_contacts_3d(ax, model, results)
-    ax.set_title("contacts by state, at rest", fontsize=10)
-    handles = [Patch(facecolor=colour, edgecolor="#303030", alpha=0.15 if name == "elastic" else 0.9,
-                     label=f"{name} ({counts[name]})") for name, colour, _ in STATE_STYLES]
-    ax.legend(handles=handles, loc="upper left", fontsize=8, frameon=False)
+    _contacts_panel(fig, (1, 2, 1), model, results)
     _, _, peak = _mechanism(model, results)
     field = "mechanism" if peak > 0 else "displacements"
     other = fig.add_subplot(1, 2, 2, projection="3d")
@@ -298,3 +363,53 @@ def contacts_figure(
     other.set_title("the mechanism" if field == "mechanism" else "the deformed shape (exaggerated)", fontsize=10)
     heading = f"{results.method}, {results.status}, contacts of {model.n_blocks} blocks"
     return _finish(fig, f"{title} — {heading}" if title else heading, path, dpi)
+
+
+def plot_mode_3d(ax: Any, model: Any, modes: Any, i: int, scale: Optional[float] = None) -> Any:
+    """Draw mode ``i`` of ``modes`` (:func:`masonry_dem.modes` of the 3D ``model``) on the 3D axes ``ax``: the blocks
+    moved along its mass-normalized shape (:func:`plot_mechanism_3d`'s drawing, coloured by their motion over the
+    largest, without the live load's arrow), scaled so that the largest vertex motion is
+    :data:`MECHANISM_FRACTION_3D` of the wall's height unless ``scale`` is given; a title with the frequency, the
+    period and the effective masses along x, y and z (fractions of the free mass). Returns the ScalarMappable."""
+    from types import SimpleNamespace
+
+    shape = np.asarray(modes.shapes[i], dtype=np.float64)
+    mappable = plot_mechanism_3d(ax, model, SimpleNamespace(mechanism=shape), scale=scale, arrow=False)
+    f = float(modes.frequencies_hz[i])
+    free = np.asarray(modes.free_mass, dtype=np.float64)
+    share = np.divide(np.asarray(modes.effective_mass[i], dtype=np.float64), free, out=np.zeros(len(free)),
+                      where=free > 0)
+    period = f"T = {1.0 / f:.4g} s" if f > 0 else "rigid-body mode"
+    masses = ", ".join(f"{axis} {s:.1%}" for axis, s in zip("xyz", share))
+    ax.set_title(f"mode {i + 1}: f = {f:.4g} Hz, {period}\neffective mass {masses}", fontsize=10)
+    return mappable
+
+
+def modes_figure_3d(
+    model: Any,
+    modes: Any,
+    index: Sequence[int],
+    scale: Optional[float] = None,
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+    dpi: int = 150,
+) -> Figure:
+    """The modes ``index`` of a 3D model (:func:`masonry_dem.plot_modes` of a :class:`masonry_dem.Model3D`): a 3D
+    panel per mode (:func:`plot_mode_3d`), two to a row, with a colour bar of the blocks' motion. Written to
+    ``path`` (a PNG, atomically) when given, else made through pyplot. Returns the figure."""
+    columns = min(len(index), 2)
+    rows = math.ceil(len(index) / columns)
+    fig = _new_figure((7.0 * columns + 0.4, 6.0 * rows + 1.0), path is not None)
+    direction = getattr(model, "direction", None)
+    d = 0.0 if direction is None else float(direction)
+    axes, mappable = [], None
+    for n, i in enumerate(index):
+        ax = fig.add_subplot(rows, columns, n + 1, projection="3d")
+        ax.view_init(elev=22.0, azim=d - 130.0)
+        mappable = plot_mode_3d(ax, model, modes, i, scale)
+        axes.append(ax)
+    fig.colorbar(mappable, ax=axes, shrink=0.55, location="bottom", aspect=40,
+                 label="block motion in the mode, over the largest (the drawing is exaggerated: the largest is drawn "
+                       f"as {MECHANISM_FRACTION_3D:.0%} of the wall's height)")
+    walls = int(model.n_blocks)
+    heading = f"Natural modes of {walls} block{'s' if walls != 1 else ''} in 3D (elastic joints; shapes magnified)"
+    return _finish(fig, heading, path, dpi)
