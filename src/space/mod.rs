@@ -36,7 +36,7 @@ mod tests;
 
 pub use detect::{detect, detect_polyhedra, hulls};
 pub use model::Model3;
-pub use vaults::{barrel_vault, dome, BarrelVault, Dome, DomeKind, Vaulted};
+pub use vaults::{barrel_vault, cross_vault, dome, BarrelVault, CrossVault, Dome, DomeKind, Vaulted};
 pub use walls::{corner, cut_openings, running_bond_3d, u_wall};
 
 use crate::error::{Error, Result};

@@ -78,6 +78,86 @@ pub fn barrel_vault(p: &BarrelVault) -> Result<Vaulted> {
     Ok(Vaulted { blocks, supports })
 }
 
+/// Parameters of a cross (groin) vault (case format `[geometry.cross_vault]`): two barrel
+/// vaults of one profile crossing at right angles over a square bay.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CrossVault {
+    /// The barrels' profile: semicircular or pointed (whose springing joints are horizontal).
+    pub kind: ArchKind,
+    /// The intrados's span \[m\]; or give `radius` (semicircular).
+    pub span: Option<f64>,
+    /// The centreline's radius \[m\] (semicircular), instead of `span`.
+    pub radius: Option<f64>,
+    /// The intrados's rise \[m\] (pointed).
+    pub rise: Option<f64>,
+    /// The shell's thickness, along the joints \[m\].
+    pub thickness: f64,
+    /// The voussoirs of each barrel's arch, springing to springing (2 at least).
+    pub voussoirs: usize,
+    /// The corner supports' height below the springing \[m\]; `None`: the thickness.
+    pub support_height: Option<f64>,
+}
+
+/// Makes a cross vault: the plane's arch (`kind`, `span` or `radius`, `rise`, `thickness`,
+/// `voussoirs`) in the plane (x, z), springing at z = 0, extruded along y over the square bay
+/// `|x|, |y| <= a` (`a` the extrados's half span at the springing, so that the bay's sides are
+/// the shell's outer faces), crossed by the same barrel along x; each barrel is kept where its
+/// tunnel is the higher, `|x| <= |y|` for the barrel along y: each voussoir of each of the four
+/// webs is the voussoir's prism from the bay's side to the centre clipped by the two diagonal
+/// vertical planes `x = y` and `x = -y` (the groins), a convex block. Across a groin a web's
+/// voussoir meets the crossing web's same voussoir face to face (both faces are the arch's
+/// voussoir drawn on the diagonal plane). The blocks: the web over y > 0 (the arch's voussoirs
+/// left to right), then the same web turned by 90, 180 and 270 degrees about z (over x < 0,
+/// y < 0, x > 0). The supports: four fixed boxes under the corners, each the square the two
+/// springing voussoirs meeting there cover in plan (`|x|, |y|` from the intrados's half span to
+/// `a`), `support_height` deep. Refusals name their key, `geometry.cross_vault.*`.
+pub fn cross_vault(p: &CrossVault) -> Result<Vaulted> {
+    let what = "geometry.cross_vault";
+    if !matches!(p.kind, ArchKind::Semicircular | ArchKind::Pointed) {
+        return Err(Error::input_at(format!("{what}.kind"), format!("{what}.kind must be \"semicircular\" or \"pointed\" (a horizontal springing joint on the corner supports)")));
+    }
+    let depth = match p.support_height {
+        Some(h) => positive(&format!("{what}.support_height"), h)?,
+        None => p.thickness,
+    };
+    check_count(what, 4.0 * p.voussoirs as f64)?;
+    let section = arch(&Arch {
+        kind: p.kind,
+        span: p.span,
+        radius: p.radius,
+        rise: p.rise,
+        thickness: p.thickness,
+        voussoirs: p.voussoirs,
+        springing: Springing::Abutments { width: None, height: None },
+        backfill: None,
+    })
+    .map_err(|e| e.renamed("geometry.arch", what))?;
+    let (inner, a) = (section.intrados[0][0].abs(), section.extrados[0][0].abs());
+    let tol = contact_tolerance(2.0 * a);
+    // the web over y > 0: each voussoir's prism from the centre to the bay's side, clipped by
+    // the groins (kept: y >= x and y >= -x)
+    let mut web = Vec::with_capacity(section.blocks.len());
+    for (k, q) in section.blocks.iter().enumerate() {
+        let prism = Polyhedron::prism(q.vertices(), [0.0, a]);
+        let block = prism.clip([1.0, -1.0, 0.0], 0.0, tol).and_then(|b| b.clip([-1.0, -1.0, 0.0], 0.0, tol));
+        web.push(block.ok_or_else(|| {
+            Error::input_at(format!("{what}.voussoirs"), format!("{what}: voussoir {k} of a web has no volume between the groins: fewer voussoirs or a thicker shell"))
+        })?);
+    }
+    // turned by quarter turns about z, exactly: (x, y) -> (-y, x)
+    let turn = |b: &Polyhedron, quarters: usize| b.map(|v| (0..quarters).fold(v, |[x, y, z], _| [-y, x, z]));
+    let blocks = (0..4).flat_map(|q| web.iter().map(move |b| (b, q))).map(|(b, q)| turn(b, q)).collect();
+    let supports = [[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]]
+        .iter()
+        .map(|&[sx, sy]| {
+            let (x0, x1) = if sx > 0.0 { (inner, a) } else { (-a, -inner) };
+            let (y0, y1) = if sy > 0.0 { (inner, a) } else { (-a, -inner) };
+            Polyhedron::cuboid([x0, y0, -depth], [x1, y1, 0.0])
+        })
+        .collect();
+    Ok(Vaulted { blocks, supports })
+}
+
 fn courses_of(s: &Springing) -> usize {
     match *s {
         Springing::Abutments { .. } => 0,
