@@ -175,6 +175,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(cut_openings_3d, m)?)?;
     m.add_function(wrap_pyfunction!(convex_hulls, m)?)?;
     m.add_function(wrap_pyfunction!(barrel_vault, m)?)?;
+    m.add_function(wrap_pyfunction!(cross_vault, m)?)?;
     m.add_function(wrap_pyfunction!(dome, m)?)?;
     m.add_class::<PyModel>()?;
     m.add_class::<PyModel3D>()?;
