@@ -74,7 +74,11 @@ pub(crate) fn cross_vault<'py>(
     support_height: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let what = "geometry.cross_vault";
-    let kind: ArchKind = kind.parse().map_err(|e: Error| to_py(e.renamed("geometry.arch", what)))?;
+    let kind = match kind {
+        "semicircular" => ArchKind::Semicircular,
+        "pointed" => ArchKind::Pointed,
+        _ => return Err(py_error("InputError", format!("{what}.kind must be \"semicircular\" or \"pointed\", got {kind:?}"), Some(format!("{what}.kind")))),
+    };
     let voussoirs = count(&format!("{what}.voussoirs"), voussoirs, 1)?;
     let made = guarded(|| space::cross_vault(&CrossVault { kind, span, radius, rise, thickness, voussoirs, support_height }))?;
     vaulted_to_py(py, &made)
