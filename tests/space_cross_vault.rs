@@ -111,9 +111,9 @@ fn a_cross_vault_stands_thinner_than_its_barrel_and_not_when_very_thin() {
     // friction 10: no joint slides. The plane's semicircular arch of 20 voussoirs (Milankovitch's
     // ring) stands from 0.1075 R (tests/arch_thickness.rs), and so does the barrel vault of
     // that arch (tests/space_vaults.rs); the cross vault's webs, each course of voussoirs held
-    // at the groins by the crossing web, stand thinner. At 0.04 R no equilibrium (the least
-    // thickness of these blocks lies between the independent program's pyramids,
-    // tests/python/test_vault_lp.py)
+    // at the groins by the crossing web, stand thinner. At 0.04 R no equilibrium: the least
+    // thickness is about 0.07 R (of 16 voussoirs, friction 10: 0.069 R, between the inscribed and
+    // circumscribed pyramids of the independent program, tests/python/test_vault_lp.py)
     let stands = |s: Status| match s {
         Status::Unbounded => true,
         Status::NoEquilibrium => false,
