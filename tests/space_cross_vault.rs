@@ -12,18 +12,20 @@ use masonry_dem::geometry::{Arch, ArchKind, Springing};
 use masonry_dem::limit::{limit_analysis_3d, LimitOptions};
 use masonry_dem::model::JointLaws;
 use masonry_dem::results::Status;
-use masonry_dem::space::{barrel_vault, cross_vault, BarrelVault, CrossVault, LiveLoad3, Model3, ModelSpec3, Vaulted};
+use masonry_dem::space::{barrel_vault, cross_vault, BarrelVault, CornerPiers, CrossVault, LiveLoad3, Model3, ModelSpec3, Vaulted};
 use std::f64::consts::PI;
 
 fn semicircular(t: f64, n: usize) -> CrossVault {
-    CrossVault { kind: ArchKind::Semicircular, span: None, radius: Some(1.0), rise: None, thickness: t, voussoirs: n, support_height: None }
+    CrossVault { kind: ArchKind::Semicircular, span: None, radius: Some(1.0), rise: None, thickness: t, voussoirs: n, support_height: None, piers: None }
 }
 
+/// The vault on its supports, or on the base if it has none (on piers).
 fn model(v: Vaulted, mu: f64, direction: f64) -> Model3 {
+    let base = v.supports.is_empty();
     Model3::new(&ModelSpec3 {
         polyhedra: v.blocks,
         supports: v.supports,
-        base: false,
+        base,
         gravity: 10.0,
         joints: JointLaws::uniform(dry(mu, mu, 1e9)),
         live: LiveLoad3::HorizontalWeight { direction },
@@ -131,6 +133,31 @@ fn a_cross_vault_stands_thinner_than_its_barrel_and_not_when_very_thin() {
 }
 
 #[test]
+fn a_cross_vault_on_piers_that_stay_put_has_the_multiplier_on_fixed_supports() {
+    // squat piers (0.6 m square, 0.3 m high, friction 0.6): they neither slide nor rock at the
+    // vault's multiplier, and their tops carry the springing voussoirs on the same triangles as
+    // the fixed supports: the same program's optimum. Taller piers (1 m high in 4 courses) give
+    // way first, along x as along y
+    let opts = LimitOptions { tolerance: 1e-10, ..LimitOptions::default() };
+    let lam = |piers: Option<CornerPiers>, d: f64| {
+        let m = model(cross_vault(&CrossVault { piers, ..semicircular(0.2, 9) }).unwrap(), 0.6, d);
+        let r = limit_analysis_3d(&m, &opts).unwrap();
+        assert_eq!(r.status, Status::Collapse, "{:?}", r.error);
+        (r.collapse_multiplier, m.n_wall())
+    };
+    let (fixed, n) = lam(None, 0.0);
+    assert_eq!(n, 36);
+    let squat = Some(CornerPiers { width: Some(0.6), height: 0.3, courses: 1 });
+    let (on_piers, n) = lam(squat, 0.0);
+    assert_eq!(n, 36 + 4);
+    assert!((on_piers - fixed).abs() <= 1e-7 * fixed, "on piers {on_piers:.12}, on fixed supports {fixed:.12}");
+    let tall = Some(CornerPiers { width: Some(0.6), height: 1.0, courses: 4 });
+    let ((x, n), (y, _)) = (lam(tall, 0.0), lam(tall, 90.0));
+    assert_eq!(n, 36 + 16);
+    assert!(x < 0.9 * fixed && (x - y).abs() <= 1e-7 * x, "along x {x:.12}, along y {y:.12}, on fixed supports {fixed:.12}");
+}
+
+#[test]
 fn bad_cross_vault_parameters_are_refused_by_key() {
     let refused = |p: CrossVault| cross_vault(&p).unwrap_err().to_string();
     let e = refused(CrossVault { kind: ArchKind::Segmental, rise: Some(0.5), ..semicircular(0.2, 9) });
@@ -143,4 +170,13 @@ fn bad_cross_vault_parameters_are_refused_by_key() {
     assert!(e.starts_with("geometry.cross_vault.radius"), "{e}");
     let e = refused(CrossVault { thickness: f64::NAN, ..semicircular(0.2, 9) });
     assert!(e.starts_with("geometry.cross_vault.thickness"), "{e}");
+    let piers = |width: Option<f64>, courses: usize| Some(CornerPiers { width, height: 1.0, courses });
+    let e = refused(CrossVault { piers: piers(Some(0.1), 2), ..semicircular(0.2, 9) });
+    assert!(e.starts_with("geometry.cross_vault.pier_width = 0.1 m must lie in [0.200000, 1.100000) m"), "{e}");
+    let e = refused(CrossVault { piers: piers(Some(1.1), 2), ..semicircular(0.2, 9) });
+    assert!(e.starts_with("geometry.cross_vault.pier_width = 1.1 m must lie in"), "{e}");
+    let e = refused(CrossVault { piers: piers(None, 0), ..semicircular(0.2, 9) });
+    assert!(e.starts_with("geometry.cross_vault.pier_courses must lie in 1..="), "{e}");
+    let e = refused(CrossVault { piers: piers(None, 2), support_height: Some(0.2), ..semicircular(0.2, 9) });
+    assert!(e.starts_with("geometry.cross_vault.support_height is the fixed supports'"), "{e}");
 }

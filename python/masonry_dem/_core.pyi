@@ -175,6 +175,9 @@ def cross_vault(
     radius: Optional[float] = None,
     rise: Optional[float] = None,
     support_height: Optional[float] = None,
+    pier_width: Optional[float] = None,
+    pier_height: Optional[float] = None,
+    pier_courses: Optional[int] = None,
 ) -> _Vaulted:
     """A cross (groin) vault, as a dict: "polyhedra" (its voussoirs, each a list of vertices [x, y, z], m) and "supports"
     (four fixed boxes under the corners). Model3D(polyhedra=..., supports=..., base=False) is the vault on its corners.
@@ -186,7 +189,10 @@ def cross_vault(
     the bay's side to the groins, the diagonal vertical planes x = y and x = -y. The blocks: the web over y > 0 (the
     arch's voussoirs left to right), then the same web turned by 90, 180 and 270 degrees about z. The supports: under
     each corner the square the two springing voussoirs meeting there cover, support_height [m] deep (left out: the
-    thickness)."""
+    thickness). With pier_height [m], on four corner piers of free blocks on the base instead (no fixed supports; the
+    model's base, Model3D(polyhedra=...)): each pier a square of side pier_width [m] (left out: the springing's width;
+    less than the bay's half side) with its outer corner at the bay's, from z = -pier_height to the springing, in
+    pier_courses courses (left out: 1), listed after the vault's blocks, pier by pier, bottom to top."""
 
 def dome(
     kind: Literal["hemispherical", "pointed"],

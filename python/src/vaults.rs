@@ -2,7 +2,7 @@
 
 use crate::*;
 use masonry_dem::shape::Polyhedron;
-use masonry_dem::space::{self, BarrelVault, CrossVault, Dome, DomeKind, Vaulted};
+use masonry_dem::space::{self, BarrelVault, CornerPiers, CrossVault, Dome, DomeKind, Vaulted};
 
 /// The dict of a vault or dome made: "polyhedra" (its blocks, each a list of vertices [x, y, z], m) and "supports"
 /// (its fixed supports, the same way).
@@ -59,9 +59,12 @@ pub(crate) fn barrel_vault<'py>(
 /// the bay's side to the groins, the diagonal vertical planes x = y and x = -y. The blocks: the web over y > 0 (the
 /// arch's voussoirs left to right), then the same web turned by 90, 180 and 270 degrees about z. The supports: under
 /// each corner the square the two springing voussoirs meeting there cover, support_height [m] deep (left out: the
-/// thickness).
+/// thickness). With pier_height [m], on four corner piers of free blocks on the base instead (no fixed supports; the
+/// model's base, Model3D(polyhedra=...)): each pier a square of side pier_width [m] (left out: the springing's width;
+/// less than the bay's half side) with its outer corner at the bay's, from z = -pier_height to the springing, in
+/// pier_courses courses (left out: 1), listed after the vault's blocks, pier by pier, bottom to top.
 #[pyfunction]
-#[pyo3(signature = (kind, thickness, voussoirs, span=None, radius=None, rise=None, support_height=None))]
+#[pyo3(signature = (kind, thickness, voussoirs, span=None, radius=None, rise=None, support_height=None, pier_width=None, pier_height=None, pier_courses=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn cross_vault<'py>(
     py: Python<'py>,
@@ -72,6 +75,9 @@ pub(crate) fn cross_vault<'py>(
     radius: Option<f64>,
     rise: Option<f64>,
     support_height: Option<f64>,
+    pier_width: Option<f64>,
+    pier_height: Option<f64>,
+    pier_courses: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let what = "geometry.cross_vault";
     let kind = match kind {
@@ -80,7 +86,12 @@ pub(crate) fn cross_vault<'py>(
         _ => return Err(py_error("InputError", format!("{what}.kind must be \"semicircular\" or \"pointed\", got {kind:?}"), Some(format!("{what}.kind")))),
     };
     let voussoirs = count(&format!("{what}.voussoirs"), voussoirs, 1)?;
-    let made = guarded(|| space::cross_vault(&CrossVault { kind, span, radius, rise, thickness, voussoirs, support_height }))?;
+    let piers = match (pier_height, pier_width, pier_courses) {
+        (Some(height), width, courses) => Some(CornerPiers { width, height, courses: count(&format!("{what}.pier_courses"), courses.unwrap_or(1), 1)? }),
+        (None, None, None) => None,
+        _ => return Err(py_error("InputError", format!("{what}.pier_height is required with pier_width or pier_courses (the piers' height)"), Some(format!("{what}.pier_height")))),
+    };
+    let made = guarded(|| space::cross_vault(&CrossVault { kind, span, radius, rise, thickness, voussoirs, support_height, piers }))?;
     vaulted_to_py(py, &made)
 }
 

@@ -21,7 +21,7 @@
 
 use super::walls::pieces;
 use crate::error::{positive, Error, Result};
-use crate::geometry::{arch, check_count, Arch, ArchKind, Springing, MAX_VOUSSOIRS, MIN_PART};
+use crate::geometry::{arch, check_count, Arch, ArchKind, Springing, MAX_VOUSSOIRS, MIN_PART, REL_TOL};
 use crate::shape::{contact_tolerance, Polyhedron};
 use std::f64::consts::PI;
 
@@ -94,8 +94,25 @@ pub struct CrossVault {
     pub thickness: f64,
     /// The voussoirs of each barrel's arch, springing to springing (2 at least).
     pub voussoirs: usize,
-    /// The corner supports' height below the springing \[m\]; `None`: the thickness.
+    /// The corner supports' height below the springing \[m\]; `None`: the thickness (on fixed
+    /// supports; not with piers).
     pub support_height: Option<f64>,
+    /// On four corner piers instead of fixed supports: their `[width, height]` \[m\] and courses.
+    pub piers: Option<CornerPiers>,
+}
+
+/// The four piers of a cross vault, each a square in plan with its outer corner at the bay's
+/// corner, from the base up to the springing, in courses of equal height (free blocks).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CornerPiers {
+    /// The square's side \[m\]: the springing's width at least (the two springing voussoirs
+    /// meeting at the corner rest wholly on the pier), less than the bay's half side (the piers
+    /// apart); `None`: the springing's width.
+    pub width: Option<f64>,
+    /// From the base to the springing \[m\].
+    pub height: f64,
+    /// The courses of each pier (1 at least).
+    pub courses: usize,
 }
 
 /// Makes a cross vault: the plane's arch (`kind`, `span` or `radius`, `rise`, `thickness`,
@@ -110,7 +127,11 @@ pub struct CrossVault {
 /// left to right), then the same web turned by 90, 180 and 270 degrees about z (over x < 0,
 /// y < 0, x > 0). The supports: four fixed boxes under the corners, each the square the two
 /// springing voussoirs meeting there cover in plan (`|x|, |y|` from the intrados's half span to
-/// `a`), `support_height` deep. Refusals name their key, `geometry.cross_vault.*`.
+/// `a`), `support_height` deep; or, with `piers`, four piers of free blocks on the base (their
+/// courses bottom to top, pier by pier in the same order of corners, after the vault's blocks:
+/// +x +y, -x +y, -x -y, +x -y), each the square of side `width` with its outer corner at the
+/// bay's, from z = -`height` to the springing, and no fixed supports. Refusals name their key,
+/// `geometry.cross_vault.*`.
 pub fn cross_vault(p: &CrossVault) -> Result<Vaulted> {
     let what = "geometry.cross_vault";
     if !matches!(p.kind, ArchKind::Semicircular | ArchKind::Pointed) {
@@ -120,7 +141,19 @@ pub fn cross_vault(p: &CrossVault) -> Result<Vaulted> {
         Some(h) => positive(&format!("{what}.support_height"), h)?,
         None => p.thickness,
     };
-    check_count(what, 4.0 * p.voussoirs as f64)?;
+    if let Some(piers) = &p.piers {
+        if p.support_height.is_some() {
+            return Err(Error::input_at(format!("{what}.support_height"), format!("{what}.support_height is the fixed supports' and pier_height the piers': give one")));
+        }
+        positive(&format!("{what}.pier_height"), piers.height)?;
+        if let Some(w) = piers.width {
+            positive(&format!("{what}.pier_width"), w)?;
+        }
+        if !(1..=MAX_VOUSSOIRS).contains(&piers.courses) {
+            return Err(Error::input_at(format!("{what}.pier_courses"), format!("{what}.pier_courses must lie in 1..={MAX_VOUSSOIRS}, got {}", piers.courses)));
+        }
+    }
+    check_count(what, 4.0 * (p.voussoirs + p.piers.map_or(0, |q| q.courses)) as f64)?;
     let section = arch(&Arch {
         kind: p.kind,
         span: p.span,
@@ -146,16 +179,30 @@ pub fn cross_vault(p: &CrossVault) -> Result<Vaulted> {
     }
     // turned by quarter turns about z, exactly: (x, y) -> (-y, x)
     let turn = |b: &Polyhedron, quarters: usize| b.map(|v| (0..quarters).fold(v, |[x, y, z], _| [-y, x, z]));
-    let blocks = (0..4).flat_map(|q| web.iter().map(move |b| (b, q))).map(|(b, q)| turn(b, q)).collect();
-    let supports = [[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]]
-        .iter()
-        .map(|&[sx, sy]| {
-            let (x0, x1) = if sx > 0.0 { (inner, a) } else { (-a, -inner) };
-            let (y0, y1) = if sy > 0.0 { (inner, a) } else { (-a, -inner) };
-            Polyhedron::cuboid([x0, y0, -depth], [x1, y1, 0.0])
+    let mut blocks: Vec<Polyhedron> = (0..4).flat_map(|q| web.iter().map(move |b| (b, q))).map(|(b, q)| turn(b, q)).collect();
+    // the corner squares from `a - w` to `a`, between z0 and z1, in the order of the webs' turns
+    let corners = |w: f64, z0: f64, z1: f64| {
+        [[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]].map(|[sx, sy]: [f64; 2]| {
+            let span = |s: f64| if s > 0.0 { (a - w, a) } else { (-a, w - a) };
+            let ((x0, x1), (y0, y1)) = (span(sx), span(sy));
+            Polyhedron::cuboid([x0, y0, z0], [x1, y1, z1])
         })
-        .collect();
-    Ok(Vaulted { blocks, supports })
+    };
+    let Some(piers) = p.piers else {
+        return Ok(Vaulted { blocks, supports: corners(a - inner, -depth, 0.0).to_vec() });
+    };
+    let w = piers.width.unwrap_or(a - inner);
+    if w < (a - inner) * (1.0 - REL_TOL) || w >= a {
+        return Err(Error::input_at(
+            format!("{what}.pier_width"),
+            format!("{what}.pier_width = {w} m must lie in [{:.6}, {a:.6}) m: from the springing's width (the springing voussoirs rest on the pier) to the bay's half side (the piers apart)", a - inner),
+        ));
+    }
+    let h = piers.height / piers.courses as f64;
+    for k in 0..4 {
+        blocks.extend((0..piers.courses).map(|c| corners(w, -piers.height + c as f64 * h, -piers.height + (c + 1) as f64 * h)[k].clone()));
+    }
+    Ok(Vaulted { blocks, supports: vec![] })
 }
 
 fn courses_of(s: &Springing) -> usize {

@@ -74,10 +74,10 @@ SOLID_KEYS = ("polyhedra", "supports")
 VAULT_LENGTHS = {
     "barrel_vault": ("span", "radius", "rise", "thickness", "length", "block_length", "abutment_width",
                      "abutment_height", "pier_width", "pier_height"),
-    "cross_vault": ("span", "radius", "rise", "thickness", "support_height"),
+    "cross_vault": ("span", "radius", "rise", "thickness", "support_height", "pier_width", "pier_height"),
     "dome": ("span", "radius", "rise", "thickness"),
 }
-VAULT_COUNTS = {"barrel_vault": ("voussoirs", "pier_courses"), "cross_vault": ("voussoirs",),
+VAULT_COUNTS = {"barrel_vault": ("voussoirs", "pier_courses"), "cross_vault": ("voussoirs", "pier_courses"),
                 "dome": ("meridians", "parallels")}
 VAULT_KINDS = {"barrel_vault": ("semicircular", "segmental", "pointed", "elliptical"),
                "cross_vault": ("semicircular", "pointed"), "dome": ("hemispherical", "pointed")}
@@ -149,7 +149,8 @@ def _vault(geo: _Table, kind: str) -> Dict[str, Any]:
     args: Dict[str, Any] = {"kind": table.string("kind", choices=VAULT_KINDS[kind])}
     args.update({key: table.number(key, None, _positive, unit="length") for key in VAULT_LENGTHS[kind]})
     args.update({key: table.integer(key, None, minimum=1) for key in VAULT_COUNTS[kind]})
-    for key in ("thickness",) + (("voussoirs", "length") if kind == "barrel_vault" else VAULT_COUNTS[kind]):
+    required = {"barrel_vault": ("voussoirs", "length"), "cross_vault": ("voussoirs",)}.get(kind, VAULT_COUNTS[kind])
+    for key in ("thickness",) + required:
         if args[key] is None:
             raise table.missing(key)
     return args
