@@ -12,11 +12,18 @@ use masonry_dem::geometry::{Arch, ArchKind, Springing};
 use masonry_dem::limit::{limit_analysis_3d, LimitOptions};
 use masonry_dem::model::JointLaws;
 use masonry_dem::results::Status;
-use masonry_dem::space::{barrel_vault, cross_vault, BarrelVault, CornerPiers, CrossVault, LiveLoad3, Model3, ModelSpec3, Vaulted};
+use masonry_dem::space::{barrel_vault, cross_vault, BarrelVault, CrossVault, LiveLoad3, Model3, ModelSpec3, Vaulted};
 use std::f64::consts::PI;
 
+const ABUTMENTS: Springing = Springing::Abutments { width: None, height: None };
+
+fn arch(t: f64, n: usize, springing: Springing) -> Arch {
+    Arch { kind: ArchKind::Semicircular, span: None, radius: Some(1.0), rise: None, thickness: t, voussoirs: n, springing, backfill: None }
+}
+
+/// The semicircular cross vault of centreline radius 1 m on its corner supports.
 fn semicircular(t: f64, n: usize) -> CrossVault {
-    CrossVault { kind: ArchKind::Semicircular, span: None, radius: Some(1.0), rise: None, thickness: t, voussoirs: n, support_height: None, piers: None }
+    CrossVault { arch: arch(t, n, ABUTMENTS) }
 }
 
 /// The vault on its supports, or on the base if it has none (on piers).
@@ -121,8 +128,7 @@ fn a_cross_vault_stands_thinner_than_its_barrel_and_not_when_very_thin() {
         Status::NoEquilibrium => false,
         s => panic!("{s:?}"),
     };
-    let arch = Arch { kind: ArchKind::Semicircular, span: None, radius: Some(1.0), rise: None, thickness: 0.1, voussoirs: 20, springing: Springing::Abutments { width: None, height: None }, backfill: None };
-    let barrel = barrel_vault(&BarrelVault { arch, length: 0.3, block_length: None }).unwrap();
+    let barrel = barrel_vault(&BarrelVault { arch: arch(0.1, 20, ABUTMENTS), length: 0.3, block_length: None }).unwrap();
     let r = limit_analysis_3d(&model(barrel, 10.0, 0.0).with_live_along_gravity(), &LimitOptions::default()).unwrap();
     assert!(!stands(r.status));
     for (t, want) in [(0.1, true), (0.04, false), (0.15, true), (0.02, false)] {
@@ -134,24 +140,23 @@ fn a_cross_vault_stands_thinner_than_its_barrel_and_not_when_very_thin() {
 
 #[test]
 fn a_cross_vault_on_piers_that_stay_put_has_the_multiplier_on_fixed_supports() {
-    // squat piers (0.6 m square, 0.3 m high, friction 0.6): they neither slide nor rock at the
-    // vault's multiplier, and their tops carry the springing voussoirs on the same triangles as
-    // the fixed supports: the same program's optimum. Taller piers (1 m high in 4 courses) give
-    // way first, along x as along y
+    // squat piers (0.6 m square out from the intrados, 0.3 m high, friction 0.6): they neither
+    // slide nor rock at the vault's multiplier, and their tops carry the springing voussoirs on
+    // the same triangles as the fixed supports: the same program's optimum. Slenderer piers (0.4 m
+    // square, 1.2 m high in 4 courses) give way first, along x as along y
     let opts = LimitOptions { tolerance: 1e-10, ..LimitOptions::default() };
-    let lam = |piers: Option<CornerPiers>, d: f64| {
-        let m = model(cross_vault(&CrossVault { piers, ..semicircular(0.2, 9) }).unwrap(), 0.6, d);
+    let lam = |springing: Springing, d: f64| {
+        let m = model(cross_vault(&CrossVault { arch: arch(0.2, 9, springing) }).unwrap(), 0.6, d);
         let r = limit_analysis_3d(&m, &opts).unwrap();
         assert_eq!(r.status, Status::Collapse, "{:?}", r.error);
         (r.collapse_multiplier, m.n_wall())
     };
-    let (fixed, n) = lam(None, 0.0);
+    let (fixed, n) = lam(ABUTMENTS, 0.0);
     assert_eq!(n, 36);
-    let squat = Some(CornerPiers { width: Some(0.6), height: 0.3, courses: 1 });
-    let (on_piers, n) = lam(squat, 0.0);
+    let (on_piers, n) = lam(Springing::Piers { width: 0.6, height: 0.3, courses: 1 }, 0.0);
     assert_eq!(n, 36 + 4);
     assert!((on_piers - fixed).abs() <= 1e-7 * fixed, "on piers {on_piers:.12}, on fixed supports {fixed:.12}");
-    let tall = Some(CornerPiers { width: Some(0.6), height: 1.0, courses: 4 });
+    let tall = Springing::Piers { width: 0.4, height: 1.2, courses: 4 };
     let ((x, n), (y, _)) = (lam(tall, 0.0), lam(tall, 90.0));
     assert_eq!(n, 36 + 16);
     assert!(x < 0.9 * fixed && (x - y).abs() <= 1e-7 * x, "along x {x:.12}, along y {y:.12}, on fixed supports {fixed:.12}");
@@ -159,24 +164,21 @@ fn a_cross_vault_on_piers_that_stay_put_has_the_multiplier_on_fixed_supports() {
 
 #[test]
 fn bad_cross_vault_parameters_are_refused_by_key() {
-    let refused = |p: CrossVault| cross_vault(&p).unwrap_err().to_string();
-    let e = refused(CrossVault { kind: ArchKind::Segmental, rise: Some(0.5), ..semicircular(0.2, 9) });
+    let refused = |a: Arch| cross_vault(&CrossVault { arch: a }).unwrap_err().to_string();
+    let e = refused(Arch { kind: ArchKind::Segmental, rise: Some(0.5), ..arch(0.2, 9, ABUTMENTS) });
     assert!(e.starts_with("geometry.cross_vault.kind must be"), "{e}");
-    let e = refused(CrossVault { support_height: Some(-1.0), ..semicircular(0.2, 9) });
-    assert!(e.starts_with("geometry.cross_vault.support_height"), "{e}");
-    let e = refused(semicircular(0.2, 1));
+    let e = refused(arch(0.2, 9, Springing::Abutments { width: None, height: Some(-1.0) }));
+    assert!(e.starts_with("geometry.cross_vault.abutment_height"), "{e}");
+    let e = refused(arch(0.2, 1, ABUTMENTS));
     assert!(e.starts_with("geometry.cross_vault.voussoirs"), "{e}");
-    let e = refused(semicircular(2.5, 9));
+    let e = refused(arch(2.5, 9, ABUTMENTS));
     assert!(e.starts_with("geometry.cross_vault.radius"), "{e}");
-    let e = refused(CrossVault { thickness: f64::NAN, ..semicircular(0.2, 9) });
+    let e = refused(arch(f64::NAN, 9, ABUTMENTS));
     assert!(e.starts_with("geometry.cross_vault.thickness"), "{e}");
-    let piers = |width: Option<f64>, courses: usize| Some(CornerPiers { width, height: 1.0, courses });
-    let e = refused(CrossVault { piers: piers(Some(0.1), 2), ..semicircular(0.2, 9) });
-    assert!(e.starts_with("geometry.cross_vault.pier_width = 0.1 m must lie in [0.200000, 1.100000) m"), "{e}");
-    let e = refused(CrossVault { piers: piers(Some(1.1), 2), ..semicircular(0.2, 9) });
-    assert!(e.starts_with("geometry.cross_vault.pier_width = 1.1 m must lie in"), "{e}");
-    let e = refused(CrossVault { piers: piers(None, 0), ..semicircular(0.2, 9) });
+    let e = refused(arch(0.2, 9, Springing::Piers { width: 0.1, height: 1.0, courses: 2 }));
+    assert!(e.starts_with("geometry.cross_vault.pier_width"), "{e}");
+    let e = refused(arch(0.2, 9, Springing::Piers { width: 0.3, height: 1.0, courses: 0 }));
     assert!(e.starts_with("geometry.cross_vault.pier_courses must lie in 1..="), "{e}");
-    let e = refused(CrossVault { piers: piers(None, 2), support_height: Some(0.2), ..semicircular(0.2, 9) });
-    assert!(e.starts_with("geometry.cross_vault.support_height is the fixed supports'"), "{e}");
+    let e = refused(Arch { backfill: Some(1.0), ..arch(0.2, 9, ABUTMENTS) });
+    assert!(e.starts_with("geometry.cross_vault: a backfill"), "{e}");
 }

@@ -174,25 +174,27 @@ def cross_vault(
     span: Optional[float] = None,
     radius: Optional[float] = None,
     rise: Optional[float] = None,
-    support_height: Optional[float] = None,
+    abutment_width: Optional[float] = None,
+    abutment_height: Optional[float] = None,
     pier_width: Optional[float] = None,
     pier_height: Optional[float] = None,
     pier_courses: Optional[int] = None,
 ) -> _Vaulted:
-    """A cross (groin) vault, as a dict: "polyhedra" (its voussoirs, each a list of vertices [x, y, z], m) and "supports"
-    (four fixed boxes under the corners). Model3D(polyhedra=..., supports=..., base=False) is the vault on its corners.
+    """A cross (groin) vault, as a dict: "polyhedra" (its voussoirs, then the piers' blocks if on piers, each a list of
+    vertices [x, y, z], m) and "supports" (four fixed blocks under the corners; empty on piers).
+    Model3D(polyhedra=..., supports=..., base=False) is the vault on its corner supports, Model3D(polyhedra=...) the
+    vault on piers (they stand on the base).
 
     Two barrels of one section cross at right angles over a square bay: arch()'s (kind "semicircular" or "pointed",
-    thickness, voussoirs, span, radius, rise: the same meaning) in the plane (x, z), springing at z = 0, along y, and
-    the same along x. The bay is |x|, |y| <= a, a the extrados's half span at the springing. Each barrel is kept where
-    its tunnel is the higher (|x| <= |y| for the one along y): each voussoir of each of the four webs is one block from
-    the bay's side to the groins, the diagonal vertical planes x = y and x = -y. The blocks: the web over y > 0 (the
-    arch's voussoirs left to right), then the same web turned by 90, 180 and 270 degrees about z. The supports: under
-    each corner the square the two springing voussoirs meeting there cover, support_height [m] deep (left out: the
-    thickness). With pier_height [m], on four corner piers of free blocks on the base instead (no fixed supports; the
-    model's base, Model3D(polyhedra=...)): each pier a square of side pier_width [m] (left out: the springing's width;
-    less than the bay's half side) with its outer corner at the bay's, from z = -pier_height to the springing, in
-    pier_courses courses (left out: 1), listed after the vault's blocks, pier by pier, bottom to top."""
+    thickness, voussoirs, span, radius, rise, abutment_width, abutment_height, pier_width, pier_height, pier_courses:
+    the same meaning, the same defaults) in the plane (x, z), springing at z = 0, along y, and the same along x. The
+    bay is |x|, |y| <= a, a the extrados's half span at the springing. Each barrel is kept where its tunnel is the
+    higher (|x| <= |y| for the one along y): each voussoir of each of the four webs is one block from the bay's side
+    to the groins, the diagonal vertical planes x = y and x = -y. The blocks: the web over y > 0 (the arch's voussoirs
+    left to right), then the same web turned by 90, 180 and 270 degrees about z. The arch's right abutment, or its
+    right pier's courses, stand under each corner as squares in plan (|x| and |y| from the intrados's half span out
+    to its width): four fixed supports, or four piers of free blocks on the base listed after the vault's blocks,
+    corner by corner (+x +y, -x +y, -x -y, +x -y), each bottom to top."""
 
 def dome(
     kind: Literal["hemispherical", "pointed"],

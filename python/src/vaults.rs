@@ -2,7 +2,7 @@
 
 use crate::*;
 use masonry_dem::shape::Polyhedron;
-use masonry_dem::space::{self, BarrelVault, CornerPiers, CrossVault, Dome, DomeKind, Vaulted};
+use masonry_dem::space::{self, BarrelVault, CrossVault, Dome, DomeKind, Vaulted};
 
 /// The dict of a vault or dome made: "polyhedra" (its blocks, each a list of vertices [x, y, z], m) and "supports"
 /// (its fixed supports, the same way).
@@ -49,22 +49,23 @@ pub(crate) fn barrel_vault<'py>(
     vaulted_to_py(py, &made)
 }
 
-/// A cross (groin) vault, as a dict: "polyhedra" (its voussoirs, each a list of vertices [x, y, z], m) and "supports"
-/// (four fixed boxes under the corners). Model3D(polyhedra=..., supports=..., base=False) is the vault on its corners.
+/// A cross (groin) vault, as a dict: "polyhedra" (its voussoirs, then the piers' blocks if on piers, each a list of
+/// vertices [x, y, z], m) and "supports" (four fixed blocks under the corners; empty on piers).
+/// Model3D(polyhedra=..., supports=..., base=False) is the vault on its corner supports, Model3D(polyhedra=...) the
+/// vault on piers (they stand on the base).
 ///
 /// Two barrels of one section cross at right angles over a square bay: arch()'s (kind "semicircular" or "pointed",
-/// thickness, voussoirs, span, radius, rise: the same meaning) in the plane (x, z), springing at z = 0, along y, and
-/// the same along x. The bay is |x|, |y| <= a, a the extrados's half span at the springing. Each barrel is kept where
-/// its tunnel is the higher (|x| <= |y| for the one along y): each voussoir of each of the four webs is one block from
-/// the bay's side to the groins, the diagonal vertical planes x = y and x = -y. The blocks: the web over y > 0 (the
-/// arch's voussoirs left to right), then the same web turned by 90, 180 and 270 degrees about z. The supports: under
-/// each corner the square the two springing voussoirs meeting there cover, support_height [m] deep (left out: the
-/// thickness). With pier_height [m], on four corner piers of free blocks on the base instead (no fixed supports; the
-/// model's base, Model3D(polyhedra=...)): each pier a square of side pier_width [m] (left out: the springing's width;
-/// less than the bay's half side) with its outer corner at the bay's, from z = -pier_height to the springing, in
-/// pier_courses courses (left out: 1), listed after the vault's blocks, pier by pier, bottom to top.
+/// thickness, voussoirs, span, radius, rise, abutment_width, abutment_height, pier_width, pier_height, pier_courses:
+/// the same meaning, the same defaults) in the plane (x, z), springing at z = 0, along y, and the same along x. The
+/// bay is |x|, |y| <= a, a the extrados's half span at the springing. Each barrel is kept where its tunnel is the
+/// higher (|x| <= |y| for the one along y): each voussoir of each of the four webs is one block from the bay's side
+/// to the groins, the diagonal vertical planes x = y and x = -y. The blocks: the web over y > 0 (the arch's voussoirs
+/// left to right), then the same web turned by 90, 180 and 270 degrees about z. The arch's right abutment, or its
+/// right pier's courses, stand under each corner as squares in plan (|x| and |y| from the intrados's half span out
+/// to its width): four fixed supports, or four piers of free blocks on the base listed after the vault's blocks,
+/// corner by corner (+x +y, -x +y, -x -y, +x -y), each bottom to top.
 #[pyfunction]
-#[pyo3(signature = (kind, thickness, voussoirs, span=None, radius=None, rise=None, support_height=None, pier_width=None, pier_height=None, pier_courses=None))]
+#[pyo3(signature = (kind, thickness, voussoirs, span=None, radius=None, rise=None, abutment_width=None, abutment_height=None, pier_width=None, pier_height=None, pier_courses=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn cross_vault<'py>(
     py: Python<'py>,
@@ -74,24 +75,18 @@ pub(crate) fn cross_vault<'py>(
     span: Option<f64>,
     radius: Option<f64>,
     rise: Option<f64>,
-    support_height: Option<f64>,
+    abutment_width: Option<f64>,
+    abutment_height: Option<f64>,
     pier_width: Option<f64>,
     pier_height: Option<f64>,
     pier_courses: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let what = "geometry.cross_vault";
-    let kind = match kind {
-        "semicircular" => ArchKind::Semicircular,
-        "pointed" => ArchKind::Pointed,
-        _ => return Err(py_error("InputError", format!("{what}.kind must be \"semicircular\" or \"pointed\", got {kind:?}"), Some(format!("{what}.kind")))),
-    };
-    let voussoirs = count(&format!("{what}.voussoirs"), voussoirs, 1)?;
-    let piers = match (pier_height, pier_width, pier_courses) {
-        (Some(height), width, courses) => Some(CornerPiers { width, height, courses: count(&format!("{what}.pier_courses"), courses.unwrap_or(1), 1)? }),
-        (None, None, None) => None,
-        _ => return Err(py_error("InputError", format!("{what}.pier_height is required with pier_width or pier_courses (the piers' height)"), Some(format!("{what}.pier_height")))),
-    };
-    let made = guarded(|| space::cross_vault(&CrossVault { kind, span, radius, rise, thickness, voussoirs, support_height, piers }))?;
+    if !matches!(kind, "semicircular" | "pointed") {
+        return Err(py_error("InputError", format!("{what}.kind must be \"semicircular\" or \"pointed\", got {kind:?}"), Some(format!("{what}.kind"))));
+    }
+    let arch = arch_from(what, kind, thickness, voussoirs, [span, radius, rise], [abutment_width, abutment_height, pier_width, pier_height], pier_courses)?;
+    let made = guarded(|| space::cross_vault(&CrossVault { arch }))?;
     vaulted_to_py(py, &made)
 }
 

@@ -21,7 +21,7 @@
 
 use super::walls::pieces;
 use crate::error::{positive, Error, Result};
-use crate::geometry::{arch, check_count, Arch, ArchKind, Springing, MAX_VOUSSOIRS, MIN_PART, REL_TOL};
+use crate::geometry::{arch, check_count, Arch, ArchKind, Springing, MAX_VOUSSOIRS, MIN_PART};
 use crate::shape::{contact_tolerance, Polyhedron};
 use std::f64::consts::PI;
 
@@ -79,98 +79,50 @@ pub fn barrel_vault(p: &BarrelVault) -> Result<Vaulted> {
 }
 
 /// Parameters of a cross (groin) vault (case format `[geometry.cross_vault]`): two barrel
-/// vaults of one profile crossing at right angles over a square bay.
+/// vaults of one arch crossing at right angles over a square bay.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CrossVault {
-    /// The barrels' profile: semicircular or pointed (whose springing joints are horizontal).
-    pub kind: ArchKind,
-    /// The intrados's span \[m\]; or give `radius` (semicircular).
-    pub span: Option<f64>,
-    /// The centreline's radius \[m\] (semicircular), instead of `span`.
-    pub radius: Option<f64>,
-    /// The intrados's rise \[m\] (pointed).
-    pub rise: Option<f64>,
-    /// The shell's thickness, along the joints \[m\].
-    pub thickness: f64,
-    /// The voussoirs of each barrel's arch, springing to springing (2 at least).
-    pub voussoirs: usize,
-    /// The corner supports' height below the springing \[m\]; `None`: the thickness (on fixed
-    /// supports; not with piers).
-    pub support_height: Option<f64>,
-    /// On four corner piers instead of fixed supports: their `[width, height]` \[m\] and courses.
-    pub piers: Option<CornerPiers>,
+    /// The barrels' section, an arch of the plane (x, z), semicircular or pointed (a horizontal
+    /// springing joint), without backfill; its abutments become fixed supports under the four
+    /// corners, its piers four corner piers.
+    pub arch: Arch,
 }
 
-/// The four piers of a cross vault, each a square in plan with its outer corner at the bay's
-/// corner, from the base up to the springing, in courses of equal height (free blocks).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CornerPiers {
-    /// The square's side \[m\]: the springing's width at least (the two springing voussoirs
-    /// meeting at the corner rest wholly on the pier), less than the bay's half side (the piers
-    /// apart); `None`: the springing's width.
-    pub width: Option<f64>,
-    /// From the base to the springing \[m\].
-    pub height: f64,
-    /// The courses of each pier (1 at least).
-    pub courses: usize,
-}
-
-/// Makes a cross vault: the plane's arch (`kind`, `span` or `radius`, `rise`, `thickness`,
-/// `voussoirs`) in the plane (x, z), springing at z = 0, extruded along y over the square bay
-/// `|x|, |y| <= a` (`a` the extrados's half span at the springing, so that the bay's sides are
-/// the shell's outer faces), crossed by the same barrel along x; each barrel is kept where its
-/// tunnel is the higher, `|x| <= |y|` for the barrel along y: each voussoir of each of the four
-/// webs is the voussoir's prism from the bay's side to the centre clipped by the two diagonal
-/// vertical planes `x = y` and `x = -y` (the groins), a convex block. Across a groin a web's
-/// voussoir meets the crossing web's same voussoir face to face (both faces are the arch's
-/// voussoir drawn on the diagonal plane). The blocks: the web over y > 0 (the arch's voussoirs
-/// left to right), then the same web turned by 90, 180 and 270 degrees about z (over x < 0,
-/// y < 0, x > 0). The supports: four fixed boxes under the corners, each the square the two
-/// springing voussoirs meeting there cover in plan (`|x|, |y|` from the intrados's half span to
-/// `a`), `support_height` deep; or, with `piers`, four piers of free blocks on the base (their
-/// courses bottom to top, pier by pier in the same order of corners, after the vault's blocks:
-/// +x +y, -x +y, -x -y, +x -y), each the square of side `width` with its outer corner at the
-/// bay's, from z = -`height` to the springing, and no fixed supports. Refusals name their key,
-/// `geometry.cross_vault.*`.
+/// Makes a cross vault: the plane's arch in the plane (x, z), springing at z = 0, extruded along
+/// y over the square bay `|x|, |y| <= a` (`a` the extrados's half span at the springing, so
+/// that the bay's sides are the shell's outer faces), crossed by the same barrel along x; each
+/// barrel is kept where its tunnel is the higher, `|x| <= |y|` for the barrel along y: each
+/// voussoir of each of the four webs is the voussoir's prism from the bay's side to the centre
+/// clipped by the two diagonal vertical planes `x = y` and `x = -y` (the groins), a convex
+/// block. Across a groin a web's voussoir meets the crossing web's same voussoir face to face
+/// (both faces are the arch's voussoir drawn on the diagonal plane). The blocks: the web over
+/// y > 0 (the arch's voussoirs left to right), then the same web turned by 90, 180 and 270
+/// degrees about z (over x < 0, y < 0, x > 0).
+///
+/// What the arch stands on stands under each corner, as a square in plan: the right abutment
+/// (`|x|` and `|y|` from the intrados's half span out to the abutment's width) becomes four fixed
+/// supports; the right pier's courses become four piers of free blocks on the base, listed
+/// after the vault's, corner by corner in the order of the webs' turns (+x +y, -x +y, -x -y,
+/// +x -y), each bottom to top. Refusals name their key, `geometry.cross_vault.*` (the arch's
+/// as well).
 pub fn cross_vault(p: &CrossVault) -> Result<Vaulted> {
     let what = "geometry.cross_vault";
-    if !matches!(p.kind, ArchKind::Semicircular | ArchKind::Pointed) {
-        return Err(Error::input_at(format!("{what}.kind"), format!("{what}.kind must be \"semicircular\" or \"pointed\" (a horizontal springing joint on the corner supports)")));
+    if !matches!(p.arch.kind, ArchKind::Semicircular | ArchKind::Pointed) {
+        return Err(Error::input_at(format!("{what}.kind"), format!("{what}.kind must be \"semicircular\" or \"pointed\" (a horizontal springing joint on the corners)")));
     }
-    let depth = match p.support_height {
-        Some(h) => positive(&format!("{what}.support_height"), h)?,
-        None => p.thickness,
-    };
-    if let Some(piers) = &p.piers {
-        if p.support_height.is_some() {
-            return Err(Error::input_at(format!("{what}.support_height"), format!("{what}.support_height is the fixed supports' and pier_height the piers': give one")));
-        }
-        positive(&format!("{what}.pier_height"), piers.height)?;
-        if let Some(w) = piers.width {
-            positive(&format!("{what}.pier_width"), w)?;
-        }
-        if !(1..=MAX_VOUSSOIRS).contains(&piers.courses) {
-            return Err(Error::input_at(format!("{what}.pier_courses"), format!("{what}.pier_courses must lie in 1..={MAX_VOUSSOIRS}, got {}", piers.courses)));
-        }
+    if p.arch.backfill.is_some() {
+        return Err(Error::input_at(format!("{what}.backfill"), format!("{what}: a backfill over the webs is not modelled")));
     }
-    check_count(what, 4.0 * (p.voussoirs + p.piers.map_or(0, |q| q.courses)) as f64)?;
-    let section = arch(&Arch {
-        kind: p.kind,
-        span: p.span,
-        radius: p.radius,
-        rise: p.rise,
-        thickness: p.thickness,
-        voussoirs: p.voussoirs,
-        springing: Springing::Abutments { width: None, height: None },
-        backfill: None,
-    })
-    .map_err(|e| e.renamed("geometry.arch", what))?;
-    let (inner, a) = (section.intrados[0][0].abs(), section.extrados[0][0].abs());
+    let piers = courses_of(&p.arch.springing);
+    check_count(what, 4.0 * (p.arch.voussoirs + piers) as f64)?;
+    let section = arch(&p.arch).map_err(|e| e.renamed("geometry.arch", what))?;
+    let n = section.blocks.len() - 2 * piers;
+    let a = section.extrados[0][0].abs();
     let tol = contact_tolerance(2.0 * a);
     // the web over y > 0: each voussoir's prism from the centre to the bay's side, clipped by
     // the groins (kept: y >= x and y >= -x)
-    let mut web = Vec::with_capacity(section.blocks.len());
-    for (k, q) in section.blocks.iter().enumerate() {
+    let mut web = Vec::with_capacity(n);
+    for (k, q) in section.blocks[..n].iter().enumerate() {
         let prism = Polyhedron::prism(q.vertices(), [0.0, a]);
         let block = prism.clip([1.0, -1.0, 0.0], 0.0, tol).and_then(|b| b.clip([-1.0, -1.0, 0.0], 0.0, tol));
         web.push(block.ok_or_else(|| {
@@ -179,29 +131,24 @@ pub fn cross_vault(p: &CrossVault) -> Result<Vaulted> {
     }
     // turned by quarter turns about z, exactly: (x, y) -> (-y, x)
     let turn = |b: &Polyhedron, quarters: usize| b.map(|v| (0..quarters).fold(v, |[x, y, z], _| [-y, x, z]));
-    let mut blocks: Vec<Polyhedron> = (0..4).flat_map(|q| web.iter().map(move |b| (b, q))).map(|(b, q)| turn(b, q)).collect();
-    // the corner squares from `a - w` to `a`, between z0 and z1, in the order of the webs' turns
-    let corners = |w: f64, z0: f64, z1: f64| {
-        [[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]].map(|[sx, sy]: [f64; 2]| {
-            let span = |s: f64| if s > 0.0 { (a - w, a) } else { (-a, w - a) };
-            let ((x0, x1), (y0, y1)) = (span(sx), span(sy));
-            Polyhedron::cuboid([x0, y0, z0], [x1, y1, z1])
+    let mut blocks: Vec<Polyhedron> = (0..4).flat_map(|q| web.iter().map(move |b| turn(b, q))).collect();
+    // the right abutment, or the right pier's courses, as squares at the corner +x +y
+    let right = match p.arch.springing {
+        Springing::Abutments { .. } => &section.supports[1..],
+        Springing::Piers { .. } => &section.blocks[n + piers..],
+    };
+    let squares: Vec<Polyhedron> = right
+        .iter()
+        .map(|q| {
+            let b = q.aabb();
+            Polyhedron::cuboid([b.min[0], b.min[0], b.min[1]], [b.max[0], b.max[0], b.max[1]])
         })
-    };
-    let Some(piers) = p.piers else {
-        return Ok(Vaulted { blocks, supports: corners(a - inner, -depth, 0.0).to_vec() });
-    };
-    let w = piers.width.unwrap_or(a - inner);
-    if w < (a - inner) * (1.0 - REL_TOL) || w >= a {
-        return Err(Error::input_at(
-            format!("{what}.pier_width"),
-            format!("{what}.pier_width = {w} m must lie in [{:.6}, {a:.6}) m: from the springing's width (the springing voussoirs rest on the pier) to the bay's half side (the piers apart)", a - inner),
-        ));
+        .collect();
+    let corners = (0..4).flat_map(|q| squares.iter().map(move |b| turn(b, q)));
+    if piers == 0 {
+        return Ok(Vaulted { blocks, supports: corners.collect() });
     }
-    let h = piers.height / piers.courses as f64;
-    for k in 0..4 {
-        blocks.extend((0..piers.courses).map(|c| corners(w, -piers.height + c as f64 * h, -piers.height + (c + 1) as f64 * h)[k].clone()));
-    }
+    blocks.extend(corners);
     Ok(Vaulted { blocks, supports: vec![] })
 }
 

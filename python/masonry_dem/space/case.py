@@ -74,7 +74,8 @@ SOLID_KEYS = ("polyhedra", "supports")
 VAULT_LENGTHS = {
     "barrel_vault": ("span", "radius", "rise", "thickness", "length", "block_length", "abutment_width",
                      "abutment_height", "pier_width", "pier_height"),
-    "cross_vault": ("span", "radius", "rise", "thickness", "support_height", "pier_width", "pier_height"),
+    "cross_vault": ("span", "radius", "rise", "thickness", "abutment_width", "abutment_height", "pier_width",
+                    "pier_height"),
     "dome": ("span", "radius", "rise", "thickness"),
 }
 VAULT_COUNTS = {"barrel_vault": ("voussoirs", "pier_courses"), "cross_vault": ("voussoirs", "pier_courses"),
