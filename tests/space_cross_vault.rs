@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::dry;
+use common::{dry, stands};
 use masonry_dem::geometry::{Arch, ArchKind, Springing};
 use masonry_dem::limit::{limit_analysis_3d, LimitOptions};
 use masonry_dem::model::JointLaws;
@@ -123,11 +123,6 @@ fn a_cross_vault_stands_thinner_than_its_barrel_and_not_when_very_thin() {
     // at the groins by the crossing web, stand thinner. At 0.04 R no equilibrium: the least
     // thickness is about 0.07 R (of 16 voussoirs, friction 10: 0.069 R, between the inscribed and
     // circumscribed pyramids of the independent program, tests/python/test_vault_lp.py)
-    let stands = |s: Status| match s {
-        Status::Unbounded => true,
-        Status::NoEquilibrium => false,
-        s => panic!("{s:?}"),
-    };
     let barrel = barrel_vault(&BarrelVault { arch: arch(0.1, 20, ABUTMENTS), length: 0.3, block_length: None }).unwrap();
     let r = limit_analysis_3d(&model(barrel, 10.0, 0.0).with_live_along_gravity(), &LimitOptions::default()).unwrap();
     assert!(!stands(r.status));
