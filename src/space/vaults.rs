@@ -1,11 +1,12 @@
 //! Generators of vaults and domes of convex polyhedra, from the plane's arch
 //! ([`crate::geometry::arch`]): a barrel vault (the arch extruded along its axis, in courses
-//! with staggered joints, on abutments or on walls) and a dome (the arch's half revolved about
-//! its axis, of meridian and parallel joints).
+//! with staggered joints, on abutments or on walls), a cross vault (two such barrels crossing
+//! over a square bay, each web's voussoirs clipped by the groins, on corner supports or piers)
+//! and a dome (the arch's half revolved about its axis, of meridian and parallel joints).
 //!
 //! The arch lies in the plane (x, z), z up, its springing line z = 0, symmetric about x = 0,
-//! as the plane's arch in (x, y). A barrel vault's axis is y, from y = 0 to its length; a dome's
-//! axis is z.
+//! as the plane's arch in (x, y). A barrel vault's axis is y, from y = 0 to its length; a cross
+//! vault's bay is centred on the z axis; a dome's axis is z.
 //!
 //! ```
 //! use masonry_dem::geometry::{Arch, ArchKind, Springing};
@@ -45,11 +46,12 @@ pub struct BarrelVault {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Vaulted {
     /// The blocks: a barrel vault's course by course in the arch's order of blocks, each
-    /// course along +y; a dome's ring by ring from the springing up, each ring counter-clockwise
-    /// from +x.
+    /// course along +y; a cross vault's web by web, then its piers' ([`cross_vault`]); a dome's
+    /// ring by ring from the springing up, each ring counter-clockwise from +x.
     pub blocks: Vec<Polyhedron>,
-    /// The fixed supports: a barrel vault's two abutments (the arch's, the vault's length); none
-    /// on walls or under a dome, which stand on the base.
+    /// The fixed supports: a barrel vault's two abutments (the arch's, the vault's length), a
+    /// cross vault's four under its corners; none on walls or piers or under a dome, which
+    /// stand on the base.
     pub supports: Vec<Polyhedron>,
 }
 
