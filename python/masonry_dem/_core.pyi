@@ -245,11 +245,11 @@ def buttressed_wall(
     buttress_depth: float,
     bonded: bool = True,
 ) -> FloatArray:
-    """Boxes [x0, y0, z0, x1, y1, z1] (shape (n, 6), m) of a wall with buttresses: the wall along x (x in [0, length], y
-    in [0, thickness]), height high, in running bond of blocks block_length x thickness x block_height (the lowest
-    course starting with a whole block at x = 0, the next with a half), and buttresses against its face y = 0, each a
-    column of one block per course, buttress_width along x by buttress_depth (y in [-buttress_depth, 0]) [m], their axes
-    at x = spacing (k + 1/2) for each k whose buttress ends 5% of a block short of the wall's end at least. bonded (the
+    """Boxes [x0, y0, z0, x1, y1, z1] (shape (n, 6), m) of a wall with buttresses: the wall along x (x in [0, length], y in
+    [0, thickness]), height high, in running bond of blocks block_length x thickness x block_height (the lowest course
+    starting with a whole block at x = 0, the next with a half), and buttresses against its face y = 0, each a column
+    of one block per course, buttress_width along x by buttress_depth (y in [-buttress_depth, 0]) [m], their axes at
+    x = spacing (k + 1/2) for each k whose buttress ends 5% of a block short of the wall's end at least. bonded (the
     default): in the lowest course and every other one above it the buttress's block runs through the wall (to y =
     thickness) and the wall's course stops against it; not bonded: the buttresses stand against the wall's face.
     spacing must exceed buttress_width by 10% of a block. The blocks course by course from the bottom, the wall's

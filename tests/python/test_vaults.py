@@ -110,7 +110,8 @@ direction = 270.0
     assert loose.build_model().n_blocks == len(md.buttressed_wall(2.4, 1.2, 0.2, 0.4, 0.2, 1.2, 0.4, 0.4, bonded=False))
     with pytest.raises(md.InputError) as info:
         md.parse_case(text.replace("buttress_depth = 0.4", "buttress_depth = 0.4\nbonded = 1"), source="b.toml")
-    assert str(info.value) == "b.toml: geometry.buttressed_wall.bonded: expected true or false, got integer 1", str(info.value)
+    message = str(info.value)
+    assert message == "b.toml: geometry.buttressed_wall.bonded: expected true or false, got integer 1", message
     with pytest.raises(md.InputError) as info:
         md.parse_case(text.replace("spacing = 1.2", "spacing = 0.41"), source="b.toml").build_model()
     assert str(info.value).startswith("b.toml: geometry.buttressed_wall.spacing = 0.41 m must exceed buttress_width")

@@ -1,9 +1,9 @@
 """Case files of 3D walls (docs/case-format.md, "3D walls"): the [geometry] forms that make a case 3D (``boxes``
-and the tables ``leaf``, ``u_wall``, ``corner``, ``buttressed_wall``, ``barrel_vault``, ``cross_vault``, ``dome``), the 3D keys of the other tables ([top]
-height, [loads] direction), the methods a 3D case takes (:data:`METHODS_3D`: limit analysis, and the explicit
-solver's quasi-static pushover with the [analysis] keys of 2D), the refusals of what the 3D model does not take in this version (the static
-solver, displacement control, time histories from a case file, mortar joints, the 2D keys that have no meaning
-there), and :class:`ModelParameters3D`, the arguments of :class:`masonry_dem.Model3D` that a
+and the tables ``leaf``, ``u_wall``, ``corner``, ``buttressed_wall``, ``barrel_vault``, ``cross_vault``, ``dome``),
+the 3D keys of the other tables ([top] height, [loads] direction), the methods a 3D case takes (:data:`METHODS_3D`:
+limit analysis, and the explicit solver's quasi-static pushover with the [analysis] keys of 2D), the refusals of what
+the 3D model does not take in this version (the static solver, displacement control, time histories from a case
+file, mortar joints, the 2D keys that have no meaning there), and :class:`ModelParameters3D`, the arguments of :class:`masonry_dem.Model3D` that a
 :class:`masonry_dem.case.Case` of a 3D wall holds.
 
 :mod:`masonry_dem.case.reader` reads every case file and hands a 3D one to :func:`case_from_tables` once its
