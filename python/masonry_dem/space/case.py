@@ -3,8 +3,8 @@ and the tables ``leaf``, ``u_wall``, ``corner``, ``buttressed_wall``, ``barrel_v
 the 3D keys of the other tables ([top] height, [loads] direction), the methods a 3D case takes (:data:`METHODS_3D`:
 limit analysis, and the explicit solver's quasi-static pushover with the [analysis] keys of 2D), the refusals of what
 the 3D model does not take in this version (the static solver, displacement control, time histories from a case
-file, mortar joints, the 2D keys that have no meaning there), and :class:`ModelParameters3D`, the arguments of :class:`masonry_dem.Model3D` that a
-:class:`masonry_dem.case.Case` of a 3D wall holds.
+file, mortar joints, the 2D keys that have no meaning there), and :class:`ModelParameters3D`, the arguments of
+:class:`masonry_dem.Model3D` that a :class:`masonry_dem.case.Case` of a 3D wall holds.
 
 :mod:`masonry_dem.case.reader` reads every case file and hands a 3D one to :func:`case_from_tables` once its
 [geometry] is read; the tables the two dimensions share ([base], [joints], [analysis], [reference]) are read with
