@@ -222,14 +222,14 @@ pub fn buttressed_wall(p: &ButtressedWall) -> Result<Vec<Box3>> {
             format!("{what}.spacing = {s} m must exceed buttress_width = {bw} m by {} of block_length at least (the wall between two buttresses)", 2.0 * MIN_PART),
         ));
     }
+    check_count(what, (length / l + 2.0 + 2.0 * length / s) * (height / bh + 1.0))?;
     let axes: Vec<f64> = (0..).map(|k| s * (k as f64 + 0.5)).take_while(|&a| a + 0.5 * bw + m <= length).collect();
     if axes.is_empty() {
         return Err(Error::input_at(
             format!("{what}.length"),
-            format!("{what}.length = {length} m holds no buttress: the first, at x = spacing / 2 = {} m, ends at {} m, less than 5% of a block from the wall's end", 0.5 * s, 0.5 * (s + bw)),
+            format!("{what}.length = {length} m holds no buttress: the first, at x = spacing / 2 = {} m, ends at {} m, not 5% of a block short of the wall's end", 0.5 * s, 0.5 * (s + bw)),
         ));
     }
-    check_count(what, (length / l + 2.0 + 2.0 * axes.len() as f64) * (height / bh + 1.0))?;
     let mut out = vec![];
     for (k, (z0, z1)) in courses(what, height, bh)?.into_iter().enumerate() {
         let through = p.bonded && k % 2 == 0;
