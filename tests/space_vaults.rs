@@ -12,7 +12,7 @@
 
 mod common;
 
-use common::dry;
+use common::{dry, stands};
 use masonry_dem::geometry::{arch, Arch, ArchKind, Springing};
 use masonry_dem::limit::{limit_analysis, limit_analysis_3d, LimitOptions};
 use masonry_dem::model::{JointLaws, Model, ModelSpec};
@@ -96,11 +96,6 @@ fn an_extruded_arch_stands_under_its_weight_where_the_planes_does() {
     // Milankovitch's ring (friction 10: no sliding), 20 voussoirs: its least thickness lies
     // within (0.1070, 0.1075) R (tests/arch_thickness.rs); the extruded ring stands at the
     // same thicknesses as the plane's, on either side of it
-    let stands = |r: Status| match r {
-        Status::Unbounded => true,
-        Status::NoEquilibrium => false,
-        s => panic!("{s:?}"),
-    };
     for (t, want) in [(0.100, false), (0.1070, false), (0.1075, true), (0.110, true)] {
         let a = semicircular(t, 20, ABUTMENTS);
         let r2 = limit_analysis(&plane(&a, 10.0).with_live_along_gravity(), &LimitOptions::default()).unwrap();

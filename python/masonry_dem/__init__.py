@@ -18,7 +18,8 @@ sets their results side by side.
 
 Two dimensions: a wall in the plane is a :class:`Model` (rectangles [x0, y0, x1, y1]); a 3D wall of boxes
 [x0, y0, z0, x1, y1, z1], z up, is a :class:`Model3D` (:mod:`masonry_dem.space`: the generators ``running_bond_3d``,
-``u_wall``, ``corner_wall``, and of convex polyhedra ``barrel_vault`` and ``dome``; plots and VTK in 3D), analysed
+``u_wall``, ``corner_wall``, ``buttressed_wall``, and of convex polyhedra ``barrel_vault``, ``cross_vault`` and
+``dome``; plots and VTK in 3D), analysed
 by limit analysis (``Model3D.solve_limit``) and the explicit solver (``Model3D.solve_dynamic``, load control; ``Model3D.simulate`` gives time histories) with the live
 load in any direction in plan. Both give the same :class:`Results` and :class:`TimeHistory` (``dimension``: 2 or 3);
 a case file whose [geometry] gives boxes is 3D (method "limit" or "dynamic").
@@ -114,7 +115,7 @@ if TYPE_CHECKING:  # what the names below resolve to (type checkers, IDEs); impo
         m_per_s2,
     )
     from .plot.animation import write_animation
-    from .space import Model3D, barrel_vault, corner_wall, dome, running_bond_3d, u_wall
+    from .space import Model3D, barrel_vault, buttressed_wall, corner_wall, cross_vault, dome, running_bond_3d, u_wall
     from .study import load_study, read_results, run_study
 
 __all__ = [
@@ -130,7 +131,9 @@ __all__ = [
     "running_bond_3d",
     "u_wall",
     "corner_wall",
+    "buttressed_wall",
     "barrel_vault",
+    "cross_vault",
     "dome",
     "MasonryError",
     "InputError",
@@ -207,7 +210,8 @@ _LAZY = {
     **dict.fromkeys(("Modes", "modes", "rayleigh_damping"), ".modal"),
     "plot_modes": ".plot.modes",
     "write_animation": ".plot.animation",
-    **dict.fromkeys(("Model3D", "running_bond_3d", "u_wall", "corner_wall", "barrel_vault", "dome"), ".space"),
+    **dict.fromkeys(("Model3D", "running_bond_3d", "u_wall", "corner_wall", "buttressed_wall", "barrel_vault",
+                    "cross_vault", "dome"), ".space"),
     **dict.fromkeys(("load_study", "run_study", "read_results"), ".study"),
 }
 

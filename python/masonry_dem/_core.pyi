@@ -168,6 +168,35 @@ def barrel_vault(
     course starting with a half block (the joints staggered by half a block; no piece shorter than 5% of a block);
     left out: the arch extruded one block deep, each course a single block."""
 
+def cross_vault(
+    kind: Literal["semicircular", "pointed"],
+    thickness: float,
+    voussoirs: int,
+    span: Optional[float] = None,
+    radius: Optional[float] = None,
+    rise: Optional[float] = None,
+    abutment_width: Optional[float] = None,
+    abutment_height: Optional[float] = None,
+    pier_width: Optional[float] = None,
+    pier_height: Optional[float] = None,
+    pier_courses: Optional[int] = None,
+) -> _Vaulted:
+    """A cross (groin) vault, as a dict: "polyhedra" (its voussoirs, then the piers' blocks if on piers, each a list of
+    vertices [x, y, z], m) and "supports" (four fixed blocks under the corners; empty on piers).
+    Model3D(polyhedra=..., supports=..., base=False) is the vault on its corner supports, Model3D(polyhedra=...) the
+    vault on piers (they stand on the base).
+
+    Two barrels of one section cross at right angles over a square bay: arch()'s (kind "semicircular" or "pointed",
+    thickness, voussoirs, span, radius, rise, abutment_width, abutment_height, pier_width, pier_height, pier_courses:
+    the same meaning, the same defaults) in the plane (x, z), springing at z = 0, along y, and the same along x. The
+    bay is |x|, |y| <= a, a the extrados's half span at the springing. Each barrel is kept where its tunnel is the
+    higher (|x| <= |y| for the one along y): each voussoir of each of the four webs is one block from the bay's side
+    to the groins, the diagonal vertical planes x = y and x = -y. The blocks: the web over y > 0 (the arch's voussoirs
+    left to right), then the same web turned by 90, 180 and 270 degrees about z. The arch's right abutment, or its
+    right pier's courses, stand under each corner as squares in plan (|x| and |y| from the intrados's half span out
+    to its width): four fixed supports, or four piers of free blocks on the base listed after the vault's blocks,
+    corner by corner (+x +y, -x +y, -x -y, +x -y), each bottom to top."""
+
 def dome(
     kind: Literal["hemispherical", "pointed"],
     thickness: float,
@@ -205,6 +234,27 @@ def running_bond_3d(
     (one under 25% of block_height is refused, as in running_bond). A joint that would fall closer than 5% of a block
     to a course's end is left out (the end block is longer by as much). openings: [x0, z0, x1, z1] (m), holes through
     the leaf, cut as cut_openings_3d cuts them."""
+
+def buttressed_wall(
+    length: float,
+    height: float,
+    thickness: float,
+    block_length: float,
+    block_height: float,
+    spacing: float,
+    buttress_width: float,
+    buttress_depth: float,
+    bonded: bool = True,
+) -> FloatArray:
+    """Boxes [x0, y0, z0, x1, y1, z1] (shape (n, 6), m) of a wall with buttresses: the wall along x (x in [0, length], y in
+    [0, thickness]), height high, in running bond of blocks block_length x thickness x block_height (the lowest course
+    starting with a whole block at x = 0, the next with a half), and buttresses against its face y = 0, each a column
+    of one block per course, buttress_width along x by buttress_depth (y in [-buttress_depth, 0]) [m], their axes at
+    x = spacing (k + 1/2) for each k whose buttress ends 5% of a block short of the wall's end at least. bonded (the
+    default): in the lowest course and every other one above it the buttress's block runs through the wall (to y =
+    thickness) and the wall's course stops against it; not bonded: the buttresses stand against the wall's face.
+    spacing must exceed buttress_width by 10% of a block. The blocks course by course from the bottom, the wall's
+    along +x, then the buttresses'."""
 
 def u_wall(
     facade: float,

@@ -172,10 +172,12 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(stone_wall, m)?)?;
     m.add_function(wrap_pyfunction!(running_bond_3d, m)?)?;
     m.add_function(wrap_pyfunction!(u_wall, m)?)?;
+    m.add_function(wrap_pyfunction!(buttressed_wall, m)?)?;
     m.add_function(wrap_pyfunction!(corner_wall, m)?)?;
     m.add_function(wrap_pyfunction!(cut_openings_3d, m)?)?;
     m.add_function(wrap_pyfunction!(convex_hulls, m)?)?;
     m.add_function(wrap_pyfunction!(barrel_vault, m)?)?;
+    m.add_function(wrap_pyfunction!(cross_vault, m)?)?;
     m.add_function(wrap_pyfunction!(dome, m)?)?;
     m.add_class::<PyModel>()?;
     m.add_class::<PyModel3D>()?;

@@ -1,6 +1,6 @@
 //! The 3D walls: `Model3D` (the core's `Model3`, walls of axis-aligned boxes) with its limit
 //! analysis and its explicit ones (quasi-static, time histories), and the generators
-//! `running_bond_3d`, `u_wall`, `corner_wall` and `cut_openings_3d`.
+//! `running_bond_3d`, `u_wall`, `corner_wall`, `buttressed_wall` and `cut_openings_3d`.
 
 use crate::*;
 use masonry_dem::space::{self, Box3, LiveLoad3, Model3, ModelSpec3};
@@ -169,6 +169,35 @@ pub(crate) fn u_wall<'py>(
     let openings = openings_from(openings, what)?;
     let blocks = guarded(|| space::u_wall(facade, height, returns, thickness, block_length, block_height))?;
     with_openings(py, blocks, &openings, what)
+}
+
+/// Boxes [x0, y0, z0, x1, y1, z1] (shape (n, 6), m) of a wall with buttresses: the wall along x (x in [0, length], y in
+/// [0, thickness]), height high, in running bond of blocks block_length x thickness x block_height (the lowest course
+/// starting with a whole block at x = 0, the next with a half), and buttresses against its face y = 0, each a column
+/// of one block per course, buttress_width along x by buttress_depth (y in [-buttress_depth, 0]) [m], their axes at
+/// x = spacing (k + 1/2) for each k whose buttress ends 5% of a block short of the wall's end at least. bonded (the
+/// default): in the lowest course and every other one above it the buttress's block runs through the wall (to y =
+/// thickness) and the wall's course stops against it; not bonded: the buttresses stand against the wall's face.
+/// spacing must exceed buttress_width by 10% of a block. The blocks course by course from the bottom, the wall's
+/// along +x, then the buttresses'.
+#[pyfunction]
+#[pyo3(signature = (length, height, thickness, block_length, block_height, spacing, buttress_width, buttress_depth, bonded=true))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn buttressed_wall<'py>(
+    py: Python<'py>,
+    length: f64,
+    height: f64,
+    thickness: f64,
+    block_length: f64,
+    block_height: f64,
+    spacing: f64,
+    buttress_width: f64,
+    buttress_depth: f64,
+    bonded: bool,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let p = space::ButtressedWall { length, height, thickness, block_length, block_height, spacing, buttress_width, buttress_depth, bonded };
+    let blocks = guarded(|| space::buttressed_wall(&p))?;
+    Ok(boxes_to_py(py, &blocks))
 }
 
 /// Boxes [x0, y0, z0, x1, y1, z1] (shape (n, 6), m) of an L of two walls one block thick: a facade along x (x in

@@ -1,8 +1,8 @@
-//! The generators of vaults and domes of convex polyhedra, `barrel_vault` and `dome`.
+//! The generators of vaults and domes of convex polyhedra, `barrel_vault`, `cross_vault` and `dome`.
 
 use crate::*;
 use masonry_dem::shape::Polyhedron;
-use masonry_dem::space::{self, BarrelVault, Dome, DomeKind, Vaulted};
+use masonry_dem::space::{self, BarrelVault, CrossVault, Dome, DomeKind, Vaulted};
 
 /// The dict of a vault or dome made: "polyhedra" (its blocks, each a list of vertices [x, y, z], m) and "supports"
 /// (its fixed supports, the same way).
@@ -46,6 +46,47 @@ pub(crate) fn barrel_vault<'py>(
     let what = "geometry.barrel_vault";
     let arch = arch_from(what, kind, thickness, voussoirs, [span, radius, rise], [abutment_width, abutment_height, pier_width, pier_height], pier_courses)?;
     let made = guarded(|| space::barrel_vault(&BarrelVault { arch, length, block_length }))?;
+    vaulted_to_py(py, &made)
+}
+
+/// A cross (groin) vault, as a dict: "polyhedra" (its voussoirs, then the piers' blocks if on piers, each a list of
+/// vertices [x, y, z], m) and "supports" (four fixed blocks under the corners; empty on piers).
+/// Model3D(polyhedra=..., supports=..., base=False) is the vault on its corner supports, Model3D(polyhedra=...) the
+/// vault on piers (they stand on the base).
+///
+/// Two barrels of one section cross at right angles over a square bay: arch()'s (kind "semicircular" or "pointed",
+/// thickness, voussoirs, span, radius, rise, abutment_width, abutment_height, pier_width, pier_height, pier_courses:
+/// the same meaning, the same defaults) in the plane (x, z), springing at z = 0, along y, and the same along x. The
+/// bay is |x|, |y| <= a, a the extrados's half span at the springing. Each barrel is kept where its tunnel is the
+/// higher (|x| <= |y| for the one along y): each voussoir of each of the four webs is one block from the bay's side
+/// to the groins, the diagonal vertical planes x = y and x = -y. The blocks: the web over y > 0 (the arch's voussoirs
+/// left to right), then the same web turned by 90, 180 and 270 degrees about z. The arch's right abutment, or its
+/// right pier's courses, stand under each corner as squares in plan (|x| and |y| from the intrados's half span out
+/// to its width): four fixed supports, or four piers of free blocks on the base listed after the vault's blocks,
+/// corner by corner (+x +y, -x +y, -x -y, +x -y), each bottom to top.
+#[pyfunction]
+#[pyo3(signature = (kind, thickness, voussoirs, span=None, radius=None, rise=None, abutment_width=None, abutment_height=None, pier_width=None, pier_height=None, pier_courses=None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn cross_vault<'py>(
+    py: Python<'py>,
+    kind: &str,
+    thickness: f64,
+    voussoirs: i64,
+    span: Option<f64>,
+    radius: Option<f64>,
+    rise: Option<f64>,
+    abutment_width: Option<f64>,
+    abutment_height: Option<f64>,
+    pier_width: Option<f64>,
+    pier_height: Option<f64>,
+    pier_courses: Option<i64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let what = "geometry.cross_vault";
+    if !matches!(kind, "semicircular" | "pointed") {
+        return Err(py_error("InputError", format!("{what}.kind must be \"semicircular\" or \"pointed\", got {kind:?}"), Some(format!("{what}.kind"))));
+    }
+    let arch = arch_from(what, kind, thickness, voussoirs, [span, radius, rise], [abutment_width, abutment_height, pier_width, pier_height], pier_courses)?;
+    let made = guarded(|| space::cross_vault(&CrossVault { arch }))?;
     vaulted_to_py(py, &made)
 }
 

@@ -257,6 +257,41 @@ impl Polyhedron {
         Polyhedron { vertices, faces }
     }
 
+    /// The part of the polyhedron on the side `normal . x <= offset` of a plane (`normal` need
+    /// not be a unit vector; `offset` is in its units times metres), or `None` if nothing with a
+    /// volume is left. `tol` \[m\] (the model's contact tolerance): a vertex within `tol` of the
+    /// plane lies on it. A plane that leaves every vertex on the kept side (within `tol`: it
+    /// misses the block or touches it) gives the block itself, unchanged; one that leaves every
+    /// vertex on the other side (within `tol`), or a part thinner than `tol`, gives `None`.
+    /// Otherwise the part is the convex hull ([`Polyhedron::hull`]) of the kept vertices and of
+    /// the points where the plane crosses the edges: its volume, centroid and inertia follow
+    /// exactly, and the cut face lies on the plane (its vertices within rounding of it), so that
+    /// two blocks cut by one plane from either side share that face.
+    pub fn clip(&self, normal: [f64; 3], offset: f64, tol: f64) -> Option<Polyhedron> {
+        let scale = norm(normal);
+        let side: Vec<f64> = self.vertices.iter().map(|&v| (dot(normal, v) - offset) / scale).collect();
+        if side.iter().all(|&s| s <= tol) {
+            return Some(self.clone());
+        }
+        if side.iter().all(|&s| s >= -tol) {
+            return None;
+        }
+        let mut points: Vec<[f64; 3]> = self.vertices.iter().zip(&side).filter(|(_, &s)| s <= tol).map(|(&v, _)| v).collect();
+        for f in &self.faces {
+            let ring = &f.vertices;
+            for (k, &a) in ring.iter().enumerate() {
+                let b = ring[(k + 1) % ring.len()];
+                // each edge once (it is in two faces, once each way), where it crosses the plane
+                if a < b && (side[a] < -tol && side[b] > tol || side[a] > tol && side[b] < -tol) {
+                    let t = side[a] / (side[a] - side[b]);
+                    let (p, q) = (self.vertices[a], self.vertices[b]);
+                    points.push(std::array::from_fn(|i| p[i] + t * (q[i] - p[i])));
+                }
+            }
+        }
+        Polyhedron::hull(&points, tol).ok()
+    }
+
     /// The polyhedron for messages: "(polyhedron of 8 vertices: (x, y, z), (x, y, z), ...)".
     pub fn label(&self) -> String {
         let shown: Vec<String> = self.vertices.iter().take(2).map(|&v| point(v)).collect();
@@ -474,6 +509,56 @@ mod tests {
         assert_eq!(frame([0.0, 0.0, 1.0]), ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]));
         assert_eq!(frame([1.0, 0.0, 0.0]), ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0]));
         assert_eq!(frame([0.0, 1.0, 0.0]), ([-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]));
+    }
+
+    #[test]
+    fn a_box_cut_by_a_diagonal_plane_is_the_prism_of_a_triangle() {
+        // the box [0, 2] x [0, 1] x [0, 3] cut by the vertical plane x + 2 y = 2 (through its
+        // corners (2, 0) and (0, 1) in plan): kept, the triangle (0, 0), (2, 0), (0, 1) in plan
+        // times the height, volume 1 x 3, centroid (2/3, 1/3, 3/2)
+        let b = Polyhedron::cuboid([0.0; 3], [2.0, 1.0, 3.0]);
+        let cut = b.clip([1.0, 2.0, 0.0], 2.0, TOL).unwrap();
+        well_formed(&cut);
+        assert!(closed(&cut));
+        assert_eq!((cut.vertices().len(), cut.faces().len()), (6, 5));
+        let v = cut.volume_properties();
+        assert!((v.volume - 3.0).abs() < 1e-14, "{}", v.volume);
+        for (got, want) in v.centroid.iter().zip([2.0 / 3.0, 1.0 / 3.0, 1.5]) {
+            assert!((got - want).abs() < 1e-14, "{:?}", v.centroid);
+        }
+        // the other side: the complementary prism, and the two share the cut face
+        let other = b.clip([-1.0, -2.0, 0.0], -2.0, TOL).unwrap();
+        let w = other.volume_properties();
+        assert!((w.volume - 3.0).abs() < 1e-14);
+        for (got, want) in w.centroid.iter().zip([4.0 / 3.0, 2.0 / 3.0, 1.5]) {
+            assert!((got - want).abs() < 1e-14, "{:?}", w.centroid);
+        }
+        assert_eq!(crate::shape::face_contacts(&cut, &other, TOL).len(), 1);
+        // the inertia of the prism: a right triangle's polar moments times the height, plus the
+        // height's: about the vertical axis through the centroid, (area/18)(a^2 + b^2) h for
+        // legs a = 2, b = 1 (per unit density)
+        let izz = 3.0 / 18.0 * (4.0 + 1.0);
+        assert!((v.inertia[2][2] - izz).abs() < 1e-13, "{} against {izz}", v.inertia[2][2]);
+        // a tilted cut through the box's top edge x = 2, z = 3 and the bottom edge x = 0, z = 0:
+        // half the box
+        let half = b.clip([3.0, 0.0, -2.0], 0.0, TOL).unwrap();
+        assert!((half.volume_properties().volume - 3.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn a_cut_that_misses_keeps_the_block_and_one_that_removes_all_gives_none() {
+        let b = Polyhedron::cuboid([0.0; 3], [1.0, 1.0, 1.0]);
+        assert_eq!(b.clip([1.0, 0.0, 0.0], 1.5, TOL), Some(b.clone()));
+        // touching a face (within the tolerance) keeps it too
+        assert_eq!(b.clip([0.0, 0.0, 1.0], 1.0 - 1e-10, TOL), Some(b.clone()));
+        assert_eq!(b.clip([1.0, 0.0, 0.0], -0.5, TOL), None);
+        // the plane on the face: nothing with a volume is left, nor a sliver thinner than tol
+        assert_eq!(b.clip([1.0, 0.0, 0.0], 0.0, TOL), None);
+        assert_eq!(b.clip([1.0, 0.0, 0.0], 5e-10, TOL), None);
+        // through a corner only: a tetrahedron of volume 1/6
+        let tet = b.clip([1.0, 1.0, 1.0], 1.0, TOL).unwrap();
+        assert_eq!(tet.vertices().len(), 4);
+        assert!((tet.volume_properties().volume - 1.0 / 6.0).abs() < 1e-15);
     }
 
     /// Euler's V - E + F = 2 of a closed convex surface, each edge shared by two faces.

@@ -36,8 +36,8 @@ mod tests;
 
 pub use detect::{detect, detect_polyhedra, hulls};
 pub use model::Model3;
-pub use vaults::{barrel_vault, dome, BarrelVault, Dome, DomeKind, Vaulted};
-pub use walls::{corner, cut_openings, running_bond_3d, u_wall};
+pub use vaults::{barrel_vault, cross_vault, dome, BarrelVault, CrossVault, Dome, DomeKind, Vaulted};
+pub use walls::{buttressed_wall, corner, cut_openings, running_bond_3d, u_wall, ButtressedWall};
 
 use crate::error::{Error, Result};
 use crate::interface::Family;

@@ -1,11 +1,12 @@
 //! Generators of vaults and domes of convex polyhedra, from the plane's arch
 //! ([`crate::geometry::arch`]): a barrel vault (the arch extruded along its axis, in courses
-//! with staggered joints, on abutments or on walls) and a dome (the arch's half revolved about
-//! its axis, of meridian and parallel joints).
+//! with staggered joints, on abutments or on walls), a cross vault (two such barrels crossing
+//! over a square bay, each web's voussoirs clipped by the groins, on corner supports or piers)
+//! and a dome (the arch's half revolved about its axis, of meridian and parallel joints).
 //!
 //! The arch lies in the plane (x, z), z up, its springing line z = 0, symmetric about x = 0,
-//! as the plane's arch in (x, y). A barrel vault's axis is y, from y = 0 to its length; a dome's
-//! axis is z.
+//! as the plane's arch in (x, y). A barrel vault's axis is y, from y = 0 to its length; a cross
+//! vault's bay is centred on the z axis; a dome's axis is z.
 //!
 //! ```
 //! use masonry_dem::geometry::{Arch, ArchKind, Springing};
@@ -45,11 +46,12 @@ pub struct BarrelVault {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Vaulted {
     /// The blocks: a barrel vault's course by course in the arch's order of blocks, each
-    /// course along +y; a dome's ring by ring from the springing up, each ring counter-clockwise
-    /// from +x.
+    /// course along +y; a cross vault's web by web, then its piers' ([`cross_vault`]); a dome's
+    /// ring by ring from the springing up, each ring counter-clockwise from +x.
     pub blocks: Vec<Polyhedron>,
-    /// The fixed supports: a barrel vault's two abutments (the arch's, the vault's length); none
-    /// on walls or under a dome, which stand on the base.
+    /// The fixed supports: a barrel vault's two abutments (the arch's, the vault's length), a
+    /// cross vault's four under its corners; none on walls or piers or under a dome, which
+    /// stand on the base.
     pub supports: Vec<Polyhedron>,
 }
 
@@ -76,6 +78,80 @@ pub fn barrel_vault(p: &BarrelVault) -> Result<Vaulted> {
     }
     let supports = section.supports.iter().map(|q| Polyhedron::prism(q.vertices(), [0.0, length])).collect();
     Ok(Vaulted { blocks, supports })
+}
+
+/// Parameters of a cross (groin) vault (case format `[geometry.cross_vault]`): two barrel
+/// vaults of one arch crossing at right angles over a square bay.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CrossVault {
+    /// The barrels' section, an arch of the plane (x, z), semicircular or pointed (a horizontal
+    /// springing joint), without backfill; its abutments become fixed supports under the four
+    /// corners, its piers four corner piers.
+    pub arch: Arch,
+}
+
+/// Makes a cross vault: the plane's arch in the plane (x, z), springing at z = 0, extruded along
+/// y over the square bay `|x|, |y| <= a` (`a` the extrados's half span at the springing, so
+/// that the bay's sides are the shell's outer faces), crossed by the same barrel along x; each
+/// barrel is kept where its tunnel is the higher, `|x| <= |y|` for the barrel along y: each
+/// voussoir of each of the four webs is the voussoir's prism from the bay's side to the centre
+/// clipped by the two diagonal vertical planes `x = y` and `x = -y` (the groins), a convex
+/// block. Across a groin a web's voussoir meets the crossing web's same voussoir face to face
+/// (both faces are the arch's voussoir drawn on the diagonal plane). The blocks: the web over
+/// y > 0 (the arch's voussoirs left to right), then the same web turned by 90, 180 and 270
+/// degrees about z (over x < 0, y < 0, x > 0).
+///
+/// What the arch stands on stands under each corner, as a square in plan: the right abutment
+/// (`|x|` and `|y|` from the intrados's half span out to the abutment's width) becomes four fixed
+/// supports; the right pier's courses become four piers of free blocks on the base, listed
+/// after the vault's, corner by corner in the order of the webs' turns (+x +y, -x +y, -x -y,
+/// +x -y), each bottom to top. Refusals name their key, `geometry.cross_vault.*` (the arch's
+/// as well).
+pub fn cross_vault(p: &CrossVault) -> Result<Vaulted> {
+    let what = "geometry.cross_vault";
+    if !matches!(p.arch.kind, ArchKind::Semicircular | ArchKind::Pointed) {
+        return Err(Error::input_at(format!("{what}.kind"), format!("{what}.kind must be \"semicircular\" or \"pointed\" (a horizontal springing joint on the corners)")));
+    }
+    if p.arch.backfill.is_some() {
+        return Err(Error::input_at(format!("{what}.backfill"), format!("{what}: a backfill over the webs is not modelled")));
+    }
+    let piers = courses_of(&p.arch.springing);
+    check_count(what, 4.0 * (p.arch.voussoirs + piers) as f64)?;
+    let section = arch(&p.arch).map_err(|e| e.renamed("geometry.arch", what))?;
+    let n = section.blocks.len() - 2 * piers;
+    let a = section.extrados[0][0].abs();
+    let tol = contact_tolerance(2.0 * a);
+    // the web over y > 0: each voussoir's prism from the centre to the bay's side, clipped by
+    // the groins (kept: y >= x and y >= -x)
+    let mut web = Vec::with_capacity(n);
+    for (k, q) in section.blocks[..n].iter().enumerate() {
+        let prism = Polyhedron::prism(q.vertices(), [0.0, a]);
+        let block = prism.clip([1.0, -1.0, 0.0], 0.0, tol).and_then(|b| b.clip([-1.0, -1.0, 0.0], 0.0, tol));
+        web.push(block.ok_or_else(|| {
+            Error::input_at(format!("{what}.voussoirs"), format!("{what}: voussoir {k} of a web has no volume between the groins: fewer voussoirs or a thicker shell"))
+        })?);
+    }
+    // turned by quarter turns about z, exactly: (x, y) -> (-y, x)
+    let turn = |b: &Polyhedron, quarters: usize| b.map(|v| (0..quarters).fold(v, |[x, y, z], _| [-y, x, z]));
+    let mut blocks: Vec<Polyhedron> = (0..4).flat_map(|q| web.iter().map(move |b| turn(b, q))).collect();
+    // the right abutment, or the right pier's courses, as squares at the corner +x +y
+    let right = match p.arch.springing {
+        Springing::Abutments { .. } => &section.supports[1..],
+        Springing::Piers { .. } => &section.blocks[n + piers..],
+    };
+    let squares: Vec<Polyhedron> = right
+        .iter()
+        .map(|q| {
+            let b = q.aabb();
+            Polyhedron::cuboid([b.min[0], b.min[0], b.min[1]], [b.max[0], b.max[0], b.max[1]])
+        })
+        .collect();
+    let corners = (0..4).flat_map(|q| squares.iter().map(move |b| turn(b, q)));
+    if piers == 0 {
+        return Ok(Vaulted { blocks, supports: corners.collect() });
+    }
+    blocks.extend(corners);
+    Ok(Vaulted { blocks, supports: vec![] })
 }
 
 fn courses_of(s: &Springing) -> usize {

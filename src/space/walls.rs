@@ -1,6 +1,6 @@
 //! Generators of 3D walls of boxes: a single leaf in running bond, a U (a facade with two
-//! return walls) and an L (a facade with one return), bonded at the corners, and openings cut
-//! out of a facade.
+//! return walls) and an L (a facade with one return), bonded at the corners, a wall with
+//! buttresses, and openings cut out of a facade.
 //!
 //! Every course is laid along its wall with head joints every `block_length`, half a block
 //! apart from one course to the next. No piece thinner than [`MIN_PART`] of a block is made: a
@@ -159,6 +159,94 @@ fn bonded(what: &str, args: [f64; 6], right: bool) -> Result<Vec<Box3>> {
                 out.push(Box3::new(f - t, y0, z0, f, y1, z1));
             }
         }
+    }
+    Ok(out)
+}
+
+/// Parameters of a buttressed wall (case format `[geometry.buttressed_wall]`), lengths in m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ButtressedWall {
+    /// The wall along x, from x = 0.
+    pub length: f64,
+    /// The wall's and the buttresses' height (courses as [`running_bond_3d`]'s).
+    pub height: f64,
+    /// The wall's thickness, y in `[0, thickness]`.
+    pub thickness: f64,
+    /// A whole block's length along the wall.
+    pub block_length: f64,
+    /// A course's height.
+    pub block_height: f64,
+    /// The buttresses' spacing, axis to axis: their axes at x = `spacing` (k + 1/2).
+    pub spacing: f64,
+    /// A buttress's width along the wall.
+    pub buttress_width: f64,
+    /// A buttress's depth out of the wall's face y = 0, y in `[-buttress_depth, 0]`.
+    pub buttress_depth: f64,
+    /// Bonded: in every other course (the lowest, the third, ...) the buttress's block runs
+    /// through the wall (y from `-buttress_depth` to `thickness`) and the wall's course stops
+    /// against it; in the others the wall's course runs on behind the buttress. Not bonded: the
+    /// buttresses are columns of blocks against the wall's face.
+    pub bonded: bool,
+}
+
+/// A wall in running bond (as [`running_bond_3d`]'s: the lowest course starts with a whole
+/// block at x = 0, the next with a half) with buttresses against its face y = 0, each a column
+/// of one block per course, `buttress_width` x `buttress_depth`, their axes at x = `spacing`
+/// (k + 1/2) for every k whose buttress ends 5% of a block ([`MIN_PART`]) short of the wall's
+/// end at least; bonded to the wall or not ([`ButtressedWall::bonded`]). The blocks course by
+/// course from the bottom, each course the wall's pieces along +x, then the buttresses'.
+/// Refusals name their key, `buttressed_wall.*`: a length not positive, a spacing less than
+/// the buttress's width and 10% of a block (the wall between two buttresses, or at an end, is
+/// a piece 5% of a block long at least), a wall too short for one buttress.
+///
+/// ```
+/// use masonry_dem::space::{buttressed_wall, ButtressedWall};
+/// let p = ButtressedWall { length: 2.4, height: 0.6, thickness: 0.2, block_length: 0.4, block_height: 0.2,
+///     spacing: 1.2, buttress_width: 0.4, buttress_depth: 0.4, bonded: true };
+/// let blocks = buttressed_wall(&p).unwrap();
+/// let volume: f64 = blocks.iter().map(|b| b.volume()).sum();
+/// assert!((volume - (2.4 * 0.2 + 2.0 * 0.4 * 0.4) * 0.6).abs() < 1e-12);
+/// ```
+pub fn buttressed_wall(p: &ButtressedWall) -> Result<Vec<Box3>> {
+    let what = "buttressed_wall";
+    let names = ["length", "height", "thickness", "block_length", "block_height", "spacing", "buttress_width", "buttress_depth"];
+    let args = [p.length, p.height, p.thickness, p.block_length, p.block_height, p.spacing, p.buttress_width, p.buttress_depth];
+    for (name, v) in names.iter().zip(args) {
+        positive(&format!("{what}.{name}"), v)?;
+    }
+    let [length, height, t, l, bh, s, bw, d] = args;
+    let m = MIN_PART * l;
+    if s < bw + 2.0 * m {
+        return Err(Error::input_at(
+            format!("{what}.spacing"),
+            format!("{what}.spacing = {s} m must exceed buttress_width = {bw} m by {} of block_length at least (the wall between two buttresses)", 2.0 * MIN_PART),
+        ));
+    }
+    check_count(what, (length / l + 2.0 + 2.0 * length / s) * (height / bh + 1.0))?;
+    let axes: Vec<f64> = (0..).map(|k| s * (k as f64 + 0.5)).take_while(|&a| a + 0.5 * bw + m <= length).collect();
+    if axes.is_empty() {
+        return Err(Error::input_at(
+            format!("{what}.length"),
+            format!("{what}.length = {length} m holds no buttress: the first, at x = spacing / 2 = {} m, ends at {} m, not 5% of a block short of the wall's end", 0.5 * s, 0.5 * (s + bw)),
+        ));
+    }
+    let mut out = vec![];
+    for (k, (z0, z1)) in courses(what, height, bh)?.into_iter().enumerate() {
+        let through = p.bonded && k % 2 == 0;
+        let phase = if k % 2 == 0 { 0.0 } else { 0.5 * l };
+        // the wall's stretches: between the buttresses where they run through it, else whole
+        let mut ends = vec![0.0];
+        if through {
+            ends.extend(axes.iter().flat_map(|&a| [a - 0.5 * bw, a + 0.5 * bw]));
+        }
+        ends.push(length);
+        for w in ends.chunks(2) {
+            for (x0, x1) in pieces(w[0], w[1], l, phase, m, m) {
+                out.push(Box3::new(x0, 0.0, z0, x1, t, z1));
+            }
+        }
+        let back = if through { t } else { 0.0 };
+        out.extend(axes.iter().map(|&a| Box3::new(a - 0.5 * bw, -d, z0, a + 0.5 * bw, back, z1)));
     }
     Ok(out)
 }

@@ -4,6 +4,7 @@
 use masonry_dem::geometry::{polygons, running_bond, FirstCourse, Rect, RunningBond};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::model::{JointLaws, Model, ModelSpec};
+use masonry_dem::results::Status;
 
 /// Dry joints with friction mu and dilatancy psi (tan), stiffness k (N/m3) normal and shear.
 pub fn dry(mu: f64, psi: f64, k: f64) -> JointLaw {
@@ -32,6 +33,16 @@ pub fn ferris_blocks(courses: usize) -> Vec<Rect> {
         openings: vec![],
     })
     .unwrap()
+}
+
+/// Whether a limit analysis with the live load along gravity says the blocks stand under their
+/// weight (`Unbounded`: any multiple of it) or not (`NoEquilibrium`); any other status fails.
+pub fn stands(status: Status) -> bool {
+    match status {
+        Status::Unbounded => true,
+        Status::NoEquilibrium => false,
+        s => panic!("{s:?}"),
+    }
 }
 
 /// |got - want| <= rel * |want|, with a message.

@@ -1,7 +1,7 @@
-"""Vaults and domes of convex polyhedra against an independent linear program: the static theorem written here from
-the model's contacts (their blocks, frames and corners) and the blocks' weights and centroids, with a friction
-pyramid of many sides at each corner in place of Coulomb's cone, solved by HiGHS (scipy.optimize.linprog), not by
-the product's interior point.
+"""Vaults and domes of convex polyhedra (a barrel vault, a dome, a cross vault) against an independent linear program:
+the static theorem written here from the model's contacts (their blocks, frames and corners) and the blocks' weights
+and centroids, with a friction pyramid of many sides at each corner in place of Coulomb's cone, solved by HiGHS
+(scipy.optimize.linprog), not by the product's interior point.
 
 The program, for the blocks free to move (the wall's; the base and the supports fixed):
 - at each corner p of each contact (normal n from block a into block b, tangents t1, t2), the force on b
@@ -142,3 +142,42 @@ def test_the_least_thickness_of_a_hemispherical_dome_agrees_with_the_independent
     r = m.solve_limit(tolerance=1e-10)
     inner, outer = independent_lambda(m, mu, sides, False), independent_lambda(m, mu, sides, True)
     assert inner * (1 - 1e-7) <= r.collapse_multiplier <= outer * (1 + 1e-7), (inner, r.collapse_multiplier, outer)
+
+
+def test_a_cross_vault_lies_between_the_pyramids_pushed_and_under_its_weight() -> None:
+    # a semicircular cross vault on its four corner supports (R = 1 m, the centreline's radius), its voussoirs cut at
+    # the groins: pushed along x and at 45 deg, the product's multiplier lies between the inscribed and circumscribed
+    # pyramids' (of 64 sides: the bracket within 1%); under its own weight (16 voussoirs, friction 10: no joint
+    # slides), its least thickness between theirs (about 0.069 R, where the three agree within 1%)
+    mu, sides = 0.6, 64
+
+    def model(t: float, n: int, friction: float, direction: float = 0.0) -> Any:
+        v = md.cross_vault("semicircular", t, n, radius=1.0)
+        return md.Model3D(polyhedra=v["polyhedra"], supports=v["supports"], base=False, gravity=GRAVITY,
+                          joints=joints(friction), direction=direction)
+
+    for direction in (0.0, 45.0):
+        m = model(0.2, 9, mu, direction)
+        r = m.solve_limit(tolerance=1e-10)
+        assert r.status == "collapse", r.error
+        inner, outer = independent_lambda(m, mu, sides, outer=False), independent_lambda(m, mu, sides, outer=True)
+        assert inner * (1 - 1e-7) <= r.collapse_multiplier <= outer * (1 + 1e-7), (inner, r.collapse_multiplier, outer)
+        assert outer / inner - 1 < 0.01, (inner, outer)
+
+    friction, sides = 10.0, 12
+
+    def product(t: float) -> bool:
+        r = model(t, 16, friction).solve_limit(along_gravity=True)
+        assert r.status in ("unbounded", "no_equilibrium"), (t, r.status, r.error)
+        return bool(r.status == "unbounded")
+
+    def independent(outer: bool) -> Any:
+        return lambda t: independent_lambda(model(t, 16, friction), friction, sides, outer) >= 0
+
+    t_product = _least(product, 0.03, 0.12, 2e-3)
+    t_inner = _least(independent(False), 0.03, 0.12, 2e-3)
+    t_outer = _least(independent(True), 0.03, 0.12, 2e-3)
+    assert t_outer * (1 - 2e-3) <= t_product <= t_inner * (1 + 2e-3), (t_outer, t_product, t_inner)
+    assert t_inner / t_outer - 1 < 0.02, (t_outer, t_inner)
+    # thinner than the semicircular arch's least thickness, 0.1075 R (tests/arch_thickness.rs): the groins carry it
+    assert t_inner < 0.1

@@ -61,7 +61,8 @@ RECTANGLE_KINDS = GEOMETRY_KINDS[:4]
 # inclined plane), as polygons
 SUPPORT_KEYS = ("supports",)
 # The [geometry] forms of a 3D wall (masonry_dem.space.case): any of them makes the case 3D
-GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner", "polyhedra", "barrel_vault", "dome")
+GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner", "buttressed_wall", "polyhedra", "barrel_vault", "cross_vault",
+                     "dome")
 # Keys of [geometry] besides its kinds: the wall's, and the options of a drawing (dxf)
 DXF_KEYS = ("dxf_layer", "dxf_units")
 RUNNING_BOND_KEYS = ("block_length", "block_height", "courses", "height", "length", "first_course", "openings")

@@ -11,14 +11,17 @@ files, command line and result file.
   pushover (load control) and ``Model3D.simulate()`` a time history (initial conditions, base accelerations along
   x, y and z), with the names and keywords of ``Model``'s.
 * Generators, each returning an (n, 6) array of boxes [m]: :func:`running_bond_3d` (a single leaf in running bond),
-  :func:`u_wall` (a facade with two bonded return walls), :func:`corner_wall` (with one), :func:`cut_openings`
+  :func:`u_wall` (a facade with two bonded return walls), :func:`corner_wall` (with one), :func:`buttressed_wall`
+  (a wall with buttresses, bonded to it or not), :func:`cut_openings`
   (openings [x0, z0, x1, z1] through a facade); and of convex polyhedra, each returning a dict of ``polyhedra`` and
   ``supports`` (vertex lists [m], ``Model3D(polyhedra=..., supports=...)``): :func:`barrel_vault` (the plane's arch
-  extruded along its axis in staggered courses, on abutments or walls), :func:`dome` (of meridian and parallel
-  joints).
+  extruded along its axis in staggered courses, on abutments or walls), :func:`cross_vault` (two barrels crossing
+  over a square bay, their voussoirs cut at the groins, on four corner supports), :func:`dome` (of meridian and
+  parallel joints).
 * :mod:`.case`: the case files' 3D tables (``[geometry] boxes``, ``polyhedra``, ``supports``, ``[geometry.leaf]``,
-  ``[geometry.u_wall]``, ``[geometry.corner]``, ``[geometry.barrel_vault]``, ``[geometry.dome]``, ``[top] height``,
-  ``[loads] direction``, ``[ground_motion] direction``; docs/case-format.md, "3D walls").
+  ``[geometry.u_wall]``, ``[geometry.corner]``, ``[geometry.buttressed_wall]``, ``[geometry.barrel_vault]``,
+  ``[geometry.cross_vault]``, ``[geometry.dome]``, ``[top] height``, ``[loads] direction``, ``[ground_motion]
+  direction``; docs/case-format.md, "3D walls").
 * :mod:`.plot` (matplotlib's mplot3d, imported on first use): :func:`plot_mechanism_3d` (the mechanism or the
   deformed shape), :func:`mechanism_figure`, :func:`plot_contacts_3d` (the contacts by state), :func:`contacts_figure`,
   :func:`plot_mode_3d` and :func:`modes_figure_3d` (the natural modes, ``masonry_dem.plot_modes`` of a 3D model).
@@ -41,7 +44,17 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from .model import Model3D, barrel_vault, corner_wall, cut_openings, dome, running_bond_3d, u_wall
+from .model import (
+    Model3D,
+    barrel_vault,
+    buttressed_wall,
+    corner_wall,
+    cross_vault,
+    cut_openings,
+    dome,
+    running_bond_3d,
+    u_wall,
+)
 
 if TYPE_CHECKING:
     from .export import write_vtk
@@ -53,8 +66,10 @@ __all__ = [
     "running_bond_3d",
     "u_wall",
     "corner_wall",
+    "buttressed_wall",
     "cut_openings",
     "barrel_vault",
+    "cross_vault",
     "dome",
     "plot_mechanism_3d",
     "mechanism_figure",

@@ -1,8 +1,10 @@
 """Case files of 3D walls (docs/case-format.md, "3D walls"): the [geometry] forms that make a case 3D (``boxes``
-and the tables ``leaf``, ``u_wall``, ``corner``, ``barrel_vault``, ``dome``), the 3D keys of the other tables ([top]
-height, [loads] direction; [ground_motion] direction and [time_history], which the reader reads), the methods a 3D case takes (:data:`METHODS_3D`: limit analysis, and the explicit
-solver's quasi-static pushover with the [analysis] keys of 2D), the refusals of what the 3D model does not take in this version (the static
-solver, displacement control, Rayleigh damping, the 2D keys that have no meaning there), and :class:`ModelParameters3D`, the arguments of :class:`masonry_dem.Model3D` that a
+and the tables ``leaf``, ``u_wall``, ``corner``, ``buttressed_wall``, ``barrel_vault``, ``cross_vault``, ``dome``),
+the 3D keys of the other tables ([top] height, [loads] direction; [ground_motion] direction and [time_history], which
+the reader reads), the methods a 3D case takes (:data:`METHODS_3D`: limit analysis, and the explicit solver's
+quasi-static pushover with the [analysis] keys of 2D), the refusals of what the 3D model does not take in this
+version (the static solver, displacement control, Rayleigh damping, limit analysis along the mechanism, the 2D keys
+that have no meaning there), and :class:`ModelParameters3D`, the arguments of :class:`masonry_dem.Model3D` that a
 :class:`masonry_dem.case.Case` of a 3D wall holds.
 
 :mod:`masonry_dem.case.reader` reads every case file and hands a 3D one to :func:`case_from_tables` once its
@@ -39,6 +41,7 @@ __all__ = [
     "SOLID_KEYS",
     "LEAF_KEYS",
     "BONDED_KEYS",
+    "BUTTRESSED_KEYS",
     "METHODS_3D",
     "IN_3D",
     "LOAD_CONTROL_3D",
@@ -53,27 +56,34 @@ __all__ = [
 
 #: The [geometry] forms of a 3D wall: an explicit list of boxes, the generators' tables (of boxes, and of a vault's
 #: or a dome's polyhedra), and a list of convex polyhedra (alone or beside boxes).
-GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner", "polyhedra", "barrel_vault", "dome")
+GEOMETRY_KINDS_3D = ("boxes", "leaf", "u_wall", "corner", "buttressed_wall", "polyhedra", "barrel_vault", "cross_vault",
+                     "dome")
 #: Keys of [geometry.leaf]: a single leaf in running bond.
 LEAF_KEYS = ("length", "height", "thickness", "block_length", "block_height", "first_course", "openings")
 #: Keys of [geometry.u_wall] and [geometry.corner]: a facade with two return walls, or one.
 BONDED_KEYS = ("facade", "height", "returns", "thickness", "block_length", "block_height", "openings")
+#: Keys of [geometry.buttressed_wall]: a wall with buttresses, its lengths [m], then whether they are bonded.
+BUTTRESSED_KEYS = ("length", "height", "thickness", "block_length", "block_height", "spacing", "buttress_width",
+                   "buttress_depth", "bonded")
 
 #: The [geometry] keys of convex polyhedra given by their vertices: wall blocks, and fixed ones.
 SOLID_KEYS = ("polyhedra", "supports")
-#: Keys of [geometry.barrel_vault] (``masonry_dem.barrel_vault``) and [geometry.dome] (``masonry_dem.dome``): their
-#: lengths [m], then their counts.
+#: Keys of [geometry.barrel_vault] (``masonry_dem.barrel_vault``), [geometry.cross_vault] (``masonry_dem.cross_vault``)
+#: and [geometry.dome] (``masonry_dem.dome``): their lengths [m], then their counts.
 VAULT_LENGTHS = {
     "barrel_vault": ("span", "radius", "rise", "thickness", "length", "block_length", "abutment_width",
                      "abutment_height", "pier_width", "pier_height"),
+    "cross_vault": ("span", "radius", "rise", "thickness", "abutment_width", "abutment_height", "pier_width",
+                    "pier_height"),
     "dome": ("span", "radius", "rise", "thickness"),
 }
-VAULT_COUNTS = {"barrel_vault": ("voussoirs", "pier_courses"), "dome": ("meridians", "parallels")}
+VAULT_COUNTS = {"barrel_vault": ("voussoirs", "pier_courses"), "cross_vault": ("voussoirs", "pier_courses"),
+                "dome": ("meridians", "parallels")}
 VAULT_KINDS = {"barrel_vault": ("semicircular", "segmental", "pointed", "elliptical"),
-               "dome": ("hemispherical", "pointed")}
+               "cross_vault": ("semicircular", "pointed"), "dome": ("hemispherical", "pointed")}
 
 # The core's generator of each [geometry] table, and the name its messages give the table.
-_GENERATORS = {"leaf": "running_bond_3d", "u_wall": "u_wall", "corner": "corner"}
+_GENERATORS = {"leaf": "running_bond_3d", "u_wall": "u_wall", "corner": "corner", "buttressed_wall": "buttressed_wall"}
 
 
 # --------------------------------------------------------------------------------------------------
@@ -96,6 +106,14 @@ def read_geometry(geo: _Table, kind: str) -> Dict[str, Any]:
         return dict(boxes=_boxes(geo) if "boxes" in geo else [], **solids)
     if kind in VAULT_LENGTHS:
         return _vault(geo, kind)
+    if kind == "buttressed_wall":
+        table = geo.table(kind, BUTTRESSED_KEYS)
+        assert table is not None
+        args = {name: table.number(name, check=_positive, unit="length") for name in BUTTRESSED_KEYS[:-1]}
+        bonded = table.data.get("bonded", True)
+        if not isinstance(bonded, bool):
+            raise table.key_error("bonded", f"expected true or false, {_got(bonded)}")
+        return dict(args, bonded=bonded, **solids)
     if kind == "leaf":
         table = geo.table("leaf", LEAF_KEYS)
         assert table is not None
@@ -123,26 +141,28 @@ def check_hulls(geometry: Mapping[str, Any], source: str) -> None:
 
 
 def _vault(geo: _Table, kind: str) -> Dict[str, Any]:
-    """[geometry.barrel_vault] or [geometry.dome]: the arguments of the core's generator, each checked alone (a length
-    > 0, with its unit or not; a count >= 1; the kind); how they go together is the generator's to check, its
-    messages naming the key."""
+    """[geometry.barrel_vault], [geometry.cross_vault] or [geometry.dome]: the arguments of the core's generator, each
+    checked alone (a length > 0, with its unit or not; a count >= 1; the kind); how they go together is the
+    generator's to check, its messages naming the key."""
     table = geo.table(kind, ("kind",) + VAULT_LENGTHS[kind] + VAULT_COUNTS[kind])
     assert table is not None
     args: Dict[str, Any] = {"kind": table.string("kind", choices=VAULT_KINDS[kind])}
     args.update({key: table.number(key, None, _positive, unit="length") for key in VAULT_LENGTHS[kind]})
     args.update({key: table.integer(key, None, minimum=1) for key in VAULT_COUNTS[kind]})
-    for key in ("thickness",) + (("voussoirs", "length") if kind == "barrel_vault" else VAULT_COUNTS[kind]):
+    required = {"barrel_vault": ("voussoirs", "length"), "cross_vault": ("voussoirs",)}.get(kind, VAULT_COUNTS[kind])
+    for key in ("thickness",) + required:
         if args[key] is None:
             raise table.missing(key)
     return args
 
 
 def generate_polyhedra(kind: str, arguments: Mapping[str, Any], source: str) -> Dict[str, Any]:
-    """The polyhedra and supports (vertex lists) of a checked [geometry.barrel_vault] or [geometry.dome]; the core's
-    refusals get the file name in front."""
+    """The polyhedra and supports (vertex lists) of a checked [geometry.barrel_vault], [geometry.cross_vault] or
+    [geometry.dome]; the core's refusals get the file name in front."""
     given = {key: value for key, value in arguments.items() if value is not None}
     try:
-        return dict({"barrel_vault": _core.barrel_vault, "dome": _core.dome}[kind](**given))
+        made = {"barrel_vault": _core.barrel_vault, "cross_vault": _core.cross_vault, "dome": _core.dome}[kind]
+        return dict(made(**given))
     except MasonryError as exc:
         again = type(exc)(f"{source}: {exc}")
         if isinstance(exc, InputError):
@@ -205,7 +225,8 @@ def generate_boxes(kind: str, arguments: Mapping[str, Any], source: str) -> np.n
     if kind in ("boxes", "polyhedra"):
         return np.asarray(arguments["boxes"], dtype=np.float64).reshape(-1, 6)
     given = {key: value for key, value in arguments.items() if value is not None and key not in SOLID_KEYS}
-    make = {"leaf": _core.running_bond_3d, "u_wall": _core.u_wall, "corner": _core.corner_wall}[kind]
+    make = {"leaf": _core.running_bond_3d, "u_wall": _core.u_wall, "corner": _core.corner_wall,
+            "buttressed_wall": _core.buttressed_wall}[kind]
     try:
         return np.asarray(make(**given), dtype=np.float64).reshape(-1, 6)
     except MasonryError as exc:

@@ -1,5 +1,5 @@
 """The user-facing 3D model and generators: :class:`Model3D` and ``running_bond_3d``, ``u_wall``,
-``corner_wall``, ``cut_openings``, ``barrel_vault``, ``dome`` (the core's, in ``masonry_dem._core``), with a wrong
+``corner_wall``, ``buttressed_wall``, ``cut_openings``, ``barrel_vault``, ``cross_vault``, ``dome`` (the core's, in ``masonry_dem._core``), with a wrong
 argument type reported as :class:`masonry_dem.InputError` naming the function and the argument, as
 :mod:`masonry_dem._checked` does in 2D.
 
@@ -26,7 +26,8 @@ from .. import _core
 from .._checked import input_errors, refuse_booleans
 from .._core import InputError
 
-__all__ = ["Model3D", "running_bond_3d", "u_wall", "corner_wall", "cut_openings", "barrel_vault", "dome"]
+__all__ = ["Model3D", "running_bond_3d", "u_wall", "corner_wall", "buttressed_wall", "cut_openings", "barrel_vault",
+           "cross_vault", "dome"]
 
 #: The methods of a case that a 3D wall takes: limit analysis and the explicit solver (quasi-static, load control).
 METHODS_3D = ("limit", "dynamic")
@@ -58,8 +59,10 @@ def _real_boxes(func: str, boxes: Any, others: bool = False) -> None:
 running_bond_3d = input_errors(_core.running_bond_3d, "running_bond_3d")
 u_wall = input_errors(_core.u_wall, "u_wall")
 corner_wall = input_errors(_core.corner_wall, "corner_wall")
+buttressed_wall = input_errors(_core.buttressed_wall, "buttressed_wall")
 cut_openings = input_errors(_core.cut_openings_3d, "cut_openings")
 barrel_vault = input_errors(_core.barrel_vault, "barrel_vault")
+cross_vault = input_errors(_core.cross_vault, "cross_vault")
 dome = input_errors(_core.dome, "dome")
 
 
