@@ -29,6 +29,20 @@ fn run(model: &Model, duration: f64, update: bool) -> TimeHistory {
     simulate(model, &opts).unwrap()
 }
 
+/// The block of [`on_slope`] at rest: at the displacement at which its joint with the plane
+/// carries its weight, elastically (the normal force's resultant under the block's centroid),
+/// from where the time history starts.
+fn at_rest(model: &Model, b: f64, h: f64, psi: f64) -> Vec<[f64; 3]> {
+    let (s, c) = psi.to_radians().sin_cos();
+    let w = model.weight()[0];
+    let (kn, area, inertia) = (1e7, b * 1.0, b.powi(3) / 12.0);
+    let (dn, dt, phi) = (w * c / (kn * area), w * s / (kn * area), -(0.5 * h) * w * s / (kn * inertia));
+    // along the plane (t, down) and its normal (n, up): the joint's centre moved by (dt, -dn),
+    // the block turned by phi about it
+    let along = dt - phi * 0.5 * h;
+    vec![[along * c + dn * -s, -along * s - dn * c, phi], [0.0; 3]]
+}
+
 /// The block's displacement along the slope (down positive) at each record.
 fn along(h: &TimeHistory, psi: f64) -> Vec<f64> {
     let (s, c) = psi.to_radians().sin_cos();
@@ -82,4 +96,32 @@ fn quadratic(pts: &[(f64, f64)]) -> [f64; 3] {
         }
     }
     [m[0][3] / m[0][0], m[1][3] / m[1][1], m[2][3] / m[2][2]]
+}
+
+#[test]
+fn the_stable_block_stays_and_the_toppling_one_topples() {
+    // stable: h = 10 m, friction 40.1 degrees on a 40-degree plane (b / h = 1 > tan 40)
+    let model = on_slope(10.0, 10.0, 40.0, 40.1, 60.0, 2.0);
+    let opts = DynamicOptions { duration: 3.0, record: Recording::Interval(0.01), initial_displacement: Some(at_rest(&model, 10.0, 10.0, 40.0)), ..DynamicOptions::default() };
+    let h = simulate(&model, &opts).unwrap();
+    let s = along(&h, 40.0);
+    let last = h.times.len() - 1;
+    let v = h.velocity(last)[0];
+    eprintln!("stable: slid {} m, speed {}", s[last] - s[0], v[0].hypot(v[1]));
+    assert!((s[last] - s[0]).abs() < 1e-3 && v[0].hypot(v[1]) < 1e-6, "slid {} m", s[last] - s[0]);
+    // toppling: h = 25 m, friction 40 degrees on a 30-degree plane (b / h = 0.4 < tan 30): it turns
+    // about its downhill toe, without sliding first, and falls over
+    let model = on_slope(10.0, 25.0, 30.0, 40.0, 80.0, 2.0);
+    let h = run(&model, 8.0, true);
+    assert_eq!(h.status, masonry_dem::results::Status::Completed, "{:?}", h.error);
+    let phi: Vec<f64> = (0..h.times.len()).map(|k| h.displacement(k)[0][2]).collect();
+    let s = along(&h, 30.0);
+    // the toe at rest on the plane while the block turns by a tenth of a radian
+    let k = phi.iter().position(|p| *p < -0.1).expect("it turns");
+    eprintln!("toppling: turned {} rad at the end, slid {} m at 0.1 rad, searches {}, contacts {:?}, speed {:?}", phi[last_of(&h)], s[k], h.contact_searches, h.contacts, h.velocity(last_of(&h))[0]);
+    assert!(phi[last_of(&h)] < -(10.0f64 / 25.0).atan() - 30f64.to_radians(), "{}", phi[last_of(&h)]);
+}
+
+fn last_of(h: &TimeHistory) -> usize {
+    h.times.len() - 1
 }

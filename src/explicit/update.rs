@@ -22,10 +22,10 @@
 //!   model's joints).
 //! - **Ground**: a fixed horizontal plane at the top of the base (where the wall stands), or,
 //!   without a base, at the lowest point of the model; it reaches beyond the box around every
-//!   block by that box's height on both sides, and is as deep. With a base it is two pieces, one
-//!   each side of the base, carried by the base's dofs; without one, a single piece carried by
-//!   the first support's (with neither, no ground). Its joints are base joints. Gravity along
-//!   -y only: with gravity turned the model has no ground.
+//!   block by that box's height on both sides. With a base it is the base widened so (as deep);
+//!   without one, a rectangle as deep as that box is high, carried by the first support's dofs
+//!   (with neither, no ground). Its joints are base joints. Gravity along -y only: with gravity
+//!   turned the model has no ground.
 
 use super::*;
 use crate::interface::BlockKind;
@@ -76,22 +76,22 @@ pub(crate) struct Update {
     pub(super) ground: Option<f64>,
 }
 
-/// The ground's pieces of `model` (see the module's notes) and the block that carries them.
-pub(super) fn ground(model: &Model) -> Option<(Vec<Polygon>, usize, f64)> {
+/// The ground of `model` (see the module's notes): its rectangle, the block that carries it, and
+/// whether it is that block (the base, widened) or a body of its own.
+pub(super) fn ground(model: &Model) -> Option<(Polygon, usize, bool)> {
     if model.gravity_direction() != [0.0, -1.0] {
         return None;
     }
     let all = model.polygons().iter().fold(Aabb::around(&[]), |b, p| b.union(&p.aabb()));
     let h = all.max[1] - all.min[1];
     let (x0, x1) = (all.min[0] - h, all.max[0] + h);
-    let rect = |a: f64, b: f64, top: f64| Polygon::new(vec![[a, top - h], [b, top - h], [b, top], [a, top]]);
+    let rect = |bottom: f64, top: f64| Polygon::new(vec![[x0, bottom], [x1, bottom], [x1, top], [x0, top]]);
     if let Some(base) = model.base() {
         let bb = model.polygons()[base].aabb();
-        let top = bb.max[1];
-        Some((vec![rect(x0, bb.min[0], top), rect(bb.max[0], x1, top)], base, top))
+        Some((rect(bb.min[1], bb.max[1]), base, true))
     } else {
         let anchor = model.supports().next()?;
-        Some((vec![rect(x0, x1, all.min[1])], anchor, all.min[1]))
+        Some((rect(all.min[1] - h, all.min[1]), anchor, false))
     }
 }
 
@@ -141,9 +141,12 @@ impl Update {
         let mut bodies = model.polygons().to_vec();
         let mut block: Vec<usize> = (0..model.n_blocks()).collect();
         let mut kind = model.kinds().to_vec();
-        let ground = ground(model).map(|(pieces, anchor, level)| {
-            for p in pieces {
-                bodies.push(p);
+        let ground = ground(model).map(|(rect, anchor, widened)| {
+            let level = rect.aabb().max[1];
+            if widened {
+                bodies[anchor] = rect;
+            } else {
+                bodies.push(rect);
                 block.push(anchor);
                 kind.push(BlockKind::Base);
             }
@@ -243,13 +246,18 @@ fn jumps(model: &Model, u: &[f64], a: usize, b: usize, arm: &Arm) -> ([f64; 3], 
 /// The centre of a contact of arm `arm` between blocks `a` and `b` at the displacements `u`:
 /// half-way between its points on the two blocks.
 fn centre(model: &Model, u: &[f64], a: usize, b: usize, arm: &Arm) -> [f64; 2] {
+    let (pa, pb) = points(model, u, a, b, arm);
+    [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])]
+}
+
+/// The points of a contact of arm `arm` on blocks `a` and `b` at the displacements `u`.
+fn points(model: &Model, u: &[f64], a: usize, b: usize, arm: &Arm) -> ([f64; 2], [f64; 2]) {
     let at = |i: usize, r: [f64; 2]| {
         let (g, d) = (model.centroids()[i], &u[3 * i..3 * i + 3]);
         let (sn, cs) = d[2].sin_cos();
         [g[0] + d[0] + cs * r[0] - sn * r[1], g[1] + d[1] + sn * r[0] + cs * r[1]]
     };
-    let (pa, pb) = (at(a, arm.ra), at(b, arm.rb));
-    [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])]
+    (at(a, arm.ra), at(b, arm.rb))
 }
 
 /// One contact after a search, before the integrator's arrays are rebuilt: the index of the
@@ -305,9 +313,11 @@ pub(super) fn search(s: &mut Integrator) {
                     kept[o] = true;
                     let g = &s.geo[o];
                     let arm = &s.arms[o];
-                    let c = centre(model, u, g.a(), g.b(), arm);
-                    let cf = [0.5 * (f.at[0][0] + f.at[1][0]), 0.5 * (f.at[0][1] + f.at[1][1])];
-                    let same = (c[0] - cf[0]).hypot(c[1] - cf[1]) <= up.travel && (arm.l - f.length).abs() <= up.travel;
+                    // the contact's points on its two blocks now, against those found
+                    let (pa, pb) = points(model, u, g.a(), g.b(), arm);
+                    let (fa, fb) = if g.a() == a { (f.at[0], f.at[1]) } else { (f.at[1], f.at[0]) };
+                    let near = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]) <= up.travel;
+                    let same = near(pa, fa) && near(pb, fb) && (arm.l - f.length).abs() <= up.travel;
                     let (a, b) = if same { (g.a(), g.b()) } else { (a, b) };
                     let family = s.shapes[g.shape as usize].family;
                     let arm = if same { None } else { fresh().map(|(arm, _)| (arm, family_of(family))) };
@@ -383,13 +393,18 @@ fn rebuild(s: &mut Integrator, up: &mut Update, next: &[Next], kept: &[bool]) {
                         let (e_old, _) = jumps(model, &s.m.u, g.a(), g.b(), &s.arms[o]);
                         h[..hw].copy_from_slice(&s.hist[hw * o..hw * (o + 1)]);
                         h[1] += e[1] - e_old[1];
-                        if g.a() != nx.a {
+                        let f = s.forces[o];
+                        if g.a() == nx.a {
+                            forces.push(f);
+                            warm.push(s.warm[o]);
+                        } else {
+                            // the blocks swapped: the relative rotation and the moment change sign
                             h[2] = -h[2];
+                            forces.push([f[0], f[1], -f[2]]);
+                            warm.push(0);
                         }
                         broken.push(s.broken[o]);
-                        forces.push([0.0; 3]);
                         flags.push(s.flags[o]);
-                        warm.push(0);
                         up.renewed += 1;
                     }
                     None => {

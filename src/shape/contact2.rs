@@ -135,13 +135,14 @@ pub struct Facing {
     /// The overlap's centre on the owner's edge and on the other's edge line, at the same place
     /// along the owner's edge \[m\].
     pub at: [[f64; 2]; 2],
-    /// The overlap's length along the owner's edge \[m\].
+    /// The overlap's length along the other's edge \[m\] (over the overlap along the owner's edge).
     pub length: f64,
     /// The other's edge's distance from the owner's edge at the centre, along `n` (negative where
     /// they overlap) \[m\].
     pub gap: f64,
     /// The angle of the other's edge against the owner's, reversed, counter-clockwise \[rad\]:
-    /// the gap at a point `s` along the tangent `(n_y, -n_x)` from the centre is `gap + s tan(angle)`.
+    /// the point of the other's edge `s` from the centre along it lies `gap + s sin(angle)` from
+    /// the owner's edge's line (`s` positive along the tangent `(n_y, -n_x)`).
     pub angle: f64,
 }
 
@@ -205,7 +206,9 @@ fn facing_pair(p: [[f64; 2]; 2], q: [[f64; 2]; 2], gap: f64, tol: f64) -> Option
     let t = [n[1], -n[0]];
     let eq = sub(q[1], q[0]);
     let angle = (t[0] * eq[1] - t[1] * eq[0]).atan2(dot(t, eq));
-    Some((Facing { owner: 0, edges: [0, 0], n, at: [on_p, on_q], length: hi - lo, gap: dot(sub(on_q, on_p), n), angle }, from_owner))
+    // the length along q: its ends then lie at the centre's distance +- length / 2 along q, whose
+    // gaps are those of the joint's ends, gap +- length / 2 sin(angle)
+    Some((Facing { owner: 0, edges: [0, 0], n, at: [on_p, on_q], length: (hi - lo) / angle.cos(), gap: dot(sub(on_q, on_p), n), angle }, from_owner))
 }
 
 /// The end of edge `e` farther from `x`.
