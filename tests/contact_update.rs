@@ -125,3 +125,58 @@ fn the_stable_block_stays_and_the_toppling_one_topples() {
 fn last_of(h: &TimeHistory) -> usize {
     h.times.len() - 1
 }
+
+/// A 0.4 m square block on a ledge 1 m above a lower step, its centroid 5 cm beyond the ledge's
+/// edge: it tips over the edge and falls onto the step (friction 0.6, dry, density 2000).
+fn ledge() -> Model {
+    let rect = |x0: f64, y0: f64, x1: f64, y1: f64| Polygon::new(vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]);
+    let law = JointLaw { friction: 0.6, normal_stiffness: 1e8, shear_stiffness: 1e8, cohesion: 0.0, tensile_strength: 0.0, ..JointLaw::default() };
+    Model::new(ModelSpec {
+        blocks: vec![rect(-0.15, 1.0, 0.25, 1.4)],
+        supports: vec![rect(-2.0, 0.0, 0.0, 1.0), rect(0.0, -0.5, 3.0, 0.0)],
+        base: false,
+        density: 2000.0,
+        joints: JointLaws::uniform(law),
+        ..ModelSpec::default()
+    })
+    .unwrap()
+}
+
+#[test]
+fn a_block_falling_off_a_ledge_comes_to_rest_on_the_step_below() {
+    let model = ledge();
+    let h = run(&model, 4.0, true);
+    assert_eq!(h.status, masonry_dem::results::Status::Completed, "{:?}", h.error);
+    let last = last_of(&h);
+    let (u, v) = (h.displacement(last)[0], h.velocity(last)[0]);
+    let g = model.centroids()[0];
+    let at = [g[0] + u[0], g[1] + u[1]];
+    // the energy balance: the weight's work (the potential energy lost) is the kinetic and
+    // elastic energies plus what the joints, the dashpots and the damping dissipated, to the
+    // integrator's error
+    let lost = h.gravity_work[last];
+    let error = h.energy_error[last];
+    eprintln!(
+        "at rest at {at:?} turned {:.4} rad, speed {:.2e}; potential lost {lost:.2} J, dissipated {:.2} J (friction {:.2}, impacts {:.2}), kinetic {:.2e} J, elastic {:.2e} J, error {error:.3e} J; searches {}, created {}, dropped {}, renewed {}; {:?}",
+        u[2], v[0].hypot(v[1]), h.dissipated[last], h.friction_dissipation[last], h.impact_dissipation[last], h.kinetic_energy[last], h.elastic_energy[last],
+        h.contact_searches, h.contacts_created, h.contacts_dropped, h.contacts_renewed, h.contacts
+    );
+    // on the step: its centroid half its side above the step's top, beyond the ledge, at rest
+    assert!((at[1] - 0.2).abs() < 1e-3 && at[0] > 0.2, "{at:?}");
+    assert!(v[0].hypot(v[1]) < 1e-3 && h.kinetic_energy[last] < 1e-4 * lost, "{v:?}");
+    // the drop of its centroid, 1 m, is the potential energy lost
+    assert!((lost / (model.weight()[0] * (g[1] - at[1])) - 1.0).abs() < 1e-9);
+    assert!(error.abs() < 0.01 * lost, "energy balance off by {error:.3e} J of {lost:.3e} J");
+    // its contact with the step (support 1, block 2) was made by the update, closed
+    assert!(h.contacts_created >= 1);
+    let on_step: Vec<_> = h.contacts.iter().filter(|c| c.blocks.contains(&2) && c.blocks.contains(&0)).collect();
+    assert!(!on_step.is_empty() && on_step.iter().all(|c| c.gap < 0.0 && c.normal[1].abs() > 0.999), "{:?}", h.contacts);
+    // without the update the block keeps its one joint, with the ledge, whose line runs on past
+    // the ledge's edge, and has none with the step: it turns about the edge past a right angle
+    // and the run leaves the model's range, the step never reached
+    let h = run(&model, 4.0, false);
+    let lowest = (0..h.times.len()).map(|k| g[1] + h.displacement(k)[0][1]).fold(f64::INFINITY, f64::min);
+    eprintln!("without the update: {:?}, the centroid's lowest y = {lowest}", h.error);
+    assert_eq!(h.status, masonry_dem::results::Status::Failed);
+    assert!(h.error.as_deref().is_some_and(|e| e.contains("left the model's range")) && lowest > 0.5, "{lowest}");
+}

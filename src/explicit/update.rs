@@ -74,6 +74,8 @@ pub(crate) struct Update {
     pub(super) dropped_dissipation: (f64, f64),
     /// the ground's level \[m\], if the model has one
     pub(super) ground: Option<f64>,
+    /// a time history's: each interface has its contact dashpot
+    dashpots: bool,
 }
 
 /// The ground of `model` (see the module's notes): its rectangle, the block that carries it, and
@@ -177,6 +179,7 @@ impl Update {
             renewed: 0,
             dropped_dissipation: (0.0, 0.0),
             ground,
+            dashpots: !s.dynm.is_empty(),
         }
     }
 
@@ -370,8 +373,8 @@ fn rebuild(s: &mut Integrator, up: &mut Update, next: &[Next], kept: &[bool]) {
                 forces.push(s.forces[o]);
                 flags.push(s.flags[o]);
                 warm.push(s.warm[o]);
-                if let Some(d) = s.dynm.get(o) {
-                    dynm.push(*d);
+                if up.dashpots {
+                    dynm.push(s.dynm[o]);
                 }
             }
             (old, Some((arm, family))) => {
@@ -420,7 +423,7 @@ fn rebuild(s: &mut Integrator, up: &mut Update, next: &[Next], kept: &[bool]) {
                 hist.extend_from_slice(&h[..hw]);
                 fresh.push((geo.len() - 1, old));
                 // a placeholder until the arrays are in place (see below)
-                if !s.dynm.is_empty() {
+                if up.dashpots {
                     dynm.push(Dyn::default());
                 }
             }
@@ -430,7 +433,7 @@ fn rebuild(s: &mut Integrator, up: &mut Update, next: &[Next], kept: &[bool]) {
     let old_dynm = std::mem::take(&mut s.dynm);
     (s.geo, s.arms, s.sections, s.hist, s.broken, s.forces, s.flags, s.warm, s.dynm) = (geo, arms, sections, hist, broken, forces, flags, warm, dynm);
     up.keys = keys;
-    if !s.dynm.is_empty() {
+    if up.dashpots {
         for (k, old) in fresh {
             let mut d = s.dashpot_of(k);
             if let Some(o) = old {

@@ -148,12 +148,18 @@ pub struct Facing {
 
 /// Every pair of an edge of `a` and an edge of `b` whose outward normals are opposed within 60
 /// degrees, that overlap along the owner's edge over more than `tol` \[m\], with the nearer end of
-/// the overlap no farther apart than `gap` \[m\] and the farther end not inside by more than it
-/// (see [`Facing`]). Two edges along one line make a contact of angle 0, as [`contacts`] does; a
+/// the overlap no farther apart than `gap` \[m\] and the farther end not inside the owner by half
+/// the depth of either polygon behind its edge (an edge that deep lies behind the other edge, not
+/// on it) (see [`Facing`]). Two edges along one line make a contact of angle 0, as [`contacts`] does; a
 /// vertex near an edge makes one with one of the two edges at the vertex (one of them faces the
 /// edge within 60 degrees for any vertex of an interior angle of 60 degrees or more).
 pub fn facing_edges(a: &Polygon, b: &Polygon, gap: f64, tol: f64) -> Vec<Facing> {
     let (va, vb) = (a.vertices(), b.vertices());
+    // how far each polygon reaches behind each of its edges
+    let depth = |v: &[[f64; 2]], k: usize| {
+        let m = outward([v[k], v[(k + 1) % v.len()]]);
+        v.iter().map(|&x| dot(sub(v[k], x), m)).fold(0.0, f64::max)
+    };
     let mut out = Vec::new();
     for i in 0..va.len() {
         let p = [va[i], va[(i + 1) % va.len()]];
@@ -162,10 +168,12 @@ pub fn facing_edges(a: &Polygon, b: &Polygon, gap: f64, tol: f64) -> Vec<Facing>
             if dot(outward(p), outward(q)) >= -0.5 {
                 continue;
             }
-            let Some((f, from_owner)) = facing_pair(p, q, gap, tol) else { continue };
+            // an edge deeper into the other polygon than half of either is behind it, not on it
+            let deep = 0.5 * depth(va, i).min(depth(vb, j));
+            let Some((f, from_owner)) = facing_pair(p, q, gap, deep, tol) else { continue };
             if from_owner {
                 // the owner's vertex bears on the other's edge: the other's edge gives the normal
-                if let Some((g, _)) = facing_pair(q, p, gap, tol) {
+                if let Some((g, _)) = facing_pair(q, p, gap, deep, tol) {
                     out.push(Facing { owner: 1, edges: [j, i], ..g });
                     continue;
                 }
@@ -178,7 +186,7 @@ pub fn facing_edges(a: &Polygon, b: &Polygon, gap: f64, tol: f64) -> Vec<Facing>
 
 /// The contact of edge `p` (the owner's) and edge `q`, facing, if they overlap along `p` and lie
 /// near (see [`facing_edges`]), with whether its closed end is bounded by a vertex of `p` alone.
-fn facing_pair(p: [[f64; 2]; 2], q: [[f64; 2]; 2], gap: f64, tol: f64) -> Option<(Facing, bool)> {
+fn facing_pair(p: [[f64; 2]; 2], q: [[f64; 2]; 2], gap: f64, deep: f64, tol: f64) -> Option<(Facing, bool)> {
     let n = outward(p);
     let len_p = dist(p[0], p[1]);
     let ta = [(p[1][0] - p[0][0]) / len_p, (p[1][1] - p[0][1]) / len_p];
@@ -192,7 +200,7 @@ fn facing_pair(p: [[f64; 2]; 2], q: [[f64; 2]; 2], gap: f64, tol: f64) -> Option
     // the height of q's line over p's at s along p
     let h = |s: f64| h0 + (h1 - h0) * (s - s0) / (s1 - s0);
     let (h_lo, h_hi) = (h(lo), h(hi));
-    if h_lo.min(h_hi) > gap || h_lo.max(h_hi) < -gap {
+    if h_lo.min(h_hi) > gap || h_lo.max(h_hi) < -deep {
         return None;
     }
     // which end is closed, and whether p's own vertex bounds it (q's does not)
