@@ -364,5 +364,5 @@ pub use stepper::{Stepper, Stepper3};
 pub(crate) use quasi_static::{relax_at_displacement, relax_dead_state};
 pub use quasi_static::{solve, solve_with};
 pub use space::{critical_time_step_3d, history_time_step_limit_3d, simulate_3d, simulate_3d_with, solve_3d, solve_3d_with};
-pub use update::{GAP_FRACTION};
+pub use update::{GAP_FRACTION, GROUND_REACH};
 pub use time_history::{history_time_step_limit, record_count, record_size, simulate, simulate_with};

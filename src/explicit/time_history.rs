@@ -527,7 +527,7 @@ fn out_of_range(s: &Integrator, u0: &[f64]) -> Option<String> {
     let model = s.model;
     let updating = s.update.is_some();
     // with the contact update a block may fall and tumble: only one that has left the ground is out
-    let size = if updating { 3.0 * model.size() } else { model.size() };
+    let size = if updating { (2.0 + update::GROUND_REACH) * model.size() } else { model.size() };
     let max_phi = if updating {
         f64::INFINITY
     } else if s.large {
@@ -538,7 +538,7 @@ fn out_of_range(s: &Integrator, u0: &[f64]) -> Option<String> {
     for i in 0..model.n_blocks() {
         let moved = (s.u[3 * i] - u0[3 * i]).hypot(s.u[3 * i + 1] - u0[3 * i + 1]);
         if moved > size {
-            let what = if updating { "three times the model's size" } else { "the wall's size" };
+            let what = if updating { "seven times the model's size" } else { "the wall's size" };
             return Some(format!("{} moved {moved:.3e} m, more than {what} ({size:.3e} m)", model.block_name(i)));
         }
         let phi = s.u[3 * i + 2] - u0[3 * i + 2];

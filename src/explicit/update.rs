@@ -22,8 +22,9 @@
 //!   model's joints).
 //! - **Ground**: a fixed horizontal plane at the top of the base (where the wall stands), or,
 //!   without a base, at the lowest point of the model; it reaches beyond the box around every
-//!   block by that box's height on both sides. With a base it is the base widened so (as deep);
-//!   without one, a rectangle as deep as that box is high, carried by the first support's dofs
+//!   block by [`GROUND_REACH`] times the model's size on both sides. With a base it is the base
+//!   widened so (as deep); without one, a rectangle as deep as that box is high, carried by the
+//!   first support's dofs
 //!   (with neither, no ground). Its joints are base joints. Gravity along -y only: with gravity
 //!   turned the model has no ground.
 
@@ -35,6 +36,10 @@ use std::collections::HashMap;
 
 /// The gap tolerance as a fraction of the least side of the smallest wall block's box.
 pub const GAP_FRACTION: f64 = 0.02;
+
+/// How far the ground reaches beyond the box around all the blocks on each side, in multiples of
+/// the model's size (the larger side of that box): the debris of a collapsing arch flies out.
+pub const GROUND_REACH: f64 = 5.0;
 
 /// Two bodies and an edge of each, in increasing order of the bodies: what a contact is, from
 /// one search to the next.
@@ -86,7 +91,8 @@ pub(super) fn ground(model: &Model) -> Option<(Polygon, usize, bool)> {
     }
     let all = model.polygons().iter().fold(Aabb::around(&[]), |b, p| b.union(&p.aabb()));
     let h = all.max[1] - all.min[1];
-    let (x0, x1) = (all.min[0] - h, all.max[0] + h);
+    let reach = GROUND_REACH * model.size();
+    let (x0, x1) = (all.min[0] - reach, all.max[0] + reach);
     let rect = |bottom: f64, top: f64| Polygon::new(vec![[x0, bottom], [x1, bottom], [x1, top], [x0, top]]);
     if let Some(base) = model.base() {
         let bb = model.polygons()[base].aabb();
