@@ -115,8 +115,17 @@ impl Recorded for Integrator<'_> {
 /// `beta` \[s\] ([`contact::stability_factor`] of 3 zeta + beta omega_max / 2: a block rocking
 /// on a dashpot of damping ratio zeta has up to 3 zeta, and beta K gives the fastest mode
 /// beta omega_max / 2).
+///
+/// With the contact update (on by default), the limit of a model whose blocks may touch along
+/// every edge (see the module's notes on the contact update); without it, the model's as built
+/// (higher or equal).
 pub fn history_time_step_limit(model: &Model, beta: f64) -> f64 {
-    let crit = critical_time_step(model);
+    dashpot_limit(model, update::critical_time_step_moving(model), beta)
+}
+
+/// The stability limit `crit` lowered for the contact dashpots of the joints of `model` and for
+/// stiffness-proportional damping `beta` (see [`history_time_step_limit`]).
+fn dashpot_limit(model: &Model, crit: f64, beta: f64) -> f64 {
     crit * contact::stability_factor(3.0 * max_damping_ratio(model) + beta / crit)
 }
 
@@ -125,8 +134,13 @@ pub fn history_time_step_limit(model: &Model, beta: f64) -> f64 {
 /// rocking of a block on a dashpot of damping ratio zeta has up to 3 zeta).
 fn history_time_step(model: &Model, opts: &DynamicOptions) -> Result<f64, Error> {
     let crit = if updating(opts) { update::critical_time_step_moving(model) } else { critical_time_step(model) };
-    let limit = crit * contact::stability_factor(3.0 * max_damping_ratio(model) + opts.stiffness_damping / crit);
-    dashpot_time_step(crit, limit, opts)
+    let limit = dashpot_limit(model, crit, opts.stiffness_damping);
+    match opts.time_step {
+        Some(dt) if updating(opts) && dt.is_finite() && dt > limit => Err(Error::input(format!(
+            "analysis.time_step = {dt:.3e} s exceeds the stability limit of this model with its contacts updated (a block may touch along every edge) and their dashpots, {limit:.3e} s; or set contact_update = false"
+        ))),
+        _ => dashpot_time_step(crit, limit, opts),
+    }
 }
 
 /// Whether a time history under `opts` updates its contacts: asked, with finite rotations.

@@ -86,7 +86,7 @@ GROUND_MOTION_KEYS = (
 PULSES = ("one-sine", "ricker")
 # Keys of the optional [time_history] table (``masonry-dem simulate``).
 TIME_HISTORY_KEYS = (
-    "duration", "record_interval", "damping", "damping_coefficient", "damping_ratio", "time_step", "large_rotations",
+    "duration", "record_interval", "damping", "damping_coefficient", "damping_ratio", "time_step", "large_rotations", "contact_update",
 )
 #: The kinds of damping of a time history: those of the quasi-static explicit solver and Rayleigh damping.
 TIME_HISTORY_DAMPINGS = DAMPINGS + ("rayleigh",)
@@ -583,6 +583,9 @@ def _time_history(table: Optional[_Table]) -> TimeHistoryParameters:
     large = table.data.get("large_rotations")
     if large is not None and not isinstance(large, bool):
         raise table.key_error("large_rotations", f"expected true or false, {_got(large)}")
+    update = table.data.get("contact_update")
+    if update is not None and not isinstance(update, bool):
+        raise table.key_error("contact_update", f"expected true or false, {_got(update)}")
     return TimeHistoryParameters(
         duration=table.number("duration", None, _positive, unit="time"),
         record_interval=table.number("record_interval", None, _positive, unit="time"),
@@ -591,4 +594,5 @@ def _time_history(table: Optional[_Table]) -> TimeHistoryParameters:
         damping_ratio=ratio,
         time_step=table.number("time_step", None, _positive, unit="time"),
         large_rotations=large,
+        contact_update=update,
     )
