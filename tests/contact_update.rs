@@ -103,7 +103,7 @@ fn quadratic(pts: &[(f64, f64)]) -> [f64; 3] {
 fn the_stable_block_stays_and_the_toppling_one_topples() {
     // stable: h = 10 m, friction 40.1 degrees on a 40-degree plane (b / h = 1 > tan 40)
     let model = on_slope(10.0, 10.0, 40.0, 40.1, 60.0, 2.0);
-    let opts = DynamicOptions { duration: 3.0, record: Recording::Interval(0.01), initial_displacement: Some(at_rest(&model, 10.0, 10.0, 40.0)), ..DynamicOptions::default() };
+    let opts = DynamicOptions { duration: 3.0, record: Recording::Interval(0.01), initial_displacement: Some(at_rest(&model, 10.0, 10.0, 40.0)), contact_update: true, ..DynamicOptions::default() };
     let h = simulate(&model, &opts).unwrap();
     let s = along(&h, 40.0);
     let last = h.times.len() - 1;

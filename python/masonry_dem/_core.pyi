@@ -499,7 +499,7 @@ class Model:
         damping alpha M + beta K (masonry_dem.rayleigh_damping from two modes), the beta K part as
         dashpots at the closed interfaces; instead of damping / damping_coefficient. Records every record_interval seconds
         or every record_every-th step (not both); Model.record_size gives the memory up front.
-        contact_update (default True, with large_rotations): the contacts found again as the
+        contact_update (default False; with large_rotations): the contacts found again as the
         blocks move (new contacts dry, with the joints' restitution; a contact found again keeps
         its history) and a ground plane at the top of the base (without a base, at the lowest
         point), reaching five model sizes beyond the blocks, onto which falling blocks come to rest.

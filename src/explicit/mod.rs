@@ -21,8 +21,8 @@
 //! - Time histories: free motion from initial conditions, or a horizontal base acceleration
 //!   (inertial forces `-m a_g(t)` in the frame of the base).
 //!
-//! - Contact update (time histories in the plane, with finite rotations; on unless
-//!   `contact_update` is false): the contacts are searched again, on the grid of the model's
+//! - Contact update (time histories in the plane, with finite rotations, when
+//!   `contact_update` is set; off by default): the contacts are searched again, on the grid of the model's
 //!   detection, whenever some block has moved by more than half the gap tolerance since the
 //!   last search (a point of it: the centroid's translation plus the rotation times the
 //!   block's radius). The gap tolerance is [`GAP_FRACTION`] of the least side of the smallest
@@ -201,7 +201,7 @@ impl<V> Default for DynamicOptions<V> {
             record: Recording::Interval(DEFAULT_RECORD_INTERVAL),
             large_rotations: true,
             threads: 0,
-            contact_update: true,
+            contact_update: false,
         }
     }
 }

@@ -115,12 +115,10 @@ impl Recorded for Integrator<'_> {
 /// `beta` \[s\] ([`contact::stability_factor`] of 3 zeta + beta omega_max / 2: a block rocking
 /// on a dashpot of damping ratio zeta has up to 3 zeta, and beta K gives the fastest mode
 /// beta omega_max / 2).
-///
-/// With the contact update (on by default), the limit of a model whose blocks may touch along
-/// every edge (see the module's notes on the contact update); without it, the model's as built
-/// (higher or equal).
+/// Without the contact update (the default); with it the limit is that of a model whose blocks
+/// may touch along every edge (see the module's notes on the contact update), lower or equal.
 pub fn history_time_step_limit(model: &Model, beta: f64) -> f64 {
-    dashpot_limit(model, update::critical_time_step_moving(model), beta)
+    dashpot_limit(model, critical_time_step(model), beta)
 }
 
 /// The stability limit `crit` lowered for the contact dashpots of the joints of `model` and for
