@@ -21,8 +21,8 @@
 //! - Time histories: free motion from initial conditions, or a horizontal base acceleration
 //!   (inertial forces `-m a_g(t)` in the frame of the base).
 //!
-//! - Contact update (time histories in the plane, with finite rotations, when
-//!   `contact_update` is set; off by default): the contacts are searched again, on the grid of the model's
+//! - Contact update (time histories in the plane, with finite rotations, when `contact_update`
+//!   is set; off by default): the contacts are searched again, on the grid of the model's
 //!   detection, whenever some block has moved by more than half the gap tolerance since the
 //!   last search (a point of it: the centroid's translation plus the rotation times the
 //!   block's radius). The gap tolerance is [`GAP_FRACTION`] of the least side of the smallest
@@ -34,11 +34,11 @@
 //!   kept); a new one is dry (no cohesion or tensile strength), starts without shear force and
 //!   has its joint's contact dashpot (restitution). A ground plane, fixed, horizontal (gravity
 //!   along -y), lies at the top of the base (without a base, at the lowest point of the model)
-//!   and reaches beyond the box around all the blocks by that box's height on each side: a
-//!   block that leaves every contact falls onto it. With the update the time step is also
-//!   stable for a block touching fixed bodies along every edge, and a run ends as out of the
-//!   model's range only when a block has moved by more than three times the model's size (off
-//!   the ground).
+//!   and reaches beyond the box around all the blocks by [`GROUND_REACH`] times the model's
+//!   size on each side: a block that leaves every contact falls onto it. With the update the
+//!   time step is also stable for a block touching fixed bodies along every edge, and a run
+//!   ends as out of the model's range only when a block has moved by more than seven times the
+//!   model's size (off the ground).
 //!
 //! The interface loop is the hot path: flat arrays, no allocation per step, parallel over
 //! parts of the interfaces with rayon (each interface writes only its own slot, and each part
