@@ -1,12 +1,12 @@
 """The cost of the contact update in a time history: a wall of about 10^3 blocks shaken by the El Centro record,
-with contact_update on and off, side by side.
+with contact_update on and off, side by side (a run that forms no new contact: the cost of the check per step).
 
 Run, from the repository's root, in a venv where `make develop` built masonry_dem:
 
     python benches/contact_update.py [--duration 2.0] [--repeats 3] [--scale 1.0] [--threads 1]
 
 The wall: Ferris & Tin-Loi's blocks (0.4 x 0.175 m, dry joints of friction 0.65, 1e10 N/m3) in running bond, 20 m
-long and 40 courses (1,020 blocks), on a fixed base; the record examples/elcentro-1940-ns.csv (in g at 0.02 s)
+long and 40 courses (2,020 blocks), on a fixed base; the record examples/elcentro-1940-ns.csv (in g at 0.02 s)
 times --scale, its first --duration seconds. Each repeat runs the two one after the other (on, off); the medians
 of the solver's own wall-clock time (TimeHistory.elapsed_s) are printed with their ratio, and the largest
 difference of the two runs' displacements. With the update on the time step is also stable for a block touching
