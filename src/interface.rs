@@ -121,37 +121,59 @@ impl Interface {
         [a, a + 1, a + 2, b, b + 1, b + 2]
     }
 
-    /// Jumps with finite rotations in the current configuration, for the explicit solver.
-    /// Measured in the frame of block a rotated with it: the normal gap at `c`, the slip at the
+    /// Jumps `e = B q` from the global displacement vector `u` (3 per block).
+    #[inline]
+    pub fn jumps(&self, u: &[f64]) -> [f64; 3] {
+        let d = self.dofs();
+        let mut e = [0.0; 3];
+        for (r, row) in self.b_mat.iter().enumerate() {
+            e[r] = (0..6).map(|k| row[k] * u[d[k]]).sum();
+        }
+        e
+    }
+}
+
+/// Where an interface lies on its two blocks in their reference positions, for the kinematics
+/// with finite rotations: the interface's point on each block (from the block's centroid; one
+/// point of both where the interface was found on the blocks as given, two points facing each
+/// other across a gap where it was found on moved blocks), the normal (of block a), the length,
+/// and the relative rotation of the blocks at which the two faces are parallel (its cos and sin:
+/// (1, 0) for an interface of the blocks as given).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Arm {
+    pub ra: [f64; 2],
+    pub rb: [f64; 2],
+    pub n: [f64; 2],
+    pub rel0: [f64; 2],
+    pub l: f64,
+}
+
+impl Arm {
+    /// The jumps of an interface at this arm with finite rotations in the current
+    /// configuration, for the explicit solver. Measured in the frame of block a rotated with it: the normal gap at `c`, the slip at the
     /// point where the normal force acts (`c + e t`, `e` the eccentricity M/N of the previous
     /// force, within the interface) and `sin` of the relative rotation, so that the gaps at
     /// both ends of the interface are exact (`dN +- l/2 dphi`): a block turning about its edge
     /// neither penetrates nor slips there. To first order this is `B q`.
     /// `ga`, `gb`: the blocks' reference centroids; `ua`, `ub`: their (u1, u2, phi); `csa`,
     /// `csb`: (cos, sin) of their rotations.
-    #[inline]
+    /// The relative rotation is measured from `rel0`.
+    #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn large_kinematics(
-        &self,
-        ga: [f64; 2],
-        gb: [f64; 2],
-        ua: &[f64],
-        ub: &[f64],
-        csa: [f64; 2],
-        csb: [f64; 2],
-        e: f64,
-    ) -> LargeKinematics {
+    pub(crate) fn large_kinematics(&self, ga: [f64; 2], gb: [f64; 2], ua: &[f64], ub: &[f64], csa: [f64; 2], csb: [f64; 2], e: f64) -> LargeKinematics {
         let rot = |cs: [f64; 2], v: [f64; 2]| [cs[0] * v[0] - cs[1] * v[1], cs[1] * v[0] + cs[0] * v[1]];
-        let ra = rot(csa, [self.c[0] - ga[0], self.c[1] - ga[1]]);
-        let rb = rot(csb, [self.c[0] - gb[0], self.c[1] - gb[1]]);
+        let ra = rot(csa, self.ra);
+        let rb = rot(csb, self.rb);
         let n = rot(csa, self.n);
         let t = [n[1], -n[0]];
         let gap = [
             ub[0] + gb[0] + rb[0] - (ua[0] + ga[0] + ra[0]),
             ub[1] + gb[1] + rb[1] - (ua[1] + ga[1] + ra[1]),
         ];
-        // relative rotation: cos and sin of (phi_b - phi_a)
-        let rel = [csb[0] * csa[0] + csb[1] * csa[1], csb[1] * csa[0] - csb[0] * csa[1]];
+        // relative rotation: cos and sin of (phi_b - phi_a), from rel0
+        let raw = [csb[0] * csa[0] + csb[1] * csa[1], csb[1] * csa[0] - csb[0] * csa[1]];
+        let r0 = self.rel0;
+        let rel = [raw[0] * r0[0] + raw[1] * r0[1], raw[1] * r0[0] - raw[0] * r0[1]];
         LargeKinematics {
             jumps: [
                 n[0] * gap[0] + n[1] * gap[1],
@@ -166,20 +188,9 @@ impl Interface {
             e,
         }
     }
-
-    /// Jumps `e = B q` from the global displacement vector `u` (3 per block).
-    #[inline]
-    pub fn jumps(&self, u: &[f64]) -> [f64; 3] {
-        let d = self.dofs();
-        let mut e = [0.0; 3];
-        for (r, row) in self.b_mat.iter().enumerate() {
-            e[r] = (0..6).map(|k| row[k] * u[d[k]]).sum();
-        }
-        e
-    }
 }
 
-/// Current-configuration kinematics of an interface (see [`Interface::large_kinematics`]).
+/// Current-configuration kinematics of an interface (see [`Arm::large_kinematics`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct LargeKinematics {
     /// The relative displacements (normal, tangential \[m\], rotation \[rad\]) of b against a.

@@ -69,7 +69,9 @@ def _real_arrays(name: str, func: Callable[..., Any], args: Any, kwargs: Any) ->
 
 #: The arguments of the core's entry points that take a boolean; a boolean given to any other is refused (the core
 #: would take True for the number 1), but for those that take no number, whose refusal of it the core words itself.
-BOOLEAN_ARGUMENTS = frozenset({"base", "large_rotations", "time_history", "along_gravity", "follow_mechanism", "bonded"})
+BOOLEAN_ARGUMENTS = frozenset(
+    {"base", "large_rotations", "time_history", "along_gravity", "follow_mechanism", "bonded", "contact_update"}
+)
 _NO_NUMBER = frozenset({"progress", "first_course"})
 
 

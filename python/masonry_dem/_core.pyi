@@ -546,6 +546,7 @@ class Model:
         vertical_acceleration: Optional[tuple[npt.ArrayLike, npt.ArrayLike]] = None,
         record_interval: Optional[float] = None,
         rayleigh: Optional[tuple[float, float]] = None,
+        contact_update: Optional[bool] = None,
     ) -> "TimeHistory":
         """Time history with the explicit solver. Options left out (None) take the core's
         defaults: safety 0.8, damping "none" (coefficient 0), live_multiplier 0, a record every
@@ -564,6 +565,10 @@ class Model:
         damping alpha M + beta K (masonry_dem.rayleigh_damping from two modes), the beta K part as
         dashpots at the closed interfaces; instead of damping / damping_coefficient. Records every record_interval seconds
         or every record_every-th step (not both); Model.record_size gives the memory up front.
+        contact_update (default False; with large_rotations): the contacts found again as the
+        blocks move (new contacts dry, with the joints' restitution; a contact found again keeps
+        its history) and a ground plane at the top of the base (without a base, at the lowest
+        point), reaching five model sizes beyond the blocks, onto which falling blocks come to rest.
         Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory
         computed so far as its `results` attribute.
         progress: optional callable(step, time [s], nan, fraction done)."""

@@ -409,10 +409,14 @@ impl PyModel {
     /// damping alpha M + beta K (masonry_dem.rayleigh_damping from two modes), the beta K part as
     /// dashpots at the closed interfaces; instead of damping / damping_coefficient. Records every record_interval seconds
     /// or every record_every-th step (not both); Model.record_size gives the memory up front.
+    /// contact_update (default False; with large_rotations): the contacts found again as the
+    /// blocks move (new contacts dry, with the joints' restitution; a contact found again keeps
+    /// its history) and a ground plane at the top of the base (without a base, at the lowest
+    /// point), reaching five model sizes beyond the blocks, onto which falling blocks come to rest.
     /// Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory
     /// computed so far as its `results` attribute.
     /// progress: optional callable(step, time [s], nan, fraction done).
-    #[pyo3(signature = (duration, time_step=None, safety=None, damping=None, damping_coefficient=None, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=None, record_every=None, large_rotations=None, threads=None, progress=None, vertical_acceleration=None, record_interval=None, rayleigh=None))]
+    #[pyo3(signature = (duration, time_step=None, safety=None, damping=None, damping_coefficient=None, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=None, record_every=None, large_rotations=None, threads=None, progress=None, vertical_acceleration=None, record_interval=None, rayleigh=None, contact_update=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate(
         &self,
@@ -433,8 +437,9 @@ impl PyModel {
         vertical_acceleration: Option<&Bound<'_, PyAny>>,
         record_interval: Option<f64>,
         rayleigh: Option<(f64, f64)>,
+        contact_update: Option<bool>,
     ) -> PyResult<Py<PyTimeHistory>> {
-        let opts = dynamic_options::<3>(
+        let mut opts = dynamic_options::<3>(
             duration,
             time_step,
             safety,
@@ -446,6 +451,7 @@ impl PyModel {
             large_rotations,
             threads,
         )?;
+        opts.contact_update = contact_update.unwrap_or(opts.contact_update);
         analyse(py, &self.inner, progress, move |model, monitor| {
             explicit::simulate_with(model, &opts, monitor).map(PyTimeHistory::from)
         })
@@ -589,5 +595,6 @@ pub(crate) fn dynamic_options<const W: usize>(
         record: recording(record_every, record_interval)?,
         large_rotations: large_rotations.unwrap_or(defaults.large_rotations),
         threads: threads.map_or(Ok(defaults.threads), |v| count("threads", v, 0))?,
+        contact_update: defaults.contact_update,
     })
 }

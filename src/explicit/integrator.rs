@@ -59,6 +59,14 @@ pub(super) struct Integrator<'a> {
     pub(super) dynm: Vec<Dyn>,
     /// the next interface pass primes `dynm` (takes the jumps, damps nothing)
     pub(super) prime: bool,
+    /// each interface's section: the model's, then those of the contacts the update finds
+    pub(super) sections: Vec<Section>,
+    /// finite rotations only (else empty): where each interface lies on its blocks
+    pub(super) arms: Vec<Arm>,
+    /// the contact update of a time history, if on (see [`super::update`])
+    pub(super) update: Option<Box<super::update::Update>>,
+    /// stiffness-proportional damping beta \[s\] of the dashpots (time histories)
+    pub(super) beta: f64,
 }
 
 impl std::ops::Deref for Integrator<'_> {
@@ -116,6 +124,10 @@ impl<'a> Integrator<'a> {
             cs: vec![],
             dynm: vec![],
             prime: false,
+            sections: model.sections().to_vec(),
+            arms: vec![],
+            update: None,
+            beta: 0.0,
         };
         it.set_parts(n_parts);
         Ok(it)
@@ -142,6 +154,8 @@ impl<'a> Integrator<'a> {
             let nb = self.model.n_blocks();
             self.centroids = self.model.centroids().to_vec();
             self.cs = vec![[1.0, 0.0]; nb];
+            let g = &self.centroids;
+            self.arms = self.model.interfaces().iter().map(|it| Arm { ra: [it.c[0] - g[it.a][0], it.c[1] - g[it.a][1]], rb: [it.c[0] - g[it.b][0], it.c[1] - g[it.b][1]], n: it.n, rel0: [1.0, 0.0], l: it.l }).collect();
         }
     }
 
@@ -201,7 +215,8 @@ impl<'a> Integrator<'a> {
             self.rotations_in(par);
         }
         let pass = Pass {
-            model: self.model,
+            sections: &self.sections,
+            arms: &self.arms,
             u: &self.m.u,
             geo: &self.geo,
             shapes: &self.shapes,
@@ -301,6 +316,9 @@ impl<'a> Integrator<'a> {
             self.interface_forces_in(false);
         }
         self.m.finish_step(set_ext, prescribed);
+        if self.update.as_ref().is_some_and(|up| up.due(&self.m.u)) {
+            super::update::search(self);
+        }
     }
 
     /// How often a loop of steps reads the clock for its monitor ([`monitor_due`]): every 16
@@ -320,6 +338,15 @@ impl<'a> Integrator<'a> {
     /// [`super::contact`]), plus `beta` times its elastic stiffness (stiffness-proportional
     /// damping); the next interface pass takes the jumps.
     pub(super) fn start_dynamics(&mut self, beta: f64) {
+        self.beta = beta;
+        self.dynm = (0..self.geo.len()).map(|k| self.dashpot_of(k)).collect();
+        self.prime = true;
+        self.track_damping = !matches!(self.damping, Damping::None);
+    }
+
+    /// The contact dashpot of interface `k` (see [`Integrator::start_dynamics`]), nothing
+    /// dissipated yet.
+    pub(super) fn dashpot_of(&self, k: usize) -> Dyn {
         let model = self.model;
         let free_mass = |i: usize| {
             if self.free[3 * i] || self.free[3 * i + 1] {
@@ -328,28 +355,19 @@ impl<'a> Integrator<'a> {
                 f64::INFINITY
             }
         };
-        self.dynm = model
-            .interfaces()
-            .iter()
-            .enumerate()
-            .map(|(k, it)| {
-                let sec = &model.sections()[k];
-                let reduced = 1.0 / (1.0 / free_mass(it.a) + 1.0 / free_mass(it.b));
-                let impacts = super::contact::coefficients(self.law(k), sec.area, sec.length, reduced);
-                let d = crate::joint::stiffness(self.law(k), sec);
-                let c: [f64; 3] = std::array::from_fn(|j| impacts[j] + beta * d[j]);
-                let share = std::array::from_fn(|j| if c[j] > 0.0 { impacts[j] / c[j] } else { 1.0 });
-                Dyn { c, share, half: 0.5 * sec.length, ..Dyn::default() }
-            })
-            .collect();
-        self.prime = true;
-        self.track_damping = !matches!(self.damping, Damping::None);
+        let (sec, g) = (&self.sections[k], &self.geo[k]);
+        let reduced = 1.0 / (1.0 / free_mass(g.a()) + 1.0 / free_mass(g.b()));
+        let impacts = super::contact::coefficients(self.law(k), sec.area, sec.length, reduced);
+        let d = crate::joint::stiffness(self.law(k), sec);
+        let c: [f64; 3] = std::array::from_fn(|j| impacts[j] + self.beta * d[j]);
+        let share = std::array::from_fn(|j| if c[j] > 0.0 { impacts[j] / c[j] } else { 1.0 });
+        Dyn { c, share, half: 0.5 * sec.length, ..Dyn::default() }
     }
 
     pub(super) fn elastic_energy(&self) -> f64 {
         let mut e = 0.0;
         for (k, f) in self.forces.iter().enumerate() {
-            let d = crate::joint::stiffness(self.law(k), &self.model.sections()[k]);
+            let d = crate::joint::stiffness(self.law(k), &self.sections[k]);
             e += 0.5 * (f[0] * f[0] / d[0] + f[1] * f[1] / d[1] + f[2] * f[2] / d[2]);
         }
         e

@@ -21,6 +21,25 @@
 //! - Time histories: free motion from initial conditions, or a horizontal base acceleration
 //!   (inertial forces `-m a_g(t)` in the frame of the base).
 //!
+//! - Contact update (time histories in the plane, with finite rotations, when `contact_update`
+//!   is set; off by default): the contacts are searched again, on the grid of the model's
+//!   detection, whenever some block has moved by more than half the gap tolerance since the
+//!   last search (a point of it: the centroid's translation plus the rotation times the
+//!   block's radius). The gap tolerance is [`GAP_FRACTION`] of the least side of the smallest
+//!   wall block's box: two edges whose outward normals are opposed within 60 degrees,
+//!   overlapping along one of them with the nearer end within the gap, are a contact (open, no
+//!   force, until they close); a contact whose edges no longer are is dropped. A contact found
+//!   again keeps its joint history and dashpot (its geometry is taken again from the moved
+//!   blocks once its centre or length has changed by more than half the gap, its elastic slip
+//!   kept); a new one is dry (no cohesion or tensile strength), starts without shear force and
+//!   has its joint's contact dashpot (restitution). A ground plane, fixed, horizontal (gravity
+//!   along -y), lies at the top of the base (without a base, at the lowest point of the model)
+//!   and reaches beyond the box around all the blocks by [`GROUND_REACH`] times the model's
+//!   size on each side: a block that leaves every contact falls onto it. With the update the
+//!   time step is also stable for a block touching fixed bodies along every edge, and a run
+//!   ends as out of the model's range only when a block has moved by more than seven times the
+//!   model's size (off the ground).
+//!
 //! The interface loop is the hot path: flat arrays, no allocation per step, parallel over
 //! parts of the interfaces with rayon (each interface writes only its own slot, and each part
 //! the force sums of the blocks whose interfaces are all in it; a gather forms the others).
@@ -44,7 +63,7 @@
 //! ```
 
 use crate::error::Error;
-use crate::interface::{Family, Interface};
+use crate::interface::{Arm, Family, Interface};
 use crate::joint::{return_map_inlined, JointLaw, MapOptions, JointState, Kinds, Response, Section, APEX};
 use crate::model::Model;
 use crate::results::{Results, Status};
@@ -159,6 +178,10 @@ pub struct DynamicOptions<V = [f64; 3]> {
     pub large_rotations: bool,
     /// Threads of the interface pass (0: all cores).
     pub threads: usize,
+    /// The contacts found again as the blocks move, and a ground plane under the model (see the
+    /// contact update in this module's notes); the plane's, with finite rotations (`large_rotations`):
+    /// with the linearized kinematics, and in 3D, the contacts stay those of the wall as built.
+    pub contact_update: bool,
 }
 
 impl<V> Default for DynamicOptions<V> {
@@ -178,6 +201,7 @@ impl<V> Default for DynamicOptions<V> {
             record: Recording::Interval(DEFAULT_RECORD_INTERVAL),
             large_rotations: true,
             threads: 0,
+            contact_update: false,
         }
     }
 }
@@ -250,6 +274,36 @@ pub struct TimeHistory<V = [f64; 3]> {
     pub steps: usize,
     /// Wall-clock time of the run \[s\].
     pub elapsed_s: f64,
+    /// With the contact update: the searches for contacts made (zero without it).
+    pub contact_searches: usize,
+    /// With the contact update: the contacts created (zero without it).
+    pub contacts_created: usize,
+    /// With the contact update: the contacts dropped (zero without it).
+    pub contacts_dropped: usize,
+    /// With the contact update: the contacts whose geometry was taken again from the moved
+    /// blocks (zero without it).
+    pub contacts_renewed: usize,
+    /// With the contact update: the contacts at the end of the run (empty without it).
+    pub contacts: Vec<ContactAt>,
+    /// With the contact update: the ground plane's level \[m\], if the model has one.
+    pub ground_level: Option<f64>,
+}
+
+/// A contact at the end of a time history with the contact update: its two blocks (a: the one
+/// whose edge gives the normal), its centre \[m\], its normal (from a into b), its length \[m\]
+/// and the gap at its centre \[m\] (negative: closed).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactAt {
+    /// The two blocks (a, b).
+    pub blocks: [usize; 2],
+    /// The centre \[m\].
+    pub centre: [f64; 2],
+    /// The unit normal from a into b.
+    pub normal: [f64; 2],
+    /// The length \[m\].
+    pub length: f64,
+    /// The gap at the centre \[m\] (negative: closed).
+    pub gap: f64,
 }
 
 impl<V> TimeHistory<V> {
@@ -300,6 +354,7 @@ mod stepper;
 #[cfg(test)]
 mod tests;
 mod time_history;
+mod update;
 
 use integrator::*;
 use motion::*;
@@ -311,4 +366,5 @@ pub use quasi_static::{solve, solve_with};
 // the modal analysis in 3D takes the same kinematics and rotation dofs as a time history
 pub(crate) use space::{jump_rows, principal_axes, to_world};
 pub use space::{critical_time_step_3d, history_time_step_limit_3d, record_size_3d, simulate_3d, simulate_3d_with, solve_3d, solve_3d_with};
+pub use update::{GAP_FRACTION, GROUND_REACH};
 pub use time_history::{history_time_step_limit, record_count, record_size, simulate, simulate_with};

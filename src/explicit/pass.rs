@@ -207,7 +207,10 @@ pub(super) fn run_parts<F: Fn(Part) + Sync>(p: Part, bounds: &[(usize, usize, us
 
 /// What the parts of the interface pass read.
 pub(super) struct Pass<'a> {
-    pub(super) model: &'a Model,
+    /// each interface's section (the model's, and those of the contacts the update found)
+    pub(super) sections: &'a [Section],
+    /// with finite rotations only: where each interface lies on its blocks
+    pub(super) arms: &'a [Arm],
     pub(super) u: &'a [f64],
     pub(super) geo: &'a [Geo],
     pub(super) shapes: &'a [Shape],
@@ -244,7 +247,7 @@ impl Pass<'_> {
         };
         match self.kinds.get(gk.kind) {
             Some((sec, prep)) => store(return_map_inlined(law, sec, e, st, &MapOptions { prepared: Some(prep), warm: *ws, strict: false, tangent: false }), h, br, f, fl, ws),
-            None => store(map_unprepared(law, &self.model.sections()[k], e, st, *ws), h, br, f, fl, ws),
+            None => store(map_unprepared(law, &self.sections[k], e, st, *ws), h, br, f, fl, ws),
         }
     }
 
@@ -282,11 +285,11 @@ impl Pass<'_> {
             let k = k0 + i;
             let gk = &shapes[ik.shape as usize];
             if LARGE {
-                let it = &self.model.interfaces()[k];
-                let (a, b, g, cs) = (it.a, it.b, self.centroids, self.cs);
+                let arm = &self.arms[k];
+                let (a, b, g, cs) = (ik.a(), ik.b(), self.centroids, self.cs);
                 // the normal force's eccentricity at the previous step, within the interface
-                let ecc = if f[0] < 0.0 { (f[2] / f[0]).clamp(-0.5 * it.l, 0.5 * it.l) } else { 0.0 };
-                let kin = it.large_kinematics(g[a], g[b], &u[3 * a..3 * a + 3], &u[3 * b..3 * b + 3], cs[a], cs[b], ecc);
+                let ecc = if f[0] < 0.0 { (f[2] / f[0]).clamp(-0.5 * arm.l, 0.5 * arm.l) } else { 0.0 };
+                let kin = arm.large_kinematics(g[a], g[b], &u[3 * a..3 * a + 3], &u[3 * b..3 * b + 3], cs[a], cs[b], ecc);
                 self.update(k, gk, kin.jumps, h, br, f, fl, ws);
                 let total = self.dynamics(dynm.get_mut(i), gk, kin.jumps, (kin.e, kin.rel[0]), *f);
                 let x = kin.forces(total);
@@ -316,7 +319,7 @@ impl Pass<'_> {
     /// In a time history (`dy` given): the contact dashpot's force and dissipation over the
     /// jumps' increment up to `e`; the force on the blocks, the law's `f` plus the dashpot's.
     /// Outside time histories, `f`. With finite rotations the slip holds the slip point's term
-    /// `ecc (cos - 1)` ([`crate::interface::Interface::large_kinematics`]), whose eccentricity
+    /// `ecc (cos - 1)` ([`crate::interface::Arm::large_kinematics`]), whose eccentricity
     /// follows the force of the last step: its increment is taken at this step's eccentricity
     /// (`(ecc, cos)`), so that a change of the eccentricity is not a slip.
     #[inline(always)]

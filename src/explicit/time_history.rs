@@ -20,6 +20,10 @@ pub fn simulate_with(model: &Model, opts: &DynamicOptions, monitor: &mut dyn FnM
     s.set_large(opts.large_rotations);
     set_initial_state(&mut s, opts);
     s.start_dynamics(opts.stiffness_damping);
+    if updating(opts) {
+        s.update = Some(Box::new(update::Update::new(&s)));
+        update::search(&mut s);
+    }
     let loads = Loads::new(model.dead_load(), model.live_load(), opts, &s);
     run_history(s, loads, opts, nb, start, monitor)
 }
@@ -46,6 +50,7 @@ pub(super) fn run_history<V: Copy, K: Recorded<V = V>>(
     run.record(0.0);
     run.integrate(monitor);
     let Run { s, mut h, .. } = run;
+    s.finish(&mut h);
     h.steps = s.steps;
     h.elapsed_s = start.elapsed().as_secs_f64();
     Ok(h)
@@ -65,6 +70,8 @@ pub(super) trait Recorded: Kernel {
     fn dashpot_dissipation(&self) -> (f64, f64);
     /// Why the state lies beyond the model's range, if it does (see [`out_of_range`]).
     fn out_of_range(&self, u0: &[f64]) -> Option<String>;
+    /// What the contact update has to add to the history at the end of the run.
+    fn finish(&self, _h: &mut TimeHistory<Self::V>) {}
     /// The ground acceleration that acts on dof `d`: 0 along x, 1 along y, 2 vertical, 3 none.
     fn ground_axis(d: usize) -> u8;
 }
@@ -86,7 +93,14 @@ impl Recorded for Integrator<'_> {
         Integrator::elastic_energy(self)
     }
     fn dashpot_dissipation(&self) -> (f64, f64) {
-        self.dynm.iter().fold((0.0, 0.0), |(i, k), x| (i + x.damped, k + x.stiffness_damped))
+        let dropped = self.update.as_ref().map_or((0.0, 0.0), |up| up.dropped_dissipation);
+        self.dynm.iter().fold(dropped, |(i, k), x| (i + x.damped, k + x.stiffness_damped))
+    }
+    fn finish(&self, h: &mut TimeHistory) {
+        let Some(up) = &self.update else { return };
+        (h.contact_searches, h.contacts_created, h.contacts_dropped, h.contacts_renewed) = (up.searches, up.created, up.dropped, up.renewed);
+        h.contacts = update::contacts(self);
+        h.ground_level = up.ground;
     }
     fn out_of_range(&self, u0: &[f64]) -> Option<String> {
         out_of_range(self, u0)
@@ -101,22 +115,43 @@ impl Recorded for Integrator<'_> {
 /// `beta` \[s\] ([`contact::stability_factor`] of 3 zeta + beta omega_max / 2: a block rocking
 /// on a dashpot of damping ratio zeta has up to 3 zeta, and beta K gives the fastest mode
 /// beta omega_max / 2).
+/// Without the contact update (the default); with it the limit is that of a model whose blocks
+/// may touch along every edge (see the module's notes on the contact update), lower or equal.
 pub fn history_time_step_limit(model: &Model, beta: f64) -> f64 {
-    let zeta = [Family::Bed, Family::Head, Family::Base, Family::Top]
-        .iter()
-        .map(|&f| contact::damping_ratio(model.laws().of(f).restitution))
-        .fold(0.0, f64::max);
-    let crit = critical_time_step(model);
-    crit * contact::stability_factor(3.0 * zeta + beta / crit)
+    dashpot_limit(model, critical_time_step(model), beta)
+}
+
+/// The stability limit `crit` lowered for the contact dashpots of the joints of `model` and for
+/// stiffness-proportional damping `beta` (see [`history_time_step_limit`]).
+fn dashpot_limit(model: &Model, crit: f64, beta: f64) -> f64 {
+    crit * contact::stability_factor(3.0 * max_damping_ratio(model) + beta / crit)
 }
 
 /// The time step of a time history: the given one, or `safety` times the stability limit, both
 /// within that limit lowered for the contact dashpots (see [`contact::stability_factor`]: the
 /// rocking of a block on a dashpot of damping ratio zeta has up to 3 zeta).
 fn history_time_step(model: &Model, opts: &DynamicOptions) -> Result<f64, Error> {
-    let crit = critical_time_step(model);
-    let limit = history_time_step_limit(model, opts.stiffness_damping);
-    dashpot_time_step(crit, limit, opts)
+    let crit = if updating(opts) { update::critical_time_step_moving(model) } else { critical_time_step(model) };
+    let limit = dashpot_limit(model, crit, opts.stiffness_damping);
+    match opts.time_step {
+        Some(dt) if updating(opts) && dt.is_finite() && dt > limit => Err(Error::input(format!(
+            "analysis.time_step = {dt:.3e} s exceeds the stability limit of this model with its contacts updated (a block may touch along every edge) and their dashpots, {limit:.3e} s; or set contact_update = false"
+        ))),
+        _ => dashpot_time_step(crit, limit, opts),
+    }
+}
+
+/// Whether a time history under `opts` updates its contacts: asked, with finite rotations.
+fn updating(opts: &DynamicOptions) -> bool {
+    opts.contact_update && opts.large_rotations
+}
+
+/// The largest damping ratio of the contact dashpots of the joints of `model`.
+fn max_damping_ratio(model: &Model) -> f64 {
+    [Family::Bed, Family::Head, Family::Base, Family::Top]
+        .iter()
+        .map(|&f| contact::damping_ratio(model.laws().of(f).restitution))
+        .fold(0.0, f64::max)
 }
 
 /// The time step of a time history of stability limit `crit`, `limit` with its dashpots (see
@@ -367,6 +402,12 @@ impl<V> TimeHistory<V> {
             energy_error: series(),
             steps: 0,
             elapsed_s: 0.0,
+            contact_searches: 0,
+            contacts_created: 0,
+            contacts_dropped: 0,
+            contacts_renewed: 0,
+            contacts: vec![],
+            ground_level: None,
         })
     }
 }
@@ -496,12 +537,21 @@ impl<V: Copy, K: Recorded<V = V>> Run<V, K> {
 /// (the small-rotation model) or a right angle (large rotations: the block lies on its side).
 fn out_of_range(s: &Integrator, u0: &[f64]) -> Option<String> {
     let model = s.model;
-    let size = model.size();
-    let max_phi = if s.large { std::f64::consts::FRAC_PI_2 } else { 1.0 };
+    let updating = s.update.is_some();
+    // with the contact update a block may fall and tumble: only one that has left the ground is out
+    let size = if updating { (2.0 + update::GROUND_REACH) * model.size() } else { model.size() };
+    let max_phi = if updating {
+        f64::INFINITY
+    } else if s.large {
+        std::f64::consts::FRAC_PI_2
+    } else {
+        1.0
+    };
     for i in 0..model.n_blocks() {
         let moved = (s.u[3 * i] - u0[3 * i]).hypot(s.u[3 * i + 1] - u0[3 * i + 1]);
         if moved > size {
-            return Some(format!("{} moved {moved:.3e} m, more than the wall's size ({size:.3e} m)", model.block_name(i)));
+            let what = if updating { "seven times the model's size" } else { "the wall's size" };
+            return Some(format!("{} moved {moved:.3e} m, more than {what} ({size:.3e} m)", model.block_name(i)));
         }
         let phi = s.u[3 * i + 2] - u0[3 * i + 2];
         if phi.abs() > max_phi {

@@ -120,6 +120,105 @@ pub fn corner_contacts(a: &Polygon, b: &Polygon, tol: f64, along: &[EdgeContact]
     out
 }
 
+/// Two edges, one of each polygon, that face each other within an angle and lie near enough to
+/// touch: the contacts of blocks in motion, which need not lie along one line (a block turning
+/// about a corner, or landing tilted). The first polygon's edge (the one whose outward normal the
+/// contact takes) is the edge against which the other's vertex bears at the closed end.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Facing {
+    /// Which polygon's edge gives the normal: 0 the first given, 1 the second.
+    pub owner: usize,
+    /// The edge of the owner and of the other polygon (from vertex k to vertex k + 1).
+    pub edges: [usize; 2],
+    /// The owner's edge's outward unit normal, from the owner into the other.
+    pub n: [f64; 2],
+    /// The overlap's centre on the owner's edge and on the other's edge line, at the same place
+    /// along the owner's edge \[m\].
+    pub at: [[f64; 2]; 2],
+    /// The overlap's length along the other's edge \[m\] (over the overlap along the owner's edge).
+    pub length: f64,
+    /// The other's edge's distance from the owner's edge at the centre, along `n` (negative where
+    /// they overlap) \[m\].
+    pub gap: f64,
+    /// The angle of the other's edge against the owner's, reversed, counter-clockwise \[rad\]:
+    /// the point of the other's edge `s` from the centre along it lies `gap + s sin(angle)` from
+    /// the owner's edge's line (`s` positive along the tangent `(n_y, -n_x)`).
+    pub angle: f64,
+}
+
+/// Every pair of an edge of `a` and an edge of `b` whose outward normals are opposed within 60
+/// degrees, that overlap along the owner's edge over more than `tol` \[m\], with the nearer end of
+/// the overlap no farther apart than `gap` \[m\] and the farther end not inside the owner by half
+/// the depth of either polygon behind its edge (an edge that deep lies behind the other edge, not
+/// on it) (see [`Facing`]). Two edges along one line make a contact of angle 0, as [`contacts`] does; a
+/// vertex near an edge makes one with one of the two edges at the vertex (one of them faces the
+/// edge within 60 degrees for any vertex of an interior angle of 60 degrees or more).
+pub fn facing_edges(a: &Polygon, b: &Polygon, gap: f64, tol: f64) -> Vec<Facing> {
+    let (va, vb) = (a.vertices(), b.vertices());
+    // how far each polygon reaches behind each of its edges
+    let depth = |v: &[[f64; 2]], k: usize| {
+        let m = outward([v[k], v[(k + 1) % v.len()]]);
+        v.iter().map(|&x| dot(sub(v[k], x), m)).fold(0.0, f64::max)
+    };
+    let mut out = Vec::new();
+    for i in 0..va.len() {
+        let p = [va[i], va[(i + 1) % va.len()]];
+        for j in 0..vb.len() {
+            let q = [vb[j], vb[(j + 1) % vb.len()]];
+            if dot(outward(p), outward(q)) >= -0.5 {
+                continue;
+            }
+            // an edge deeper into the other polygon than half of either is behind it, not on it
+            let deep = 0.5 * depth(va, i).min(depth(vb, j));
+            let Some((f, from_owner)) = facing_pair(p, q, gap, deep, tol) else { continue };
+            if from_owner {
+                // the owner's vertex bears on the other's edge: the other's edge gives the normal
+                if let Some((g, _)) = facing_pair(q, p, gap, deep, tol) {
+                    out.push(Facing { owner: 1, edges: [j, i], ..g });
+                    continue;
+                }
+            }
+            out.push(Facing { owner: 0, edges: [i, j], ..f });
+        }
+    }
+    out
+}
+
+/// The contact of edge `p` (the owner's) and edge `q`, facing, if they overlap along `p` and lie
+/// near (see [`facing_edges`]), with whether its closed end is bounded by a vertex of `p` alone.
+fn facing_pair(p: [[f64; 2]; 2], q: [[f64; 2]; 2], gap: f64, deep: f64, tol: f64) -> Option<(Facing, bool)> {
+    let n = outward(p);
+    let len_p = dist(p[0], p[1]);
+    let ta = [(p[1][0] - p[0][0]) / len_p, (p[1][1] - p[0][1]) / len_p];
+    let (s0, s1) = (dot(sub(q[0], p[0]), ta), dot(sub(q[1], p[0]), ta));
+    let (h0, h1) = (dot(sub(q[0], p[0]), n), dot(sub(q[1], p[0]), n));
+    let (lo_q, hi_q) = (s0.min(s1), s0.max(s1));
+    let (lo, hi) = (lo_q.max(0.0), hi_q.min(len_p));
+    if hi - lo <= tol {
+        return None;
+    }
+    // the height of q's line over p's at s along p
+    let h = |s: f64| h0 + (h1 - h0) * (s - s0) / (s1 - s0);
+    let (h_lo, h_hi) = (h(lo), h(hi));
+    if h_lo.min(h_hi) > gap || h_lo.max(h_hi) < -deep {
+        return None;
+    }
+    // which end is closed, and whether p's own vertex bounds it (q's does not)
+    let closed_lo = h_lo <= h_hi;
+    let near = (h_lo - h_hi).abs() <= tol;
+    let from_owner = !near && if closed_lo { lo_q < 0.0 } else { hi_q > len_p };
+    let sc = 0.5 * (lo + hi);
+    let on_p = [p[0][0] + sc * ta[0], p[0][1] + sc * ta[1]];
+    let lam = (sc - s0) / (s1 - s0);
+    let on_q = [q[0][0] + lam * (q[1][0] - q[0][0]), q[0][1] + lam * (q[1][1] - q[0][1])];
+    let t = [n[1], -n[0]];
+    let eq = sub(q[1], q[0]);
+    let angle = (t[0] * eq[1] - t[1] * eq[0]).atan2(dot(t, eq));
+    // the length along q: its ends then lie at the centre's distance +- length / 2 along q, whose
+    // gaps are those of the joint's ends, gap +- length / 2 sin(angle)
+    Some((Facing { owner: 0, edges: [0, 0], n, at: [on_p, on_q], length: (hi - lo) / angle.cos(), gap: dot(sub(on_q, on_p), n), angle }, from_owner))
+}
+
 /// The end of edge `e` farther from `x`.
 fn far(e: [[f64; 2]; 2], x: [f64; 2]) -> [f64; 2] {
     if dist(e[0], x) >= dist(e[1], x) {

@@ -43,7 +43,7 @@ mod polygon;
 mod polyhedron;
 pub(crate) mod vec3;
 
-pub use contact2::{contacts, corner_contacts, penetration, EdgeContact};
+pub use contact2::{contacts, corner_contacts, facing_edges, penetration, EdgeContact, Facing};
 pub use contact3::{bisector, face_contacts, facing, penetration as penetration3, shared, FaceContact};
 pub use mass::{Area, Volume};
 pub use polygon::{Defect, Polygon};

@@ -192,7 +192,7 @@ class GroundMotionParameters:
 class TimeHistoryParameters:
     """The options of a time history ([time_history]), None when the case leaves them out: duration [s]
     (default: the ground motion's, :attr:`GroundMotionParameters.default_duration`), and record_interval [s],
-    damping, damping_coefficient, time_step [s] and large_rotations (default: the core's, of
+    damping, damping_coefficient, time_step [s], large_rotations and contact_update (default: the core's, of
     ``Model.simulate``); with damping "rayleigh", damping_ratio: the ratio of Rayleigh damping at the elastic
     model's first two modes."""
 
@@ -203,6 +203,7 @@ class TimeHistoryParameters:
     damping_ratio: Optional[float] = None
     time_step: Optional[float] = None
     large_rotations: Optional[bool] = None
+    contact_update: Optional[bool] = None
 
 
 class _Arguments(MutableMapping):  # type: ignore[type-arg]
@@ -478,7 +479,7 @@ class Case:
             if s != 0.0:
                 kwargs["base_acceleration_y"] = (times, values * s)
         kwargs.update(_given(options, ("record_interval", "damping", "damping_coefficient", "time_step",
-                                       "large_rotations")))
+                                       "large_rotations", "contact_update")))
         if options.damping == "rayleigh":
             if model is None:
                 raise InputError(f"{self.source}: [time_history] damping = \"rayleigh\" is set from the model's "

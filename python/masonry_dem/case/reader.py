@@ -88,7 +88,7 @@ GROUND_MOTION_KEYS = (
 PULSES = ("one-sine", "ricker")
 # Keys of the optional [time_history] table (``masonry-dem simulate``).
 TIME_HISTORY_KEYS = (
-    "duration", "record_interval", "damping", "damping_coefficient", "damping_ratio", "time_step", "large_rotations",
+    "duration", "record_interval", "damping", "damping_coefficient", "damping_ratio", "time_step", "large_rotations", "contact_update",
 )
 #: The kinds of damping of a time history: those of the quasi-static explicit solver and Rayleigh damping.
 TIME_HISTORY_DAMPINGS = DAMPINGS + ("rayleigh",)
@@ -599,6 +599,7 @@ def _time_history(table: Optional[_Table], three: bool = False) -> TimeHistoryPa
                 "damping_coefficient", f'must be < 1 with damping = "local" (alpha in [0, 1)), got {coefficient}'
             )
     large = table.boolean("large_rotations", None)
+    update = table.boolean("contact_update", None)
     return TimeHistoryParameters(
         duration=table.number("duration", None, _positive, unit="time"),
         record_interval=table.number("record_interval", None, _positive, unit="time"),
@@ -607,4 +608,5 @@ def _time_history(table: Optional[_Table], three: bool = False) -> TimeHistoryPa
         damping_ratio=ratio,
         time_step=table.number("time_step", None, _positive, unit="time"),
         large_rotations=large,
+        contact_update=update,
     )
