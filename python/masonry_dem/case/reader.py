@@ -41,7 +41,7 @@ from .mapping import (
     generate_arch,
     generate_blocks,
 )
-from .table import FORMAT, _got, _non_negative, _positive, _short, _Table
+from .table import FORMAT, _non_negative, _positive, _short, _Table
 
 if sys.version_info >= (3, 11):
     import tomllib
