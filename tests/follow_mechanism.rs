@@ -5,7 +5,7 @@ use masonry_dem::geometry::Rect;
 use masonry_dem::joint::JointLaw;
 use masonry_dem::limit::{follow_mechanism, FollowOptions, LimitOptions};
 use masonry_dem::model::{JointLaws, Model, ModelSpec};
-use masonry_dem::results::Status;
+use masonry_dem::results::{Results, Status};
 use masonry_dem::shape::Polygon;
 
 fn law(friction: f64) -> JointLaws {
@@ -29,6 +29,19 @@ fn rotation_of(d: f64, b: f64, h: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
+/// The model of `spec` analysed along its mechanism by steps of `step` \[m\]: a collapse at
+/// `lambda0` (to 1e-9) whose curve reaches its end, in at least ten steps.
+fn followed(spec: ModelSpec, step: f64, lambda0: f64) -> Results {
+    let model = Model::new(spec).unwrap();
+    let follow = FollowOptions { step, max_steps: 1000 };
+    let r = follow_mechanism(&model, &LimitOptions::default(), &follow, &mut |_| true).unwrap();
+    assert_eq!(r.status, Status::Collapse);
+    assert!(r.error.is_none(), "{:?}", r.error);
+    assert!((r.collapse_multiplier - lambda0).abs() < 1e-9);
+    assert!(r.curve_multiplier.len() >= 11, "{} points", r.curve_multiplier.len());
+    r
+}
+
 /// One block pushed at its centroid by lambda times its weight turns about its toe:
 /// lambda(theta) = tan(alpha - theta), alpha = atan(b / h), on the geometry moved by theta
 /// (the toe a point contact). On the base (the toe at the base's corner: two vertices at one
@@ -47,15 +60,9 @@ fn a_block_turning_about_its_toe_follows_tan_alpha_minus_theta() {
         ..ModelSpec::default()
     };
     for spec in [on_base, on_support] {
-        let model = Model::new(spec).unwrap();
         // steps of at most 0.03 m at the block's farthest vertex: about 2.4 degrees
-        let follow = FollowOptions { step: 0.03, max_steps: 1000 };
-        let r = follow_mechanism(&model, &LimitOptions::default(), &follow, &mut |_| true).unwrap();
-        assert_eq!(r.status, Status::Collapse);
-        assert!(r.error.is_none(), "{:?}", r.error);
-        assert!((r.collapse_multiplier - b / h).abs() < 1e-9);
+        let r = followed(spec, 0.03, b / h);
         let n = r.curve_multiplier.len();
-        assert!(n >= 11, "{n} points");
         for (&d, &lam) in r.curve_displacement.iter().zip(&r.curve_multiplier) {
             let theta = rotation_of(d, b, h);
             assert!((lam - (alpha - theta).tan()).abs() < 1e-6, "d = {d}: lambda {lam} against {}", (alpha - theta).tan());
@@ -67,8 +74,6 @@ fn a_block_turning_about_its_toe_follows_tan_alpha_minus_theta() {
         assert!((r.displacements[0][2] + last).abs() < 1e-9);
     }
 }
-
-
 
 /// A portal frame: two columns b x h on the base and a lintel resting on them, pushed by lambda
 /// times each block's weight. The columns rock about their toes and the lintel rides, without
@@ -82,14 +87,8 @@ fn a_rocking_portal_frame_follows_tan_alpha_minus_theta() {
     let alpha = (b / h).atan();
     let blocks: Vec<Polygon> =
         vec![Rect::new(0.0, 0.0, b, h).into(), Rect::new(span - b, 0.0, span, h).into(), Rect::new(0.0, h, span, h + 0.4).into()];
-    let model = Model::new(ModelSpec { blocks, joints: law(5.0), ..ModelSpec::default() }).unwrap();
-    let follow = FollowOptions { step: 0.04, max_steps: 1000 };
-    let r = follow_mechanism(&model, &LimitOptions::default(), &follow, &mut |_| true).unwrap();
-    assert_eq!(r.status, Status::Collapse);
-    assert!(r.error.is_none(), "{:?}", r.error);
-    assert!((r.collapse_multiplier - b / h).abs() < 1e-9);
+    let r = followed(ModelSpec { blocks, joints: law(5.0), ..ModelSpec::default() }, 0.04, b / h);
     let n = r.curve_multiplier.len();
-    assert!(n >= 11, "{n} points");
     // the control block's horizontal displacement against theta: a column's centroid, or the
     // lintel's, which moves as the column's top inner corner
     let theta_of = |d: f64| if r.control_block == 2 { rotation_of(d, 2.0 * b, 2.0 * h) } else { rotation_of(d, b, h) };

@@ -7,12 +7,11 @@
 
 mod common;
 
-use common::{dry, stands};
+use common::{stands, vault_model};
 use masonry_dem::geometry::{Arch, ArchKind, Springing};
 use masonry_dem::limit::{limit_analysis_3d, LimitOptions};
-use masonry_dem::model::JointLaws;
 use masonry_dem::results::Status;
-use masonry_dem::space::{barrel_vault, cross_vault, BarrelVault, CrossVault, LiveLoad3, Model3, ModelSpec3, Vaulted};
+use masonry_dem::space::{barrel_vault, cross_vault, BarrelVault, CrossVault, Model3, Vaulted};
 use std::f64::consts::PI;
 
 const ABUTMENTS: Springing = Springing::Abutments { width: None, height: None };
@@ -28,17 +27,7 @@ fn semicircular(t: f64, n: usize) -> CrossVault {
 
 /// The vault on its supports, or on the base if it has none (on piers).
 fn model(v: Vaulted, mu: f64, direction: f64) -> Model3 {
-    let base = v.supports.is_empty();
-    Model3::new(&ModelSpec3 {
-        polyhedra: v.blocks,
-        supports: v.supports,
-        base,
-        gravity: 10.0,
-        joints: JointLaws::uniform(dry(mu, mu, 1e9)),
-        live: LiveLoad3::HorizontalWeight { direction },
-        ..ModelSpec3::default()
-    })
-    .unwrap()
+    vault_model(v, mu, direction)
 }
 
 /// The section's right half (x >= 0) as a polygon, for `n` even voussoirs of a semicircular

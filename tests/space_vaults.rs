@@ -12,12 +12,12 @@
 
 mod common;
 
-use common::{dry, stands};
+use common::{dry, stands, vault_model};
 use masonry_dem::geometry::{arch, Arch, ArchKind, Springing};
 use masonry_dem::limit::{limit_analysis, limit_analysis_3d, LimitOptions};
 use masonry_dem::model::{JointLaws, Model, ModelSpec};
 use masonry_dem::results::Status;
-use masonry_dem::space::{barrel_vault, dome, BarrelVault, Dome, DomeKind, LiveLoad3, Model3, ModelSpec3};
+use masonry_dem::space::{barrel_vault, dome, BarrelVault, Dome, DomeKind, Model3, ModelSpec3};
 
 const ABUTMENTS: Springing = Springing::Abutments { width: None, height: None };
 
@@ -45,18 +45,7 @@ fn plane(a: &Arch, mu: f64) -> Model {
 /// The vault of section `a`, `length` long in blocks `block` long (None: one block deep),
 /// pushed at `direction` deg in plan.
 fn vault(a: &Arch, length: f64, block: Option<f64>, mu: f64, direction: f64) -> Model3 {
-    let v = barrel_vault(&BarrelVault { arch: *a, length, block_length: block }).unwrap();
-    let base = v.supports.is_empty();
-    Model3::new(&ModelSpec3 {
-        polyhedra: v.blocks,
-        supports: v.supports,
-        base,
-        gravity: 10.0,
-        joints: JointLaws::uniform(dry(mu, mu, 1e9)),
-        live: LiveLoad3::HorizontalWeight { direction },
-        ..ModelSpec3::default()
-    })
-    .unwrap()
+    vault_model(barrel_vault(&BarrelVault { arch: *a, length, block_length: block }).unwrap(), mu, direction)
 }
 
 fn lambda_2d(m: &Model) -> f64 {

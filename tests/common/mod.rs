@@ -133,3 +133,20 @@ pub fn eig2(k11: f64, k12: f64, k22: f64, m1: f64, m2: f64) -> [f64; 2] {
     let big = (-b + disc) / (2.0 * a);
     [c / (a * big), big]
 }
+
+/// A vault's model (blocks and supports from a generator): on its supports, or on the base if it
+/// has none (on piers), dry joints of friction `mu`, g = 10, pushed at `direction` deg in plan.
+pub fn vault_model(v: masonry_dem::space::Vaulted, mu: f64, direction: f64) -> masonry_dem::space::Model3 {
+    use masonry_dem::space::{LiveLoad3, Model3, ModelSpec3};
+    let base = v.supports.is_empty();
+    Model3::new(&ModelSpec3 {
+        polyhedra: v.blocks,
+        supports: v.supports,
+        base,
+        gravity: 10.0,
+        joints: JointLaws::uniform(dry(mu, mu, 1e9)),
+        live: LiveLoad3::HorizontalWeight { direction },
+        ..ModelSpec3::default()
+    })
+    .unwrap()
+}
