@@ -1,6 +1,8 @@
 //! The contact update of time histories in the plane: contacts found again as blocks slide,
 //! topple and fall, new contacts where they land, and the ground plane under a collapse.
 
+mod common;
+
 use masonry_dem::explicit::{simulate, DynamicOptions, Recording, TimeHistory};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::model::{JointLaws, Model, ModelSpec};
@@ -224,4 +226,43 @@ fn gilberts_ring_from_rest_stands_above_its_least_thickness_and_falls_below_it()
             }
         }
     }
+}
+
+/// Ferris & Tin-Loi's wall 1 (dry, friction 0.65, g = 10) under the first `duration` seconds
+/// of El Centro 1940 NS scaled by 3, with the contact update on or off.
+fn wall1_el_centro(duration: f64, update: bool) -> TimeHistory {
+    let model = common::ferris(6, common::dry(0.65, 0.0, 1e10));
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/elcentro-1940-ns.csv")).unwrap();
+    let (mut t, mut a) = (vec![], vec![]);
+    for line in text.lines().filter(|l| !l.starts_with('#') && !l.starts_with("time")) {
+        let mut cols = line.split(',').map(|c| c.trim().parse::<f64>().unwrap());
+        t.push(cols.next().unwrap());
+        a.push(3.0 * 10.0 * cols.next().unwrap());
+    }
+    let opts = DynamicOptions {
+        duration,
+        record: Recording::Interval(0.01),
+        base_acceleration: Some((t, a)),
+        large_rotations: true,
+        contact_update: update,
+        ..DynamicOptions::default()
+    };
+    simulate(&model, &opts).unwrap()
+}
+
+/// A wall of running bond shaken hard enough that its blocks slide and rock by millimetres, the
+/// contacts searched again many times: no contact is created or dropped (the head joints of the
+/// courses below and above, half a block behind each other, are no contacts), and the response
+/// stays that of the run without the update: the largest difference of any block's translation
+/// within 5% of the largest translation (over the whole 31 s record the measured difference was
+/// 0.42 mm against 9.6 mm, 4.4%, from the contacts whose geometry was taken again as their blocks
+/// slid along them).
+#[test]
+fn a_shaken_running_bond_wall_keeps_its_contacts() {
+    let (on, off) = (wall1_el_centro(4.0, true), wall1_el_centro(4.0, false));
+    assert!(on.contact_searches >= 5, "{} searches", on.contact_searches);
+    assert_eq!((on.contacts_created, on.contacts_dropped), (0, 0));
+    let peak = off.displacements.iter().map(|d| d[0].hypot(d[1])).fold(0.0, f64::max);
+    let diff = on.displacements.iter().zip(&off.displacements).map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1])).fold(0.0, f64::max);
+    assert!(peak > 1e-3 && diff <= 0.05 * peak, "difference {diff:e} m against the largest translation {peak:e} m");
 }

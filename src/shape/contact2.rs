@@ -148,9 +148,9 @@ pub struct Facing {
 
 /// Every pair of an edge of `a` and an edge of `b` whose outward normals are opposed within 60
 /// degrees, that overlap along the owner's edge over more than `tol` \[m\], with the nearer end of
-/// the overlap no farther apart than `gap` \[m\] and the farther end not inside the owner by half
-/// the depth of either polygon behind its edge (an edge that deep lies behind the other edge, not
-/// on it) (see [`Facing`]). Two edges along one line make a contact of angle 0, as [`contacts`] does; a
+/// the overlap no farther apart than `gap` \[m\] and the farther end not inside the owner by more
+/// than `gap` or half the depth of either polygon behind its edge (an edge that deep lies behind
+/// the other edge, not on it) (see [`Facing`]). Two edges along one line make a contact of angle 0, as [`contacts`] does; a
 /// vertex near an edge makes one with one of the two edges at the vertex (one of them faces the
 /// edge within 60 degrees for any vertex of an interior angle of 60 degrees or more).
 pub fn facing_edges(a: &Polygon, b: &Polygon, gap: f64, tol: f64) -> Vec<Facing> {
@@ -168,8 +168,11 @@ pub fn facing_edges(a: &Polygon, b: &Polygon, gap: f64, tol: f64) -> Vec<Facing>
             if dot(outward(p), outward(q)) >= -0.5 {
                 continue;
             }
-            // an edge deeper into the other polygon than half of either is behind it, not on it
-            let deep = 0.5 * depth(va, i).min(depth(vb, j));
+            // an edge deeper into the other polygon than the gap, or than half of either, is
+            // behind it, not on it: blocks that touch overlap by far less than the gap (they were
+            // found within it before they closed), and in running bond the head joints of the
+            // course below and above lie exactly half a block behind each other's
+            let deep = gap.min(0.5 * depth(va, i).min(depth(vb, j)));
             let Some((f, from_owner)) = facing_pair(p, q, gap, deep, tol) else { continue };
             if from_owner {
                 // the owner's vertex bears on the other's edge: the other's edge gives the normal
@@ -324,6 +327,26 @@ mod tests {
         })
         .checked(TOL)
         .unwrap()
+    }
+
+    /// Two blocks of running bond, one course above the other and half a block along: they touch
+    /// along the bed joint only. The right edge of the lower one and the left edge of the upper
+    /// one face each other half a block apart, one behind the other, whatever small motion the
+    /// wall makes (a gap of 2% of the block's height; the upper block raised, lowered, shifted
+    /// by up to 1 mm): a head-edge pair of them is no contact.
+    #[test]
+    fn blocks_of_running_bond_touch_along_their_bed_joint_only() {
+        let gap = 0.02 * 0.175;
+        let below = rect(0.2, 0.0, 0.6, 0.175);
+        for (dx, dy) in [(0.0, 0.0), (0.0, 1e-3), (0.0, -1e-3), (1e-3, 1e-3), (-1e-3, -1e-4)] {
+            let above = rect(0.4 + dx, 0.175 + dy, 0.8 + dx, 0.35 + dy);
+            let found = facing_edges(&below, &above, gap, TOL);
+            assert_eq!(found.len(), 1, "({dx}, {dy}): {found:?}");
+            let f = found[0];
+            // the bed joint: horizontal, from the lower block's top edge (or the upper's bottom)
+            assert!(f.n[0].abs() < 1e-12 && (f.n[1].abs() - 1.0).abs() < 1e-12, "({dx}, {dy}): {f:?}");
+            assert!((f.length - (0.2 - dx)).abs() < 1e-9 && (f.gap - dy * f.n[1]).abs() < 1e-9, "({dx}, {dy}): {f:?}");
+        }
     }
 
     #[test]
