@@ -428,7 +428,8 @@ fn rebuild(s: &mut Integrator, up: &mut Update, next: &[Next], kept: &[bool]) {
                 }
                 hist.extend_from_slice(&h[..hw]);
                 fresh.push((geo.len() - 1, old));
-                // a placeholder until the arrays are in place (see below)
+                // its dashpot is made from the integrator's arrays, so once they are in place (the
+                // loop over `fresh` below); the slot keeps the arrays' order meanwhile
                 if up.dashpots {
                     dynm.push(Dyn::default());
                 }
