@@ -285,6 +285,9 @@ pub struct TimeHistory<V = [f64; 3]> {
     pub contacts_renewed: usize,
     /// With the contact update: the contacts at the end of the run (empty without it).
     pub contacts: Vec<ContactAt>,
+    /// With the contact update in 3D: the contacts at the end of the run (empty without it, and
+    /// in the plane).
+    pub contacts_3d: Vec<ContactAt3>,
     /// With the contact update: the ground plane's level \[m\], if the model has one.
     pub ground_level: Option<f64>,
 }
@@ -303,6 +306,23 @@ pub struct ContactAt {
     /// The length \[m\].
     pub length: f64,
     /// The gap at the centre \[m\] (negative: closed).
+    pub gap: f64,
+}
+
+/// A contact at the end of a 3D time history with the contact update: its two blocks (a: the
+/// one whose face gives the normal), its centroid \[m\], its normal (from a into b), its area
+/// \[m2\] and the mean gap of its corners \[m\] (negative: closed).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactAt3 {
+    /// The two blocks (a, b).
+    pub blocks: [usize; 2],
+    /// The centroid of its corners' shares \[m\], half-way between the blocks' faces.
+    pub centre: [f64; 3],
+    /// The unit normal from a into b.
+    pub normal: [f64; 3],
+    /// The area \[m2\].
+    pub area: f64,
+    /// The mean gap of its corners by their shares \[m\] (negative: closed).
     pub gap: f64,
 }
 
@@ -365,6 +385,6 @@ pub(crate) use quasi_static::{relax_at_displacement, relax_dead_state};
 pub use quasi_static::{solve, solve_with};
 // the modal analysis in 3D takes the same kinematics and rotation dofs as a time history
 pub(crate) use space::{jump_rows, principal_axes, to_world};
-pub use space::{critical_time_step_3d, history_time_step_limit_3d, record_size_3d, simulate_3d, simulate_3d_with, solve_3d, solve_3d_with};
+pub use space::{critical_time_step_3d, critical_time_step_moving_3d, history_time_step_limit_3d, record_size_3d, simulate_3d, simulate_3d_with, solve_3d, solve_3d_with};
 pub use update::{GAP_FRACTION, GROUND_REACH};
 pub use time_history::{history_time_step_limit, record_count, record_size, simulate, simulate_with};

@@ -41,11 +41,11 @@ pub const GAP_FRACTION: f64 = 0.02;
 /// the model's size (the larger side of that box): the debris of a collapsing arch flies out.
 pub const GROUND_REACH: f64 = 5.0;
 
-/// Two bodies and an edge of each, in increasing order of the bodies: what a contact is, from
-/// one search to the next.
-type Key = ([u32; 2], [u32; 2]);
+/// Two bodies and an edge (in 3D a face) of each, in increasing order of the bodies: what a
+/// contact is, from one search to the next.
+pub(super) type Key = ([u32; 2], [u32; 2]);
 
-fn key(bodies: [usize; 2], edges: [usize; 2]) -> Key {
+pub(super) fn key(bodies: [usize; 2], edges: [usize; 2]) -> Key {
     if bodies[0] <= bodies[1] {
         ([bodies[0] as u32, bodies[1] as u32], [edges[0] as u32, edges[1] as u32])
     } else {
@@ -53,23 +53,26 @@ fn key(bodies: [usize; 2], edges: [usize; 2]) -> Key {
     }
 }
 
-/// What the contact update keeps besides the integrator's arrays.
-pub(crate) struct Update {
+/// What the contact update keeps besides the integrator's arrays, in either dimension: `B` a
+/// body's shape (a polygon, a polyhedron).
+pub(crate) struct Update<B = Polygon> {
     /// the bodies in their reference positions: the model's blocks, then the ground's pieces
-    bodies: Vec<Polygon>,
+    pub(super) bodies: Vec<B>,
     /// the block whose dofs carry each body, and what each body is
-    block: Vec<usize>,
-    kind: Vec<BlockKind>,
+    pub(super) block: Vec<usize>,
+    pub(super) kind: Vec<BlockKind>,
     /// each block's largest distance from its centroid to a vertex \[m\]
-    radius: Vec<f64>,
-    /// each interface's bodies and edges
-    keys: Vec<Key>,
+    pub(super) radius: Vec<f64>,
+    /// each interface's bodies and edges (faces)
+    pub(super) keys: Vec<Key>,
     /// the gap tolerance, the travel tolerance and the contact tolerance \[m\]
     pub(super) gap: f64,
     pub(super) travel: f64,
-    tol: f64,
+    pub(super) tol: f64,
     /// the displacements at the last search
-    u_ref: Vec<f64>,
+    pub(super) u_ref: Vec<f64>,
+    /// in 3D, each block's rotation matrix at the last search (empty in the plane)
+    pub(super) rot_ref: Vec<[f64; 9]>,
     /// searches made, contacts created, dropped, and taken again from the moved blocks
     pub(super) searches: usize,
     pub(super) created: usize,
@@ -80,7 +83,75 @@ pub(crate) struct Update {
     /// the ground's level \[m\], if the model has one
     pub(super) ground: Option<f64>,
     /// a time history's: each interface has its contact dashpot
-    dashpots: bool,
+    pub(super) dashpots: bool,
+}
+
+impl<B> Update<B> {
+    /// What the update adds to history `h` at the end of the run: its counts and the ground's level.
+    pub(super) fn report<V>(&self, h: &mut TimeHistory<V>) {
+        (h.contact_searches, h.contacts_created, h.contacts_dropped, h.contacts_renewed) = (self.searches, self.created, self.dropped, self.renewed);
+        h.ground_level = self.ground;
+    }
+
+    /// Whether block `i`, translated by `t` and turned so that a point at unit distance from its
+    /// centroid moved by `turn`, has some point beyond the travel tolerance.
+    #[inline(always)]
+    pub(super) fn beyond(&self, i: usize, t: f64, turn: f64) -> bool {
+        t + turn * self.radius[i] > self.travel
+    }
+
+    /// The old contacts by their keys.
+    pub(super) fn by_key(&self) -> HashMap<Key, usize> {
+        self.keys.iter().enumerate().map(|(k, &key)| (key, k)).collect()
+    }
+}
+
+/// The box of the ground under blocks within `all` (the vertical the last axis): `all` widened in
+/// plan by [`GROUND_REACH`] times the model's size `size` on each side.
+pub(super) fn ground_reach<const D: usize>(all: &Aabb<D>, size: f64) -> Aabb<D> {
+    let reach = GROUND_REACH * size;
+    let mut b = *all;
+    for k in 0..D - 1 {
+        b.min[k] -= reach;
+        b.max[k] += reach;
+    }
+    b
+}
+
+/// The gap tolerance of the wall blocks whose boxes are `boxes` (see [`GAP_FRACTION`]).
+pub(super) fn gap_of<const D: usize>(boxes: impl Iterator<Item = Aabb<D>>) -> f64 {
+    GAP_FRACTION * boxes.map(|b| (0..D).map(|k| b.max[k] - b.min[k]).fold(f64::INFINITY, f64::min)).fold(f64::INFINITY, f64::min)
+}
+
+/// The largest distance from `g` to one of `vertices` \[m\].
+pub(super) fn radius_of<const D: usize>(g: [f64; D], vertices: &[[f64; D]]) -> f64 {
+    vertices.iter().map(|v| (0..D).map(|k| (v[k] - g[k]) * (v[k] - g[k])).sum::<f64>().sqrt()).fold(0.0, f64::max)
+}
+
+/// The law of a new contact between bodies of kinds `ka` and `kb`: a base's or a support's,
+/// the top beam's, else a bed joint's where `bed` (the normal within 45 degrees of the
+/// vertical), a head joint's otherwise.
+pub(super) fn new_family(ka: BlockKind, kb: BlockKind, bed: bool) -> Family {
+    match (ka, kb) {
+        (BlockKind::Base | BlockKind::Support, _) | (_, BlockKind::Base | BlockKind::Support) => Family::Base,
+        (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
+        _ if bed => Family::Bed,
+        _ => Family::Head,
+    }
+}
+
+/// The range of a time history's state (see `out_of_range`): how far a block may move, in
+/// multiples of the model's size, and turn \[rad\] (`large`: finite rotations), and the words of
+/// the first; with the contact update a block may fall and tumble: only one that has left the
+/// ground is out.
+pub(super) fn range(updating: bool, large: bool) -> (f64, f64, &'static str) {
+    if updating {
+        (2.0 + GROUND_REACH, f64::INFINITY, "seven times the model's size")
+    } else if large {
+        (1.0, std::f64::consts::FRAC_PI_2, "the wall's size")
+    } else {
+        (1.0, 1.0, "the wall's size")
+    }
 }
 
 /// The ground of `model` (see the module's notes): its rectangle, the block that carries it, and
@@ -91,8 +162,8 @@ pub(super) fn ground(model: &Model) -> Option<(Polygon, usize, bool)> {
     }
     let all = model.polygons().iter().fold(Aabb::around(&[]), |b, p| b.union(&p.aabb()));
     let h = all.max[1] - all.min[1];
-    let reach = GROUND_REACH * model.size();
-    let (x0, x1) = (all.min[0] - reach, all.max[0] + reach);
+    let wide = ground_reach(&all, model.size());
+    let (x0, x1) = (wide.min[0], wide.max[0]);
     let rect = |bottom: f64, top: f64| Polygon::new(vec![[x0, bottom], [x1, bottom], [x1, top], [x0, top]]);
     if let Some(base) = model.base() {
         let bb = model.polygons()[base].aabb();
@@ -105,14 +176,7 @@ pub(super) fn ground(model: &Model) -> Option<(Polygon, usize, bool)> {
 
 /// The gap tolerance of `model` (see [`GAP_FRACTION`]).
 pub(super) fn gap_tolerance(model: &Model) -> f64 {
-    let least = model.polygons()[..model.n_wall()]
-        .iter()
-        .map(|p| {
-            let b = p.aabb();
-            (b.max[0] - b.min[0]).min(b.max[1] - b.min[1])
-        })
-        .fold(f64::INFINITY, f64::min);
-    GAP_FRACTION * least
+    gap_of(model.polygons()[..model.n_wall()].iter().map(Polygon::aabb))
 }
 
 /// The stable time step of `model` once its blocks may touch anything along every edge: the
@@ -141,7 +205,7 @@ pub(super) fn critical_time_step_moving(model: &Model) -> f64 {
     bound.step().min(critical_time_step(model))
 }
 
-impl Update {
+impl Update<Polygon> {
     /// The contact update of `s` (finite rotations) at its current state, the model's
     /// interfaces matched to their edges.
     pub(super) fn new(s: &Integrator) -> Update {
@@ -160,12 +224,7 @@ impl Update {
             }
             level
         });
-        let radius = (0..model.n_blocks())
-            .map(|i| {
-                let g = model.centroids()[i];
-                model.polygons()[i].vertices().iter().map(|v| (v[0] - g[0]).hypot(v[1] - g[1])).fold(0.0, f64::max)
-            })
-            .collect();
+        let radius = (0..model.n_blocks()).map(|i| radius_of(model.centroids()[i], model.polygons()[i].vertices())).collect();
         let tol = contact_tolerance(model.size());
         let keys = model.interfaces().iter().map(|it| key([it.a, it.b], [edge_at(&bodies[it.a], it.c, it.n, tol), edge_at(&bodies[it.b], it.c, [-it.n[0], -it.n[1]], tol)])).collect();
         let gap = gap_tolerance(model);
@@ -179,6 +238,7 @@ impl Update {
             travel: 0.5 * gap,
             tol,
             u_ref: s.u.clone(),
+            rot_ref: vec![],
             searches: 0,
             created: 0,
             dropped: 0,
@@ -193,9 +253,9 @@ impl Update {
     #[inline]
     pub(super) fn due(&self, u: &[f64]) -> bool {
         let r = &self.u_ref;
-        self.radius.iter().enumerate().any(|(i, &rad)| {
+        (0..self.radius.len()).any(|i| {
             let d = 3 * i;
-            (u[d] - r[d]).hypot(u[d + 1] - r[d + 1]) + (u[d + 2] - r[d + 2]).abs() * rad > self.travel
+            self.beyond(i, (u[d] - r[d]).hypot(u[d + 1] - r[d + 1]), (u[d + 2] - r[d + 2]).abs())
         })
     }
 
@@ -300,7 +360,7 @@ pub(super) fn search(s: &mut Integrator) {
         }
         Ok(())
     });
-    let old: HashMap<Key, usize> = up.keys.iter().enumerate().map(|(k, &key)| (key, k)).collect();
+    let old = up.by_key();
     let mut kept = vec![false; up.keys.len()];
     let up_dir = [-model.gravity_direction()[0], -model.gravity_direction()[1]];
     let mut next: Vec<Next> = found
@@ -309,12 +369,8 @@ pub(super) fn search(s: &mut Integrator) {
             let k = key([*oa, *ob], f.edges);
             let (a, b) = (up.block[*oa], up.block[*ob]);
             let fresh = || {
-                let family = match (up.kind[*oa], up.kind[*ob]) {
-                    (BlockKind::Base | BlockKind::Support, _) | (_, BlockKind::Base | BlockKind::Support) => Family::Base,
-                    (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
-                    _ if (f.n[0] * up_dir[0] + f.n[1] * up_dir[1]).abs() >= (f.n[0] * up_dir[1] - f.n[1] * up_dir[0]).abs() => Family::Bed,
-                    _ => Family::Head,
-                };
+                let bed = (f.n[0] * up_dir[0] + f.n[1] * up_dir[1]).abs() >= (f.n[0] * up_dir[1] - f.n[1] * up_dir[0]).abs();
+                let family = new_family(up.kind[*oa], up.kind[*ob], bed);
                 Some((arm_of(model, u, a, b, f), family))
             };
             match old.get(&k) {
