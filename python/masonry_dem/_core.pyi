@@ -787,6 +787,7 @@ class Model3D:
         record_interval: Optional[float] = None,
         rayleigh: Optional[tuple[float, float]] = None,
         base_acceleration_y: Optional[tuple[npt.ArrayLike, npt.ArrayLike]] = None,
+        contact_update: Optional[bool] = None,
     ) -> "TimeHistory":
         """Time history of the wall of boxes with the explicit solver: Model.simulate's options (and defaults), in 3D.
         Free motion from initial conditions (initial_displacements / initial_velocities: (n_all, 6) arrays of ux, uy,
@@ -799,7 +800,11 @@ class Model3D:
         damping "local", "viscous" or "none": stiffness-proportional damping is the plane's only (rayleigh takes
         beta = 0 only). Returns a TimeHistory of dimension 3, with the ground's acceleration and the base shear along
         y too. Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory computed so far
-        as its `results` attribute. progress: optional callable(step, time [s], nan, fraction done)."""
+        as its `results` attribute. progress: optional callable(step, time [s], nan, fraction done).
+        contact_update (default False; with large_rotations): the contacts found again as the blocks move (faces
+        facing within the gap tolerance; new contacts dry, with the joints' restitution; a contact found again keeps
+        its history) and a ground plane at the top of the base (without a base, at the lowest point), reaching five
+        model sizes beyond the blocks in plan, onto which falling blocks come to rest."""
     def record_size(
         self,
         duration: float,
@@ -866,6 +871,9 @@ class TimeHistory:
     """Time steps computed."""
     elapsed_s: float
     """Wall-clock time of the run [s]."""
+    contact_update: Optional[dict[str, Optional[float]]]
+    """With the contact update (simulate's contact_update), what it did: searches, created, dropped, renewed and
+    ground_level [m] (None without a ground); None without the update."""
 
 class _Certificate(TypedDict):
     """What a limit analysis certifies (Results.certificate)."""

@@ -187,6 +187,25 @@ impl PyTimeHistory {
     fn elapsed_s(&self) -> f64 {
         either!(self, h => h.elapsed_s)
     }
+    /// With the contact update (simulate's contact_update), what it did: a dict of searches (the searches for
+    /// contacts made, the first at the start included), created, dropped and renewed (the contacts whose geometry
+    /// was taken again from the moved blocks) and ground_level (the ground plane's level [m], None without one);
+    /// None without the update.
+    #[getter]
+    fn contact_update<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let (searches, created, dropped, renewed, ground) =
+            either!(self, h => (h.contact_searches, h.contacts_created, h.contacts_dropped, h.contacts_renewed, h.ground_level));
+        if searches == 0 {
+            return Ok(None);
+        }
+        let d = PyDict::new(py);
+        d.set_item("searches", searches)?;
+        d.set_item("created", created)?;
+        d.set_item("dropped", dropped)?;
+        d.set_item("renewed", renewed)?;
+        d.set_item("ground_level", ground)?;
+        Ok(Some(d))
+    }
     fn __repr__(&self) -> String {
         let dim = if self.inner.dimension() == 3 { ", dimension=3" } else { "" };
         either!(self, h => format!(

@@ -627,7 +627,11 @@ impl PyModel3D {
     /// beta = 0 only). Returns a TimeHistory of dimension 3, with the ground's acceleration and the base shear along
     /// y too. Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory computed so far
     /// as its `results` attribute. progress: optional callable(step, time [s], nan, fraction done).
-    #[pyo3(signature = (duration, time_step=None, safety=None, damping=None, damping_coefficient=None, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=None, record_every=None, large_rotations=None, threads=None, progress=None, vertical_acceleration=None, record_interval=None, rayleigh=None, base_acceleration_y=None))]
+    /// contact_update (default False; with large_rotations): the contacts found again as the blocks move (faces
+    /// facing within the gap tolerance; new contacts dry, with the joints' restitution; a contact found again keeps
+    /// its history) and a ground plane at the top of the base (without a base, at the lowest point), reaching five
+    /// model sizes beyond the blocks in plan, onto which falling blocks come to rest.
+    #[pyo3(signature = (duration, time_step=None, safety=None, damping=None, damping_coefficient=None, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=None, record_every=None, large_rotations=None, threads=None, progress=None, vertical_acceleration=None, record_interval=None, rayleigh=None, base_acceleration_y=None, contact_update=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate(
         &self,
@@ -649,8 +653,9 @@ impl PyModel3D {
         record_interval: Option<f64>,
         rayleigh: Option<(f64, f64)>,
         base_acceleration_y: Option<&Bound<'_, PyAny>>,
+        contact_update: Option<bool>,
     ) -> PyResult<Py<PyTimeHistory>> {
-        let opts = dynamic_options::<6>(
+        let mut opts = dynamic_options::<6>(
             duration,
             time_step,
             safety,
@@ -662,6 +667,7 @@ impl PyModel3D {
             large_rotations,
             threads,
         )?;
+        opts.contact_update = contact_update.unwrap_or(opts.contact_update);
         analyse(py, &self.inner, progress, move |model, monitor| {
             explicit::simulate_3d_with(model, &opts, monitor).map(PyTimeHistory::from)
         })

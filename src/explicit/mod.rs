@@ -21,8 +21,8 @@
 //! - Time histories: free motion from initial conditions, or a horizontal base acceleration
 //!   (inertial forces `-m a_g(t)` in the frame of the base).
 //!
-//! - Contact update (time histories in the plane, with finite rotations, when `contact_update`
-//!   is set; off by default): the contacts are searched again, on the grid of the model's
+//! - Contact update (time histories of either dimension, with finite rotations, when
+//!   `contact_update` is set; off by default; in 3D faces for edges, see `space::update`): the contacts are searched again, on the grid of the model's
 //!   detection, whenever some block has moved by more than half the gap tolerance since the
 //!   last search (a point of it: the centroid's translation plus the rotation times the
 //!   block's radius). The gap tolerance is [`GAP_FRACTION`] of the least side of the smallest
@@ -179,8 +179,8 @@ pub struct DynamicOptions<V = [f64; 3]> {
     /// Threads of the interface pass (0: all cores).
     pub threads: usize,
     /// The contacts found again as the blocks move, and a ground plane under the model (see the
-    /// contact update in this module's notes); the plane's, with finite rotations (`large_rotations`):
-    /// with the linearized kinematics, and in 3D, the contacts stay those of the wall as built.
+    /// contact update in this module's notes), with finite rotations (`large_rotations`), in either
+    /// dimension: with the linearized kinematics the contacts stay those of the wall as built.
     pub contact_update: bool,
 }
 

@@ -87,6 +87,54 @@ pub(crate) struct Update<B = Polygon> {
 }
 
 impl<B> Update<B> {
+    /// The update of a model of blocks `bodies` of kinds `kinds` with its ground (its body, the
+    /// block that carries it, whether it replaces that block (the base widened), its level),
+    /// each block's radius, the keys of its interfaces (of the bodies, the ground in place), the
+    /// gap and contact tolerances, the displacements (and in 3D the rotation matrices) now, and
+    /// whether the interfaces have dashpots.
+    #[allow(clippy::type_complexity)]
+    pub(super) fn assemble(
+        (mut bodies, mut kind, ground): (Vec<B>, Vec<BlockKind>, Option<(B, usize, bool, f64)>),
+        radius: Vec<f64>,
+        keys: impl FnOnce(&[B]) -> Vec<Key>,
+        (gap, tol): (f64, f64),
+        u_ref: Vec<f64>,
+        rot_ref: Vec<[f64; 9]>,
+        dashpots: bool,
+    ) -> Self {
+        let mut block: Vec<usize> = (0..bodies.len()).collect();
+        let ground = ground.map(|(body, anchor, widened, level)| {
+            if widened {
+                bodies[anchor] = body;
+            } else {
+                bodies.push(body);
+                block.push(anchor);
+                kind.push(BlockKind::Base);
+            }
+            level
+        });
+        let keys = keys(&bodies);
+        Update {
+            bodies,
+            block,
+            kind,
+            radius,
+            keys,
+            gap,
+            travel: 0.5 * gap,
+            tol,
+            u_ref,
+            rot_ref,
+            searches: 0,
+            created: 0,
+            dropped: 0,
+            renewed: 0,
+            dropped_dissipation: (0.0, 0.0),
+            ground,
+            dashpots,
+        }
+    }
+
     /// What the update adds to history `h` at the end of the run: its counts and the ground's level.
     pub(super) fn report<V>(&self, h: &mut TimeHistory<V>) {
         (h.contact_searches, h.contacts_created, h.contacts_dropped, h.contacts_renewed) = (self.searches, self.created, self.dropped, self.renewed);
@@ -210,43 +258,14 @@ impl Update<Polygon> {
     /// interfaces matched to their edges.
     pub(super) fn new(s: &Integrator) -> Update {
         let model = s.model;
-        let mut bodies = model.polygons().to_vec();
-        let mut block: Vec<usize> = (0..model.n_blocks()).collect();
-        let mut kind = model.kinds().to_vec();
         let ground = ground(model).map(|(rect, anchor, widened)| {
             let level = rect.aabb().max[1];
-            if widened {
-                bodies[anchor] = rect;
-            } else {
-                bodies.push(rect);
-                block.push(anchor);
-                kind.push(BlockKind::Base);
-            }
-            level
+            (rect, anchor, widened, level)
         });
         let radius = (0..model.n_blocks()).map(|i| radius_of(model.centroids()[i], model.polygons()[i].vertices())).collect();
         let tol = contact_tolerance(model.size());
-        let keys = model.interfaces().iter().map(|it| key([it.a, it.b], [edge_at(&bodies[it.a], it.c, it.n, tol), edge_at(&bodies[it.b], it.c, [-it.n[0], -it.n[1]], tol)])).collect();
-        let gap = gap_tolerance(model);
-        Update {
-            bodies,
-            block,
-            kind,
-            radius,
-            keys,
-            gap,
-            travel: 0.5 * gap,
-            tol,
-            u_ref: s.u.clone(),
-            rot_ref: vec![],
-            searches: 0,
-            created: 0,
-            dropped: 0,
-            renewed: 0,
-            dropped_dissipation: (0.0, 0.0),
-            ground,
-            dashpots: !s.dynm.is_empty(),
-        }
+        let keys = |bodies: &[Polygon]| model.interfaces().iter().map(|it| key([it.a, it.b], [edge_at(&bodies[it.a], it.c, it.n, tol), edge_at(&bodies[it.b], it.c, [-it.n[0], -it.n[1]], tol)])).collect();
+        Update::assemble((model.polygons().to_vec(), model.kinds().to_vec(), ground), radius, keys, (gap_tolerance(model), tol), s.u.clone(), vec![], !s.dynm.is_empty())
     }
 
     /// Whether some block has moved by more than the travel tolerance since the last search.

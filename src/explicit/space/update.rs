@@ -92,48 +92,18 @@ impl Update<Polyhedron> {
     /// matched to their faces.
     pub(super) fn new3(s: &Integrator3) -> Self {
         let model = s.model;
-        let nb = model.n_blocks();
-        let mut bodies = model.shapes().to_vec();
-        let mut block: Vec<usize> = (0..nb).collect();
-        let mut kind = model.kinds().to_vec();
         let ground = ground(model).map(|(slab, anchor, widened)| {
             let level = slab.aabb().max[2];
-            if widened {
-                bodies[anchor] = slab;
-            } else {
-                bodies.push(slab);
-                block.push(anchor);
-                kind.push(BlockKind::Base);
-            }
-            level
+            (slab, anchor, widened, level)
         });
-        let radius = (0..nb).map(|i| radius_of(model.centroids()[i], model.shapes()[i].vertices())).collect();
+        let radius = (0..model.n_blocks()).map(|i| radius_of(model.centroids()[i], model.shapes()[i].vertices())).collect();
         let tol = contact_tolerance(model.size());
-        let keys = model
-            .contacts()
-            .iter()
-            .map(|c| key([c.a, c.b], [face_at(&bodies[c.a], c.centroid, c.n, tol), face_at(&bodies[c.b], c.centroid, c.n.map(|v| -v), tol)]))
-            .collect();
+        let keys = |bodies: &[Polyhedron]| {
+            let face = |i: usize, c: [f64; 3], n: [f64; 3]| face_at(&bodies[i], c, n, tol);
+            model.contacts().iter().map(|c| key([c.a, c.b], [face(c.a, c.centroid, c.n), face(c.b, c.centroid, c.n.map(|v| -v))])).collect()
+        };
         let gap = gap_of(model.shapes()[..model.n_wall()].iter().map(Polyhedron::aabb));
-        Update {
-            bodies,
-            block,
-            kind,
-            radius,
-            keys,
-            gap,
-            travel: 0.5 * gap,
-            tol,
-            u_ref: s.m.u.clone(),
-            rot_ref: s.rot.clone(),
-            searches: 0,
-            created: 0,
-            dropped: 0,
-            renewed: 0,
-            dropped_dissipation: (0.0, 0.0),
-            ground,
-            dashpots: !s.dash.is_empty(),
-        }
+        Update::assemble((model.shapes().to_vec(), model.kinds().to_vec(), ground), radius, keys, (gap, tol), s.m.u.clone(), s.rot.clone(), !s.dash.is_empty())
     }
 
     /// Whether some block has moved by more than the travel tolerance since the last search (at

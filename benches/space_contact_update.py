@@ -1,0 +1,72 @@
+"""The cost of the contact update in a 3D time history: a wall of about 10^3 boxes shaken along x and y by the
+El Centro record, with contact_update on and off, side by side (a run that forms no new contact: the cost of the
+check per step and of the searches).
+
+Run, from the repository's root, in a venv where `make develop` built masonry_dem:
+
+    python benches/space_contact_update.py [--duration 0.5] [--repeats 3] [--scale 1.0] [--threads 1]
+
+The wall: a single leaf in running bond, 12 m long, 8 m high, 0.4 m thick, of 0.4 x 0.2 m blocks (1,230 boxes), dry
+joints of friction 0.65 and 1e10 N/m3, on a fixed base; the record examples/elcentro-1940-ns.csv (in g at 0.02 s)
+times --scale along x and half of it along y, its first --duration seconds. Each repeat runs the two one after the
+other (on, off), both at the time step of the run with the update (stable for a block touching along every face),
+so that the ratio is the update's own cost; the medians of the solver's own wall-clock time
+(TimeHistory.elapsed_s) are printed with their ratio, and the largest difference of the two runs' displacements.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+from pathlib import Path
+
+import numpy as np
+
+import masonry_dem as md
+
+RECORD = Path(__file__).resolve().parents[1] / "examples" / "elcentro-1940-ns.csv"
+JOINTS = {"default": {"friction": 0.65, "cohesion": 0.0, "tensile_strength": 0.0, "dilatancy": 0.0,
+                      "normal_stiffness": 1e10, "shear_stiffness": 1e10}}
+
+
+def record(duration: float, scale: float) -> tuple[np.ndarray, np.ndarray]:
+    """The record's first `duration` seconds [s] and accelerations [m/s2] times `scale`."""
+    rows = [line.split(",") for line in RECORD.read_text().splitlines() if line and line[0].isdigit()]
+    t = np.array([float(r[0]) for r in rows])
+    a = np.array([float(r[1]) for r in rows]) * 9.81 * scale
+    keep = t <= duration + 0.02
+    return t[keep], a[keep]
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--duration", type=float, default=0.5)
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--scale", type=float, default=1.0)
+    parser.add_argument("--threads", type=int, default=1)
+    args = parser.parse_args()
+    boxes = md.running_bond_3d(12.0, 8.0, 0.4, 0.4, 0.2, "half")
+    model = md.Model3D(boxes, density=1000.0, joints=JOINTS)
+    t, a = record(args.duration, args.scale)
+    ground = {"base_acceleration": (t, a), "base_acceleration_y": (t, 0.5 * a)}
+    times: dict[bool, list[float]] = {True: [], False: []}
+    runs = {}
+    step = None
+    for _ in range(args.repeats):
+        for update in (True, False):
+            h = model.simulate(args.duration, time_step=step, record_interval=0.01, threads=args.threads,
+                               contact_update=update, **ground)
+            step = h.time_step
+            times[update].append(h.elapsed_s)
+            runs[update] = h
+    on, off = statistics.median(times[True]), statistics.median(times[False])
+    diff = float(np.max(np.abs(np.asarray(runs[True].displacements) - np.asarray(runs[False].displacements))))
+    print(f"{len(boxes)} blocks, {args.duration} s of El Centro x {args.scale}, {args.threads} thread(s), "
+          f"{args.repeats} repeats, {runs[True].steps} steps of {runs[True].time_step:.3e} s each")
+    print(f"update on:  median {on:.3f} s")
+    print(f"update off: median {off:.3f} s")
+    print(f"ratio on / off: {on / off:.3f}; largest difference of the displacements {diff:.3e}")
+
+
+if __name__ == "__main__":
+    main()
