@@ -7,7 +7,7 @@ Run, from the repository's root, in a venv where `make develop` built masonry_de
     python benches/space_contact_update.py [--duration 0.5] [--repeats 3] [--scale 1.0] [--threads 1]
 
 The wall: a single leaf in running bond, 12 m long, 8 m high, 0.4 m thick, of 0.4 x 0.2 m blocks (1,230 boxes), dry
-joints of friction 0.65 and 1e10 N/m3, on a fixed base; the record examples/elcentro-1940-ns.csv (in g at 0.02 s)
+joints of friction 0.65 and 1e10 N/m3 (as the plane's benchmark, benches/contact_update.py), on a fixed base; the record examples/elcentro-1940-ns.csv (in g at 0.02 s)
 times --scale along x and half of it along y, its first --duration seconds. Each repeat runs the two one after the
 other (on, off), both at the time step of the run with the update (stable for a block touching along every face),
 so that the ratio is the update's own cost; the medians of the solver's own wall-clock time
@@ -18,24 +18,11 @@ from __future__ import annotations
 
 import argparse
 import statistics
-from pathlib import Path
 
 import numpy as np
 
 import masonry_dem as md
-
-RECORD = Path(__file__).resolve().parents[1] / "examples" / "elcentro-1940-ns.csv"
-JOINTS = {"default": {"friction": 0.65, "cohesion": 0.0, "tensile_strength": 0.0, "dilatancy": 0.0,
-                      "normal_stiffness": 1e10, "shear_stiffness": 1e10}}
-
-
-def record(duration: float, scale: float) -> tuple[np.ndarray, np.ndarray]:
-    """The record's first `duration` seconds [s] and accelerations [m/s2] times `scale`."""
-    rows = [line.split(",") for line in RECORD.read_text().splitlines() if line and line[0].isdigit()]
-    t = np.array([float(r[0]) for r in rows])
-    a = np.array([float(r[1]) for r in rows]) * 9.81 * scale
-    keep = t <= duration + 0.02
-    return t[keep], a[keep]
+from contact_update import JOINTS, record  # the plane's benchmark, beside this script
 
 
 def main() -> None:

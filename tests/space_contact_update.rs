@@ -1,6 +1,8 @@
 //! The contact update of 3D time histories: contacts found again as blocks slide and topple on a
 //! slope, new contacts where a block lands, and a wall whose contacts neither form nor break.
 
+mod common;
+
 use masonry_dem::explicit::{simulate_3d, DynamicOptions, Recording, TimeHistory};
 use masonry_dem::joint::JointLaw;
 use masonry_dem::model::JointLaws;
@@ -52,32 +54,6 @@ fn along(h: &TimeHistory<[f64; 6]>, axis: [f64; 3]) -> Vec<f64> {
     (0..h.times.len()).map(|k| (0..3).map(|r| h.displacement(k)[0][r] * axis[r]).sum()).collect()
 }
 
-/// The coefficients (c0, c1, c2) of the least-squares quadratic through `pts`.
-fn quadratic(pts: &[(f64, f64)]) -> [f64; 3] {
-    let mut m = [[0.0; 4]; 3];
-    for &(t, y) in pts {
-        let p = [1.0, t, t * t];
-        for i in 0..3 {
-            for j in 0..3 {
-                m[i][j] += p[i] * p[j];
-            }
-            m[i][3] += p[i] * y;
-        }
-    }
-    for i in 0..3 {
-        let pivot = m[i];
-        for (r, row) in m.iter_mut().enumerate() {
-            if r != i {
-                let f = row[i] / pivot[i];
-                for (x, p) in row.iter_mut().zip(pivot) {
-                    *x -= f * p;
-                }
-            }
-        }
-    }
-    [m[0][3] / m[0][0], m[1][3] / m[1][1], m[2][3] / m[2][2]]
-}
-
 /// The sliding block of `section` on a 40-degree slope of friction 20 degrees turned by `beta` in
 /// plan: its acceleration along the slope, fitted from 0.5 s on, within 1% of `g (sin psi - tan
 /// phi cos psi)`; it slides more than twice its length, straight down (across the slope less than
@@ -95,7 +71,7 @@ fn slides(section: &[[f64; 2]], beta: f64, duration: f64) {
     let want = 10.0 * (psi.to_radians().sin() - phi.to_radians().tan() * psi.to_radians().cos());
     let s = along(&h, ax[0]);
     let pts: Vec<(f64, f64)> = h.times.iter().zip(&s).filter(|(t, _)| **t >= 0.5).map(|(t, s)| (*t, *s)).collect();
-    let a = quadratic(&pts)[2] * 2.0;
+    let a = common::quadratic(&pts)[2] * 2.0;
     let last = h.times.len() - 1;
     let across = along(&h, ax[1])[last];
     eprintln!("beta {beta}: acceleration {a} against {want}, slid {} m, across {across:e} m, {} steps, searches {}, renewed {}, created {}, dropped {}, {:?}", s[last], h.steps, h.contact_searches, h.contacts_renewed, h.contacts_created, h.contacts_dropped, h.contacts_3d);

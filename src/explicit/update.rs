@@ -202,9 +202,9 @@ pub(super) fn range(updating: bool, large: bool) -> (f64, f64, &'static str) {
     }
 }
 
-/// The ground of `model` (see the module's notes): its rectangle, the block that carries it, and
-/// whether it is that block (the base, widened) or a body of its own.
-pub(super) fn ground(model: &Model) -> Option<(Polygon, usize, bool)> {
+/// The ground of `model` (see the module's notes): its rectangle, the block that carries it,
+/// whether it is that block (the base, widened) or a body of its own, and its level \[m\].
+pub(super) fn ground(model: &Model) -> Option<(Polygon, usize, bool, f64)> {
     if model.gravity_direction() != [0.0, -1.0] {
         return None;
     }
@@ -215,10 +215,10 @@ pub(super) fn ground(model: &Model) -> Option<(Polygon, usize, bool)> {
     let rect = |bottom: f64, top: f64| Polygon::new(vec![[x0, bottom], [x1, bottom], [x1, top], [x0, top]]);
     if let Some(base) = model.base() {
         let bb = model.polygons()[base].aabb();
-        Some((rect(bb.min[1], bb.max[1]), base, true))
+        Some((rect(bb.min[1], bb.max[1]), base, true, bb.max[1]))
     } else {
         let anchor = model.supports().next()?;
-        Some((rect(all.min[1] - h, all.min[1]), anchor, false))
+        Some((rect(all.min[1] - h, all.min[1]), anchor, false, all.min[1]))
     }
 }
 
@@ -258,14 +258,10 @@ impl Update<Polygon> {
     /// interfaces matched to their edges.
     pub(super) fn new(s: &Integrator) -> Update {
         let model = s.model;
-        let ground = ground(model).map(|(rect, anchor, widened)| {
-            let level = rect.aabb().max[1];
-            (rect, anchor, widened, level)
-        });
         let radius = (0..model.n_blocks()).map(|i| radius_of(model.centroids()[i], model.polygons()[i].vertices())).collect();
         let tol = contact_tolerance(model.size());
         let keys = |bodies: &[Polygon]| model.interfaces().iter().map(|it| key([it.a, it.b], [edge_at(&bodies[it.a], it.c, it.n, tol), edge_at(&bodies[it.b], it.c, [-it.n[0], -it.n[1]], tol)])).collect();
-        Update::assemble((model.polygons().to_vec(), model.kinds().to_vec(), ground), radius, keys, (gap_tolerance(model), tol), s.u.clone(), vec![], !s.dynm.is_empty())
+        Update::assemble((model.polygons().to_vec(), model.kinds().to_vec(), ground(model)), radius, keys, (gap_tolerance(model), tol), s.u.clone(), vec![], !s.dynm.is_empty())
     }
 
     /// Whether some block has moved by more than the travel tolerance since the last search.

@@ -36,18 +36,18 @@ use crate::shape::grid::for_each_pair;
 use crate::shape::{contact_tolerance, face_patch, facing_faces, Aabb, FaceFacing, Polyhedron};
 use std::f64::consts::FRAC_1_SQRT_2;
 
-/// The ground of `model` (see the module's notes): its box, the block that carries it, and
-/// whether it is that block (the base, widened) or a body of its own.
-fn ground(model: &Model3) -> Option<(Polyhedron, usize, bool)> {
+/// The ground of `model` (see the module's notes): its box, the block that carries it, whether
+/// it is that block (the base, widened) or a body of its own, and its level \[m\].
+fn ground(model: &Model3) -> Option<(Polyhedron, usize, bool, f64)> {
     let all = model.shapes().iter().fold(Aabb::around(&[]), |b, p| b.union(&p.aabb()));
     let wide = ground_reach(&all, model.size());
     let slab = |bottom: f64, top: f64| Polyhedron::cuboid([wide.min[0], wide.min[1], bottom], [wide.max[0], wide.max[1], top]);
     if let Some(base) = model.base() {
         let bb = model.shapes()[base].aabb();
-        Some((slab(bb.min[2], bb.max[2]), base, true))
+        Some((slab(bb.min[2], bb.max[2]), base, true, bb.max[2]))
     } else {
         let anchor = (0..model.n_blocks()).find(|&i| model.kinds()[i] == BlockKind::Base)?;
-        Some((slab(all.min[2] - (all.max[2] - all.min[2]), all.min[2]), anchor, false))
+        Some((slab(all.min[2] - (all.max[2] - all.min[2]), all.min[2]), anchor, false, all.min[2]))
     }
 }
 
@@ -92,10 +92,6 @@ impl Update<Polyhedron> {
     /// matched to their faces.
     pub(super) fn new3(s: &Integrator3) -> Self {
         let model = s.model;
-        let ground = ground(model).map(|(slab, anchor, widened)| {
-            let level = slab.aabb().max[2];
-            (slab, anchor, widened, level)
-        });
         let radius = (0..model.n_blocks()).map(|i| radius_of(model.centroids()[i], model.shapes()[i].vertices())).collect();
         let tol = contact_tolerance(model.size());
         let keys = |bodies: &[Polyhedron]| {
@@ -103,7 +99,7 @@ impl Update<Polyhedron> {
             model.contacts().iter().map(|c| key([c.a, c.b], [face(c.a, c.centroid, c.n), face(c.b, c.centroid, c.n.map(|v| -v))])).collect()
         };
         let gap = gap_of(model.shapes()[..model.n_wall()].iter().map(Polyhedron::aabb));
-        Update::assemble((model.shapes().to_vec(), model.kinds().to_vec(), ground), radius, keys, (gap, tol), s.m.u.clone(), s.rot.clone(), !s.dash.is_empty())
+        Update::assemble((model.shapes().to_vec(), model.kinds().to_vec(), ground(model)), radius, keys, (gap, tol), s.m.u.clone(), s.rot.clone(), !s.dash.is_empty())
     }
 
     /// Whether some block has moved by more than the travel tolerance since the last search (at
@@ -111,11 +107,14 @@ impl Update<Polyhedron> {
     #[inline]
     pub(super) fn due3(&self, u: &[f64], rot: &[[f64; 9]]) -> bool {
         let (r, r0) = (&self.u_ref, &self.rot_ref);
+        let near = 0.5 * self.travel * self.travel;
         (0..self.radius.len()).any(|i| {
             let d = 6 * i;
-            let t = ((u[d] - r[d]).powi(2) + (u[d + 1] - r[d + 1]).powi(2) + (u[d + 2] - r[d + 2]).powi(2)).sqrt();
-            let turn = (0..9).map(|k| (rot[i][k] - r0[i][k]).powi(2)).sum::<f64>().sqrt() * FRAC_1_SQRT_2;
-            self.beyond(i, t, turn)
+            let t2 = (u[d] - r[d]).powi(2) + (u[d + 1] - r[d + 1]).powi(2) + (u[d + 2] - r[d + 2]).powi(2);
+            let f2 = (0..9).map(|k| (rot[i][k] - r0[i][k]).powi(2)).sum::<f64>();
+            // (t + turn rad)^2 <= 2 (t^2 + turn^2 rad^2): most blocks are that near, without a root
+            let rad = self.radius[i];
+            !(t2 + 0.5 * f2 * rad * rad <= near) && self.beyond(i, t2.sqrt(), f2.sqrt() * FRAC_1_SQRT_2)
         })
     }
 
