@@ -17,12 +17,9 @@ so that the ratio is the update's own cost; the medians of the solver's own wall
 from __future__ import annotations
 
 import argparse
-import statistics
-
-import numpy as np
 
 import masonry_dem as md
-from contact_update import JOINTS, record  # the plane's benchmark, beside this script
+from contact_update import JOINTS, record, side_by_side  # the plane's benchmark, beside this script
 
 
 def main() -> None:
@@ -36,18 +33,9 @@ def main() -> None:
     model = md.Model3D(boxes, density=1000.0, joints=JOINTS)
     t, a = record(args.duration, args.scale)
     ground = {"base_acceleration": (t, a), "base_acceleration_y": (t, 0.5 * a)}
-    times: dict[bool, list[float]] = {True: [], False: []}
-    runs = {}
-    step = None
-    for _ in range(args.repeats):
-        for update in (True, False):
-            h = model.simulate(args.duration, time_step=step, record_interval=0.01, threads=args.threads,
-                               contact_update=update, **ground)
-            step = h.time_step
-            times[update].append(h.elapsed_s)
-            runs[update] = h
-    on, off = statistics.median(times[True]), statistics.median(times[False])
-    diff = float(np.max(np.abs(np.asarray(runs[True].displacements) - np.asarray(runs[False].displacements))))
+    on, off, runs, diff = side_by_side(lambda update, step: model.simulate(
+        args.duration, time_step=step, record_interval=0.01, threads=args.threads, contact_update=update, **ground),
+        args.repeats)
     print(f"{len(boxes)} blocks, {args.duration} s of El Centro x {args.scale}, {args.threads} thread(s), "
           f"{args.repeats} repeats, {runs[True].steps} steps of {runs[True].time_step:.3e} s each")
     print(f"update on:  median {on:.3f} s")

@@ -148,6 +148,26 @@ impl<B> Update<B> {
         t + turn * self.radius[i] > self.travel
     }
 
+    /// What `facing` finds between each two bodies of boxes `boxes` (where the displacements carry
+    /// them) within the gap of each other, a wall block among them, on the grid of the model's
+    /// detection: each with the body that owns its normal (`owner`: 0 the first of the two given),
+    /// then the other.
+    pub(super) fn near<const D: usize, F>(&self, boxes: &[Aabb<D>], facing: impl Fn(usize, usize) -> Vec<F>, owner: impl Fn(&F) -> usize) -> Vec<(usize, usize, F)> {
+        let mut found = vec![];
+        let kinds = &self.kind;
+        let _ = for_each_pair(boxes, self.gap, &mut || true, |i, j| {
+            if kinds[i] != BlockKind::Wall && kinds[j] != BlockKind::Wall {
+                return Ok(());
+            }
+            for f in facing(i, j) {
+                let (oa, ob) = if owner(&f) == 0 { (i, j) } else { (j, i) };
+                found.push((oa, ob, f));
+            }
+            Ok(())
+        });
+        found
+    }
+
     /// The old contacts by their keys.
     pub(super) fn by_key(&self) -> HashMap<Key, usize> {
         self.keys.iter().enumerate().map(|(k, &key)| (key, k)).collect()
@@ -362,19 +382,7 @@ pub(super) fn search(s: &mut Integrator) {
     let u = &s.m.u;
     let polygons: Vec<Polygon> = (0..up.bodies.len()).map(|k| up.moved(model, u, k)).collect();
     let boxes: Vec<Aabb<2>> = polygons.iter().map(Polygon::aabb).collect();
-    let mut found: Vec<(usize, usize, Facing)> = vec![];
-    let (gap, tol) = (up.gap, up.tol);
-    let kinds = &up.kind;
-    let _ = for_each_pair(&boxes, gap, &mut || true, |i, j| {
-        if kinds[i] != BlockKind::Wall && kinds[j] != BlockKind::Wall {
-            return Ok(());
-        }
-        for f in facing_edges(&polygons[i], &polygons[j], gap, tol) {
-            let (oa, ob) = if f.owner == 0 { (i, j) } else { (j, i) };
-            found.push((oa, ob, f));
-        }
-        Ok(())
-    });
+    let found = up.near(&boxes, |i, j| facing_edges(&polygons[i], &polygons[j], up.gap, up.tol), |f| f.owner);
     let old = up.by_key();
     let mut kept = vec![false; up.keys.len()];
     let up_dir = [-model.gravity_direction()[0], -model.gravity_direction()[1]];

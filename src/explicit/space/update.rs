@@ -32,7 +32,6 @@ pub(super) use super::super::update::Update;
 use super::super::update::{gap_of, ground_reach, key, new_family, radius_of, Key};
 use super::*;
 use crate::interface::{BlockKind, Family};
-use crate::shape::grid::for_each_pair;
 use crate::shape::{contact_tolerance, face_patch, facing_faces, Aabb, FaceFacing, Polyhedron};
 use std::f64::consts::FRAC_1_SQRT_2;
 
@@ -193,18 +192,7 @@ pub(super) fn search(s: &mut Integrator3) {
     let Some(mut up) = s.update.take() else { return };
     let shapes: Vec<Polyhedron> = (0..up.bodies.len()).map(|k| up.moved3(s, k)).collect();
     let boxes: Vec<Aabb<3>> = shapes.iter().map(Polyhedron::aabb).collect();
-    let mut hits: Vec<(usize, usize, FaceFacing)> = vec![];
-    let (gap, tol, kinds) = (up.gap, up.tol, &up.kind);
-    let _ = for_each_pair(&boxes, gap, &mut || true, |i, j| {
-        if kinds[i] != BlockKind::Wall && kinds[j] != BlockKind::Wall {
-            return Ok(());
-        }
-        for f in facing_faces(&shapes[i], &shapes[j], gap, tol) {
-            let (oa, ob) = if f.owner == 0 { (i, j) } else { (j, i) };
-            hits.push((oa, ob, f));
-        }
-        Ok(())
-    });
+    let hits = up.near(&boxes, |i, j| facing_faces(&shapes[i], &shapes[j], up.gap, up.tol), |f: &FaceFacing| f.owner);
     let old = up.by_key();
     let mut kept = vec![false; up.keys.len()];
     let mut next: Vec<Next> = hits
