@@ -7,7 +7,7 @@ An argument left out (None) takes the core's default: the Rust `Default` of the 
 to, documented in docs/case-format.md under the matching key.
 """
 
-from typing import Callable, Literal, Optional, Sequence, Tuple, TypedDict, Union
+from typing import Any, Callable, Dict, Literal, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -572,7 +572,7 @@ class Model:
         damping alpha M + beta K (masonry_dem.rayleigh_damping from two modes), the beta K part as
         dashpots at the closed interfaces; instead of damping / damping_coefficient. Records every record_interval seconds
         or every record_every-th step (not both); Model.record_size gives the memory up front.
-        contact_update (default False; with large_rotations): the contacts found again as the
+        contact_update (default True, with large_rotations; False: the contacts of the wall as built): the contacts found again as the
         blocks move (new contacts dry, with the joints' restitution; a contact found again keeps
         its history) and a ground plane at the top of the base (without a base, at the lowest
         point), reaching five model sizes beyond the blocks, onto which falling blocks come to rest.
@@ -588,11 +588,12 @@ class Model:
     ) -> tuple[int, float]:
         """(records, bytes) that Model.simulate with these options would hold (its time step as
         simulate chooses it); refuses what simulate refuses."""
-    def critical_time_step(self, time_history: bool = False) -> float:
+    def critical_time_step(self, time_history: bool = False, contact_update: bool = True) -> float:
         """The stability limit of the explicit solver's time step [s] (Gershgorin bound); with
         time_history=True, that of Model.simulate: lowered for the contact dashpots of the
         joints' restitution (the factor sqrt(1 + z^2) - z with z = 3 zeta, zeta the dashpot's
-        damping ratio)."""
+        damping ratio) and, with contact_update (True, simulate's default), for a block touching
+        fixed bodies along every edge."""
 
 class Model3D:
     """A wall of rigid blocks in 3D (axis-aligned boxes and convex polyhedra), z up, joined by dry Mohr-Coulomb contacts
@@ -776,8 +777,8 @@ class Model3D:
         direction is nearer y; a control block held along that axis (the base) is refused. damping,
         damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in Model.solve_dynamic
         (Model3D.critical_time_step gives the stability limit); large_rotations=True and contact_update=True are
-        refused (InputError): a 3D pushover is on the wall as built. Releases the GIL; Ctrl-C raises KeyboardInterrupt with
-        the partial Results as its `results` attribute. progress: as in Model.solve_dynamic."""
+        refused (InputError): a 3D pushover is on the wall as built. Releases the GIL; Ctrl-C raises KeyboardInterrupt
+        with the partial Results as its `results` attribute. progress: as in Model.solve_dynamic."""
     def simulate(
         self,
         duration: float,
@@ -876,6 +877,19 @@ class TimeHistory:
     """Time steps computed."""
     elapsed_s: float
     """Wall-clock time of the run [s]."""
+    contact_counts: Tuple[int, int, int, int]
+    """With the contact update (Model.simulate(contact_update=True), the default): the searches for contacts made,
+    and the contacts created, dropped, and taken again from the moved blocks; zeros without it."""
+    ground_level: Optional[float]
+    """With the contact update: the ground plane's level [m], if the model has one (None otherwise)."""
+    contact_events: Dict[str, Any]
+    """With the contact update: every contact created, dropped or taken again, in order, as a dict of arrays (empty
+    without it): "time" [s], "change" ("created", "dropped", "renewed"), "id" (the contact's number: the model's
+    interfaces 0..m in their order, then each created contact in turn), "blocks" (n, 2) (a: the block whose edge
+    gives the normal), "centre" (n, 2) [m] relative to block a's centroid and "normal" (n, 2) from a into b, both
+    in a's position at rest (a block's displacement carries them), "length" [m]; a dropped contact has zero
+    geometry. With Model.interface_blocks / interface_geometry they give the contacts at any time
+    (masonry_dem.history.contacts_at)."""
 
 class _Certificate(TypedDict):
     """What a limit analysis certifies (Results.certificate)."""

@@ -417,7 +417,7 @@ impl PyModel {
     /// damping alpha M + beta K (masonry_dem.rayleigh_damping from two modes), the beta K part as
     /// dashpots at the closed interfaces; instead of damping / damping_coefficient. Records every record_interval seconds
     /// or every record_every-th step (not both); Model.record_size gives the memory up front.
-    /// contact_update (default False; with large_rotations): the contacts found again as the
+    /// contact_update (default True, with large_rotations; False: the contacts of the wall as built): the contacts found again as the
     /// blocks move (new contacts dry, with the joints' restitution; a contact found again keeps
     /// its history) and a ground plane at the top of the base (without a base, at the lowest
     /// point), reaching five model sizes beyond the blocks, onto which falling blocks come to rest.
@@ -477,11 +477,12 @@ impl PyModel {
     /// The stability limit of the explicit solver's time step [s] (Gershgorin bound); with
     /// time_history=True, that of Model.simulate: lowered for the contact dashpots of the
     /// joints' restitution (the factor sqrt(1 + z^2) - z with z = 3 zeta, zeta the dashpot's
-    /// damping ratio).
-    #[pyo3(signature = (time_history=false))]
-    fn critical_time_step(&self, time_history: bool) -> f64 {
+    /// damping ratio) and, with contact_update (True, simulate's default), for a block touching
+    /// fixed bodies along every edge.
+    #[pyo3(signature = (time_history=false, contact_update=true))]
+    fn critical_time_step(&self, time_history: bool, contact_update: bool) -> f64 {
         if time_history {
-            explicit::history_time_step_limit(&self.inner, 0.0)
+            explicit::history_time_step_limit(&self.inner, 0.0, contact_update)
         } else {
             explicit::critical_time_step(&self.inner)
         }
