@@ -297,7 +297,7 @@ fn a_time_history_too_large_to_record_is_refused_before_allocating() {
     let msg = input_message(simulate(&m, &DynamicOptions { duration: 1e12, ..DynamicOptions::default() }));
     assert!(msg.contains("time steps"), "{msg}");
     // recording every step of a long run would store too many numbers
-    let dt = masonry_dem::explicit::history_time_step_limit(&m, 0.0) * 0.5;
+    let dt = masonry_dem::explicit::history_time_step_limit(&m, 0.0, true) * 0.5;
     let msg = input_message(simulate(
         &m,
         &DynamicOptions { duration: 1e9 * dt, time_step: Some(dt), record: masonry_dem::explicit::Recording::Every(1), ..DynamicOptions::default() },

@@ -7,7 +7,7 @@ An argument left out (None) takes the core's default: the Rust `Default` of the 
 to, documented in docs/case-format.md under the matching key.
 """
 
-from typing import Callable, Literal, Optional, Sequence, Tuple, TypedDict, Union
+from typing import Any, Callable, Dict, Literal, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -459,6 +459,8 @@ class Model:
         time_step: Optional[float] = None,
         safety: Optional[float] = None,
         threads: Optional[int] = None,
+        large_rotations: Optional[bool] = None,
+        contact_update: Optional[bool] = None,
         progress: Optional[Callable[[int, float, float, float], None]] = None,
     ) -> "Results":
         """Quasi-static analysis with the explicit (molecular dynamics) solver; the same Results
@@ -474,7 +476,12 @@ class Model:
         its equation. damping: "local" (Cundall, coefficient alpha in [0, 1)), "viscous"
         (mass-proportional, coefficient c [1/s]) or "none". time_step [s]: None for the automatic
         stable step (safety * the stability limit); a user step above the limit is an InputError.
-        threads: threads of the interface loop (0: all cores). Status and multipliers as in
+        threads: threads of the interface loop (0: all cores). large_rotations: finite rotations
+        of the blocks, each stage's equilibrium found on the moved geometry (the
+        large-displacement capacity curve under displacement control; its drive is quasi-static
+        in small stages only: keep steps at 200 or more); default False, the linearized
+        kinematics. contact_update: the contacts found again as the blocks move, as in
+        Model.simulate (large_rotations=True needed); default False. Status and multipliers as in
         solve_static (here the path always ends at max_displacement, default 2 mm). Releases the
         GIL; Ctrl-C raises KeyboardInterrupt with the partial Results as its `results` attribute.
         progress: as in solve_static, every few thousand steps."""
@@ -565,7 +572,7 @@ class Model:
         damping alpha M + beta K (masonry_dem.rayleigh_damping from two modes), the beta K part as
         dashpots at the closed interfaces; instead of damping / damping_coefficient. Records every record_interval seconds
         or every record_every-th step (not both); Model.record_size gives the memory up front.
-        contact_update (default False; with large_rotations): the contacts found again as the
+        contact_update (default True, with large_rotations; False: the contacts of the wall as built): the contacts found again as the
         blocks move (new contacts dry, with the joints' restitution; a contact found again keeps
         its history) and a ground plane at the top of the base (without a base, at the lowest
         point), reaching five model sizes beyond the blocks, onto which falling blocks come to rest.
@@ -581,11 +588,12 @@ class Model:
     ) -> tuple[int, float]:
         """(records, bytes) that Model.simulate with these options would hold (its time step as
         simulate chooses it); refuses what simulate refuses."""
-    def critical_time_step(self, time_history: bool = False) -> float:
+    def critical_time_step(self, time_history: bool = False, contact_update: bool = True) -> float:
         """The stability limit of the explicit solver's time step [s] (Gershgorin bound); with
         time_history=True, that of Model.simulate: lowered for the contact dashpots of the
         joints' restitution (the factor sqrt(1 + z^2) - z with z = 3 zeta, zeta the dashpot's
-        damping ratio)."""
+        damping ratio) and, with contact_update (True, simulate's default), for a block touching
+        fixed bodies along every edge."""
 
 class Model3D:
     """A wall of rigid blocks in 3D (axis-aligned boxes and convex polyhedra), z up, joined by dry Mohr-Coulomb contacts
@@ -753,6 +761,8 @@ class Model3D:
         time_step: Optional[float] = None,
         safety: Optional[float] = None,
         threads: Optional[int] = None,
+        large_rotations: Optional[bool] = None,
+        contact_update: Optional[bool] = None,
         progress: Optional[Callable[[int, float, float, float], None]] = None,
     ) -> "Results":
         """Quasi-static analysis in 3D with the explicit solver: Model.solve_dynamic's on the wall of boxes, with the same
@@ -766,8 +776,9 @@ class Model3D:
         The curve follows control_block (default: the highest wall block) along x, or along y when the live load's
         direction is nearer y; a control block held along that axis (the base) is refused. damping,
         damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in Model.solve_dynamic
-        (Model3D.critical_time_step gives the stability limit). Releases the GIL; Ctrl-C raises KeyboardInterrupt with
-        the partial Results as its `results` attribute. progress: as in Model.solve_dynamic."""
+        (Model3D.critical_time_step gives the stability limit); large_rotations=True and contact_update=True are
+        refused (InputError): a 3D pushover is on the wall as built. Releases the GIL; Ctrl-C raises KeyboardInterrupt
+        with the partial Results as its `results` attribute. progress: as in Model.solve_dynamic."""
     def simulate(
         self,
         duration: float,
@@ -801,7 +812,8 @@ class Model3D:
         beta = 0 only). Returns a TimeHistory of dimension 3, with the ground's acceleration and the base shear along
         y too. Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory computed so far
         as its `results` attribute. progress: optional callable(step, time [s], nan, fraction done).
-        contact_update (default False; with large_rotations): the contacts found again as the blocks move (faces
+        contact_update (default True, with large_rotations; False: the contacts of the wall as built): the contacts
+        found again as the blocks move (faces
         facing within the gap tolerance; new contacts dry, with the joints' restitution; a contact found again keeps
         its history) and a ground plane at the top of the base (without a base, at the lowest point), reaching five
         model sizes beyond the blocks in plan, onto which falling blocks come to rest."""
@@ -814,10 +826,11 @@ class Model3D:
     ) -> tuple[int, float]:
         """(records, bytes) that Model3D.simulate with these options would hold (its time step as simulate chooses
         it), as Model.record_size; refuses what simulate refuses of them."""
-    def critical_time_step(self, time_history: bool = False) -> float:
+    def critical_time_step(self, time_history: bool = False, contact_update: bool = True) -> float:
         """The stability limit of the explicit solver's time step in 3D [s] (Gershgorin bound on the contact points'
         elastic stiffnesses), as Model.critical_time_step(); with time_history=True, that of Model3D.simulate:
-        lowered for the contact dashpots of the joints' restitution."""
+        lowered for the contact dashpots of the joints' restitution and, with contact_update (True, simulate's
+        default), for a block touching fixed bodies along every face."""
 
 class TimeHistory:
     """A time history (Model.simulate, Model3D.simulate). Energy balance at each record: initial kinetic + elastic
@@ -871,9 +884,19 @@ class TimeHistory:
     """Time steps computed."""
     elapsed_s: float
     """Wall-clock time of the run [s]."""
-    contact_update: Optional[dict[str, Optional[float]]]
-    """With the contact update (simulate's contact_update), what it did: searches, created, dropped, renewed and
-    ground_level [m] (None without a ground); None without the update."""
+    contact_counts: Tuple[int, int, int, int]
+    """With the contact update (Model.simulate(contact_update=True), the default): the searches for contacts made,
+    and the contacts created, dropped, and taken again from the moved blocks; zeros without it."""
+    ground_level: Optional[float]
+    """With the contact update: the ground plane's level [m], if the model has one (None otherwise)."""
+    contact_events: Dict[str, Any]
+    """With the contact update: every contact created, dropped or taken again, in order, as a dict of arrays (empty
+    without it): "time" [s], "change" ("created", "dropped", "renewed"), "id" (the contact's number: the model's
+    interfaces 0..m in their order, then each created contact in turn), "blocks" (n, 2) (a: the block whose edge
+    gives the normal), "centre" (n, 2) [m] relative to block a's centroid and "normal" (n, 2) from a into b, both
+    in a's position at rest (a block's displacement carries them), "length" [m]; a dropped contact has zero
+    geometry. With Model.interface_blocks / interface_geometry they give the contacts at any time
+    (masonry_dem.history.contacts_at)."""
 
 class _Certificate(TypedDict):
     """What a limit analysis certifies (Results.certificate)."""

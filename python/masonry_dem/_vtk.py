@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Any, Callable, List, Tuple, Union
+from typing import Any, Callable, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -30,20 +30,27 @@ def write_meshes(meshes: List[Tuple[Path, Any]], inputs: List[PathLike]) -> None
 
 
 def write_series(prefix: str, times: Any, mesh_of: Callable[[int], Any],
-                 inputs: List[PathLike]) -> Tuple[Path, List[Path]]:
+                 inputs: List[PathLike], contacts_of: Optional[Callable[[int], Any]] = None) -> Tuple[Path, List[Path]]:
     """A time series for ParaView: ``PREFIX-blocks-NNNN.vtu``, the mesh ``mesh_of(k)`` of each record k (numbered
-    from 0, at least four digits), and ``PREFIX.pvd``, the collection listing them with their ``times`` [s]; every
-    target checked first, each file written atomically. Returns the ``.pvd`` path and the blocks files' paths."""
+    from 0, at least four digits), and ``PREFIX.pvd``, the collection listing them with their ``times`` [s]; with
+    ``contacts_of``, ``PREFIX-contacts-NNNN.vtu`` too, each record's contacts, listed as the collection's part 1
+    (the blocks are part 0). Every target checked first, each file written atomically. Returns the ``.pvd`` path
+    and the blocks files' paths."""
     times = np.asarray(times, dtype=np.float64).reshape(-1)
     digits = max(4, len(str(len(times) - 1)))
     paths = [Path(f"{prefix}-blocks-{k:0{digits}d}.vtu") for k in range(len(times))]
+    contact_paths = [Path(f"{prefix}-contacts-{k:0{digits}d}.vtu") for k in range(len(times))] if contacts_of else []
     pvd_path = Path(prefix + ".pvd")
     check_target(pvd_path, inputs)
-    write_meshes([(p, mesh_of(k)) for k, p in enumerate(paths)], inputs)
+    meshes = [(p, mesh_of(k)) for k, p in enumerate(paths)]
+    if contacts_of is not None:
+        meshes += [(p, contacts_of(k)) for k, p in enumerate(contact_paths)]
+    write_meshes(meshes, inputs)
     lines = ['<?xml version="1.0"?>', '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
              "  <Collection>"]
-    for t, p in zip(times, paths):
-        lines.append(f'    <DataSet timestep="{t:.17g}" group="" part="0" file="{_xml_attribute(p.name)}"/>')
+    for part, files in enumerate((paths, contact_paths)):
+        for t, p in zip(times, files):
+            lines.append(f'    <DataSet timestep="{t:.17g}" group="" part="{part}" file="{_xml_attribute(p.name)}"/>')
     lines += ["  </Collection>", "</VTKFile>"]
     pvd_path.parent.mkdir(parents=True, exist_ok=True)
     with atomic_file(pvd_path, "w", encoding="utf-8", newline="\n", inputs=inputs) as f:

@@ -24,7 +24,10 @@ A time history (:class:`masonry_dem.TimeHistory`, ``Model.simulate``) is a resul
 time series for ParaView, ``PREFIX-blocks-NNNN.vtu`` per recorded time (:func:`history_block_mesh`: the fields of
 the blocks file with ``velocity`` (v1, v2, 0) [m/s] and ``angular_velocity`` [rad/s] instead of ``mechanism``)
 and ``PREFIX.pvd``, the collection listing them with their times [s] (open that one); no interfaces file, a time
-history has no interface forces. :func:`write_curve_csv` (with ``model=``) writes its response, header
+history has no interface forces. With the contact update (``Model.simulate``'s default) it writes
+``PREFIX-contacts-NNNN.vtu`` too, the contacts of each record as lines (:func:`contact_mesh`: ``contact``, its number;
+``created``, 1 for a contact the update made; ``block_a``, ``block_b``), the collection's part 1: the contacts
+appear and vanish as the blocks move. :func:`write_curve_csv` (with ``model=``) writes its response, header
 :data:`HISTORY_CSV_HEADER`, a row per recorded time. Its displacements are relative to the ground (the blocks
 move in the frame of the base), from the undeformed wall (:mod:`masonry_dem.history`).
 
@@ -46,13 +49,14 @@ from ._core import InputError
 from ._shapes import Shapes, shapes, support_indices
 from .api import check_model
 from .atomic import atomic_file, check_target, prefix_problem
-from .history import ENERGIES, check_plane, control_response, is_time_history, largest_translation, record
+from .history import ENERGIES, check_plane, contact_sets, control_response, is_time_history, largest_translation, record
 
 __all__ = [
     "write_vtk",
     "write_curve_csv",
     "block_mesh",
     "history_block_mesh",
+    "contact_mesh",
     "interface_mesh",
     "CSV_HEADER",
     "HISTORY_CSV_HEADER",
@@ -234,8 +238,35 @@ def write_vtk(
 
 
 def _write_vtk_series(model: Any, history: Any, prefix: str, inputs: List[PathLike]) -> Tuple[Path, List[Path]]:
-    """The time series of :func:`write_vtk`: a blocks file per record and the ``.pvd`` collection."""
-    return write_series(prefix, history.times, lambda k: history_block_mesh(model, history, k), inputs)
+    """The time series of :func:`write_vtk`: a blocks file per record, with the contact update a contacts file per
+    record (:func:`contact_mesh`), and the ``.pvd`` collection."""
+    contacts = None
+    if history.contact_counts[0] > 0:
+        meshes = [contact_mesh(c) for c in contact_sets(model, history, range(len(history.times)))]
+        contacts = meshes.__getitem__
+    return write_series(prefix, history.times, lambda k: history_block_mesh(model, history, k), inputs, contacts)
+
+
+def contact_mesh(contacts: Any) -> Any:
+    """The contacts of one record of a time history with the contact update (a namespace of
+    :func:`masonry_dem.history.contact_sets`) as a :class:`meshio.Mesh` of lines, with the cell fields
+    ``contact`` (the contact's number), ``created`` (1: made by the update) and ``block_a``, ``block_b``."""
+    import meshio
+
+    ends = np.asarray(contacts.ends, dtype=np.float64).reshape(-1, 2)
+    m = len(ends) // 2
+    points = np.concatenate([ends, np.zeros((2 * m, 1))], axis=1)
+    blocks = np.asarray(contacts.blocks, dtype=np.int32).reshape(-1, 2)
+    return meshio.Mesh(
+        points,
+        [("line", np.arange(2 * m, dtype=np.int64).reshape(m, 2))],
+        cell_data={
+            "contact": [np.asarray(contacts.ids, dtype=np.int32).reshape(-1)],
+            "created": [np.asarray(contacts.created, dtype=np.int32).reshape(-1)],
+            "block_a": [blocks[:, 0].copy()],
+            "block_b": [blocks[:, 1].copy()],
+        },
+    )
 
 
 def write_curve_csv(

@@ -13,7 +13,7 @@ forces -m a_g(t)), and they are measured from the undeformed wall (the geometry 
 from __future__ import annotations
 
 from types import SimpleNamespace
-from typing import Any, Tuple
+from typing import Any, Dict, Iterable, Iterator, Tuple
 
 import numpy as np
 
@@ -28,6 +28,8 @@ __all__ = [
     "largest_translation",
     "peak_record",
     "record",
+    "contact_sets",
+    "contacts_at",
 ]
 
 #: The energies a time history holds ((k,) arrays [J]), in the order the exports write them: initial energy +
@@ -108,3 +110,65 @@ def record(history: Any, k: int) -> SimpleNamespace:
         method="dynamic",
         status=history.status,
     )
+
+
+def _rotate(phi: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """(n, 2) vectors ``v`` turned by the angles ``phi`` (n,) [rad]."""
+    c, s = np.cos(phi), np.sin(phi)
+    return np.stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]], axis=1)
+
+
+def contact_sets(model: Any, history: Any, records: Iterable[int], scale: float = 1.0) -> Iterator[SimpleNamespace]:
+    """The contacts of a time history in the plane at each of ``records`` (increasing record indices), as its
+    contact update left them (``TimeHistory.contact_events``; without the update, the model's interfaces at every
+    record), each a namespace of ``ends`` (n, 2, 2): the two ends of each contact [m] where block a's displacement
+    at that record carries them, ``ids`` (n,): the contacts' numbers (the model's interfaces 0..m, then the created
+    ones), ``blocks`` (n, 2), ``created`` (n,): made by the update (not one of the model's interfaces), and
+    ``dropped``: how many contacts the update has dropped up to that record. The events of a search are applied
+    to the records at or after its time. ``scale`` magnifies the displacements (and rotations) that carry the
+    contacts, as the animation's blocks are."""
+    check_plane(model, "contact_sets")
+    geom = np.asarray(model.interface_geometry, dtype=np.float64).reshape(-1, 5)
+    pairs = np.asarray(model.interface_blocks, dtype=np.int64).reshape(-1, 2)
+    centroids = np.asarray(model.centroids, dtype=np.float64).reshape(-1, 2)
+    # id -> (a, b, centre relative to a's centroid, normal, length) in a's position at rest
+    alive: Dict[int, Tuple[int, int, np.ndarray, np.ndarray, float]] = {
+        i: (int(a), int(b), geom[i, :2] - centroids[a], geom[i, 2:4], float(geom[i, 4]))
+        for i, (a, b) in enumerate(pairs)
+    }
+    m = len(pairs)
+    ev = history.contact_events
+    ev_time = np.asarray(ev["time"], dtype=np.float64)
+    change = list(ev["change"])
+    times = np.asarray(history.times, dtype=np.float64)
+    disp = np.asarray(history.displacements, dtype=np.float64)
+    j, dropped = 0, 0
+    for k in records:
+        while j < len(ev_time) and ev_time[j] <= times[k]:
+            i = int(ev["id"][j])
+            if change[j] == "dropped":
+                alive.pop(i, None)
+                dropped += 1
+            else:
+                a, b = (int(x) for x in ev["blocks"][j])
+                alive[i] = (a, b, np.asarray(ev["centre"][j], dtype=np.float64),
+                            np.asarray(ev["normal"][j], dtype=np.float64), float(ev["length"][j]))
+            j += 1
+        ids = np.array(sorted(alive), dtype=np.int64)
+        rows = [alive[int(i)] for i in ids]
+        a = np.array([r[0] for r in rows], dtype=np.int64)
+        blocks = np.array([[r[0], r[1]] for r in rows], dtype=np.int64).reshape(-1, 2)
+        centre = np.array([r[2] for r in rows], dtype=np.float64).reshape(-1, 2)
+        normal = np.array([r[3] for r in rows], dtype=np.float64).reshape(-1, 2)
+        length = np.array([r[4] for r in rows], dtype=np.float64)
+        u = scale * disp[k][a] if len(a) else np.zeros((0, 3))
+        mid = centroids[a] + u[:, :2] + _rotate(u[:, 2], centre)
+        n = _rotate(u[:, 2], normal)
+        half = np.stack([n[:, 1], -n[:, 0]], axis=1) * (0.5 * length)[:, None]
+        yield SimpleNamespace(ends=np.stack([mid - half, mid + half], axis=1), ids=ids, blocks=blocks,
+                              created=ids >= m, dropped=dropped)
+
+
+def contacts_at(model: Any, history: Any, k: int) -> SimpleNamespace:
+    """The contacts at record ``k`` (see :func:`contact_sets`)."""
+    return next(contact_sets(model, history, [k]))

@@ -170,13 +170,13 @@ def _clean(value: Any) -> Any:
 
 def history_dict(model: Any, history: Any, title: str, motion: Any = None) -> Dict[str, Any]:
     """The time history as a dict for JSON (``masonry-dem simulate --json``): ``format`` 1, ``kind``
-    "time_history", ``title``, ``status``, ``error``, ``time_step`` [s], ``steps``, ``elapsed_s``, ``contact_update``
-    (``TimeHistory.contact_update``, with the update only),
+    "time_history", ``title``, ``status``, ``error``, ``time_step`` [s], ``steps``, ``elapsed_s``,
     ``ground_motion`` (name, source, units, scale, peak [m/s2], duration [s] of ``motion``, the horizontal
     :class:`masonry_dem.ground_motion.GroundMotion`, when given), ``peaks`` (:func:`peaks`), and the records:
     ``times`` [s], ``displacement`` [m], ``rotation`` [rad] and ``drift`` [-] of the control block,
     ``base_shear`` [N], ``ground_acceleration`` ([[horizontal, vertical]] [m/s2]) and the energies [J]
-    (those the history carries; NaN written as null)."""
+    (those the history carries; NaN written as null); with the contact update, ``contact_update``: the searches
+    made and the contacts created, dropped and renewed (taken again), and the ground plane's ``ground_level`` [m]."""
     times = np.asarray(history.times, dtype=np.float64).reshape(-1)
     u, phi = control_response(model, history)
     out: Dict[str, Any] = {
@@ -191,15 +191,16 @@ def history_dict(model: Any, history: Any, title: str, motion: Any = None) -> Di
         "blocks": int(model.n_blocks),
         "interfaces": int(model.n_interfaces),
     }
-    update = getattr(history, "contact_update", None)
-    if update is not None:
-        out["contact_update"] = _clean(dict(update))
     if motion is not None:
         out["ground_motion"] = _clean({
             "name": motion.name, "source": motion.source, "units": motion.units, "scale": float(motion.scale),
             "peak": motion.peak, "duration": motion.duration,
         })
     out["peaks"] = _clean(peaks(model, history))
+    searches, created, dropped, renewed = history.contact_counts
+    if searches:
+        out["contact_update"] = _clean({"searches": searches, "created": created, "dropped": dropped,
+                                        "renewed": renewed, "ground_level": history.ground_level})
     records: Dict[str, Any] = {
         "times": _floats(times),
         "displacement": _floats(u),
@@ -228,8 +229,8 @@ def _at(peak: Dict[str, Any], fmt: str, factor: float = 1.0, unit: str = "") -> 
 
 def summary_text(model: Any, history: Any, title: str, motion: Any = None) -> str:
     """The summary ``masonry-dem simulate`` prints (several lines, no trailing newline): the ground motion,
-    the duration and time step, the status, the peak drift, the peak rotations, the peak base shear, with the
-    contact update what it did (``TimeHistory.contact_update``), and the energy balance error."""
+    the duration and time step, the status, the peak drift, the peak rotations, the peak base shear, the contact
+    update's searches and changes (when it ran) and the energy balance error."""
     p = peaks(model, history)
     times = np.asarray(history.times, dtype=np.float64)
     status = str(history.status)
@@ -255,10 +256,10 @@ def summary_text(model: Any, history: Any, title: str, motion: Any = None) -> st
         lines.append(f"  peak base shear:     {_at(shear, '.4g', 1e-3, ' kN')}{ratio}")
     else:
         lines.append("  peak base shear:     - (not recorded by this core)")
-    update = getattr(history, "contact_update", None)
-    if update is not None:
-        lines.append(f"  contact update:      {update['searches']:,} searches, {update['created']:,} contacts created, "
-                     f"{update['dropped']:,} dropped, {update['renewed']:,} taken again from the moved blocks")
+    searches, created, dropped, renewed = history.contact_counts
+    if searches:
+        lines.append(f"  contact update:      {searches:,} searches; {created:,} contacts created, {dropped:,} dropped, "
+                     f"{renewed:,} taken again from the moved blocks")
     error = p["energy_balance_error"]
     if math.isfinite(error):
         lines.append(f"  energy balance:      error {error * 100:.3g} % of the largest energy ({energy_scale(history):.4g} J)")

@@ -187,24 +187,38 @@ impl PyTimeHistory {
     fn elapsed_s(&self) -> f64 {
         either!(self, h => h.elapsed_s)
     }
-    /// With the contact update (simulate's contact_update), what it did: a dict of searches (the searches for
-    /// contacts made, the first at the start included), created, dropped and renewed (the contacts whose geometry
-    /// was taken again from the moved blocks) and ground_level (the ground plane's level [m], None without one);
-    /// None without the update.
+    /// With the contact update (Model.simulate(contact_update=True), the default): the searches for contacts made,
+    /// and the contacts created, dropped, and taken again from the moved blocks; zeros without it.
     #[getter]
-    fn contact_update<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
-        let (searches, created, dropped, renewed, ground) =
-            either!(self, h => (h.contact_searches, h.contacts_created, h.contacts_dropped, h.contacts_renewed, h.ground_level));
-        if searches == 0 {
-            return Ok(None);
-        }
+    fn contact_counts(&self) -> (usize, usize, usize, usize) {
+        either!(self, h => (h.contact_searches, h.contacts_created, h.contacts_dropped, h.contacts_renewed))
+    }
+    /// With the contact update: the ground plane's level [m], if the model has one (None otherwise).
+    #[getter]
+    fn ground_level(&self) -> Option<f64> {
+        either!(self, h => h.ground_level)
+    }
+    /// With the contact update: every contact created, dropped or taken again, in order, as a dict of arrays (empty
+    /// without it): "time" [s], "change" ("created", "dropped", "renewed"), "id" (the contact's number: the model's
+    /// interfaces 0..m in their order, then each created contact in turn), "blocks" (n, 2) (a: the block whose edge
+    /// gives the normal), "centre" (n, 2) [m] relative to block a's centroid and "normal" (n, 2) from a into b, both
+    /// in a's position at rest (a block's displacement carries them), "length" [m]; a dropped contact has zero
+    /// geometry. With Model.interface_blocks / interface_geometry they give the contacts at any time
+    /// (masonry_dem.history.contacts_at).
+    #[getter]
+    fn contact_events<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let ev = either!(self, h => h.contact_events.clone());
         let d = PyDict::new(py);
-        d.set_item("searches", searches)?;
-        d.set_item("created", created)?;
-        d.set_item("dropped", dropped)?;
-        d.set_item("renewed", renewed)?;
-        d.set_item("ground_level", ground)?;
-        Ok(Some(d))
+        d.set_item("time", ev.iter().map(|e| e.time).collect::<Vec<_>>().into_pyarray(py))?;
+        d.set_item("change", ev.iter().map(|e| e.change.as_str()).collect::<Vec<_>>())?;
+        d.set_item("id", ev.iter().map(|e| e.id as i64).collect::<Vec<_>>().into_pyarray(py))?;
+        let blocks: Vec<i64> = ev.iter().flat_map(|e| [e.blocks[0] as i64, e.blocks[1] as i64]).collect();
+        // the shape matches the data by construction
+        d.set_item("blocks", Array2::from_shape_vec((ev.len(), 2), blocks).unwrap_or_else(|_| Array2::zeros((0, 2))).into_pyarray(py))?;
+        d.set_item("centre", rows_of(py, &ev.iter().map(|e| e.centre).collect::<Vec<_>>()))?;
+        d.set_item("normal", rows_of(py, &ev.iter().map(|e| e.normal).collect::<Vec<_>>()))?;
+        d.set_item("length", ev.iter().map(|e| e.length).collect::<Vec<_>>().into_pyarray(py))?;
+        Ok(d)
     }
     fn __repr__(&self) -> String {
         let dim = if self.inner.dimension() == 3 { ", dimension=3" } else { "" };

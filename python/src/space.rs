@@ -584,9 +584,10 @@ impl PyModel3D {
     /// The curve follows control_block (default: the highest wall block) along x, or along y when the live load's
     /// direction is nearer y; a control block held along that axis (the base) is refused. damping,
     /// damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in Model.solve_dynamic
-    /// (Model3D.critical_time_step gives the stability limit). Releases the GIL; Ctrl-C raises KeyboardInterrupt with
-    /// the partial Results as its `results` attribute. progress: as in Model.solve_dynamic.
-    #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, progress=None))]
+    /// (Model3D.critical_time_step gives the stability limit); large_rotations=True and contact_update=True are
+    /// refused (InputError): a 3D pushover is on the wall as built. Releases the GIL; Ctrl-C raises KeyboardInterrupt
+    /// with the partial Results as its `results` attribute. progress: as in Model.solve_dynamic.
+    #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, large_rotations=None, contact_update=None, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_dynamic(
         &self,
@@ -602,12 +603,15 @@ impl PyModel3D {
         time_step: Option<f64>,
         safety: Option<f64>,
         threads: Option<i64>,
+        large_rotations: Option<bool>,
+        contact_update: Option<bool>,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Py<PyResults>> {
         let opts = explicit_options(
             (control, steps, max_displacement, control_block, tolerance),
             (unbalanced_ratio, damping, damping_coefficient),
             (time_step, safety, threads),
+            (large_rotations, contact_update),
         )?;
         self.inner.check_supports().map_err(to_py)?;
         analyse(py, &self.inner, progress, move |model, monitor| {
@@ -627,7 +631,8 @@ impl PyModel3D {
     /// beta = 0 only). Returns a TimeHistory of dimension 3, with the ground's acceleration and the base shear along
     /// y too. Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory computed so far
     /// as its `results` attribute. progress: optional callable(step, time [s], nan, fraction done).
-    /// contact_update (default False; with large_rotations): the contacts found again as the blocks move (faces
+    /// contact_update (default True, with large_rotations; False: the contacts of the wall as built): the contacts
+    /// found again as the blocks move (faces
     /// facing within the gap tolerance; new contacts dry, with the joints' restitution; a contact found again keeps
     /// its history) and a ground plane at the top of the base (without a base, at the lowest point), reaching five
     /// model sizes beyond the blocks in plan, onto which falling blocks come to rest.
@@ -683,11 +688,12 @@ impl PyModel3D {
 
     /// The stability limit of the explicit solver's time step in 3D [s] (Gershgorin bound on the contact points'
     /// elastic stiffnesses), as Model.critical_time_step(); with time_history=True, that of Model3D.simulate:
-    /// lowered for the contact dashpots of the joints' restitution.
-    #[pyo3(signature = (time_history=false))]
-    fn critical_time_step(&self, time_history: bool) -> f64 {
+    /// lowered for the contact dashpots of the joints' restitution and, with contact_update (True, simulate's
+    /// default), for a block touching fixed bodies along every face.
+    #[pyo3(signature = (time_history=false, contact_update=true))]
+    fn critical_time_step(&self, time_history: bool, contact_update: bool) -> f64 {
         if time_history {
-            explicit::history_time_step_limit_3d(&self.inner)
+            explicit::history_time_step_limit_3d(&self.inner, contact_update)
         } else {
             explicit::critical_time_step_3d(&self.inner)
         }

@@ -21,8 +21,9 @@
 //! - Time histories: free motion from initial conditions, or a horizontal base acceleration
 //!   (inertial forces `-m a_g(t)` in the frame of the base).
 //!
-//! - Contact update (time histories of either dimension, with finite rotations, when
-//!   `contact_update` is set; off by default; in 3D faces for edges, see `space::update`): the contacts are searched again, on the grid of the model's
+//! - Contact update (time histories of either dimension, with finite rotations, unless
+//!   `contact_update` is false; pushovers in the plane when it is set; in 3D faces for edges,
+//!   see `space::update`): the contacts are searched again, on the grid of the model's
 //!   detection, whenever some block has moved by more than half the gap tolerance since the
 //!   last search (a point of it: the centroid's translation plus the rotation times the
 //!   block's radius). The gap tolerance is [`GAP_FRACTION`] of the least side of the smallest
@@ -30,8 +31,8 @@
 //!   overlapping along one of them with the nearer end within the gap, are a contact (open, no
 //!   force, until they close); a contact whose edges no longer are is dropped. A contact found
 //!   again keeps its joint history and dashpot (its geometry is taken again from the moved
-//!   blocks once its centre or length has changed by more than half the gap, its elastic slip
-//!   kept); a new one is dry (no cohesion or tensile strength), starts without shear force and
+//!   blocks once a point of it or its length is off by more than [`RETAKE`] gaps, its elastic
+//!   slip kept); a new one is dry (no cohesion or tensile strength), starts without shear force and
 //!   has its joint's contact dashpot (restitution). A ground plane, fixed, horizontal (gravity
 //!   along -y), lies at the top of the base (without a base, at the lowest point of the model)
 //!   and reaches beyond the box around all the blocks by [`GROUND_REACH`] times the model's
@@ -122,6 +123,13 @@ pub struct ExplicitOptions {
     pub threads: usize,
     /// The block whose horizontal displacement is followed (and driven under displacement control); `None`: [`Model::default_control_block`](crate::model::Model::default_control_block).
     pub control_block: Option<usize>,
+    /// Finite rotations of the blocks: the equilibrium on the moved geometry (the
+    /// large-displacement capacity curve under displacement control); false (the default):
+    /// the linearized kinematics, the equilibrium on the wall as built.
+    pub large_rotations: bool,
+    /// The contacts found again as the blocks move (see the contact update in this module's
+    /// notes); with `large_rotations` only, in the plane only. Off by default.
+    pub contact_update: bool,
 }
 
 impl Default for ExplicitOptions {
@@ -137,6 +145,8 @@ impl Default for ExplicitOptions {
             max_steps_per_level: 200_000,
             threads: 0,
             control_block: None,
+            large_rotations: false,
+            contact_update: false,
         }
     }
 }
@@ -181,6 +191,7 @@ pub struct DynamicOptions<V = [f64; 3]> {
     /// The contacts found again as the blocks move, and a ground plane under the model (see the
     /// contact update in this module's notes), with finite rotations (`large_rotations`), in either
     /// dimension: with the linearized kinematics the contacts stay those of the wall as built.
+    /// On by default.
     pub contact_update: bool,
 }
 
@@ -201,7 +212,7 @@ impl<V> Default for DynamicOptions<V> {
             record: Recording::Interval(DEFAULT_RECORD_INTERVAL),
             large_rotations: true,
             threads: 0,
-            contact_update: false,
+            contact_update: true,
         }
     }
 }
@@ -288,8 +299,59 @@ pub struct TimeHistory<V = [f64; 3]> {
     /// With the contact update in 3D: the contacts at the end of the run (empty without it, and
     /// in the plane).
     pub contacts_3d: Vec<ContactAt3>,
+    /// With the contact update: every contact created, dropped or taken again, in the order of
+    /// the searches (empty without it; in 3D, empty: the counts only). With the model's
+    /// interfaces, they give the contacts at any time (see [`ContactEvent`]).
+    pub contact_events: Vec<ContactEvent>,
     /// With the contact update: the ground plane's level \[m\], if the model has one.
     pub ground_level: Option<f64>,
+}
+
+/// What happened to a contact at a search of the contact update.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactChange {
+    /// A new contact: its edges came to face each other within the gap tolerance.
+    Created,
+    /// Its edges no longer face each other within the gap: it is gone.
+    Dropped,
+    /// Found again, its geometry taken again from the moved blocks (its history kept).
+    Renewed,
+}
+
+impl ContactChange {
+    /// "created", "dropped" or "renewed".
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ContactChange::Created => "created",
+            ContactChange::Dropped => "dropped",
+            ContactChange::Renewed => "renewed",
+        }
+    }
+}
+
+/// A change of the contacts of a time history with the contact update. A contact is numbered
+/// once: the model's interfaces `0..n` in their order, then each contact the update creates, in
+/// turn. Its geometry is given in block a's reference position (at rest, unturned): at a time
+/// `t` block a's displacement (u1, u2, phi) carries its centre to `g_a + (u1, u2) + R(phi)
+/// centre` and turns its normal by phi. The contacts at time `t` are the model's interfaces,
+/// with each event up to `t` applied in order.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactEvent {
+    /// When \[s\].
+    pub time: f64,
+    /// What happened.
+    pub change: ContactChange,
+    /// The contact's number (see above).
+    pub id: usize,
+    /// Its two blocks (a: the one whose edge gives the normal); a dropped contact's last.
+    pub blocks: [usize; 2],
+    /// Its centre relative to block a's centroid, in a's reference position \[m\] (zero when
+    /// dropped).
+    pub centre: [f64; 2],
+    /// Its unit normal from a into b, in a's reference position (zero when dropped).
+    pub normal: [f64; 2],
+    /// Its length \[m\] (zero when dropped).
+    pub length: f64,
 }
 
 /// A contact at the end of a time history with the contact update: its two blocks (a: the one
@@ -386,5 +448,5 @@ pub use quasi_static::{solve, solve_with};
 // the modal analysis in 3D takes the same kinematics and rotation dofs as a time history
 pub(crate) use space::{jump_rows, principal_axes, to_world};
 pub use space::{critical_time_step_3d, critical_time_step_moving_3d, history_time_step_limit_3d, record_size_3d, simulate_3d, simulate_3d_with, solve_3d, solve_3d_with};
-pub use update::{GAP_FRACTION, GROUND_REACH};
+pub use update::{GAP_FRACTION, GROUND_REACH, RETAKE};
 pub use time_history::{history_time_step_limit, record_count, record_size, simulate, simulate_with};

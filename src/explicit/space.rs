@@ -750,6 +750,10 @@ pub fn solve_3d_with(model: &Model3, opts: &ExplicitOptions, monitor: &mut dyn F
     if opts.control != Control::Load {
         return Err(Error::input("3D explicit analyses are load-controlled (analysis.control = \"load\")"));
     }
+    if opts.large_rotations || opts.contact_update {
+        let key = if opts.large_rotations { "large_rotations" } else { "contact_update" };
+        return Err(Error::input(format!("analysis.{key}: the pushovers of 3D models are on the wall as built in this version (linearized kinematics, the contacts found once)")));
+    }
     check_brittle(model)?;
     model.check_live("the explicit solver's pushover")?;
     model.check_supports()?;
@@ -874,10 +878,11 @@ fn slots_of(nb: usize, cts: &[Ct]) -> (Vec<u32>, Vec<u32>) {
 /// The stable time step of a time history of a 3D model \[s\]: [`critical_time_step_3d`] lowered
 /// for the contact dashpots of its joints' restitution (as the plane's
 /// [`history_time_step_limit`](super::history_time_step_limit)).
-/// Without the contact update; with it the limit is that of a model whose blocks may touch
-/// along every face ([`critical_time_step_moving_3d`]), lower or equal.
-pub fn history_time_step_limit_3d(model: &Model3) -> f64 {
-    dashpot_limit_3d(model, critical_time_step_3d(model))
+/// With the contact update (`contact_update`, a time history's default) the limit is that of a
+/// model whose blocks may touch along every face ([`critical_time_step_moving_3d`]), lower or
+/// equal.
+pub fn history_time_step_limit_3d(model: &Model3, contact_update: bool) -> f64 {
+    dashpot_limit_3d(model, if contact_update { critical_time_step_moving_3d(model) } else { critical_time_step_3d(model) })
 }
 
 /// The stability limit `crit` lowered for the contact dashpots of the joints of `model`.

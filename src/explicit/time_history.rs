@@ -100,6 +100,7 @@ impl Recorded for Integrator<'_> {
         let Some(up) = &self.update else { return };
         up.report(h);
         h.contacts = update::contacts(self);
+        h.contact_events = up.events.clone();
     }
     fn out_of_range(&self, u0: &[f64]) -> Option<String> {
         out_of_range(self, u0)
@@ -114,10 +115,12 @@ impl Recorded for Integrator<'_> {
 /// `beta` \[s\] ([`contact::stability_factor`] of 3 zeta + beta omega_max / 2: a block rocking
 /// on a dashpot of damping ratio zeta has up to 3 zeta, and beta K gives the fastest mode
 /// beta omega_max / 2).
-/// Without the contact update (the default); with it the limit is that of a model whose blocks
-/// may touch along every edge (see the module's notes on the contact update), lower or equal.
-pub fn history_time_step_limit(model: &Model, beta: f64) -> f64 {
-    dashpot_limit(model, critical_time_step(model), beta)
+/// With the contact update (`contact_update`, a time history's default) the limit is that of a
+/// model whose blocks may touch along every edge (see the module's notes on the contact update),
+/// lower or equal.
+pub fn history_time_step_limit(model: &Model, beta: f64, contact_update: bool) -> f64 {
+    let crit = if contact_update { update::critical_time_step_moving(model) } else { critical_time_step(model) };
+    dashpot_limit(model, crit, beta)
 }
 
 /// The stability limit `crit` lowered for the contact dashpots of the joints of `model` and for
@@ -412,6 +415,7 @@ impl<V> TimeHistory<V> {
             contacts_renewed: 0,
             contacts: vec![],
             contacts_3d: vec![],
+            contact_events: vec![],
             ground_level: None,
         })
     }

@@ -105,13 +105,18 @@ def test_vtk_series_of_a_time_history(tmp_path: Path, rocking: Tuple[md.Model, A
     pvd, blocks = md.write_vtk(model, history, tmp_path / "out" / "r.vtu")
     assert pvd == tmp_path / "out" / "r.pvd"
     assert blocks == [tmp_path / "out" / f"r-blocks-{i:04d}.vtu" for i in range(k)]
-    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == sorted([pvd.name] + [b.name for b in blocks])
+    # with the contact update (simulate's default), a contacts file per record too
+    contacts = [f"r-contacts-{i:04d}.vtu" for i in range(k)]
+    assert history.contact_counts[0] > 0
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == sorted([pvd.name] + [b.name for b in blocks] + contacts)
 
     root = ET.parse(pvd).getroot()
     assert root.tag == "VTKFile" and root.get("type") == "Collection"
     datasets = root.findall("./Collection/DataSet")
-    assert [d.get("file") for d in datasets] == [b.name for b in blocks]
-    np.testing.assert_array_equal([float(d.get("timestep", "nan")) for d in datasets], history.times)
+    assert [d.get("file") for d in datasets] == [b.name for b in blocks] + contacts
+    assert [d.get("part") for d in datasets] == ["0"] * k + ["1"] * k
+    np.testing.assert_array_equal([float(d.get("timestep", "nan")) for d in datasets[:k]], history.times)
+    np.testing.assert_array_equal([float(d.get("timestep", "nan")) for d in datasets[k:]], history.times)
 
     rects = np.asarray(model.rects)
     n = len(rects)

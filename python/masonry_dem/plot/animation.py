@@ -106,7 +106,8 @@ def write_animation(
 ) -> Path:
     """Write an animation of a time history: the blocks moving (relative to the ground, over their dashed
     outlines at rest), the time in the title, and the drift of the control block [%] against time under the
-    wall, with a cursor.
+    wall, with a cursor. With the contact update, the contacts it created are drawn in red as they appear and
+    vanish, and the title counts the contacts, the new ones and those dropped so far.
 
     Args:
         model: the :class:`masonry_dem.Model` simulated.
@@ -133,7 +134,7 @@ def write_animation(
     from matplotlib.figure import Figure
     from matplotlib.patches import Polygon
 
-    from ..history import check_plane
+    from ..history import check_plane, contact_sets
     from ..response import drift
     from .panels import _wall_axes, _wall_limits
 
@@ -180,6 +181,10 @@ def write_animation(
     outlines = [blocks.polygon(i) for i in moving]
     ax_wall.add_collection(LineCollection([np.vstack([o, o[:1]]) for o in outlines], colors="#404040",
                                           linewidths=0.5, linestyles="--", zorder=3))
+    # the contacts the update created, drawn as they appear and vanish (a run without searches: none)
+    updated = history.contact_counts[0] > 0
+    new_contacts = LineCollection([], colors="#d62728", linewidths=1.6, zorder=4)
+    ax_wall.add_collection(new_contacts)
     _wall_axes(ax_wall, model)
     ax_wall.set_xlim(*xlim)
     ax_wall.set_ylim(*ylim)
@@ -197,11 +202,16 @@ def write_animation(
     ax_drift.grid(True, linewidth=0.4, alpha=0.6)
     heading = f"{title} — " if title else ""
 
-    def draw(k: int) -> None:
+    def draw(k: int, contacts: Any) -> None:
         moved = blocks.polygons(blocks.moved(disp[k], scale))
         fills.set_verts([moved[i] for i in moving])
         cursor.set_xdata([times[k], times[k]])
-        ax_wall.set_title(f"{heading}t = {times[k]:.2f} s\n{note}", fontsize=9)
+        line = note
+        if contacts is not None:
+            new_contacts.set_segments(list(contacts.ends[contacts.created]))
+            line += (f"; contacts: {len(contacts.ids)}, new (red): {int(contacts.created.sum())}, "
+                     f"dropped: {contacts.dropped}")
+        ax_wall.set_title(f"{heading}t = {times[k]:.2f} s\n{line}", fontsize=9)
 
     writer: Any
     if target.suffix.lower() == ".gif":
@@ -210,9 +220,10 @@ def write_animation(
         writer = animation.FFMpegWriter(fps=fps, codec="h264", extra_args=["-pix_fmt", "yuv420p"])
 
     def write(tmp: str) -> None:
+        sets = contact_sets(model, history, [int(k) for k in frames], scale) if updated else None
         with writer.saving(fig, tmp, dpi):
             for k in frames:
-                draw(int(k))
+                draw(int(k), next(sets) if sets is not None else None)
                 writer.grab_frame()
 
     if str(target.parent):

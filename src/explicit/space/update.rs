@@ -12,8 +12,10 @@
 //!   model's detection orients its contacts). The contact's corners are the polygon's, each a
 //!   point on the owner's face and one on the other's face's plane along the normal: their
 //!   distance is the corner's gap (open until it closes). A contact found again (the same two
-//!   faces) keeps its history, its state and its dashpot while its corners stay within the
-//!   travel tolerance of where its points now are (the same number of them); otherwise its
+//!   faces) keeps its history, its state and its dashpot, and its geometry while the outline of
+//!   its points now and that of the polygon found are within [`RETAKE`](crate::explicit::RETAKE)
+//!   gap tolerances of each other (every corner of either within that of the other's edges,
+//!   slivers of a turned block aside, as the plane's ends and length); otherwise its
 //!   geometry is taken again from the moved blocks: the law's area-proportional constants
 //!   follow the new area, each new corner gets the old corners' mean plastic normal jump, and
 //!   the contact's mean elastic slip (so its shear force is kept), and its dashpot what it
@@ -29,7 +31,7 @@
 //!   after it, rarely.
 
 pub(super) use super::super::update::Update;
-use super::super::update::{gap_of, ground_reach, key, new_family, radius_of, Key};
+use super::super::update::{gap_of, ground_reach, key, new_family, radius_of, Key, RETAKE};
 use super::*;
 use crate::interface::{BlockKind, Family};
 use crate::shape::{contact_tolerance, face_patch, facing_faces, Aabb, FaceFacing, Polyhedron};
@@ -203,12 +205,13 @@ pub(super) fn search(s: &mut Integrator3) {
             match old.get(&k) {
                 Some(&o) if !kept[o] => {
                     kept[o] = true;
-                    // the same contact while its outline is where its points' now is, within the
-                    // travel tolerance both ways (the blocks turned a little, the polygons may
+                    // the same contact while its outline is where its points' now is, within
+                    // RETAKE gap tolerances both ways (the blocks turned a little, the polygons may
                     // differ by slivers, with corners of their own)
                     let mids: Vec<[f64; 3]> = midpoints(s, o).collect();
                     let corners: Vec<[f64; 3]> = f.corners.iter().map(|[p, q]| [0, 1, 2].map(|r| 0.5 * (p[r] + q[r]))).collect();
-                    let same = within(&corners, &mids, up.travel) && within(&mids, &corners, up.travel);
+                    let retake = RETAKE * up.gap;
+                    let same = within(&corners, &mids, retake) && within(&mids, &corners, retake);
                     if same {
                         let c = s.cts[o];
                         Next { a: c.a as usize, b: c.b as usize, key: k, old: Some(o), geo: None }
