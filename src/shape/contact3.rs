@@ -170,6 +170,80 @@ fn tidy(poly: Vec<[f64; 2]>, tol: f64) -> Vec<[f64; 2]> {
     v
 }
 
+/// Where `a` and `b` touch along an edge or at a point (within `tol` \[m\]) rather than over a
+/// polygon: an edge or a vertex of one on a face of the other, the face's plane parting the two
+/// (every vertex of the other on its outer side, within `tol`). These are the contacts of blocks
+/// moved by finite rotations: a box turned about its toe stands on the toe's edge alone. The
+/// contact is a [`FaceContact`] of area 0: its normal the face's (from `a` into `b`), its
+/// vertices the ends of the edge clipped to the face (two) or the point (one), on the face's
+/// plane; `faces` the face that gives the normal and `usize::MAX` for the other's. Two convex
+/// blocks that touch meet in one convex set: the first such face is the contact (an edge of
+/// each crossing the other's, at a point, is not found). Faces that share a polygon
+/// ([`face_contacts`]) are not looked at here.
+pub fn corner_contact(a: &Polyhedron, b: &Polyhedron, tol: f64) -> Option<FaceContact> {
+    if let Some(c) = on_face(a, b, tol) {
+        return Some(c);
+    }
+    let c = on_face(b, a, tol)?;
+    let n = c.n.map(|v| -v);
+    let (t1, t2) = frame(n);
+    Some(FaceContact { faces: [usize::MAX, c.faces[0]], n, t1, t2, ..c })
+}
+
+/// An edge or a vertex of `b` on a face of `a` whose plane parts them (see [`corner_contact`]),
+/// the normal the face's.
+fn on_face(a: &Polyhedron, b: &Polyhedron, tol: f64) -> Option<FaceContact> {
+    for (fa, g) in a.faces().iter().enumerate() {
+        let gap = |v: [f64; 3]| dot(g.normal, v) - g.offset;
+        if b.vertices().iter().any(|&v| gap(v) < -tol) {
+            continue;
+        }
+        let (t1, t2) = frame(g.normal);
+        let uv = |q: [f64; 3]| [dot(q, t1), dot(q, t2)];
+        let near: Vec<[f64; 2]> = b.vertices().iter().filter(|&&v| gap(v) <= tol).map(|&v| uv(v)).collect();
+        // the two points of b's feature farthest apart: its edge's ends, or its vertex twice
+        let Some((p, q)) = near.iter().flat_map(|&p| near.iter().map(move |&q| (p, q))).max_by(|x, y| dist2(x.0, x.1).total_cmp(&dist2(y.0, y.1))) else {
+            continue;
+        };
+        let len = dist2(p, q).sqrt();
+        let off_line = |r: [f64; 2]| ((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])).abs() / len;
+        if len > tol && near.iter().any(|&r| off_line(r) > tol) {
+            continue; // a face of b: it shares a polygon or nothing
+        }
+        // the segment p..q clipped to the face (counter-clockwise about its normal): where each
+        // edge's side of it, linear along the segment, is at least -tol
+        let ring: Vec<[f64; 2]> = a.face_points(fa).map(uv).collect();
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        for i in 0..ring.len() {
+            let (e0, e1) = (ring[i], ring[(i + 1) % ring.len()]);
+            let e = [e1[0] - e0[0], e1[1] - e0[1]];
+            let el = dist2(e0, e1).sqrt();
+            let side = |r: [f64; 2]| (e[0] * (r[1] - e0[1]) - e[1] * (r[0] - e0[0])) / el + tol;
+            let (sp, sq) = (side(p), side(q));
+            if sp < 0.0 && sq < 0.0 {
+                lo = 1.0;
+                hi = 0.0;
+                break;
+            }
+            if sp < 0.0 {
+                lo = lo.max(sp / (sp - sq));
+            } else if sq < 0.0 {
+                hi = hi.min(sp / (sp - sq));
+            }
+        }
+        if lo > hi {
+            continue;
+        }
+        let at = |t: f64| [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])];
+        let lift = |r: [f64; 2]| -> [f64; 3] { std::array::from_fn(|k| g.normal[k] * g.offset + r[0] * t1[k] + r[1] * t2[k]) };
+        let (r0, r1) = (at(lo), at(hi));
+        let vertices = if (hi - lo) * len > tol { vec![lift(r0), lift(r1)] } else { vec![lift(at(0.5 * (lo + hi)))] };
+        let centroid = lift([0.5 * (r0[0] + r1[0]), 0.5 * (r0[1] + r1[1])]);
+        return Some(FaceContact { faces: [fa, usize::MAX], n: g.normal, t1, t2, vertices, area: 0.0, centroid });
+    }
+    None
+}
+
 /// How deep convex polyhedra `a` and `b` overlap \[m\]: over the separating axes (the faces'
 /// normals of both, and the cross products of an edge of each), the least depth (zero or
 /// negative when they touch or are apart: some plane parts them). It stops at the first axis
