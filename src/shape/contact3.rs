@@ -291,6 +291,34 @@ mod tests {
 
     const TOL: f64 = 1e-9;
 
+    #[test]
+    fn a_box_turned_about_its_toe_stands_on_an_edge_and_a_pyramid_on_its_apex() {
+        // a box 0.6 x 0.4 x 1.5 turned by 0.2 rad about its toe edge (the y axis through (0.6, 0,
+        // 0)) on a plinth [-1, 2] x [-1, 1] x [-1, 0]: the toe's edge on the plinth's top face,
+        // two corners, the normal +z from the plinth into the box; not the plinth's side faces
+        let (s, c) = 0.2f64.sin_cos();
+        let toe = |p: [f64; 3]| [0.6 + c * (p[0] - 0.6) + s * p[2], p[1], -s * (p[0] - 0.6) + c * p[2]];
+        let block = Polyhedron::cuboid([0.0; 3], [0.6, 0.4, 1.5]).map(toe);
+        let plinth = Polyhedron::cuboid([-1.0, -1.0, -1.0], [2.0, 1.0, 0.0]);
+        assert!(face_contacts(&plinth, &block, TOL).is_empty());
+        let found = corner_contact(&plinth, &block, TOL).unwrap();
+        assert_eq!((found.n, found.area), ([0.0, 0.0, 1.0], 0.0));
+        let mut ends: Vec<[f64; 3]> = found.vertices.clone();
+        ends.sort_by(|p, q| p[1].total_cmp(&q[1]));
+        for (got, want) in ends.iter().zip([[0.6, 0.0, 0.0], [0.6, 0.4, 0.0]]) {
+            assert!((0..3).all(|k| (got[k] - want[k]).abs() < 1e-12), "{got:?}");
+        }
+        // the other way round: the normal from the box into the plinth
+        let back = corner_contact(&block, &plinth, TOL).unwrap();
+        assert_eq!(back.n, [0.0, 0.0, -1.0]);
+        assert_eq!(back.faces[0], usize::MAX);
+        // a pyramid on its apex: one corner; lifted by more than the tolerance: none
+        let apex = |dz: f64| Polyhedron::hull(&[[0.5, 0.0, dz], [0.0, -0.5, 1.0], [1.0, -0.5, 1.0], [1.0, 0.5, 1.0], [0.0, 0.5, 1.0]], TOL).unwrap();
+        let point = corner_contact(&plinth, &apex(0.0), TOL).unwrap();
+        assert_eq!((point.vertices.len(), point.centroid), (1, [0.5, 0.0, 0.0]));
+        assert!(corner_contact(&plinth, &apex(1e-6), TOL).is_none());
+    }
+
     fn cube(min: [f64; 3], side: f64) -> Polyhedron {
         Polyhedron::cuboid(min, min.map(|v| v + side))
     }
