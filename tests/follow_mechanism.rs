@@ -241,3 +241,22 @@ fn a_rocking_portal_frame_of_boxes_follows_tan_alpha_minus_theta() {
     let ride = [h * last.sin() + b * (1.0 - last.cos()), h * (last.cos() - 1.0) + b * last.sin()];
     assert!((lintel[0] - ride[0]).abs() < 1e-6 && lintel[1].abs() < 1e-6 && (lintel[2] - ride[1]).abs() < 1e-6, "{lintel:?} against {ride:?}");
 }
+
+/// A leaf of 33 dry blocks in running bond (2 x 1.05 x 0.1 m) pushed out of its plane (along
+/// +y): it overturns as one body about the leeward edge of its base, lambda(theta) = tan(alpha -
+/// theta) with alpha = atan(t / H) from the wall's centroid, and its blocks move together (the
+/// contacts between them stay polygons while the base's becomes the toe's edge).
+#[test]
+fn a_leaf_overturning_out_of_its_plane_follows_tan_alpha_minus_theta() {
+    let (t, height) = (0.1, 1.05);
+    let blocks = masonry_dem::space::running_bond_3d(2.0, height, t, 0.4, 0.175, 0.2).unwrap();
+    let spec = ModelSpec3 { blocks, joints: law(0.7), live: LiveLoad3::HorizontalWeight { direction: 90.0 }, ..ModelSpec3::default() };
+    let (model, r) = followed_3d(&spec, 0.01, t / height);
+    // the control block, the highest (the first of them), turns about the toe edge with the wall:
+    // its centroid t/2 behind the toe and zc above it
+    let c = model.centroids()[r.control_block];
+    let last = tan_alpha_minus_theta(&r, (t / height).atan(), |d| rotation_of(d, 2.0 * (t - c[1]), 2.0 * c[2]));
+    for i in 0..model.n_wall() {
+        turned_about(&model, &r, i, [0.0, t, 0.0], [-1.0, 0.0, 0.0], last, 1e-9);
+    }
+}
