@@ -178,16 +178,29 @@ fn tidy(poly: Vec<[f64; 2]>, tol: f64) -> Vec<[f64; 2]> {
 /// vertices the ends of the edge clipped to the face (two) or the point (one), on the face's
 /// plane; `faces` the face that gives the normal and `usize::MAX` for the other's. Two convex
 /// blocks that touch meet in one convex set: the first such face is the contact (an edge of
-/// each crossing the other's, at a point, is not found). Faces that share a polygon
-/// ([`face_contacts`]) are not looked at here.
+/// each crossing the other's, at a point, is not found). Where an edge or a vertex of each lies
+/// on a face of the other (two edges along one line, as two blocks turned about a common edge),
+/// the normal is the bisector of the two faces' outward normals (the first's, the second's
+/// reversed), as for two polygons' corners at one point in the plane, and `faces` names both.
+/// Faces that share a polygon ([`face_contacts`]) are not looked at here.
 pub fn corner_contact(a: &Polyhedron, b: &Polyhedron, tol: f64) -> Option<FaceContact> {
-    if let Some(c) = on_face(a, b, tol) {
-        return Some(c);
+    let turned = |c: FaceContact, n: [f64; 3], faces: [usize; 2]| {
+        let (t1, t2) = frame(n);
+        FaceContact { faces, n, t1, t2, ..c }
+    };
+    match (on_face(a, b, tol), on_face(b, a, tol)) {
+        (Some(c), None) => Some(c),
+        (None, Some(c)) => {
+            let (n, fb) = (c.n.map(|v| -v), c.faces[0]);
+            Some(turned(c, n, [usize::MAX, fb]))
+        }
+        (Some(c), Some(d)) => {
+            let n = if c.n == d.n.map(|v| -v) { c.n } else { unit(sub(c.n, d.n)) };
+            let fa = c.faces[0];
+            Some(turned(c, n, [fa, d.faces[0]]))
+        }
+        (None, None) => None,
     }
-    let c = on_face(b, a, tol)?;
-    let n = c.n.map(|v| -v);
-    let (t1, t2) = frame(n);
-    Some(FaceContact { faces: [usize::MAX, c.faces[0]], n, t1, t2, ..c })
 }
 
 /// An edge or a vertex of `b` on a face of `a` whose plane parts them (see [`corner_contact`]),
@@ -312,6 +325,13 @@ mod tests {
         let back = corner_contact(&block, &plinth, TOL).unwrap();
         assert_eq!(back.n, [0.0, 0.0, -1.0]);
         assert_eq!(back.faces[0], usize::MAX);
+        // on a plinth flush with the box's toe, the plinth's edge lies on the box's bottom face
+        // too: the normal the bisector of +z and the bottom face's normal turned, tilted by 0.1 rad
+        let flush = Polyhedron::cuboid([-1.0, -1.0, -1.0], [0.6, 1.0, 0.0]);
+        let both = corner_contact(&flush, &block, TOL).unwrap();
+        let (s2, c2) = 0.1f64.sin_cos();
+        assert!((both.n[0] - s2).abs() < 1e-12 && both.n[1] == 0.0 && (both.n[2] - c2).abs() < 1e-12, "{:?}", both.n);
+        assert_eq!(both.vertices.len(), 2);
         // a pyramid on its apex: one corner; lifted by more than the tolerance: none
         let apex = |dz: f64| Polyhedron::hull(&[[0.5, 0.0, dz], [0.0, -0.5, 1.0], [1.0, -0.5, 1.0], [1.0, 0.5, 1.0], [0.0, 0.5, 1.0]], TOL).unwrap();
         let point = corner_contact(&plinth, &apex(0.0), TOL).unwrap();

@@ -270,9 +270,8 @@ def report_figure_3d(
     highest wall block, along x or y; limit analysis's multiplier alone, or, along its mechanism
     (``follow_mechanism``), lambda on the moved geometry against the control block's displacement along the live
     load's direction). The mechanism's views are the collapse mechanism's, also when it was followed. A title with
-    the status, the collapse
-    multiplier and the load's direction. Written to ``path`` (a PNG, atomically) when given, else made through
-    pyplot. Returns the figure."""
+    the status, the collapse multiplier and the load's direction. Written to ``path`` (a PNG, atomically) when given,
+    else made through pyplot. Returns the figure."""
     from ..plot.panels import plot_curve
 
     fig = _new_figure((14.0, 13.5), path is not None)

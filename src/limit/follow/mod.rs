@@ -8,7 +8,7 @@
 //! (lambda has reached zero) or the steps run out. A step that fails is halved: the curve's end
 //! is found within a small fraction of a step.
 //!
-//! The loop is written once ([`follow`]) over what differs between the dimensions ([`Followed`]:
+//! The loop is written once (`follow_with`) over what differs between the dimensions ([`Followed`]:
 //! the analysis, a step of the mechanism, the moved model, the control displacement); `plane`
 //! and `space` hold each dimension's step.
 
