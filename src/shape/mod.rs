@@ -44,7 +44,7 @@ mod polyhedron;
 pub(crate) mod vec3;
 
 pub use contact2::{contacts, corner_contacts, facing_edges, penetration, EdgeContact, Facing};
-pub use contact3::{bisector, face_contacts, facing, penetration as penetration3, shared, FaceContact};
+pub use contact3::{bisector, corner_contact, face_contacts, facing, penetration as penetration3, shared, FaceContact};
 pub use mass::{Area, Volume};
 pub use polygon::{Defect, Polygon};
 pub use polyhedron::{Face, Polyhedron, MAX_HULL_POINTS};
