@@ -726,6 +726,9 @@ class Model3D:
         threads: Optional[int] = None,
         progress: Optional[Callable[[int, float, float, float], None]] = None,
         along_gravity: bool = False,
+        follow_mechanism: bool = False,
+        follow_step: Optional[float] = None,
+        follow_steps: Optional[int] = None,
     ) -> "Results":
         """Limit analysis in 3D (the static theorem): the largest lambda for which contact forces inside the joints'
         strength domains balance the dead loads plus lambda times the live load, a second-order cone program solved
@@ -747,7 +750,16 @@ class Model3D:
         exception raised by it stops the analysis and is raised again.
         along_gravity: True takes lambda times the weights along gravity as the live load instead of the model's (lambda
         a factor on the self-weight): the wall stands under its own weight if the status is "unbounded", and not if it
-        is "no_equilibrium" (near a least thickness better posed than the sign of the horizontal multiplier)."""
+        is "no_equilibrium" (near a least thickness better posed than the sign of the horizontal multiplier).
+        follow_mechanism=True: the collapse mechanism is then followed to the end, as Model.solve_limit's: the blocks
+        moved by finite steps of it (each by the screw motion of its velocities: turned exactly about its
+        instantaneous axis, a hinge edge's rotation exact), the contacts found again (over polygons, along edges and at
+        points) and the limit analysis solved again on the moved geometry. `curve_displacement` is the control block's
+        (the highest wall block's) displacement along the live load's direction in plan [m], `curve_multiplier` lambda on
+        the moved geometry, `displacements` the blocks' finite motion at the curve's end (ux, uy, uz [m], then the
+        rotation vector rx, ry, rz [rad]: the angle about its axis), `steps` the steps taken; a curve that stops short of
+        zero says why in Results.error. follow_step [m] and follow_steps as in Model.solve_limit; refused with
+        along_gravity."""
     def solve_dynamic(
         self,
         control: Optional[Literal["load"]] = None,

@@ -525,7 +525,7 @@ pub(crate) fn explicit_options(
 
 /// The options of limit analysis along the mechanism, or None when it is not asked for (the
 /// step and the steps are then refused if given: they would be ignored).
-fn follow_options(follow: bool, step: Option<f64>, steps: Option<i64>) -> PyResult<Option<limit::FollowOptions>> {
+pub(crate) fn follow_options(follow: bool, step: Option<f64>, steps: Option<i64>) -> PyResult<Option<limit::FollowOptions>> {
     if !follow {
         if step.is_some() || steps.is_some() {
             return Err(InputError::new_err("follow_step and follow_steps are options of follow_mechanism=True"));

@@ -540,7 +540,16 @@ impl PyModel3D {
     /// along_gravity: True takes lambda times the weights along gravity as the live load instead of the model's (lambda
     /// a factor on the self-weight): the wall stands under its own weight if the status is "unbounded", and not if it
     /// is "no_equilibrium" (near a least thickness better posed than the sign of the horizontal multiplier).
-    #[pyo3(signature = (tolerance=None, max_iterations=None, threads=None, progress=None, along_gravity=false))]
+    /// follow_mechanism=True: the collapse mechanism is then followed to the end, as Model.solve_limit's: the blocks
+    /// moved by finite steps of it (each by the screw motion of its velocities: turned exactly about its
+    /// instantaneous axis, a hinge edge's rotation exact), the contacts found again (over polygons, along edges and at
+    /// points) and the limit analysis solved again on the moved geometry. `curve_displacement` is the control block's
+    /// (the highest wall block's) displacement along the live load's direction in plan [m], `curve_multiplier` lambda on
+    /// the moved geometry, `displacements` the blocks' finite motion at the curve's end (ux, uy, uz [m], then the
+    /// rotation vector rx, ry, rz [rad]: the angle about its axis), `steps` the steps taken; a curve that stops short of
+    /// zero says why in Results.error. follow_step [m] and follow_steps as in Model.solve_limit; refused with
+    /// along_gravity.
+    #[pyo3(signature = (tolerance=None, max_iterations=None, threads=None, progress=None, along_gravity=false, follow_mechanism=false, follow_step=None, follow_steps=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_limit(
         &self,
@@ -550,6 +559,9 @@ impl PyModel3D {
         threads: Option<i64>,
         progress: Option<Py<PyAny>>,
         along_gravity: bool,
+        follow_mechanism: bool,
+        follow_step: Option<f64>,
+        follow_steps: Option<i64>,
     ) -> PyResult<Py<PyResults>> {
         let defaults = LimitOptions::default();
         let opts = LimitOptions {
@@ -558,13 +570,20 @@ impl PyModel3D {
             threads: threads.map_or(Ok(defaults.threads), |v| count("threads", v, 0))?,
             ..defaults
         };
+        let follow = crate::model::follow_options(follow_mechanism, follow_step, follow_steps)?;
+        if along_gravity && follow.is_some() {
+            return Err(InputError::new_err("follow_mechanism follows the mechanism of the model's live load: not with along_gravity=True"));
+        }
         self.inner.check_supports().map_err(to_py)?;
         let model = if along_gravity { Arc::new(self.inner.with_live_along_gravity()) } else { self.inner.clone() };
         limit_run(
             py,
             &model,
             progress,
-            move |model, monitor| limit::limit_analysis_3d_with(model, &opts, monitor),
+            move |model, monitor| match follow {
+                Some(follow) => limit::follow_mechanism_3d(model, &opts, &follow, monitor),
+                None => limit::limit_analysis_3d_with(model, &opts, monitor),
+            },
             |model, start| {
                 let c = model.centroids();
                 let top = (0..model.n_wall()).fold(0, |best, i| if c[i][2] > c[best][2] { i } else { best });

@@ -329,5 +329,5 @@ mod space;
 use ipm::*;
 use plane::*;
 use program::*;
-pub use follow::{follow_mechanism, FollowOptions, MAX_FOLLOW_STEPS};
+pub use follow::{follow_mechanism, follow_mechanism_3d, FollowOptions, MAX_FOLLOW_STEPS};
 pub use space::{limit_analysis_3d, limit_analysis_3d_with};

@@ -275,6 +275,93 @@ fn tidy(poly: Vec<[f64; 2]>, tol: f64) -> Vec<[f64; 2]> {
     v
 }
 
+/// Where `a` and `b` touch along an edge or at a point (within `tol` \[m\]) rather than over a
+/// polygon: an edge or a vertex of one on a face of the other, the face's plane parting the two
+/// (every vertex of the other on its outer side, within `tol`). These are the contacts of blocks
+/// moved by finite rotations: a box turned about its toe stands on the toe's edge alone. The
+/// contact is a [`FaceContact`] of area 0: its normal the face's (from `a` into `b`), its
+/// vertices the ends of the edge clipped to the face (two) or the point (one), on the face's
+/// plane; `faces` the face that gives the normal and `usize::MAX` for the other's. Two convex
+/// blocks that touch meet in one convex set: the first such face is the contact (an edge of
+/// each crossing the other's, at a point, is not found). Where an edge or a vertex of each lies
+/// on a face of the other (two edges along one line, as two blocks turned about a common edge),
+/// the normal is the bisector of the two faces' outward normals (the first's, the second's
+/// reversed), as for two polygons' corners at one point in the plane, and `faces` names both.
+/// Faces that share a polygon ([`face_contacts`]) are not looked at here.
+pub fn corner_contact(a: &Polyhedron, b: &Polyhedron, tol: f64) -> Option<FaceContact> {
+    let turned = |c: FaceContact, n: [f64; 3], faces: [usize; 2]| {
+        let (t1, t2) = frame(n);
+        FaceContact { faces, n, t1, t2, ..c }
+    };
+    match (on_face(a, b, tol), on_face(b, a, tol)) {
+        (Some(c), None) => Some(c),
+        (None, Some(c)) => {
+            let (n, fb) = (c.n.map(|v| -v), c.faces[0]);
+            Some(turned(c, n, [usize::MAX, fb]))
+        }
+        (Some(c), Some(d)) => {
+            let n = if c.n == d.n.map(|v| -v) { c.n } else { unit(sub(c.n, d.n)) };
+            let fa = c.faces[0];
+            Some(turned(c, n, [fa, d.faces[0]]))
+        }
+        (None, None) => None,
+    }
+}
+
+/// An edge or a vertex of `b` on a face of `a` whose plane parts them (see [`corner_contact`]),
+/// the normal the face's.
+fn on_face(a: &Polyhedron, b: &Polyhedron, tol: f64) -> Option<FaceContact> {
+    for (fa, g) in a.faces().iter().enumerate() {
+        let gap = |v: [f64; 3]| dot(g.normal, v) - g.offset;
+        if b.vertices().iter().any(|&v| gap(v) < -tol) {
+            continue;
+        }
+        let (t1, t2) = frame(g.normal);
+        let uv = |q: [f64; 3]| [dot(q, t1), dot(q, t2)];
+        let near: Vec<[f64; 2]> = b.vertices().iter().filter(|&&v| gap(v) <= tol).map(|&v| uv(v)).collect();
+        // the two points of b's feature farthest apart: its edge's ends, or its vertex twice
+        let Some((p, q)) = near.iter().flat_map(|&p| near.iter().map(move |&q| (p, q))).max_by(|x, y| dist2(x.0, x.1).total_cmp(&dist2(y.0, y.1))) else {
+            continue;
+        };
+        let len = dist2(p, q).sqrt();
+        let off_line = |r: [f64; 2]| ((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])).abs() / len;
+        if len > tol && near.iter().any(|&r| off_line(r) > tol) {
+            continue; // a face of b: it shares a polygon or nothing
+        }
+        // the segment p..q clipped to the face (counter-clockwise about its normal): where each
+        // edge's side of it, linear along the segment, is at least -tol
+        let ring: Vec<[f64; 2]> = a.face_points(fa).map(uv).collect();
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        for i in 0..ring.len() {
+            let (e0, e1) = (ring[i], ring[(i + 1) % ring.len()]);
+            let e = [e1[0] - e0[0], e1[1] - e0[1]];
+            let el = dist2(e0, e1).sqrt();
+            let side = |r: [f64; 2]| (e[0] * (r[1] - e0[1]) - e[1] * (r[0] - e0[0])) / el + tol;
+            let (sp, sq) = (side(p), side(q));
+            if sp < 0.0 && sq < 0.0 {
+                lo = 1.0;
+                hi = 0.0;
+                break;
+            }
+            if sp < 0.0 {
+                lo = lo.max(sp / (sp - sq));
+            } else if sq < 0.0 {
+                hi = hi.min(sp / (sp - sq));
+            }
+        }
+        if lo > hi {
+            continue;
+        }
+        let at = |t: f64| [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])];
+        let lift = |r: [f64; 2]| -> [f64; 3] { std::array::from_fn(|k| g.normal[k] * g.offset + r[0] * t1[k] + r[1] * t2[k]) };
+        let (r0, r1) = (at(lo), at(hi));
+        let vertices = if (hi - lo) * len > tol { vec![lift(r0), lift(r1)] } else { vec![lift(at(0.5 * (lo + hi)))] };
+        let centroid = lift([0.5 * (r0[0] + r1[0]), 0.5 * (r0[1] + r1[1])]);
+        return Some(FaceContact { faces: [fa, usize::MAX], n: g.normal, t1, t2, vertices, area: 0.0, centroid });
+    }
+    None
+}
+
 /// How deep convex polyhedra `a` and `b` overlap \[m\]: over the separating axes (the faces'
 /// normals of both, and the cross products of an edge of each), the least depth (zero or
 /// negative when they touch or are apart: some plane parts them). It stops at the first axis
@@ -321,6 +408,41 @@ mod tests {
     use super::*;
 
     const TOL: f64 = 1e-9;
+
+    #[test]
+    fn a_box_turned_about_its_toe_stands_on_an_edge_and_a_pyramid_on_its_apex() {
+        // a box 0.6 x 0.4 x 1.5 turned by 0.2 rad about its toe edge (the y axis through (0.6, 0,
+        // 0)) on a plinth [-1, 2] x [-1, 1] x [-1, 0]: the toe's edge on the plinth's top face,
+        // two corners, the normal +z from the plinth into the box; not the plinth's side faces
+        let (s, c) = 0.2f64.sin_cos();
+        let toe = |p: [f64; 3]| [0.6 + c * (p[0] - 0.6) + s * p[2], p[1], -s * (p[0] - 0.6) + c * p[2]];
+        let block = Polyhedron::cuboid([0.0; 3], [0.6, 0.4, 1.5]).map(toe);
+        let plinth = Polyhedron::cuboid([-1.0, -1.0, -1.0], [2.0, 1.0, 0.0]);
+        assert!(face_contacts(&plinth, &block, TOL).is_empty());
+        let found = corner_contact(&plinth, &block, TOL).unwrap();
+        assert_eq!((found.n, found.area), ([0.0, 0.0, 1.0], 0.0));
+        let mut ends: Vec<[f64; 3]> = found.vertices.clone();
+        ends.sort_by(|p, q| p[1].total_cmp(&q[1]));
+        for (got, want) in ends.iter().zip([[0.6, 0.0, 0.0], [0.6, 0.4, 0.0]]) {
+            assert!((0..3).all(|k| (got[k] - want[k]).abs() < 1e-12), "{got:?}");
+        }
+        // the other way round: the normal from the box into the plinth
+        let back = corner_contact(&block, &plinth, TOL).unwrap();
+        assert_eq!(back.n, [0.0, 0.0, -1.0]);
+        assert_eq!(back.faces[0], usize::MAX);
+        // on a plinth flush with the box's toe, the plinth's edge lies on the box's bottom face
+        // too: the normal the bisector of +z and the bottom face's normal turned, tilted by 0.1 rad
+        let flush = Polyhedron::cuboid([-1.0, -1.0, -1.0], [0.6, 1.0, 0.0]);
+        let both = corner_contact(&flush, &block, TOL).unwrap();
+        let (s2, c2) = 0.1f64.sin_cos();
+        assert!((both.n[0] - s2).abs() < 1e-12 && both.n[1] == 0.0 && (both.n[2] - c2).abs() < 1e-12, "{:?}", both.n);
+        assert_eq!(both.vertices.len(), 2);
+        // a pyramid on its apex: one corner; lifted by more than the tolerance: none
+        let apex = |dz: f64| Polyhedron::hull(&[[0.5, 0.0, dz], [0.0, -0.5, 1.0], [1.0, -0.5, 1.0], [1.0, 0.5, 1.0], [0.0, 0.5, 1.0]], TOL).unwrap();
+        let point = corner_contact(&plinth, &apex(0.0), TOL).unwrap();
+        assert_eq!((point.vertices.len(), point.centroid), (1, [0.5, 0.0, 0.0]));
+        assert!(corner_contact(&plinth, &apex(1e-6), TOL).is_none());
+    }
 
     fn cube(min: [f64; 3], side: f64) -> Polyhedron {
         Polyhedron::cuboid(min, min.map(|v| v + side))

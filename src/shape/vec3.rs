@@ -22,3 +22,35 @@ pub(crate) fn unit(a: [f64; 3]) -> [f64; 3] {
     a.map(|v| v / l)
 }
 
+
+/// The rotation by the angle `|w|` \[rad\] about the axis `w`, as a matrix (Rodrigues' formula;
+/// the identity for `w` = 0).
+pub(crate) fn rotation(w: [f64; 3]) -> [[f64; 3]; 3] {
+    let theta = norm(w);
+    if theta == 0.0 {
+        return [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    }
+    let k = w.map(|v| v / theta);
+    let (s, c) = theta.sin_cos();
+    // 1 - cos(theta) without the cancellation at small angles
+    let v = 2.0 * (0.5 * theta).sin().powi(2);
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            let skew = match (i, j) {
+                (0, 1) => -k[2],
+                (0, 2) => k[1],
+                (1, 0) => k[2],
+                (1, 2) => -k[0],
+                (2, 0) => -k[1],
+                (2, 1) => k[0],
+                _ => 0.0,
+            };
+            (if i == j { c } else { 0.0 }) + s * skew + v * k[i] * k[j]
+        })
+    })
+}
+
+/// The product of the matrix `m` and the vector `x`.
+pub(crate) fn apply(m: &[[f64; 3]; 3], x: [f64; 3]) -> [f64; 3] {
+    m.map(|row| dot(row, x))
+}

@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::interface::{BlockKind, Family};
 use crate::shape::grid::for_each_pair;
 use crate::shape::vec3::dot;
-use crate::shape::{bisector, facing, penetration3, shared, upward, Aabb, FaceContact, Polyhedron, REL_TOL};
+use crate::shape::{bisector, corner_contact, facing, penetration3, shared, upward, Aabb, FaceContact, Polyhedron, REL_TOL};
 
 /// Finds every pair of boxes that share a rectangle of positive area (two faces with opposite
 /// normals, coplanar within a tolerance), and refuses overlapping boxes (naming both).
@@ -56,7 +56,21 @@ pub fn detect_polyhedra(
     poll: &mut dyn FnMut() -> bool,
 ) -> Result<Vec<Contact>> {
     let aabbs: Vec<Aabb<3>> = shapes.iter().map(Polyhedron::aabb).collect();
-    let tol = tolerance(&aabbs);
+    detect_with(shapes, &aabbs, kinds, tolerance(&aabbs), false, name, poll)
+}
+
+/// [`detect_polyhedra`] with the tolerance `tol` \[m\] (faces this close, gap or overlap, touch),
+/// and with `corners`, also the contacts along an edge or at a point of blocks that share no
+/// polygon ([`corner_contact`]: contacts of area 0, the blocks of a moved model).
+pub(crate) fn detect_with(
+    shapes: &[Polyhedron],
+    aabbs: &[Aabb<3>],
+    kinds: &[BlockKind],
+    tol: f64,
+    corners: bool,
+    name: impl Fn(usize) -> String,
+    poll: &mut dyn FnMut() -> bool,
+) -> Result<Vec<Contact>> {
     for (i, p) in shapes.iter().enumerate() {
         let side = width(p);
         if !(side > THINNEST * tol) {
@@ -67,12 +81,21 @@ pub fn detect_polyhedra(
         }
     }
     let mut out = Vec::with_capacity(4 * shapes.len());
-    for_each_pair(&aabbs, tol, poll, |i, j| {
+    for_each_pair(aabbs, tol, poll, |i, j| {
         if kinds[i] != BlockKind::Wall && kinds[j] != BlockKind::Wall {
             return Ok(()); // base or support against top beam or support: not a joint of the wall
         }
         let pairs = facing(&shapes[i], &shapes[j], tol);
-        let Some(&[fi, fj]) = pairs.first() else {
+        let found = out.len();
+        if let Some(&[fi, fj]) = pairs.first() {
+            let up = upward(bisector(&shapes[i], fi, &shapes[j], fj));
+            let (a, b) = if up { (i, j) } else { (j, i) };
+            for [fi, fj] in pairs {
+                let (fa, fb) = if up { (fi, fj) } else { (fj, fi) };
+                let Some(c) = shared(&shapes[a], fa, &shapes[b], fb, tol) else { continue };
+                out.push(contact(a, b, family(kinds[a], kinds[b], c.n[2]), c));
+            }
+        } else {
             let depth = penetration3(&shapes[i], &shapes[j], tol);
             if depth > tol {
                 let (p, q) = (&aabbs[i], &aabbs[j]);
@@ -85,25 +108,29 @@ pub fn detect_polyhedra(
                 };
                 return Err(Error::input(format!("{} and {} overlap ({how})", name(i), name(j))));
             }
-            return Ok(());
-        };
-        let up = upward(bisector(&shapes[i], fi, &shapes[j], fj));
-        let (a, b) = if up { (i, j) } else { (j, i) };
-        for [fi, fj] in pairs {
-            let (fa, fb) = if up { (fi, fj) } else { (fj, fi) };
-            let Some(c) = shared(&shapes[a], fa, &shapes[b], fb, tol) else { continue };
-            let family = match (kinds[a], kinds[b]) {
-                (BlockKind::Base, _) | (_, BlockKind::Base) => Family::Base,
-                (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
-                _ if c.n[2].abs() >= std::f64::consts::FRAC_1_SQRT_2 => Family::Bed,
-                _ => Family::Head,
-            };
-            out.push(contact(a, b, c, family));
+        }
+        // blocks that share no polygon may meet along an edge or at a point
+        if corners && out.len() == found {
+            if let Some(c) = corner_contact(&shapes[i], &shapes[j], tol) {
+                out.push(contact(i, j, family(kinds[i], kinds[j], c.n[2]), c));
+            }
         }
         Ok(())
     })?;
     out.sort_by_key(|c| (c.a, c.b));
     Ok(out)
+}
+
+/// The family of a contact between blocks of kinds `a` and `b` whose normal's vertical part is
+/// `nz`: Base or Top with the base (a support) or the top beam, else Bed within 45 deg of the
+/// vertical, Head beyond.
+fn family(a: BlockKind, b: BlockKind, nz: f64) -> Family {
+    match (a, b) {
+        (BlockKind::Base, _) | (_, BlockKind::Base) => Family::Base,
+        (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
+        _ if nz.abs() >= std::f64::consts::FRAC_1_SQRT_2 => Family::Bed,
+        _ => Family::Head,
+    }
 }
 
 /// The least width of `p` across its faces: for each face, how far the farthest vertex lies
@@ -116,7 +143,7 @@ fn width(p: &Polyhedron) -> f64 {
 }
 
 /// The contact of blocks `a` and `b` from the polygon their faces share.
-fn contact(a: usize, b: usize, c: FaceContact, family: Family) -> Contact {
+fn contact(a: usize, b: usize, family: Family, c: FaceContact) -> Contact {
     let uv = |p: &[f64; 3]| [dot(*p, c.t1), dot(*p, c.t2)];
     let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
     for p in &c.vertices {
@@ -183,7 +210,7 @@ const THINNEST: f64 = 10.0;
 /// The contact tolerance of the boxes: `10 REL_TOL` of the model's size, relative at any size
 /// (no floor in metres: a wall of boxes of 1e-8 m is the wall of 1 m scaled), and at least
 /// `10 REL_TOL REACH` of its largest coordinate, above the rounding of coordinates.
-fn tolerance(aabbs: &[Aabb<3>]) -> f64 {
+pub(crate) fn tolerance(aabbs: &[Aabb<3>]) -> f64 {
     let around = aabbs.iter().fold(Aabb::around(&[]), |a, b| a.union(b));
     if aabbs.is_empty() {
         return 0.0;

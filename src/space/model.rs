@@ -9,6 +9,8 @@ use crate::joint::JointLaw;
 use crate::model::{CarriedLoad, JointLaws};
 use crate::shape::{Polyhedron, Volume};
 
+mod moved;
+
 /// A wall of rigid blocks (boxes, or convex polyhedra) joined by contacts, with its base, top
 /// beam, supports and loads. Stateless: solvers read it.
 ///
@@ -307,6 +309,16 @@ impl Model3 {
     /// The live load.
     pub fn live(&self) -> LiveLoad3 {
         self.live
+    }
+    /// The live load's direction in plan, a unit vector (x, y) (+x without a live load).
+    pub(crate) fn horizontal(&self) -> [f64; 2] {
+        match self.live {
+            LiveLoad3::HorizontalWeight { direction } => {
+                let (c, s) = cos_sin_deg(direction);
+                [c, s]
+            }
+            LiveLoad3::None => [1.0, 0.0],
+        }
     }
     /// The same model with the live load lambda times the weights, along gravity (lambda a
     /// factor on the self-weight), as the plane's

@@ -36,14 +36,15 @@ METHODS = ("static", "dynamic", "limit")
 INCREMENTAL_OPTIONS = ("control", "steps", "max_displacement", "control_block", "tolerance")
 #: The options of the explicit solver only (``solve_dynamic``); the static solver ignores them.
 EXPLICIT_OPTIONS = ("damping", "damping_coefficient", "time_step", "unbalanced_ratio", "threads", "large_rotations", "contact_update")
-#: The options of limit analysis in the plane: along the mechanism (``Model.solve_limit``).
+#: The options of limit analysis in either dimension: along the mechanism (``Model.solve_limit``,
+#: ``Model3D.solve_limit``).
 LIMIT_OPTIONS = ("follow_mechanism", "follow_step", "follow_steps")
 #: The options each method takes from a case: limit analysis has no load path and takes none of the load
-#: path's, only whether to follow its mechanism (:data:`LIMIT_OPTIONS`); in 3D it takes ``threads``
+#: path's, only whether to follow its mechanism (:data:`LIMIT_OPTIONS`); in 3D it takes ``threads`` too
 #: (:data:`LIMIT_3D_OPTIONS`).
 SOLVER_OPTIONS = {"static": INCREMENTAL_OPTIONS, "dynamic": INCREMENTAL_OPTIONS + EXPLICIT_OPTIONS, "limit": LIMIT_OPTIONS}
 #: The options limit analysis in 3D takes from a case (``Model3D.solve_limit``).
-LIMIT_3D_OPTIONS = ("threads",)
+LIMIT_3D_OPTIONS = ("threads",) + LIMIT_OPTIONS
 
 #: The core's defaults (``ModelSpec::default()``; ``StaticOptions`` / ``ExplicitOptions::default()``) of
 #: the parameters Python shows when a case leaves them out (:attr:`Case.model_kwargs`,
@@ -120,7 +121,7 @@ class AnalysisParameters:
     of both incremental solvers, :data:`EXPLICIT_OPTIONS` (damping, damping_coefficient, time_step [s],
     unbalanced_ratio, threads, large_rotations, contact_update) the explicit solver's only; limit analysis takes none of them, but in 3D
     threads (:data:`LIMIT_3D_OPTIONS`). :data:`LIMIT_OPTIONS` (follow_mechanism, follow_step [m],
-    follow_steps) are limit analysis's in the plane: its mechanism followed to the end.
+    follow_steps) are limit analysis's in either dimension: its mechanism followed to the end.
     """
 
     control: Optional[str] = None

@@ -270,9 +270,6 @@ def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any
     if method == "dynamic" and analysis.control == "displacement":
         raise top.error(f'analysis.control = "displacement": {LOAD_CONTROL_3D} (this case is 3D: [geometry] {kind})',
                         "analysis.control")
-    if analysis.follow_mechanism:
-        raise top.error("analysis.follow_mechanism: limit analysis along the mechanism is in the plane only in this "
-                        f"version (this case is 3D: [geometry] {kind})", "analysis.follow_mechanism")
     table = top.table("reference", REFERENCE_KEYS)
     reference = _reference(table, default_methods=("limit",))
     if reference is not None:

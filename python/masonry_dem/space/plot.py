@@ -36,7 +36,7 @@ from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
 from .._core import InputError
 from ..plot.canvas import _finish, _new_figure
-from ..plot.panels import STATE_STYLES
+from ..plot.panels import STATE_STYLES, _followed
 from ..report import format_multiplier, interface_categories
 from .report import block_shapes, contact_polygons, direction_text, moved_vertices, vertex_motion
 
@@ -267,9 +267,11 @@ def report_figure_3d(
     seen from two sides (:func:`mechanism_figure`'s views, with their colour bar); below, the contacts by state at
     rest (:func:`plot_contacts_3d`, the plane's crack pattern) with the count of each state, and the load curve
     (the plane's :func:`masonry_dem.plot.plot_curve`: the explicit pushover's path of the control block, the
-    highest wall block, along x or y; limit analysis's multiplier alone). A title with the status, the collapse
-    multiplier and the load's direction. Written to ``path`` (a PNG, atomically) when given, else made through
-    pyplot. Returns the figure."""
+    highest wall block, along x or y; limit analysis's multiplier alone, or, along its mechanism
+    (``follow_mechanism``), lambda on the moved geometry against the control block's displacement along the live
+    load's direction). The mechanism's views are the collapse mechanism's, also when it was followed. A title with
+    the status, the collapse multiplier and the load's direction. Written to ``path`` (a PNG, atomically) when given,
+    else made through pyplot. Returns the figure."""
     from ..plot.panels import plot_curve
 
     fig = _new_figure((14.0, 13.5), path is not None)
@@ -280,7 +282,10 @@ def report_figure_3d(
     _contacts_panel(fig, grid[1, 0], model, results)
     curve = fig.add_subplot(grid[1, 1])
     plot_curve(curve, results)
-    axis = "y" if direction is not None and abs(math.sin(math.radians(direction))) > abs(math.cos(math.radians(direction))) else "x"
+    if _followed(results):  # along the live load's direction in plan
+        axis = f"the load, towards {direction_text(direction)}"
+    else:
+        axis = "y" if direction is not None and abs(math.sin(math.radians(direction))) > abs(math.cos(math.radians(direction))) else "x"
     curve.set_xlabel(f"displacement of the control block along {axis} [mm]")
     curve.set_box_aspect(0.8)
     heading = _heading(model, results, peak)
