@@ -55,13 +55,19 @@ def side_by_side(run: Callable[[bool, Optional[float]], Any], repeats: int) -> t
     return statistics.median(times[True]), statistics.median(times[False]), runs, diff
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--duration", type=float, default=2.0)
+def arguments(doc: str, duration: float) -> argparse.Namespace:
+    """The command line's --duration (default `duration` [s]), --repeats, --scale and --threads, the script's
+    docstring `doc` its help."""
+    parser = argparse.ArgumentParser(description=doc.split("\n\n")[0])
+    parser.add_argument("--duration", type=float, default=duration)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--scale", type=float, default=1.0)
     parser.add_argument("--threads", type=int, default=1)
-    args = parser.parse_args()
+    return parser.parse_args()
+
+
+def main() -> None:
+    args = arguments(__doc__, 2.0)
     blocks = md.running_bond(0.4, 0.175, courses=40, length=20.0, first_course="half")
     model = md.Model(blocks, thickness=1.0, density=1000.0, joints=JOINTS)
     ground = record(args.duration, args.scale)

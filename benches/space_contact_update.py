@@ -16,19 +16,12 @@ so that the ratio is the update's own cost; the medians of the solver's own wall
 
 from __future__ import annotations
 
-import argparse
-
 import masonry_dem as md
-from contact_update import JOINTS, record, side_by_side  # the plane's benchmark, beside this script
+from contact_update import JOINTS, arguments, record, side_by_side  # the plane's benchmark, beside this script
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--duration", type=float, default=0.5)
-    parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--scale", type=float, default=1.0)
-    parser.add_argument("--threads", type=int, default=1)
-    args = parser.parse_args()
+    args = arguments(__doc__, 0.5)
     boxes = md.running_bond_3d(12.0, 8.0, 0.4, 0.4, 0.2, "half")
     model = md.Model3D(boxes, density=1000.0, joints=JOINTS)
     t, a = record(args.duration, args.scale)

@@ -68,7 +68,7 @@ pub fn critical_time_step_moving_3d(model: &Model3) -> f64 {
     let laws = [Family::Bed, Family::Head, Family::Base, Family::Top].map(|f| *model.laws().of(f));
     let stiffest = |k: fn(&crate::joint::JointLaw) -> f64| laws.iter().map(k).fold(0.0, f64::max);
     let (kn, kt) = (stiffest(|l| l.normal_stiffness), stiffest(|l| l.shear_stiffness));
-    for i in 0..model.n_wall() {
+    for (i, ax) in axes.iter().enumerate().take(model.n_wall()) {
         let (p, g) = (&model.shapes()[i], model.centroids()[i]);
         let dofs: [usize; 6] = std::array::from_fn(|j| 6 * i + j);
         for (f, face) in p.faces().iter().enumerate() {
@@ -79,7 +79,7 @@ pub fn critical_time_step_moving_3d(model: &Model3) -> f64 {
             for (x, wi) in corners.iter().zip(w) {
                 // the block as b of a contact with a fixed a: its six columns of the rows
                 let r = sub(*x, g);
-                let rows = jump_rows(r, r, &frame, [None, axes[i].as_ref()]);
+                let rows = jump_rows(r, r, &frame, [None, ax.as_ref()]);
                 let b: [[f64; 6]; 3] = rows.map(|row| std::array::from_fn(|j| row[6 + j]));
                 bound.add(&dofs, &b, [alpha.max(1.0) * kn * area * wi, kt * area * wi, kt * area * wi]);
             }
