@@ -159,7 +159,7 @@ pub struct FaceFacing {
 /// polyhedron behind its face at every corner (a face that deep lies behind the other face, not
 /// on it), as [`crate::shape::facing_edges`] in the plane. The owner is the polyhedron the
 /// normal leaves as [`crate::space::detect`] orients it (the bisector of the two normals
-/// [`upward`]: the lower one, or the one at smaller x, y). Faces on one plane, facing, give the
+/// `upward`: the lower one, or the one at smaller x, y). Faces on one plane, facing, give the
 /// polygon of [`shared`] (seen along the owner's normal, not their bisector).
 pub fn facing_faces(a: &Polyhedron, b: &Polyhedron, gap: f64, tol: f64) -> Vec<FaceFacing> {
     // how far each polyhedron reaches behind each of its faces
