@@ -66,21 +66,114 @@ pub fn follow_mechanism(
     follow: &FollowOptions,
     monitor: &mut dyn FnMut(&LimitProgress) -> bool,
 ) -> Result<Results> {
+    check(follow)?;
+    let start = Instant::now();
+    let res = limit_analysis_with(model, opts, monitor)?;
+    if res.status != Status::Collapse {
+        return Ok(res);
+    }
+    let control = res.control_block;
+    let h = model.horizontal();
+    let along = move |t: &[[f64; 3]]| t[control][0] * h[0] + t[control][1] * h[1];
+    let step = if follow.step > 0.0 { follow.step } else { model.size() / 200.0 };
+    let path = Path { signed: false, along: &along, to_zero: true, held: None, step };
+    let (mut res, end) = walk(model, res, opts, follow, &path, monitor)?;
+    let lambda0 = res.curve_multiplier[0];
+    let why = match end {
+        End::Zero => None,
+        End::StepsOut => Some(format!("the steps ran out (follow_steps = {}) before lambda reached zero", follow.max_steps)),
+        End::Stopped => Some("the mechanism has stopped moving".into()),
+        // lambda reached zero there: the curve's end
+        End::Exhausted { .. } if res.curve_multiplier[res.steps] <= ZERO_SNAP * lambda0 => None,
+        End::Exhausted { smallest, failure, .. } => Some(format!(
+            "every step past it, down to {smallest:.1e} m, failed, with lambda still {:.3} of the first multiplier: the \
+             mechanism changes there in a way that limit analysis along it does not follow (a sudden change, \
+             such as blocks that turn back until they meet others, has no equilibrium at any lambda in \
+             between); on the last step, {}",
+            res.curve_multiplier[res.steps] / lambda0,
+            failure.why()
+        )),
+    };
+    res.error = why.map(|why| {
+        let (d, l) = (res.curve_displacement[res.steps], res.curve_multiplier[res.steps]);
+        format!("the mechanism was followed {} steps, to a displacement of {d:.6e} m where lambda = {l:.6}: {why}", res.steps)
+    });
+    res.elapsed_s = start.elapsed().as_secs_f64();
+    Ok(res)
+}
+
+/// Refuses follow options out of range, naming their keys.
+pub(super) fn check(follow: &FollowOptions) -> Result<()> {
     if !(follow.step.is_finite() && follow.step >= 0.0) {
         return Err(Error::input_at("analysis.follow_step", format!("analysis.follow_step must be a length >= 0 m (0: the model's size over 200), got {}", follow.step)));
     }
     if follow.max_steps == 0 || follow.max_steps > MAX_FOLLOW_STEPS {
         return Err(Error::input_at("analysis.follow_steps", format!("analysis.follow_steps must lie in 1..={MAX_FOLLOW_STEPS}, got {}", follow.max_steps)));
     }
-    let start = Instant::now();
-    let mut res = limit_analysis_with(model, opts, monitor)?;
-    if res.status != Status::Collapse {
-        return Ok(res);
+    Ok(())
+}
+
+/// What a walk along a mechanism follows: whether lambda is a force of either sign (a support
+/// movement's), the curve's abscissa from the blocks' total motion, and whether the walk ends
+/// where lambda reaches zero (a live load that falls to zero; a support movement's force does
+/// not: its walk ends where no equilibrium remains).
+pub(super) struct Path<'a> {
+    pub(super) signed: bool,
+    pub(super) along: &'a dyn Fn(&[[f64; 3]]) -> f64,
+    pub(super) to_zero: bool,
+    /// A support movement's dof (block, dof of the block): where a step's program fails, the
+    /// moved wall with the support held there is asked whether it stands at all
+    /// ([`stands`]).
+    pub(super) held: Option<(usize, usize)>,
+    /// The step: the largest displacement of a vertex of a moving block in one step \[m\].
+    pub(super) step: f64,
+}
+
+/// Why a step failed: the moved geometry has no equilibrium at any lambda (the program is
+/// infeasible: a dual ray proves it), or something else (a program that does not converge,
+/// blocks refused), which proves nothing.
+pub(super) enum Failure {
+    NoEquilibrium(String),
+    Other(String),
+}
+
+impl Failure {
+    pub(super) fn why(&self) -> &str {
+        match self {
+            Failure::NoEquilibrium(w) | Failure::Other(w) => w,
+        }
     }
+}
+
+/// How a walk ended.
+pub(super) enum End {
+    /// lambda fell below [`ZERO`] of the first multiplier.
+    Zero,
+    /// The steps ran out.
+    StepsOut,
+    /// The mechanism stopped moving.
+    Stopped,
+    /// Every step past the last point failed, halved down to `smallest` \[m\], the last one
+    /// tried (the shortest) for this reason; `proved`: the curve's abscissa on the last moved
+    /// geometry of the walk that was proved to have no equilibrium, if any.
+    Exhausted { smallest: f64, failure: Failure, proved: Option<f64> },
+}
+
+/// Follows the mechanism of `first` (a collapse of `model`'s limit analysis, signed as `path`
+/// says) by finite steps (see the module's text): `first` with its curve filled (from (0,
+/// lambda_0)), `displacements` the blocks' finite motion at its last point, `steps` and
+/// `iterations`; and how the walk ended.
+pub(super) fn walk(
+    model: &Model,
+    first: Results,
+    opts: &LimitOptions,
+    follow: &FollowOptions,
+    path: &Path,
+    monitor: &mut dyn FnMut(&LimitProgress) -> bool,
+) -> Result<(Results, End)> {
+    let mut res = first;
     let nb = model.n_blocks();
-    let control = res.control_block;
-    let h = model.horizontal();
-    let step = if follow.step > 0.0 { follow.step } else { model.size() / 200.0 };
+    let step = path.step;
     let lambda0 = res.collapse_multiplier;
     res.curve_displacement = vec![0.0];
     res.curve_multiplier = vec![lambda0];
@@ -90,26 +183,25 @@ pub fn follow_mechanism(
     let mut iterations = res.iterations;
     let mut fraction = 1.0;
     let mut steps = 0;
-    // why the last step tried failed, while its halvings go on
-    let mut failure = String::new();
+    let mut proved = None;
     let end = loop {
         if steps >= follow.max_steps {
-            break Some(format!("the steps ran out (follow_steps = {}) before lambda reached zero", follow.max_steps));
+            break End::StepsOut;
         }
         let Some(mut motion) = step_motion(&current, &mechanism, fraction * step) else {
-            break Some("the mechanism has stopped moving".into());
+            break End::Stopped;
         };
         close_contacts(&current, &mechanism, &mut motion);
         // the full step's gap: the contacts a longer step left open by up to it are kept
         let next = match current.moved(&motion, GAP * step) {
             Ok(m) => Ok(m),
-            Err(e @ Error::Input { .. }) => Err(format!("moved blocks were refused: {e}")),
+            Err(e @ Error::Input { .. }) => Err(Failure::Other(format!("moved blocks were refused: {e}"))),
             Err(e) => return Err(e),
         };
         let analysed = match next {
-            Ok(next) => match limit_analysis_with(&next, opts, monitor) {
+            Ok(next) => match super::analyse(&next, opts, monitor, path.signed) {
                 Ok(r) => Ok((next, r)),
-                Err(e @ Error::Input { .. }) => Err(format!("moved blocks were refused: {e}")),
+                Err(e @ Error::Input { .. }) => Err(Failure::Other(format!("moved blocks were refused: {e}"))),
                 Err(e) => return Err(e),
             },
             Err(why) => Err(why),
@@ -117,10 +209,13 @@ pub fn follow_mechanism(
         let outcome = match analysed {
             Ok((next, r)) => {
                 iterations += r.iterations;
-                if r.status == Status::Collapse {
-                    Ok((next, r))
-                } else {
-                    Err(format!("limit analysis ended {}: {}", r.status.as_str(), r.error.unwrap_or_default()))
+                let why = format!("limit analysis ended {}: {}", r.status.as_str(), r.error.clone().unwrap_or_default());
+                match (r.status, path.held) {
+                    (Status::Collapse, _) => Ok((next, r)),
+                    // signed, lambda's sign is no failure: no equilibrium is an infeasible program
+                    (Status::NoEquilibrium, _) => Err(Failure::NoEquilibrium(why)),
+                    (_, Some(held)) => Err(stands(&next, held, opts, monitor, why)?),
+                    _ => Err(Failure::Other(why)),
                 }
             }
             Err(why) => Err(why),
@@ -133,10 +228,10 @@ pub fn follow_mechanism(
                     t[1] += m[1];
                     t[2] += m[2];
                 }
-                res.curve_displacement.push(total[control][0] * h[0] + total[control][1] * h[1]);
+                res.curve_displacement.push((path.along)(&total));
                 res.curve_multiplier.push(r.collapse_multiplier);
-                if r.collapse_multiplier <= ZERO * lambda0 {
-                    break None;
+                if path.to_zero && r.collapse_multiplier <= ZERO * lambda0 {
+                    break End::Zero;
                 }
                 current = next;
                 mechanism = r.mechanism;
@@ -144,33 +239,45 @@ pub fn follow_mechanism(
             }
             // no equilibrium, or blocks that would meet, within this step: it is halved until
             // the last point is within a 2^-HALVINGS fraction of the step of where that begins
-            Err(why) if fraction >= 0.5f64.powi(HALVINGS as i32) => {
-                failure = why;
+            Err(failure) => {
+                if let Failure::NoEquilibrium(_) = failure {
+                    let tried: Vec<[f64; 3]> = total.iter().zip(&motion).map(|(t, m)| [t[0] + m[0], t[1] + m[1], t[2] + m[2]]).collect();
+                    proved = Some((path.along)(&tried));
+                }
+                if fraction < 0.5f64.powi(HALVINGS as i32) {
+                    break End::Exhausted { smallest: fraction * step, failure, proved };
+                }
                 fraction *= 0.5;
-            }
-            // lambda reached zero there: the curve's end
-            Err(_) if res.curve_multiplier[steps] <= ZERO_SNAP * lambda0 => break None,
-            Err(_) => {
-                break Some(format!(
-                    "every step past it, down to {:.1e} m, failed, with lambda still {:.3} of the first multiplier: the \
-                     mechanism changes there in a way that limit analysis along it does not follow (a sudden change, \
-                     such as blocks that turn back until they meet others, has no equilibrium at any lambda in \
-                     between); on the last step, {failure}",
-                    fraction * step,
-                    res.curve_multiplier[steps] / lambda0
-                ))
             }
         }
     };
     res.displacements = total;
     res.steps = steps;
     res.iterations = iterations;
-    res.error = end.map(|why| {
-        let (d, l) = (res.curve_displacement[steps], res.curve_multiplier[steps]);
-        format!("the mechanism was followed {steps} steps, to a displacement of {d:.6e} m where lambda = {l:.6}: {why}")
-    });
-    res.elapsed_s = start.elapsed().as_secs_f64();
-    Ok(res)
+    Ok((res, end))
+}
+
+/// Why the program of a moved wall (`model`, its support movement's dof `held` free) failed
+/// (`why`: it did not converge, or not within the tolerance): the same wall with the support
+/// held is asked whether it stands under its own weight ([`Model::with_live_along_gravity`]:
+/// a program whose every multiple of the weight is carried if it stands, and whose optimum is -1,
+/// no load at all, if not; well posed where the movement's program is infeasible by a hair and
+/// its interior point stalls). A wall of dry joints that does not stand has no equilibrium at
+/// any force on the support ([`Failure::NoEquilibrium`]); otherwise, or with joints of strength
+/// (whose equilibria do not scale with the weight), the failure proves nothing.
+fn stands(model: &Model, held: (usize, usize), opts: &LimitOptions, monitor: &mut dyn FnMut(&LimitProgress) -> bool, why: String) -> Result<Failure> {
+    if model.laws_are_strong() {
+        return Ok(Failure::Other(why));
+    }
+    let mut fixed = model.clone();
+    fixed.fix(held.0, held.1, 0.0)?;
+    let r = limit_analysis_with(&fixed.with_live_along_gravity(), opts, monitor)?;
+    Ok(match r.status {
+        Status::NoEquilibrium => Failure::NoEquilibrium(format!(
+            "{why}; with the support held there, the wall does not stand under its own weight (limit analysis of its weight: no equilibrium)"
+        )),
+        s => Failure::Other(format!("{why}; with the support held there, limit analysis of the wall's weight ends {}", s.as_str())),
+    })
 }
 
 /// The finite motion of each block of `model` over one step of `mechanism` (block velocities,
