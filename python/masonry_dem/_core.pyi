@@ -459,6 +459,8 @@ class Model:
         time_step: Optional[float] = None,
         safety: Optional[float] = None,
         threads: Optional[int] = None,
+        large_rotations: Optional[bool] = None,
+        contact_update: Optional[bool] = None,
         progress: Optional[Callable[[int, float, float, float], None]] = None,
     ) -> "Results":
         """Quasi-static analysis with the explicit (molecular dynamics) solver; the same Results
@@ -474,7 +476,12 @@ class Model:
         its equation. damping: "local" (Cundall, coefficient alpha in [0, 1)), "viscous"
         (mass-proportional, coefficient c [1/s]) or "none". time_step [s]: None for the automatic
         stable step (safety * the stability limit); a user step above the limit is an InputError.
-        threads: threads of the interface loop (0: all cores). Status and multipliers as in
+        threads: threads of the interface loop (0: all cores). large_rotations: finite rotations
+        of the blocks, each stage's equilibrium found on the moved geometry (the
+        large-displacement capacity curve under displacement control; its drive is quasi-static
+        in small stages only: keep steps at 200 or more); default False, the linearized
+        kinematics. contact_update: the contacts found again as the blocks move, as in
+        Model.simulate (large_rotations=True needed); default False. Status and multipliers as in
         solve_static (here the path always ends at max_displacement, default 2 mm). Releases the
         GIL; Ctrl-C raises KeyboardInterrupt with the partial Results as its `results` attribute.
         progress: as in solve_static, every few thousand steps."""
@@ -753,6 +760,8 @@ class Model3D:
         time_step: Optional[float] = None,
         safety: Optional[float] = None,
         threads: Optional[int] = None,
+        large_rotations: Optional[bool] = None,
+        contact_update: Optional[bool] = None,
         progress: Optional[Callable[[int, float, float, float], None]] = None,
     ) -> "Results":
         """Quasi-static analysis in 3D with the explicit solver: Model.solve_dynamic's on the wall of boxes, with the same
@@ -766,7 +775,8 @@ class Model3D:
         The curve follows control_block (default: the highest wall block) along x, or along y when the live load's
         direction is nearer y; a control block held along that axis (the base) is refused. damping,
         damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in Model.solve_dynamic
-        (Model3D.critical_time_step gives the stability limit). Releases the GIL; Ctrl-C raises KeyboardInterrupt with
+        (Model3D.critical_time_step gives the stability limit); large_rotations=True and contact_update=True are
+        refused (InputError): a 3D pushover is on the wall as built. Releases the GIL; Ctrl-C raises KeyboardInterrupt with
         the partial Results as its `results` attribute. progress: as in Model.solve_dynamic."""
     def simulate(
         self,

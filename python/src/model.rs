@@ -360,11 +360,16 @@ impl PyModel {
     /// its equation. damping: "local" (Cundall, coefficient alpha in [0, 1)), "viscous"
     /// (mass-proportional, coefficient c [1/s]) or "none". time_step [s]: None for the automatic
     /// stable step (safety * the stability limit); a user step above the limit is an InputError.
-    /// threads: threads of the interface loop (0: all cores). Status and multipliers as in
+    /// threads: threads of the interface loop (0: all cores). large_rotations: finite rotations
+    /// of the blocks, each stage's equilibrium found on the moved geometry (the
+    /// large-displacement capacity curve under displacement control; its drive is quasi-static
+    /// in small stages only: keep steps at 200 or more); default False, the linearized
+    /// kinematics. contact_update: the contacts found again as the blocks move, as in
+    /// Model.simulate (large_rotations=True needed); default False. Status and multipliers as in
     /// solve_static (here the path always ends at max_displacement, default 2 mm). Releases the
     /// GIL; Ctrl-C raises KeyboardInterrupt with the partial Results as its `results` attribute.
     /// progress: as in solve_static, every few thousand steps.
-    #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, progress=None))]
+    #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, large_rotations=None, contact_update=None, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_dynamic(
         &self,
@@ -380,12 +385,15 @@ impl PyModel {
         time_step: Option<f64>,
         safety: Option<f64>,
         threads: Option<i64>,
+        large_rotations: Option<bool>,
+        contact_update: Option<bool>,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Py<PyResults>> {
         let opts = explicit_options(
             (control, steps, max_displacement, control_block, tolerance),
             (unbalanced_ratio, damping, damping_coefficient),
             (time_step, safety, threads),
+            (large_rotations, contact_update),
         )?;
         analyse(py, &self.inner, progress, move |model, monitor| {
             explicit::solve_with(model, &opts, monitor).map(PyResults::from)
@@ -495,6 +503,7 @@ pub(crate) fn explicit_options(
     (control, steps, max_displacement, control_block, tolerance): (Option<&str>, Option<i64>, Option<f64>, Option<usize>, Option<f64>),
     (unbalanced_ratio, damping, damping_coefficient): (Option<f64>, Option<&str>, Option<f64>),
     (time_step, safety, threads): (Option<f64>, Option<f64>, Option<i64>),
+    (large_rotations, contact_update): (Option<bool>, Option<bool>),
 ) -> PyResult<ExplicitOptions> {
     let defaults = ExplicitOptions::default();
     Ok(ExplicitOptions {
@@ -507,6 +516,8 @@ pub(crate) fn explicit_options(
         safety: safety.unwrap_or(defaults.safety),
         threads: threads.map_or(Ok(defaults.threads), |v| count("threads", v, 0))?,
         control_block,
+        large_rotations: large_rotations.unwrap_or(defaults.large_rotations),
+        contact_update: contact_update.unwrap_or(defaults.contact_update),
         ..defaults
     })
 }

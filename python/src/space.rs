@@ -584,9 +584,10 @@ impl PyModel3D {
     /// The curve follows control_block (default: the highest wall block) along x, or along y when the live load's
     /// direction is nearer y; a control block held along that axis (the base) is refused. damping,
     /// damping_coefficient, time_step [s], safety, unbalanced_ratio, threads: as in Model.solve_dynamic
-    /// (Model3D.critical_time_step gives the stability limit). Releases the GIL; Ctrl-C raises KeyboardInterrupt with
-    /// the partial Results as its `results` attribute. progress: as in Model.solve_dynamic.
-    #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, progress=None))]
+    /// (Model3D.critical_time_step gives the stability limit); large_rotations=True and contact_update=True are
+    /// refused (InputError): a 3D pushover is on the wall as built. Releases the GIL; Ctrl-C raises KeyboardInterrupt
+    /// with the partial Results as its `results` attribute. progress: as in Model.solve_dynamic.
+    #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, large_rotations=None, contact_update=None, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_dynamic(
         &self,
@@ -602,12 +603,15 @@ impl PyModel3D {
         time_step: Option<f64>,
         safety: Option<f64>,
         threads: Option<i64>,
+        large_rotations: Option<bool>,
+        contact_update: Option<bool>,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Py<PyResults>> {
         let opts = explicit_options(
             (control, steps, max_displacement, control_block, tolerance),
             (unbalanced_ratio, damping, damping_coefficient),
             (time_step, safety, threads),
+            (large_rotations, contact_update),
         )?;
         self.inner.check_supports().map_err(to_py)?;
         analyse(py, &self.inner, progress, move |model, monitor| {

@@ -122,6 +122,13 @@ pub struct ExplicitOptions {
     pub threads: usize,
     /// The block whose horizontal displacement is followed (and driven under displacement control); `None`: [`Model::default_control_block`](crate::model::Model::default_control_block).
     pub control_block: Option<usize>,
+    /// Finite rotations of the blocks: the equilibrium on the moved geometry (the
+    /// large-displacement capacity curve under displacement control); false (the default):
+    /// the linearized kinematics, the equilibrium on the wall as built.
+    pub large_rotations: bool,
+    /// The contacts found again as the blocks move (see the contact update in this module's
+    /// notes); with `large_rotations` only, in the plane only. Off by default.
+    pub contact_update: bool,
 }
 
 impl Default for ExplicitOptions {
@@ -137,6 +144,8 @@ impl Default for ExplicitOptions {
             max_steps_per_level: 200_000,
             threads: 0,
             control_block: None,
+            large_rotations: false,
+            contact_update: false,
         }
     }
 }

@@ -113,7 +113,20 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
     model.check_strength_range()?;
     let start = Instant::now();
     let control_block = check_options(model, opts)?;
-    let s = Integrator::new(model, opts.time_step, opts.safety, opts.damping, opts.threads)?;
+    // with the update, a time step also stable for a block touching along every edge
+    let dt = match opts.contact_update {
+        true => Some(checked_time_step(update::critical_time_step_moving(model), opts.time_step, opts.safety, opts.damping).map_err(|e| match opts.time_step {
+            Some(_) => Error::input(format!("{e} with its contacts updated (a block may touch along every edge); or set contact_update = false")),
+            None => e,
+        })?),
+        false => opts.time_step,
+    };
+    let mut s = Integrator::new(model, dt, opts.safety, opts.damping, opts.threads)?;
+    s.set_large(opts.large_rotations);
+    if opts.contact_update {
+        s.update = Some(Box::new(update::Update::new(&s)));
+        update::search(&mut s);
+    }
     let setting = Setting::of_plane(model);
     check_relaxation(setting.period, s.dt, opts.time_step.is_some(), opts.max_steps_per_level)?;
     let mut run = QuasiStatic::new(s, setting, opts, control_block, start);
@@ -141,6 +154,9 @@ fn check_options(model: &Model, opts: &ExplicitOptions) -> Result<usize, Error> 
     }
     if opts.max_steps_per_level == 0 {
         return Err(Error::input("max_steps_per_level must be at least 1"));
+    }
+    if opts.contact_update && !opts.large_rotations {
+        return Err(Error::input("analysis.contact_update needs analysis.large_rotations = true: with the linearized kinematics the blocks keep the contacts of the wall as built"));
     }
     crate::analysis::check_displacement_range(model, opts.control)?;
     model.check_supports()?;

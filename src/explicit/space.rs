@@ -741,6 +741,10 @@ pub fn solve_3d_with(model: &Model3, opts: &ExplicitOptions, monitor: &mut dyn F
     if opts.control != Control::Load {
         return Err(Error::input("3D explicit analyses are load-controlled (analysis.control = \"load\")"));
     }
+    if opts.large_rotations || opts.contact_update {
+        let key = if opts.large_rotations { "large_rotations" } else { "contact_update" };
+        return Err(Error::input(format!("analysis.{key}: the pushovers of 3D models are on the wall as built in this version (linearized kinematics, the contacts found once)")));
+    }
     check_brittle(model)?;
     model.check_live("the explicit solver's pushover")?;
     model.check_supports()?;

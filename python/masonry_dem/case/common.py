@@ -117,6 +117,8 @@ def _dynamic_options(table: _Table) -> Dict[str, Any]:
         time_step=table.number("time_step", None, _positive, unit="time"),
         unbalanced_ratio=table.number("unbalanced_ratio", None, _open_unit),
         threads=table.integer("threads", None, minimum=0),
+        large_rotations=table.boolean("large_rotations", None),
+        contact_update=table.boolean("contact_update", None),
     )
 
 

@@ -35,7 +35,7 @@ METHODS = ("static", "dynamic", "limit")
 #: The options of both incremental solvers (``solve_static`` and ``solve_dynamic``) a case may give.
 INCREMENTAL_OPTIONS = ("control", "steps", "max_displacement", "control_block", "tolerance")
 #: The options of the explicit solver only (``solve_dynamic``); the static solver ignores them.
-EXPLICIT_OPTIONS = ("damping", "damping_coefficient", "time_step", "unbalanced_ratio", "threads")
+EXPLICIT_OPTIONS = ("damping", "damping_coefficient", "time_step", "unbalanced_ratio", "threads", "large_rotations", "contact_update")
 #: The options of limit analysis in the plane: along the mechanism (``Model.solve_limit``).
 LIMIT_OPTIONS = ("follow_mechanism", "follow_step", "follow_steps")
 #: The options each method takes from a case: limit analysis has no load path and takes none of the load
@@ -118,7 +118,7 @@ class AnalysisParameters:
 
     :data:`INCREMENTAL_OPTIONS` (control, steps, max_displacement [m], control_block, tolerance) are those
     of both incremental solvers, :data:`EXPLICIT_OPTIONS` (damping, damping_coefficient, time_step [s],
-    unbalanced_ratio, threads) the explicit solver's only; limit analysis takes none of them, but in 3D
+    unbalanced_ratio, threads, large_rotations, contact_update) the explicit solver's only; limit analysis takes none of them, but in 3D
     threads (:data:`LIMIT_3D_OPTIONS`). :data:`LIMIT_OPTIONS` (follow_mechanism, follow_step [m],
     follow_steps) are limit analysis's in the plane: its mechanism followed to the end.
     """
@@ -133,6 +133,8 @@ class AnalysisParameters:
     time_step: Optional[float] = None
     unbalanced_ratio: Optional[float] = None
     threads: Optional[int] = None
+    large_rotations: Optional[bool] = None
+    contact_update: Optional[bool] = None
     follow_mechanism: Optional[bool] = None
     follow_step: Optional[float] = None
     follow_steps: Optional[int] = None
@@ -357,7 +359,8 @@ class Case:
     @property
     def dynamic_kwargs(self) -> MutableMapping[str, Any]:
         """The explicit solver's own options that the case gives, as a dict (damping, damping_coefficient,
-        time_step [s], unbalanced_ratio, threads); the static solver ignores them."""
+        time_step [s], unbalanced_ratio, threads, large_rotations, contact_update); the static solver ignores
+        them."""
         return _Arguments(self, "analysis", EXPLICIT_OPTIONS)
 
     def live_load(self, model: Any = None) -> str:
