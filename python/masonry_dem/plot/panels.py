@@ -104,14 +104,15 @@ def _draw_blocks(
 ) -> None:
     """The blocks moved by ``scale`` * ``motion`` ((n_all, 3): u1, u2 [m], phi [rad]; None: at rest), filled; the
     base and the supports (the fixed blocks) hatched where they are; the top beam grey; wall blocks orange where
-    ``moving`` is set, else beige. With ``undeformed`` the undeformed outlines are drawn dashed over the fills."""
+    ``moving`` is set, else beige. With ``undeformed`` the undeformed outlines are drawn dashed over the fills. A
+    support given a movement is drawn moved with the rest."""
     blocks = shapes(model)
     beam = model.top_index
     fixed = set(fixed_blocks(model))
-    for i in sorted(fixed):
-        ax.add_patch(Polygon(blocks.polygon(i), closed=True, facecolor="#d9d9d9", edgecolor="#555555", hatch="///",
-                             linewidth=0.8, zorder=1))
     moved = blocks.polygons() if motion is None else blocks.polygons(blocks.moved(motion, scale))
+    for i in sorted(fixed):
+        ax.add_patch(Polygon(moved[i], closed=True, facecolor="#d9d9d9", edgecolor="#555555", hatch="///",
+                             linewidth=0.8, zorder=1))
     fills, colors = [], []
     for i, vertices in enumerate(moved):
         if i in fixed:
