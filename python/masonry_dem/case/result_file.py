@@ -95,7 +95,7 @@ def result_dict(results: Any, model: Any, title: str) -> Dict[str, Any]:
         out["error"] = str(results.error) if results.error else "unknown error"
     if out["status"] in NOTE_STATUSES:
         out["note"] = str(results.error or "")
-    elif getattr(results, "error", None):
+    elif out["status"] not in ERROR_STATUSES and getattr(results, "error", None):
         # limit analysis along the mechanism: why its curve stopped short; a support's movement that stood to the
         # end of its steps: so
         out["note"] = str(results.error)
