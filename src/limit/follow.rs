@@ -212,7 +212,8 @@ pub(super) fn walk(
                 let why = format!("limit analysis ended {}: {}", r.status.as_str(), r.error.clone().unwrap_or_default());
                 match (r.status, path.held) {
                     (Status::Collapse, _) => Ok((next, r)),
-                    // signed, lambda's sign is no failure: no equilibrium is an infeasible program
+                    // no equilibrium: an infeasible program (signed, lambda's sign is no failure; unsigned,
+                    // also a multiplier below zero, which only a signed walk would read as a proof)
                     (Status::NoEquilibrium, _) => Err(Failure::NoEquilibrium(why)),
                     (_, Some(held)) => Err(stands(&next, held, opts, monitor, why)?),
                     _ => Err(Failure::Other(why)),
