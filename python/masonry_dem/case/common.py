@@ -97,7 +97,7 @@ def _analysis(top: _Table, default_method: str = "static") -> Tuple[str, Analysi
 
 def _movement_options(table: _Table, method: str) -> Dict[str, Any]:
     """The keys of a support's movement, checked (None: left out): both or neither, with method "limit" or
-    "dynamic"; the explicit solver's needs max_displacement, and takes no control_point."""
+    "dynamic"; the explicit solver's (method = "dynamic") needs max_displacement and displacement control."""
     support = table.integer("move_support", None, minimum=0)
     direction = table.string("move_direction", None, MOVE_DIRECTIONS)
     if support is None and direction is None:
