@@ -182,6 +182,9 @@ pub(super) fn check_run_options(model: &Model, opts: &ExplicitOptions) -> Result
     if opts.contact_update && !opts.large_rotations {
         return Err(Error::input("analysis.contact_update needs analysis.large_rotations = true: with the linearized kinematics the blocks keep the contacts of the wall as built"));
     }
+    if opts.contact_update && opts.control == Control::Load {
+        return Err(Error::input("analysis.contact_update needs analysis.control = \"displacement\": under load control a load level that runs away is undone, and the contacts found meanwhile could not be"));
+    }
     crate::analysis::check_displacement_range(model, opts.control)?;
     model.check_supports()
 }
@@ -695,8 +698,14 @@ impl<'a, K: Kernel> QuasiStatic<'a, K> {
 
     /// How displacement control ends, at lambda `lam` after its last stage: a collapse if lambda
     /// has fallen from its peak or the curve has flattened
-    /// ([`crate::analysis::displacement_collapse`], as the static solver's), else completed.
+    /// ([`crate::analysis::displacement_collapse`], as the static solver's), else completed; and
+    /// completed where the contact update has made contacts the wall as built did not have: the
+    /// curve has met them (a block leaning on another, an impact), its peak is no collapse
+    /// multiplier.
     fn displacement_status(&self, lam: f64) -> Status {
+        if self.s.contacts_created() > 0 {
+            return Status::Completed;
+        }
         let (curve_l, curve_u) = (&self.curve_l, &self.curve_u);
         let peak = crate::results::peak(curve_l);
         let n = curve_l.len();

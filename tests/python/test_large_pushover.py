@@ -65,6 +65,8 @@ def test_contact_update_needs_large_rotations() -> None:
     model = md.parse_case(CASE, source="block.toml").build_model()
     with pytest.raises(md.InputError, match="contact_update needs analysis.large_rotations = true"):
         model.solve_dynamic(contact_update=True)
+    with pytest.raises(md.InputError, match='contact_update needs analysis.control = "displacement"'):
+        model.solve_dynamic(large_rotations=True, contact_update=True)
     text = CASE.replace("large_rotations = true", "large_rotations = false\ncontact_update = true")
     case = md.parse_case(text, source="block.toml")
     with pytest.raises(md.InputError) as info:
