@@ -246,7 +246,7 @@ fn a_shaken_running_bond_wall_keeps_its_contacts() {
 /// it). With it, the contact with the step, open at first, closes when the block's face has
 /// turned onto the step's corner (theta = g / hs): from there the block leans on the step,
 /// and lambda, which had fallen to tan(alpha - g / hs), climbs back above lambda0 = b / h by
-/// the end, 1.5 times that rotation.
+/// the end, 1.5 times that rotation: the run ends completed, not a collapse.
 #[test]
 fn a_pushover_with_the_update_meets_a_step_the_wall_as_built_does_not_have() {
     use masonry_dem::analysis::Control;
@@ -271,4 +271,7 @@ fn a_pushover_with_the_update_meets_a_step_the_wall_as_built_does_not_have() {
     let least = with.curve_multiplier[1..].iter().copied().fold(f64::INFINITY, f64::min);
     assert!((least - touching).abs() < 0.02 * touching, "least {least} against {touching}");
     assert!(end(&with) > b / h, "{}", end(&with));
+    // the curve met a contact the wall as built did not have: no collapse is claimed
+    assert_eq!(with.status, masonry_dem::results::Status::Completed);
+    assert!(with.collapse_multiplier.is_nan());
 }

@@ -462,6 +462,8 @@ class Model:
         large_rotations: Optional[bool] = None,
         contact_update: Optional[bool] = None,
         progress: Optional[Callable[[int, float, float, float], None]] = None,
+        move_support: Optional[int] = None,
+        move_direction: Optional[Literal["+x", "-x", "+y", "-y"]] = None,
     ) -> "Results":
         """Quasi-static analysis with the explicit (molecular dynamics) solver; the same Results
         as solve_static, with method "dynamic" and `iterations` = time steps.
@@ -484,7 +486,17 @@ class Model:
         Model.simulate (large_rotations=True needed); default False. Status and multipliers as in
         solve_static (here the path always ends at max_displacement, default 2 mm). Releases the
         GIL; Ctrl-C raises KeyboardInterrupt with the partial Results as its `results` attribute.
-        progress: as in solve_static, every few thousand steps."""
+        progress: as in solve_static, every few thousand steps.
+
+        move_support with move_direction (as in solve_limit): that support driven along the
+        direction by max_displacement [m] (> 0, required) in `steps` stages under
+        control="displacement" (the default then), each relaxed with the support held; the wall
+        falls at the first stage that does not settle (a block moving 1% of the model's size, or
+        the unbalanced ratio not settling within the steps allowed): status "collapse" with
+        `bracket` the movements of the last stage that settled and of the first that did not,
+        else "completed". The curve: the support's movement [m] and the force the wall exerts on
+        it along the movement [N] (from the dead state); large_rotations=True follows the moved
+        geometry."""
     def solve_limit(
         self,
         tolerance: Optional[float] = None,
@@ -494,6 +506,8 @@ class Model:
         follow_mechanism: bool = False,
         follow_step: Optional[float] = None,
         follow_steps: Optional[int] = None,
+        move_support: Optional[int] = None,
+        move_direction: Optional[Literal["+x", "-x", "+y", "-y"]] = None,
     ) -> "Results":
         """Limit analysis (the static theorem): the largest lambda for which interface forces inside
         the joints' strength domains balance the dead loads plus lambda times the live load, as a
@@ -534,7 +548,19 @@ class Model:
         curve's end (u1, u2 [m], phi [rad]) and `steps` the steps taken; a curve that stops short
         of zero says why in Results.error (the status stays the first analysis's). follow_step:
         the largest displacement of a block's vertex in one step [m] (default: the model's size
-        over 200); a step that fails is halved. follow_steps: steps at most (default 1000)."""
+        over 200); a step that fails is halved. follow_steps: steps at most (default 1000).
+
+        move_support (0-based among the supports; an arch's abutments 0 and 1) with
+        move_direction ("+x", "-x", "+y" or "-y"): that support moved along the direction (its
+        dof made free, a unit force on it the live load), followed to where no equilibrium exists
+        (follow_step default: the model's size over 1000). lambda is then the force the wall
+        exerts on the support along its movement [N] (an arch's thrust against a spread), the
+        least of every admissible state: collapse_multiplier its value as built,
+        curve_displacement the support's movement [m], curve_multiplier the force on the moved
+        geometry, last_equilibrium the force at the curve's end. Status "collapse" where a moved
+        geometry within a step past the end has no equilibrium at any force on the support (the
+        wall falls there), "completed" (the steps ran out) or "failed" (no such proof), with the
+        reason in Results.error."""
     def simulate(
         self,
         duration: float,

@@ -450,11 +450,13 @@ def _execute(
             from .plot import report_figure
 
             _prepare(plot_file)
-            report_figure(model, results, title=case.title, path=plot_file, live=live, thrust=case.arch is not None)
+            report_figure(model, results, title=case.title, path=plot_file, live=live, thrust=case.arch is not None,
+                          movement=case.movement is not None)
             yield plot_file
 
     wrote, write_error = _write_outputs(outputs())
-    failed_to_write = _print_report(summary(case.title, model, results, live, case.arch), wrote, write_error)
+    failed_to_write = _print_report(summary(case.title, model, results, live, case.arch, case.movement), wrote,
+                                    write_error)
     if failed_to_write is not None:
         return failed_to_write
     if interrupted:

@@ -10,7 +10,7 @@ Lengths in m, rotations in rad; a positive rotation is counterclockwise.
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, List, Mapping, NamedTuple, Optional, Sequence
+from typing import Any, Dict, List, Mapping, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -337,8 +337,37 @@ def certificate_text(results: Any, live: str = "horizontal_weight") -> List[str]
     return lines
 
 
+def movement_text(results: Any, movement: Tuple[int, str]) -> List[str]:
+    """The lines of a support's movement's result (``movement``: the support, 0-based, and its direction): where the
+    wall falls (limit analysis: the end of the path of equilibria, no equilibrium within a step beyond; the explicit
+    solver: between the last stage that settled and the first that did not) or how far it stood, and the force the
+    wall exerts on the support along its movement (an arch's thrust against a spread)."""
+    support, direction = movement
+    d = np.asarray(results.curve_displacement, dtype=float)
+    force = np.asarray(results.curve_multiplier, dtype=float)
+    lines = [f"  support movement:    support {support} along {direction}"]
+    collapse = str(results.status) == "collapse"
+    bracket = getattr(results, "bracket", None)
+    if collapse and bracket is not None:
+        lines.append(f"  falls at:            a movement between {bracket[0]:.4g} m and {bracket[1]:.4g} m (the last stage "
+                     "that settled .. the first that did not)")
+    elif collapse:
+        lines.append(f"  falls at:            a movement of {d[-1]:.4g} m (the path of equilibria ends there: no "
+                     "equilibrium at any force on the support within a step beyond)")
+    elif d.size:
+        lines.append(f"  stood up to:         a movement of {d[-1]:.4g} m (no collapse)")
+    if not collapse and results.error:
+        lines.append(f"  why:                 {results.error}")
+    if force.size:
+        lines.append(f"  force on support:    {force[0] / 1e3:.4g} kN at the start"
+                     + (" (the least of every admissible state)" if str(results.method) == "limit" else "")
+                     + f", {force[-1] / 1e3:.4g} kN at {d[-1]:.4g} m, in {_plural(max(d.size - 1, 0), 'step')}")
+    return lines
+
+
 def summary(
-    title: str, model: Any, results: Any, live: str = "horizontal_weight", arch: Optional[Mapping[str, Any]] = None
+    title: str, model: Any, results: Any, live: str = "horizontal_weight", arch: Optional[Mapping[str, Any]] = None,
+    movement: Optional[Tuple[int, str]] = None,
 ) -> str:
     """The short human summary printed by ``masonry-dem run`` (several lines, no trailing newline).
 
@@ -350,7 +379,8 @@ def summary(
     lower bound). A 3D wall (a :class:`masonry_dem.Model3D`) gets a line with the live load's direction in plan, and
     its mechanism is described in 3D (:func:`masonry_dem.space.report.describe_mechanism`). A wall in the plane's
     collapse mechanism that opens joints by rotation gets a ``hinges`` line (:func:`describe_hinges`; ``arch``: the
-    arch generator's intrados and extrados, ``Case.arch``, to name an arch's hinges by them)."""
+    arch generator's intrados and extrados, ``Case.arch``, to name an arch's hinges by them). A support's movement
+    (``movement``: the support and its direction) replaces the multiplier's lines with :func:`movement_text`'s."""
     describe = describe_mechanism
     three_d = int(getattr(model, "dimension", 2)) == 3
     if three_d:
@@ -375,19 +405,22 @@ def summary(
         load = f"λ times each block's weight, horizontal, towards {direction_text(direction)}" if direction is not None \
             else "none"
         lines.append(f"  live load:           {load}")
-    lines += [
-        f"  status:              {format_status(results)}",
-        f"  collapse multiplier: {format_multiplier(float(results.collapse_multiplier), live)}"
-        + (" (peak horizontal force on the top beam)" if live == "top_horizontal" and collapse else ""),
-    ]
+    lines.append(f"  status:              {format_status(results)}")
+    if movement is not None:
+        lines += movement_text(results, movement)
+    else:
+        lines.append(f"  collapse multiplier: {format_multiplier(float(results.collapse_multiplier), live)}"
+                     + (" (peak horizontal force on the top beam)" if live == "top_horizontal" and collapse else ""))
     last = float(getattr(results, "last_equilibrium", math.nan))
-    if str(results.status) == "estimate" and math.isfinite(last):
+    if movement is not None:
+        pass
+    elif str(results.status) == "estimate" and math.isfinite(last):
         lines.append(f"  estimate:            {format_multiplier(last, live)} (neither bound: not a collapse)")
     elif not collapse and math.isfinite(last):
         # no collapse shown: the largest multiplier at which the wall was found in equilibrium, for what it is
         lines.append(f"  last equilibrium:    {format_multiplier(last, live)} (not a collapse)")
     bracket = getattr(results, "bracket", None)
-    if collapse and bracket is not None:
+    if collapse and bracket is not None and movement is None:
         # explicit load control: the collapse multiplier is the bracket's lower end, the last level that settled
         lines.append(f"  bracket:             {format_multiplier(float(bracket[0]), live)} .. "
                      f"{format_multiplier(float(bracket[1]), live)} (the highest level that settled .. the lowest that "
@@ -406,7 +439,7 @@ def summary(
         for k, text in enumerate(certificate_text(results, live)):
             lines.append(f"  {'certificate:' if k == 0 else '':<21}{text}")
         curve = np.asarray(results.curve_multiplier, dtype=float)
-        if collapse and curve.size > 1:  # the mechanism followed on the moved geometry
+        if collapse and curve.size > 1 and movement is None:  # the mechanism followed on the moved geometry
             d = float(np.asarray(results.curve_displacement, dtype=float)[-1])
             lines.append(f"  along the mechanism: λ from {format_multiplier(float(curve[0]), live)} to "
                          f"{format_multiplier(float(curve[-1]), live)} at a displacement of {d:.4g} m of the control "

@@ -258,8 +258,8 @@ def summary_text(model: Any, history: Any, title: str, motion: Any = None) -> st
         lines.append("  peak base shear:     - (not recorded by this core)")
     searches, created, dropped, renewed = history.contact_counts
     if searches:
-        lines.append(f"  contact update:      {searches:,} searches; {created:,} contacts created, {dropped:,} dropped, "
-                     f"{renewed:,} taken again from the moved blocks")
+        lines.append(f"  contact update:      {searches:,} search{'es' if searches != 1 else ''}; {created:,} contacts created, "
+                     f"{dropped:,} dropped, {renewed:,} taken again from the moved blocks")
     error = p["energy_balance_error"]
     if math.isfinite(error):
         lines.append(f"  energy balance:      error {error * 100:.3g} % of the largest energy ({energy_scale(history):.4g} J)")

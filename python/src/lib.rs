@@ -11,7 +11,7 @@
 use masonry_dem::error::Error;
 use masonry_dem::geometry::{self, Arch, ArchKind, FirstCourse, Gable, Rect, RunningBond, Springing, StoneWall};
 use masonry_dem::joint::JointLaw;
-use masonry_dem::model::{CarriedLoad, JointLaws, Model, ModelSpec, TopBeam};
+use masonry_dem::model::{CarriedLoad, JointLaws, Model, ModelSpec, SupportMovement, TopBeam};
 use masonry_dem::shape::Polygon;
 use masonry_dem::limit::{self, LimitOptions};
 use masonry_dem::results::{Results, Status};

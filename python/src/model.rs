@@ -320,7 +320,19 @@ impl PyModel {
     /// of zero says why in Results.error (the status stays the first analysis's). follow_step:
     /// the largest displacement of a block's vertex in one step [m] (default: the model's size
     /// over 200); a step that fails is halved. follow_steps: steps at most (default 1000).
-    #[pyo3(signature = (tolerance=None, max_iterations=None, max_sequence=None, progress=None, follow_mechanism=false, follow_step=None, follow_steps=None))]
+    ///
+    /// move_support (0-based among the supports; an arch's abutments 0 and 1) with
+    /// move_direction ("+x", "-x", "+y" or "-y"): that support moved along the direction (its
+    /// dof made free, a unit force on it the live load), followed to where no equilibrium exists
+    /// (follow_step default: the model's size over 1000). lambda is then the force the wall
+    /// exerts on the support along its movement [N] (an arch's thrust against a spread), the
+    /// least of every admissible state: collapse_multiplier its value as built,
+    /// curve_displacement the support's movement [m], curve_multiplier the force on the moved
+    /// geometry, last_equilibrium the force at the curve's end. Status "collapse" where a moved
+    /// geometry within a step past the end has no equilibrium at any force on the support (the
+    /// wall falls there), "completed" (the steps ran out) or "failed" (no such proof), with the
+    /// reason in Results.error.
+    #[pyo3(signature = (tolerance=None, max_iterations=None, max_sequence=None, progress=None, follow_mechanism=false, follow_step=None, follow_steps=None, move_support=None, move_direction=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_limit(
         &self,
@@ -332,6 +344,8 @@ impl PyModel {
         follow_mechanism: bool,
         follow_step: Option<f64>,
         follow_steps: Option<i64>,
+        move_support: Option<usize>,
+        move_direction: Option<&str>,
     ) -> PyResult<Py<PyResults>> {
         let defaults = LimitOptions::default();
         let opts = LimitOptions {
@@ -340,10 +354,15 @@ impl PyModel {
             max_sequence: max_sequence.map_or(Ok(defaults.max_sequence), |v| count("max_sequence", v, 0))?,
             ..defaults
         };
-        let follow = follow_options(follow_mechanism, follow_step, follow_steps)?;
-        limit_run(py, &self.inner, progress, move |model, monitor| match follow {
-            Some(follow) => limit::follow_mechanism(model, &opts, &follow, monitor),
-            None => limit::limit_analysis_with(model, &opts, monitor),
+        let movement = movement_from(move_support, move_direction)?;
+        if movement.is_some() && follow_mechanism {
+            return Err(InputError::new_err("follow_mechanism: a support's movement is followed already; give move_support or follow_mechanism, not both"));
+        }
+        let follow = follow_options(follow_mechanism || movement.is_some(), follow_step, follow_steps)?;
+        limit_run(py, &self.inner, progress, move |model, monitor| match (movement, follow) {
+            (Some(m), Some(follow)) => limit::follow_movement(model, &m, &opts, &follow, monitor),
+            (_, Some(follow)) => limit::follow_mechanism(model, &opts, &follow, monitor),
+            _ => limit::limit_analysis_with(model, &opts, monitor),
         }, |model, start| interrupted_limit(model.n_blocks(), model.interfaces().len(), model.default_control_block(), [0.0; 3], start))
     }
 
@@ -369,7 +388,17 @@ impl PyModel {
     /// solve_static (here the path always ends at max_displacement, default 2 mm). Releases the
     /// GIL; Ctrl-C raises KeyboardInterrupt with the partial Results as its `results` attribute.
     /// progress: as in solve_static, every few thousand steps.
-    #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, large_rotations=None, contact_update=None, progress=None))]
+    ///
+    /// move_support with move_direction (as in solve_limit): that support driven along the
+    /// direction by max_displacement [m] (> 0, required) in `steps` stages under
+    /// control="displacement" (the default then), each relaxed with the support held; the wall
+    /// falls at the first stage that does not settle (a block moving 1% of the model's size, or
+    /// the unbalanced ratio not settling within the steps allowed): status "collapse" with
+    /// `bracket` the movements of the last stage that settled and of the first that did not,
+    /// else "completed". The curve: the support's movement [m] and the force the wall exerts on
+    /// it along the movement [N] (from the dead state); large_rotations=True follows the moved
+    /// geometry.
+    #[pyo3(signature = (control=None, steps=None, max_displacement=None, control_block=None, tolerance=None, unbalanced_ratio=None, damping=None, damping_coefficient=None, time_step=None, safety=None, threads=None, large_rotations=None, contact_update=None, progress=None, move_support=None, move_direction=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_dynamic(
         &self,
@@ -388,7 +417,20 @@ impl PyModel {
         large_rotations: Option<bool>,
         contact_update: Option<bool>,
         progress: Option<Py<PyAny>>,
+        move_support: Option<usize>,
+        move_direction: Option<&str>,
     ) -> PyResult<Py<PyResults>> {
+        let movement = movement_from(move_support, move_direction)?;
+        if movement.is_some() && max_displacement.is_none() {
+            return Err(InputError::new_err("max_displacement: a support's movement by the explicit solver needs how far the support moves [m]"));
+        }
+        if movement.is_some() && control_block.is_some() {
+            return Err(InputError::new_err("control_block: a support's movement follows its support; leave control_block out"));
+        }
+        let control = match (movement, control) {
+            (Some(_), None) => Some("displacement"),
+            _ => control,
+        };
         let opts = explicit_options(
             (control, steps, max_displacement, control_block, tolerance),
             (unbalanced_ratio, damping, damping_coefficient),
@@ -396,7 +438,11 @@ impl PyModel {
             (large_rotations, contact_update),
         )?;
         analyse(py, &self.inner, progress, move |model, monitor| {
-            explicit::solve_with(model, &opts, monitor).map(PyResults::from)
+            match movement {
+                Some(m) => explicit::solve_movement(model, &m, &opts, monitor),
+                None => explicit::solve_with(model, &opts, monitor),
+            }
+            .map(PyResults::from)
         })
     }
 
@@ -525,6 +571,16 @@ pub(crate) fn explicit_options(
 
 /// The options of limit analysis along the mechanism, or None when it is not asked for (the
 /// step and the steps are then refused if given: they would be ignored).
+/// A support's movement from its keywords (both or neither).
+fn movement_from(support: Option<usize>, direction: Option<&str>) -> PyResult<Option<SupportMovement>> {
+    match (support, direction) {
+        (None, None) => Ok(None),
+        (Some(support), Some(d)) => Ok(Some(SupportMovement { support, direction: d.parse().map_err(to_py)? })),
+        (Some(_), None) => Err(InputError::new_err("move_direction: a support's movement needs its direction (\"+x\", \"-x\", \"+y\" or \"-y\")")),
+        (None, Some(_)) => Err(InputError::new_err("move_support: move_direction needs the support that moves (0-based among the supports)")),
+    }
+}
+
 pub(crate) fn follow_options(follow: bool, step: Option<f64>, steps: Option<i64>) -> PyResult<Option<limit::FollowOptions>> {
     if !follow {
         if step.is_some() || steps.is_some() {

@@ -432,4 +432,7 @@ impl Kernel for Integrator<'_> {
     fn into_contacts(self) -> (Vec<[f64; 3]>, Vec<u8>, Vec<bool>) {
         (self.forces, self.flags, self.broken)
     }
+    fn contacts_created(&self) -> usize {
+        self.update.as_ref().map_or(0, |up| up.created)
+    }
 }

@@ -428,6 +428,7 @@ pub mod contact;
 mod evidence;
 mod integrator;
 mod motion;
+mod movement;
 mod pass;
 mod quasi_static;
 mod space;
@@ -444,6 +445,7 @@ use pass::*;
 #[cfg(any(test, feature = "bench-internals"))]
 pub use stepper::{Stepper, Stepper3};
 pub(crate) use quasi_static::{relax_at_displacement, relax_dead_state};
+pub use movement::{solve_movement, FALL_FRACTION};
 pub use quasi_static::{solve, solve_with};
 // the modal analysis in 3D takes the same kinematics and rotation dofs as a time history
 pub(crate) use space::{jump_rows, principal_axes, to_world};

@@ -408,4 +408,6 @@ pub(super) trait Kernel: std::ops::DerefMut<Target = Motion> {
     fn block(u: &[f64], i: usize) -> Self::V;
     /// The contacts' forces, states and broken flags, for [`Results`].
     fn into_contacts(self) -> (Vec<Self::V>, Vec<u8>, Vec<bool>);
+    /// The contacts the contact update has created so far (zero without it).
+    fn contacts_created(&self) -> usize;
 }

@@ -113,6 +113,26 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
     model.check_strength_range()?;
     let start = Instant::now();
     let control_block = check_options(model, opts)?;
+    let (s, setting) = integrator(model, opts)?;
+    let mut run = QuasiStatic::new(s, setting, opts, control_block, start);
+    let end = match run.settle_dead_loads(monitor) {
+        ControlFlow::Break(end) => end,
+        ControlFlow::Continue((dead_steps, limits)) => match opts.control {
+            Control::Load => run.load_control(&limits, monitor),
+            Control::Displacement { max_displacement } => run.displacement_control(max_displacement, dead_steps, monitor),
+        },
+    };
+    let res = run.finish(end);
+    if res.status == Status::Collapse && crate::static_solver::exact_by_limit_analysis(model) {
+        return super::evidence::check_collapse(model, opts, res, monitor);
+    }
+    Ok(res)
+}
+
+/// The integrator of a quasi-static run of `model` with `opts` (finite rotations, the contact
+/// update) and what its levels read of the model, its time step checked against the
+/// relaxation's needs.
+pub(super) fn integrator<'m>(model: &'m Model, opts: &ExplicitOptions) -> Result<(Integrator<'m>, Setting), Error> {
     // with the update, a time step also stable for a block touching along every edge
     let dt = match opts.contact_update {
         true => Some(checked_time_step(update::critical_time_step_moving(model), opts.time_step, opts.safety, opts.damping).map_err(|e| match opts.time_step {
@@ -129,37 +149,14 @@ pub fn solve_with(model: &Model, opts: &ExplicitOptions, monitor: &mut dyn FnMut
     }
     let setting = Setting::of_plane(model);
     check_relaxation(setting.period, s.dt, opts.time_step.is_some(), opts.max_steps_per_level)?;
-    let mut run = QuasiStatic::new(s, setting, opts, control_block, start);
-    let end = match run.settle_dead_loads(monitor) {
-        ControlFlow::Break(end) => end,
-        ControlFlow::Continue((dead_steps, limits)) => match opts.control {
-            Control::Load => run.load_control(&limits, monitor),
-            Control::Displacement { max_displacement } => run.displacement_control(max_displacement, dead_steps, monitor),
-        },
-    };
-    let res = run.finish(end);
-    if res.status == Status::Collapse && crate::static_solver::exact_by_limit_analysis(model) {
-        return super::evidence::check_collapse(model, opts, res, monitor);
-    }
-    Ok(res)
+    Ok((s, setting))
 }
 
 /// Checks the options of a quasi-static run against the model, in the order their errors are
 /// reported, before anything is allocated for the run: the control block (the model's default
 /// unless given).
 fn check_options(model: &Model, opts: &ExplicitOptions) -> Result<usize, Error> {
-    crate::analysis::check_path_options(opts.steps, opts.tolerance, opts.control)?;
-    if !(opts.unbalanced_ratio > 0.0 && opts.unbalanced_ratio < 1.0) {
-        return Err(Error::input(format!("analysis.unbalanced_ratio must lie in (0, 1), got {}", opts.unbalanced_ratio)));
-    }
-    if opts.max_steps_per_level == 0 {
-        return Err(Error::input("max_steps_per_level must be at least 1"));
-    }
-    if opts.contact_update && !opts.large_rotations {
-        return Err(Error::input("analysis.contact_update needs analysis.large_rotations = true: with the linearized kinematics the blocks keep the contacts of the wall as built"));
-    }
-    crate::analysis::check_displacement_range(model, opts.control)?;
-    model.check_supports()?;
+    check_run_options(model, opts)?;
     let control_block = crate::analysis::control_block(model, opts.control_block)?;
     let cd = 3 * control_block;
     if let Control::Displacement { .. } = opts.control {
@@ -171,6 +168,25 @@ fn check_options(model: &Model, opts: &ExplicitOptions) -> Result<usize, Error> 
         }
     }
     Ok(control_block)
+}
+
+/// The checks of [`check_options`] that do not read the control block.
+pub(super) fn check_run_options(model: &Model, opts: &ExplicitOptions) -> Result<(), Error> {
+    crate::analysis::check_path_options(opts.steps, opts.tolerance, opts.control)?;
+    if !(opts.unbalanced_ratio > 0.0 && opts.unbalanced_ratio < 1.0) {
+        return Err(Error::input(format!("analysis.unbalanced_ratio must lie in (0, 1), got {}", opts.unbalanced_ratio)));
+    }
+    if opts.max_steps_per_level == 0 {
+        return Err(Error::input("max_steps_per_level must be at least 1"));
+    }
+    if opts.contact_update && !opts.large_rotations {
+        return Err(Error::input("analysis.contact_update needs analysis.large_rotations = true: with the linearized kinematics the blocks keep the contacts of the wall as built"));
+    }
+    if opts.contact_update && opts.control == Control::Load {
+        return Err(Error::input("analysis.contact_update needs analysis.control = \"displacement\": under load control a load level that runs away is undone, and the contacts found meanwhile could not be"));
+    }
+    crate::analysis::check_displacement_range(model, opts.control)?;
+    model.check_supports()
 }
 
 /// How a quasi-static run ends: its status, the error that says why, and the mechanism (an
@@ -620,6 +636,44 @@ impl<'a, K: Kernel> QuasiStatic<'a, K> {
         ControlFlow::Continue(())
     }
 
+    /// A support's movement: the control dof (a support's, held by the model: only the drive
+    /// moves it) driven by `max_displacement` from where it is, in the options' stages, each
+    /// relaxed with the support held at its target, lambda from its equation (from the force
+    /// the support takes under the dead loads, where the curve starts). The first stage
+    /// at which the wall does not settle ends the run as a collapse, the wall fallen between the
+    /// stage before and it: a block moves more than `fall` \[m\] from where the drive left it,
+    /// or the unbalanced ratio stays above the options' within their steps per level. The curve
+    /// holds the stages that settled; the mechanism is the fallen stage's motion.
+    pub(super) fn movement_control(&mut self, max_displacement: f64, dead_steps: usize, fall: f64, monitor: &mut dyn FnMut(&Progress) -> bool) -> End {
+        let (u_start, count) = (self.s.u[self.cd], self.opts.steps);
+        // the support is held under the dead loads: the curve starts at the force it takes there
+        let cd = self.cd;
+        let mut lam = (self.s.f_int[cd] - self.fd[cd]) / self.fl[cd];
+        self.curve_l[0] = lam;
+        for k in 1..=count {
+            let before = Snapshot::of(&self.s);
+            let target = u_start + max_displacement * k as f64 / count as f64;
+            self.drive(target, dead_steps, &mut lam);
+            match self.relax(&mut lam, Some(target), &Limits::at(fall), monitor) {
+                Level::Settled => {}
+                Level::Stopped => return End::interrupted(None),
+                Level::RanAway => {
+                    let mech = self.s.u.iter().zip(&before.u).map(|(a, b)| a - b).collect();
+                    return End { status: Status::Collapse, error: None, mechanism: Some(mech) };
+                }
+            }
+            self.s.v.fill(0.0);
+            self.curve_l.push(lam);
+            self.curve_u.push(self.s.u[self.cd]);
+            let p = Progress { step: self.s.steps, multiplier: lam, displacement: self.s.u[self.cd], fraction: k as f64 / count as f64, poll: false, time: f64::NAN };
+            if !monitor(&p) {
+                return End::interrupted(None);
+            }
+        }
+        let e = Error::Convergence(format!("the wall stood at every stage, up to the movement's end ({max_displacement:e} m): no collapse"));
+        End { status: Status::Completed, error: Some(e), mechanism: None }
+    }
+
     /// Drives the control dof from where it is to `target` over a few hundred time steps or
     /// more, lambda (into `lam`) from its equation, before a stage's relaxation.
     fn drive(&mut self, target: f64, dead_steps: usize, lam: &mut f64) {
@@ -644,8 +698,14 @@ impl<'a, K: Kernel> QuasiStatic<'a, K> {
 
     /// How displacement control ends, at lambda `lam` after its last stage: a collapse if lambda
     /// has fallen from its peak or the curve has flattened
-    /// ([`crate::analysis::displacement_collapse`], as the static solver's), else completed.
+    /// ([`crate::analysis::displacement_collapse`], as the static solver's), else completed; and
+    /// completed where the contact update has made contacts the wall as built did not have: the
+    /// curve has met them (a block leaning on another, an impact), its peak is no collapse
+    /// multiplier.
     fn displacement_status(&self, lam: f64) -> Status {
+        if self.s.contacts_created() > 0 {
+            return Status::Completed;
+        }
         let (curve_l, curve_u) = (&self.curve_l, &self.curve_u);
         let peak = crate::results::peak(curve_l);
         let n = curve_l.len();

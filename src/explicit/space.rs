@@ -727,6 +727,9 @@ impl Kernel for Integrator3<'_> {
             .collect();
         (forces, self.flags, self.broken)
     }
+    fn contacts_created(&self) -> usize {
+        0
+    }
 }
 
 /// Runs a quasi-static analysis of a 3D model with the explicit solver (load control: levels

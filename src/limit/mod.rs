@@ -173,12 +173,19 @@ pub fn limit_analysis_with(
     opts: &LimitOptions,
     monitor: &mut dyn FnMut(&LimitProgress) -> bool,
 ) -> Result<Results> {
+    analyse(model, opts, monitor, false)
+}
+
+/// [`limit_analysis_with`], with lambda of either sign when `signed` (a force on a moving
+/// support: its optimum below zero is then a collapse, not a dead state out of equilibrium).
+fn analyse(model: &Model, opts: &LimitOptions, monitor: &mut dyn FnMut(&LimitProgress) -> bool, signed: bool) -> Result<Results> {
     model.check_analysis_memory("a limit analysis")?;
     model.check_strength_range()?;
     validate(opts)?;
     model.check_supports()?;
     let start = Instant::now();
     let mut plane = Plane::new(model)?;
+    plane.lp.signed = signed;
     let assoc = plane.lp.solve(opts, 0, monitor)?;
     let mut iterations = assoc.iterations;
     let non_assoc = (0..model.interfaces().len()).any(|k| {
@@ -321,6 +328,7 @@ struct Solution {
 mod cone;
 mod follow;
 mod ipm;
+mod movement;
 mod outcome;
 mod plane;
 mod program;
@@ -330,4 +338,5 @@ use ipm::*;
 use plane::*;
 use program::*;
 pub use follow::{follow_mechanism, follow_mechanism_3d, FollowOptions, MAX_FOLLOW_STEPS};
+pub use movement::follow_movement;
 pub use space::{limit_analysis_3d, limit_analysis_3d_with};

@@ -70,7 +70,8 @@ impl Lp {
     /// says why when it is not a collapse.
     pub(super) fn status(&self, sol: &Solution, lam: f64) -> (Status, Option<String>) {
         // lambda below zero beyond the program's precision: the dead state is not admissible
-        let negative = lam < -1e-7 * (self.force / self.live);
+        // (a signed lambda, a force on a moving support, may take either sign)
+        let negative = !self.signed && lam < -1e-7 * (self.force / self.live);
         match sol.outcome {
             Outcome::Optimal if negative => (
                 Status::NoEquilibrium,

@@ -55,6 +55,9 @@ pub(super) struct Lp {
     pub(super) normal: SparseLu,
     /// The normal matrix's diagonal slots, where it is regularized ([`Lp::regularize_frictionless`]).
     pub(super) diagonal: Option<Vec<u32>>,
+    /// Whether lambda is a force of either sign (a support movement's, [`super::follow_movement`]):
+    /// an optimum below zero is then no failure of the dead state.
+    pub(super) signed: bool,
 }
 
 impl Lp {
@@ -97,6 +100,7 @@ impl Lp {
             live,
             normal,
             diagonal: None,
+            signed: false,
         })
     }
 

@@ -34,10 +34,12 @@ mod build;
 mod carried;
 mod keys;
 mod moved;
+mod movement;
 mod supports;
 
 pub(crate) use build::{check_settlement, law_key};
 pub use carried::CarriedLoad;
+pub use movement::{Direction, SupportMovement};
 pub(crate) use carried::{check as check_carried, check_inside as check_carried_inside, lump as lump_carried};
 pub(crate) use supports::unsupported;
 

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import masonry_dem as md
+from test_follow_mechanism import rotation_of  # the rotation about the toe that moves the centroid by d
 
 B, H = 0.4, 1.0  # the block [m]
 ALPHA = math.atan(B / H)
@@ -44,16 +45,6 @@ large_rotations = true
 """
 
 
-def rotation_of(d: float) -> float:
-    """The rotation theta of the block about its toe that moves its centroid by d along x:
-    d = B/2 (1 - cos theta) + H/2 sin theta, increasing on [0, pi/2], inverted by bisection."""
-    lo, hi = 0.0, math.pi / 2
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if 0.5 * B * (1 - math.cos(mid)) + 0.5 * H * math.sin(mid) > d else (mid, hi)
-    return 0.5 * (lo + hi)
-
-
 def test_the_block_follows_tan_alpha_minus_theta_from_the_case_file() -> None:
     case = md.parse_case(CASE, source="block.toml")
     model = case.build_model()
@@ -61,7 +52,7 @@ def test_the_block_follows_tan_alpha_minus_theta_from_the_case_file() -> None:
     lam = np.asarray(r.curve_multiplier)[1:]
     d = np.asarray(r.curve_displacement)[1:]
     assert len(lam) == 200
-    exact = np.tan(ALPHA - np.array([rotation_of(x) for x in d]))
+    exact = np.tan(ALPHA - np.array([rotation_of(x, B, H) for x in d]))
     assert np.max(np.abs(lam - exact) / exact) < 0.02
     # the block's own rotation at the end, clockwise, within 1% of the rotation its centroid's travel gives
     assert -r.displacements[0][2] == pytest.approx(THETA_END, rel=0.01)
@@ -74,6 +65,8 @@ def test_contact_update_needs_large_rotations() -> None:
     model = md.parse_case(CASE, source="block.toml").build_model()
     with pytest.raises(md.InputError, match="contact_update needs analysis.large_rotations = true"):
         model.solve_dynamic(contact_update=True)
+    with pytest.raises(md.InputError, match='contact_update needs analysis.control = "displacement"'):
+        model.solve_dynamic(large_rotations=True, contact_update=True)
     text = CASE.replace("large_rotations = true", "large_rotations = false\ncontact_update = true")
     case = md.parse_case(text, source="block.toml")
     with pytest.raises(md.InputError) as info:

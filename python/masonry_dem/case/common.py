@@ -21,6 +21,9 @@ FAMILIES = ("bed", "head", "base", "top")
 ANALYSIS_KEYS = ("method", "control", "control_point", "max_displacement", "steps", "tolerance")
 # Keys of limit analysis along the mechanism (in the plane; refused for a 3D wall).
 FOLLOW_KEYS = ("follow_mechanism", "follow_step", "follow_steps")
+# Keys of a support's movement (in the plane; limit analysis along it or the explicit solver driving it).
+MOVEMENT_KEYS = ("move_support", "move_direction")
+MOVE_DIRECTIONS = ("+x", "-x", "+y", "-y")
 DYNAMIC_KEYS = EXPLICIT_OPTIONS  # the explicit solver's options, by the same names
 DAMPINGS = ("local", "viscous", "none")
 # Keys of the optional [reference] table (a published or exact answer, checked by ``masonry-dem validate``).
@@ -76,7 +79,7 @@ def _law(table: _Table) -> Dict[str, float]:
 def _analysis(top: _Table, default_method: str = "static") -> Tuple[str, AnalysisParameters]:
     """[analysis]: the method (``default_method`` when left out: "static"; a 3D wall's, "limit") and the
     solvers' options given."""
-    table = top.table("analysis", ANALYSIS_KEYS + DYNAMIC_KEYS + FOLLOW_KEYS)
+    table = top.table("analysis", ANALYSIS_KEYS + DYNAMIC_KEYS + FOLLOW_KEYS + MOVEMENT_KEYS)
     if table is None:
         return default_method, AnalysisParameters()
     method = table.string("method", default_method, METHODS)
@@ -88,18 +91,41 @@ def _analysis(top: _Table, default_method: str = "static") -> Tuple[str, Analysi
         steps=table.integer("steps", None, minimum=1),
         tolerance=table.number("tolerance", None, _open_unit),
     )
-    return method, AnalysisParameters(**options, **_dynamic_options(table), **_follow_options(table))
+    movement = _movement_options(table, method)
+    return method, AnalysisParameters(**options, **_dynamic_options(table), **_follow_options(table, movement), **movement)
 
 
-def _follow_options(table: _Table) -> Dict[str, Any]:
+def _movement_options(table: _Table, method: str) -> Dict[str, Any]:
+    """The keys of a support's movement, checked (None: left out): both or neither, with method "limit" or
+    "dynamic"; the explicit solver's (method = "dynamic") needs max_displacement and displacement control."""
+    support = table.integer("move_support", None, minimum=0)
+    direction = table.string("move_direction", None, MOVE_DIRECTIONS)
+    if support is None and direction is None:
+        return dict(move_support=None, move_direction=None)
+    if support is None:
+        raise table.key_error("move_direction", "needs move_support (the support that moves, 0-based)")
+    if direction is None:
+        raise table.key_error("move_support", f"needs move_direction ({', '.join(_quote(d) for d in MOVE_DIRECTIONS)})")
+    if method == "static":
+        raise table.key_error("move_support", 'is taken by method = "limit" or "dynamic", not "static"')
+    if method == "dynamic" and "max_displacement" not in table:
+        raise table.key_error("move_support", "needs max_displacement with method = \"dynamic\" (how far the support moves)")
+    if method == "dynamic" and table.string("control", None, ("load", "displacement")) == "load":
+        raise table.key_error("control", 'must be "displacement" with move_support (the support is driven)')
+    if table.boolean("follow_mechanism", None):
+        raise table.key_error("follow_mechanism", "a support's movement is followed already: leave it out with move_support")
+    return dict(move_support=support, move_direction=direction)
+
+
+def _follow_options(table: _Table, movement: Dict[str, Any]) -> Dict[str, Any]:
     """The keys of limit analysis along the mechanism, checked (None: left out); follow_step and follow_steps
-    only with follow_mechanism = true."""
+    only with follow_mechanism = true or a support's movement."""
     follow = table.boolean("follow_mechanism", None)
     step = table.number("follow_step", None, _positive, unit="length")
     steps = table.integer("follow_steps", None, minimum=1, maximum=_core.MAX_FOLLOW_STEPS)
     for key, value in (("follow_step", step), ("follow_steps", steps)):
-        if value is not None and not follow:
-            raise table.key_error(key, "needs follow_mechanism = true")
+        if value is not None and not follow and movement["move_support"] is None:
+            raise table.key_error(key, "needs follow_mechanism = true (or move_support)")
     return dict(follow_mechanism=follow, follow_step=step, follow_steps=steps)
 
 

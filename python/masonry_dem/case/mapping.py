@@ -39,10 +39,13 @@ EXPLICIT_OPTIONS = ("damping", "damping_coefficient", "time_step", "unbalanced_r
 #: The options of limit analysis in either dimension: along the mechanism (``Model.solve_limit``,
 #: ``Model3D.solve_limit``).
 LIMIT_OPTIONS = ("follow_mechanism", "follow_step", "follow_steps")
+#: The options of a support's movement, in the plane: limit analysis along it, or the explicit solver driving it.
+MOVEMENT_OPTIONS = ("move_support", "move_direction")
 #: The options each method takes from a case: limit analysis has no load path and takes none of the load
 #: path's, only whether to follow its mechanism (:data:`LIMIT_OPTIONS`); in 3D it takes ``threads`` too
 #: (:data:`LIMIT_3D_OPTIONS`).
-SOLVER_OPTIONS = {"static": INCREMENTAL_OPTIONS, "dynamic": INCREMENTAL_OPTIONS + EXPLICIT_OPTIONS, "limit": LIMIT_OPTIONS}
+SOLVER_OPTIONS = {"static": INCREMENTAL_OPTIONS, "dynamic": INCREMENTAL_OPTIONS + EXPLICIT_OPTIONS + MOVEMENT_OPTIONS,
+                  "limit": LIMIT_OPTIONS + MOVEMENT_OPTIONS}
 #: The options limit analysis in 3D takes from a case (``Model3D.solve_limit``).
 LIMIT_3D_OPTIONS = ("threads",) + LIMIT_OPTIONS
 
@@ -121,7 +124,9 @@ class AnalysisParameters:
     of both incremental solvers, :data:`EXPLICIT_OPTIONS` (damping, damping_coefficient, time_step [s],
     unbalanced_ratio, threads, large_rotations, contact_update) the explicit solver's only; limit analysis takes none of them, but in 3D
     threads (:data:`LIMIT_3D_OPTIONS`). :data:`LIMIT_OPTIONS` (follow_mechanism, follow_step [m],
-    follow_steps) are limit analysis's in either dimension: its mechanism followed to the end.
+    follow_steps) are limit analysis's in either dimension: its mechanism followed to the end. :data:`MOVEMENT_OPTIONS`
+    (move_support, move_direction) a support's movement, in the plane: followed by limit analysis, or driven by
+    the explicit solver.
     """
 
     control: Optional[str] = None
@@ -139,6 +144,8 @@ class AnalysisParameters:
     follow_mechanism: Optional[bool] = None
     follow_step: Optional[float] = None
     follow_steps: Optional[int] = None
+    move_support: Optional[int] = None
+    move_direction: Optional[str] = None
 
     def arguments(self, method: str, dimension: int = 2) -> Dict[str, Any]:
         """The keyword arguments of the solver of ``method`` in ``dimension``: the options given that it takes."""
@@ -385,7 +392,7 @@ class Case:
 
         Raises:
             masonry_dem.InputError: an unknown method; for a 3D wall, "static" (it takes "limit" and "dynamic"), or
-                "dynamic" with displacement control.
+                "dynamic" with displacement control; "static" for a support's movement.
         """
         method = self.method if method is None else method
         if method not in METHODS:
@@ -396,7 +403,16 @@ class Case:
         if self.dimension == 3 and method == "dynamic" and self.analysis.control == "displacement":
             raise InputError(f'{self.source}: analysis.control = "displacement": {LOAD_CONTROL_3D} (this case is 3D)',
                              "analysis.control")
+        if method == "static" and self.analysis.move_support is not None:
+            raise InputError(f'{self.source}: analysis.move_support: a support\'s movement is taken by method "limit" '
+                             'or "dynamic", not "static"', "analysis.move_support")
         return method
+
+    @property
+    def movement(self) -> Optional[Tuple[int, str]]:
+        """The support's movement of [analysis] (move_support, move_direction), or None."""
+        a = self.analysis
+        return None if a.move_support is None or a.move_direction is None else (a.move_support, a.move_direction)
 
     def solver_kwargs(self, method: Optional[str] = None) -> Dict[str, Any]:
         """The keyword arguments of the solver of ``method`` (default: the case's), without ``progress``, as

@@ -95,8 +95,10 @@ def result_dict(results: Any, model: Any, title: str) -> Dict[str, Any]:
         out["error"] = str(results.error) if results.error else "unknown error"
     if out["status"] in NOTE_STATUSES:
         out["note"] = str(results.error or "")
-    elif out["status"] == "collapse" and getattr(results, "error", None):
-        out["note"] = str(results.error)  # limit analysis along the mechanism: why its curve stopped short
+    elif out["status"] not in ERROR_STATUSES and getattr(results, "error", None):
+        # limit analysis along the mechanism: why its curve stopped short; a support's movement that stood to the
+        # end of its steps: so
+        out["note"] = str(results.error)
     bracket = getattr(results, "bracket", None)
     if bracket is not None:
         out["bracket"] = [json_float(bracket[0]), json_float(bracket[1])]

@@ -23,6 +23,8 @@ from .panels import (
     _draw_curve_overlay,
     _draw_wall,
     _lam_text,
+    movement_end,
+    plot_movement_curve,
     _state_handles,
     _wall_limits,
     plot_cracks,
@@ -87,6 +89,7 @@ def report_figure(
     live: str = "horizontal_weight",
     dpi: int = 150,
     thrust: bool = False,
+    movement: bool = False,
 ) -> Figure:
     """A one-page report: the crack pattern, the collapse mechanism, the deformed shape and the load curve;
     of a time history, its response (:func:`history_figure`); of a 3D wall (a :class:`masonry_dem.Model3D`), its
@@ -105,6 +108,8 @@ def report_figure(
         thrust: draw the line of thrust (:func:`masonry_dem.plot.plot_thrust`: each joint's centre of pressure,
             joined along the chains of blocks of an arch or a pier) over the crack pattern, from the forces of
             ``results`` (at collapse, or at the last converged step). A wall in the plane's results only.
+        movement: ``results`` are a support's movement's: the curve is the force the wall exerts on the support
+            against its movement (:func:`masonry_dem.plot.panels.plot_movement_curve`).
     Returns:
         The figure.
     """
@@ -132,6 +137,10 @@ def report_figure(
     plot_mechanism(fig.add_subplot(cells[1]), model, results)
     plot_deformed(fig.add_subplot(cells[2]), model, results)
     ax_curve = fig.add_subplot(cells[3])
+    if movement:
+        plot_movement_curve(ax_curve, results)
+        heading = f"{results.method}, {results.status}, falls at a movement of {movement_end(results) * 1e3:.1f} mm"
+        return _finish(fig, _with_title(title, heading), path, dpi)
     if other is not None:
         plot_curve(ax_curve, results, other, live=live)
     else:

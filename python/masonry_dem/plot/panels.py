@@ -6,6 +6,7 @@ collapse mechanism (:func:`plot_mechanism`) and line of thrust (:func:`plot_thru
 
 from __future__ import annotations
 
+import math
 from typing import Any, List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -103,14 +104,15 @@ def _draw_blocks(
 ) -> None:
     """The blocks moved by ``scale`` * ``motion`` ((n_all, 3): u1, u2 [m], phi [rad]; None: at rest), filled; the
     base and the supports (the fixed blocks) hatched where they are; the top beam grey; wall blocks orange where
-    ``moving`` is set, else beige. With ``undeformed`` the undeformed outlines are drawn dashed over the fills."""
+    ``moving`` is set, else beige. With ``undeformed`` the undeformed outlines are drawn dashed over the fills. A
+    support given a movement is drawn moved with the rest."""
     blocks = shapes(model)
     beam = model.top_index
     fixed = set(fixed_blocks(model))
-    for i in sorted(fixed):
-        ax.add_patch(Polygon(blocks.polygon(i), closed=True, facecolor="#d9d9d9", edgecolor="#555555", hatch="///",
-                             linewidth=0.8, zorder=1))
     moved = blocks.polygons() if motion is None else blocks.polygons(blocks.moved(motion, scale))
+    for i in sorted(fixed):
+        ax.add_patch(Polygon(moved[i], closed=True, facecolor="#d9d9d9", edgecolor="#555555", hatch="///",
+                             linewidth=0.8, zorder=1))
     fills, colors = [], []
     for i, vertices in enumerate(moved):
         if i in fixed:
@@ -398,6 +400,41 @@ def plot_curve(
     if len(names) != len(results):
         raise ValueError(f"{len(results)} results but {len(names)} labels")
     _draw_curve_overlay(ax, list(zip(names, results)), live)
+
+
+def movement_end(results: Any) -> float:
+    """Where a support's movement's wall falls [m]: the end of limit analysis's path of equilibria, or the middle of
+    the explicit solver's bracket (the last stage that settled .. the first that did not); NaN without a
+    collapse."""
+    if str(results.status) != "collapse":
+        return math.nan
+    bracket = getattr(results, "bracket", None)
+    if bracket is not None:
+        return 0.5 * (float(bracket[0]) + float(bracket[1]))
+    return float(np.asarray(results.curve_displacement, dtype=np.float64)[-1])
+
+
+def plot_movement_curve(ax: Any, results: Any) -> None:
+    """Draw a support's movement's curve on ``ax``: the force the wall exerts on the support against its movement
+    [kN] (an arch's thrust against a spread) against the support's movement [mm], where it falls marked."""
+    force = np.asarray(results.curve_multiplier, dtype=np.float64) / 1e3
+    d = np.asarray(results.curve_displacement, dtype=np.float64) * 1e3
+    if len(force):
+        ax.plot(d, force, "-", color="#1f3b73", linewidth=1.5, label="force on the support")
+    end = movement_end(results) * 1e3
+    if np.isfinite(end):
+        ax.axvline(end, color="#d62728", linestyle=":", linewidth=1.2)
+        ax.annotate(f"falls at {end:.1f} mm", xy=(end, 0.05), xycoords=("data", "axes fraction"), xytext=(-4, 0),
+                    textcoords="offset points", ha="right", color="#d62728", fontsize=10)
+    elif str(results.status) in STATUS_NOTES or results.error:
+        reason = results.error or STATUS_NOTES[str(results.status)]
+        ax.text(0.02, 0.02, f"{results.status}: {reason}", transform=ax.transAxes, fontsize=8, color="#d62728",
+                wrap=True)
+    ax.set_xlabel("movement of the support [mm]")
+    ax.set_ylabel("force of the wall on the support [kN]")
+    if len(force):
+        ax.set_ylim(0.0, 1.1 * float(np.nanmax(force)))
+    ax.grid(True, alpha=0.3)
 
 
 def _draw_curve(ax: Any, results: Any, live: str) -> None:

@@ -270,6 +270,9 @@ def case_from_tables(top: _Table, title: str, kind: str, geometry: Dict[str, Any
     if method == "dynamic" and analysis.control == "displacement":
         raise top.error(f'analysis.control = "displacement": {LOAD_CONTROL_3D} (this case is 3D: [geometry] {kind})',
                         "analysis.control")
+    if analysis.move_support is not None:
+        raise top.error("analysis.move_support: a support's movement is in the plane only in this version (this "
+                        f"case is 3D: [geometry] {kind})", "analysis.move_support")
     table = top.table("reference", REFERENCE_KEYS)
     reference = _reference(table, default_methods=("limit",))
     if reference is not None:
