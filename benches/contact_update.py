@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 import statistics
 from pathlib import Path
+from typing import Any, Callable, Optional
 
 import numpy as np
 
@@ -37,26 +38,42 @@ def record(duration: float, scale: float) -> tuple[np.ndarray, np.ndarray]:
     return t[keep], a[keep]
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--duration", type=float, default=2.0)
+def side_by_side(run: Callable[[bool, Optional[float]], Any], repeats: int) -> tuple[float, float, dict, float]:
+    """`run(update, time_step)` `repeats` times with the update on, then off, `time_step` the first run's (None
+    for it): the medians of the solver's own wall-clock time (TimeHistory.elapsed_s) on and off, the last runs
+    by update, and the largest difference of their displacements."""
+    times: dict[bool, list[float]] = {True: [], False: []}
+    runs = {}
+    step = None
+    for _ in range(repeats):
+        for update in (True, False):
+            h = run(update, step)
+            step = h.time_step
+            times[update].append(h.elapsed_s)
+            runs[update] = h
+    diff = float(np.max(np.abs(np.asarray(runs[True].displacements) - np.asarray(runs[False].displacements))))
+    return statistics.median(times[True]), statistics.median(times[False]), runs, diff
+
+
+def arguments(doc: str, duration: float) -> argparse.Namespace:
+    """The command line's --duration (default `duration` [s]), --repeats, --scale and --threads, the script's
+    docstring `doc` its help."""
+    parser = argparse.ArgumentParser(description=doc.split("\n\n")[0])
+    parser.add_argument("--duration", type=float, default=duration)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--scale", type=float, default=1.0)
     parser.add_argument("--threads", type=int, default=1)
-    args = parser.parse_args()
+    return parser.parse_args()
+
+
+def main() -> None:
+    args = arguments(__doc__, 2.0)
     blocks = md.running_bond(0.4, 0.175, courses=40, length=20.0, first_course="half")
     model = md.Model(blocks, thickness=1.0, density=1000.0, joints=JOINTS)
     ground = record(args.duration, args.scale)
-    times: dict[bool, list[float]] = {True: [], False: []}
-    runs = {}
-    for _ in range(args.repeats):
-        for update in (True, False):
-            h = model.simulate(args.duration, base_acceleration=ground, record_interval=0.01, threads=args.threads,
-                               contact_update=update)
-            times[update].append(h.elapsed_s)
-            runs[update] = h
-    on, off = statistics.median(times[True]), statistics.median(times[False])
-    diff = float(np.max(np.abs(np.asarray(runs[True].displacements) - np.asarray(runs[False].displacements))))
+    on, off, runs, diff = side_by_side(lambda update, step: model.simulate(
+        args.duration, base_acceleration=ground, record_interval=0.01, threads=args.threads, contact_update=update),
+        args.repeats)
     print(f"{len(blocks)} blocks, {args.duration} s of El Centro x {args.scale}, {args.threads} thread(s), "
           f"{args.repeats} repeats")
     print(f"update on:  median {on:.3f} s ({runs[True].steps} steps of {runs[True].time_step:.3e} s)")

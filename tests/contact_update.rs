@@ -61,7 +61,7 @@ fn the_sliding_block_slides_with_the_closed_form_acceleration_its_contact_follow
     // the acceleration: a quadratic fitted by least squares to the slide from 0.5 s on
     let s = along(&h, psi);
     let pts: Vec<(f64, f64)> = h.times.iter().zip(&s).filter(|(t, _)| **t >= 0.5).map(|(t, s)| (*t, *s)).collect();
-    let a = quadratic(&pts)[2] * 2.0;
+    let a = common::quadratic(&pts)[2] * 2.0;
     eprintln!("acceleration {a} against {want}, slid {} m, searches {}, renewed {}, created {}, dropped {}", s[s.len() - 1], h.contact_searches, h.contacts_renewed, h.contacts_created, h.contacts_dropped);
     assert!((a / want - 1.0).abs() < 0.01, "{a} against {want}");
     assert!(s[s.len() - 1] > 2.0 * 10.0, "slid {} m", s[s.len() - 1]);
@@ -73,32 +73,6 @@ fn the_sliding_block_slides_with_the_closed_form_acceleration_its_contact_follow
     let c = h.contacts[0].centre;
     assert!((c[0] - bottom[0]).hypot(c[1] - bottom[1]) < 0.1, "{c:?} against {bottom:?}");
     assert!((h.contacts[0].length - 10.0).abs() < 0.1);
-}
-
-/// The coefficients (c0, c1, c2) of the least-squares quadratic through `pts`.
-fn quadratic(pts: &[(f64, f64)]) -> [f64; 3] {
-    let mut m = [[0.0; 4]; 3];
-    for &(t, y) in pts {
-        let p = [1.0, t, t * t];
-        for i in 0..3 {
-            for j in 0..3 {
-                m[i][j] += p[i] * p[j];
-            }
-            m[i][3] += p[i] * y;
-        }
-    }
-    for i in 0..3 {
-        let pivot = m[i];
-        for (r, row) in m.iter_mut().enumerate() {
-            if r != i {
-                let f = row[i] / pivot[i];
-                for (x, p) in row.iter_mut().zip(pivot) {
-                    *x -= f * p;
-                }
-            }
-        }
-    }
-    [m[0][3] / m[0][0], m[1][3] / m[1][1], m[2][3] / m[2][2]]
 }
 
 #[test]

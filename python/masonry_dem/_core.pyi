@@ -836,6 +836,7 @@ class Model3D:
         record_interval: Optional[float] = None,
         rayleigh: Optional[tuple[float, float]] = None,
         base_acceleration_y: Optional[tuple[npt.ArrayLike, npt.ArrayLike]] = None,
+        contact_update: Optional[bool] = None,
     ) -> "TimeHistory":
         """Time history of the wall of boxes with the explicit solver: Model.simulate's options (and defaults), in 3D.
         Free motion from initial conditions (initial_displacements / initial_velocities: (n_all, 6) arrays of ux, uy,
@@ -848,7 +849,12 @@ class Model3D:
         damping "local", "viscous" or "none": stiffness-proportional damping is the plane's only (rayleigh takes
         beta = 0 only). Returns a TimeHistory of dimension 3, with the ground's acceleration and the base shear along
         y too. Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory computed so far
-        as its `results` attribute. progress: optional callable(step, time [s], nan, fraction done)."""
+        as its `results` attribute. progress: optional callable(step, time [s], nan, fraction done).
+        contact_update (default True, with large_rotations; False: the contacts of the wall as built): the contacts
+        found again as the blocks move (faces
+        facing within the gap tolerance; new contacts dry, with the joints' restitution; a contact found again keeps
+        its history) and a ground plane at the top of the base (without a base, at the lowest point), reaching five
+        model sizes beyond the blocks in plan, onto which falling blocks come to rest."""
     def record_size(
         self,
         duration: float,
@@ -858,10 +864,11 @@ class Model3D:
     ) -> tuple[int, float]:
         """(records, bytes) that Model3D.simulate with these options would hold (its time step as simulate chooses
         it), as Model.record_size; refuses what simulate refuses of them."""
-    def critical_time_step(self, time_history: bool = False) -> float:
+    def critical_time_step(self, time_history: bool = False, contact_update: bool = True) -> float:
         """The stability limit of the explicit solver's time step in 3D [s] (Gershgorin bound on the contact points'
         elastic stiffnesses), as Model.critical_time_step(); with time_history=True, that of Model3D.simulate:
-        lowered for the contact dashpots of the joints' restitution."""
+        lowered for the contact dashpots of the joints' restitution and, with contact_update (True, simulate's
+        default), for a block touching fixed bodies along every face."""
 
 class TimeHistory:
     """A time history (Model.simulate, Model3D.simulate). Energy balance at each record: initial kinetic + elastic

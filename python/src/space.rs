@@ -650,7 +650,12 @@ impl PyModel3D {
     /// beta = 0 only). Returns a TimeHistory of dimension 3, with the ground's acceleration and the base shear along
     /// y too. Releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt, with the TimeHistory computed so far
     /// as its `results` attribute. progress: optional callable(step, time [s], nan, fraction done).
-    #[pyo3(signature = (duration, time_step=None, safety=None, damping=None, damping_coefficient=None, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=None, record_every=None, large_rotations=None, threads=None, progress=None, vertical_acceleration=None, record_interval=None, rayleigh=None, base_acceleration_y=None))]
+    /// contact_update (default True, with large_rotations; False: the contacts of the wall as built): the contacts
+    /// found again as the blocks move (faces
+    /// facing within the gap tolerance; new contacts dry, with the joints' restitution; a contact found again keeps
+    /// its history) and a ground plane at the top of the base (without a base, at the lowest point), reaching five
+    /// model sizes beyond the blocks in plan, onto which falling blocks come to rest.
+    #[pyo3(signature = (duration, time_step=None, safety=None, damping=None, damping_coefficient=None, initial_displacements=None, initial_velocities=None, base_acceleration=None, live_multiplier=None, record_every=None, large_rotations=None, threads=None, progress=None, vertical_acceleration=None, record_interval=None, rayleigh=None, base_acceleration_y=None, contact_update=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate(
         &self,
@@ -672,8 +677,9 @@ impl PyModel3D {
         record_interval: Option<f64>,
         rayleigh: Option<(f64, f64)>,
         base_acceleration_y: Option<&Bound<'_, PyAny>>,
+        contact_update: Option<bool>,
     ) -> PyResult<Py<PyTimeHistory>> {
-        let opts = dynamic_options::<6>(
+        let mut opts = dynamic_options::<6>(
             duration,
             time_step,
             safety,
@@ -685,6 +691,7 @@ impl PyModel3D {
             large_rotations,
             threads,
         )?;
+        opts.contact_update = contact_update.unwrap_or(opts.contact_update);
         analyse(py, &self.inner, progress, move |model, monitor| {
             explicit::simulate_3d_with(model, &opts, monitor).map(PyTimeHistory::from)
         })
@@ -700,11 +707,12 @@ impl PyModel3D {
 
     /// The stability limit of the explicit solver's time step in 3D [s] (Gershgorin bound on the contact points'
     /// elastic stiffnesses), as Model.critical_time_step(); with time_history=True, that of Model3D.simulate:
-    /// lowered for the contact dashpots of the joints' restitution.
-    #[pyo3(signature = (time_history=false))]
-    fn critical_time_step(&self, time_history: bool) -> f64 {
+    /// lowered for the contact dashpots of the joints' restitution and, with contact_update (True, simulate's
+    /// default), for a block touching fixed bodies along every face.
+    #[pyo3(signature = (time_history=false, contact_update=true))]
+    fn critical_time_step(&self, time_history: bool, contact_update: bool) -> f64 {
         if time_history {
-            explicit::history_time_step_limit_3d(&self.inner)
+            explicit::history_time_step_limit_3d(&self.inner, contact_update)
         } else {
             explicit::critical_time_step_3d(&self.inner)
         }

@@ -21,8 +21,9 @@
 //! - Time histories: free motion from initial conditions, or a horizontal base acceleration
 //!   (inertial forces `-m a_g(t)` in the frame of the base).
 //!
-//! - Contact update (time histories in the plane, with finite rotations, unless
-//!   `contact_update` is false; pushovers when it is set): the contacts are searched again, on the grid of the model's
+//! - Contact update (time histories of either dimension, with finite rotations, unless
+//!   `contact_update` is false; pushovers in the plane when it is set; in 3D faces for edges,
+//!   see `space::update`): the contacts are searched again, on the grid of the model's
 //!   detection, whenever some block has moved by more than half the gap tolerance since the
 //!   last search (a point of it: the centroid's translation plus the rotation times the
 //!   block's radius). The gap tolerance is [`GAP_FRACTION`] of the least side of the smallest
@@ -188,8 +189,8 @@ pub struct DynamicOptions<V = [f64; 3]> {
     /// Threads of the interface pass (0: all cores).
     pub threads: usize,
     /// The contacts found again as the blocks move, and a ground plane under the model (see the
-    /// contact update in this module's notes); the plane's, with finite rotations (`large_rotations`):
-    /// with the linearized kinematics, and in 3D, the contacts stay those of the wall as built.
+    /// contact update in this module's notes), with finite rotations (`large_rotations`), in either
+    /// dimension: with the linearized kinematics the contacts stay those of the wall as built.
     /// On by default.
     pub contact_update: bool,
 }
@@ -295,9 +296,12 @@ pub struct TimeHistory<V = [f64; 3]> {
     pub contacts_renewed: usize,
     /// With the contact update: the contacts at the end of the run (empty without it).
     pub contacts: Vec<ContactAt>,
+    /// With the contact update in 3D: the contacts at the end of the run (empty without it, and
+    /// in the plane).
+    pub contacts_3d: Vec<ContactAt3>,
     /// With the contact update: every contact created, dropped or taken again, in the order of
-    /// the searches (empty without it). With the model's interfaces, they give the contacts at
-    /// any time (see [`ContactEvent`]).
+    /// the searches (empty without it; in 3D, empty: the counts only). With the model's
+    /// interfaces, they give the contacts at any time (see [`ContactEvent`]).
     pub contact_events: Vec<ContactEvent>,
     /// With the contact update: the ground plane's level \[m\], if the model has one.
     pub ground_level: Option<f64>,
@@ -367,6 +371,23 @@ pub struct ContactAt {
     pub gap: f64,
 }
 
+/// A contact at the end of a 3D time history with the contact update: its two blocks (a: the
+/// one whose face gives the normal), its centroid \[m\], its normal (from a into b), its area
+/// \[m2\] and the mean gap of its corners \[m\] (negative: closed).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactAt3 {
+    /// The two blocks (a, b).
+    pub blocks: [usize; 2],
+    /// The centroid of its corners' shares \[m\], half-way between the blocks' faces.
+    pub centre: [f64; 3],
+    /// The unit normal from a into b.
+    pub normal: [f64; 3],
+    /// The area \[m2\].
+    pub area: f64,
+    /// The mean gap of its corners by their shares \[m\] (negative: closed).
+    pub gap: f64,
+}
+
 impl<V> TimeHistory<V> {
     /// The displacements of every block at record `k`.
     pub fn displacement(&self, k: usize) -> &[V] {
@@ -428,6 +449,6 @@ pub use movement::{solve_movement, FALL_FRACTION};
 pub use quasi_static::{solve, solve_with};
 // the modal analysis in 3D takes the same kinematics and rotation dofs as a time history
 pub(crate) use space::{jump_rows, principal_axes, to_world};
-pub use space::{critical_time_step_3d, history_time_step_limit_3d, record_size_3d, simulate_3d, simulate_3d_with, solve_3d, solve_3d_with};
+pub use space::{critical_time_step_3d, critical_time_step_moving_3d, history_time_step_limit_3d, record_size_3d, simulate_3d, simulate_3d_with, solve_3d, solve_3d_with};
 pub use update::{GAP_FRACTION, GROUND_REACH, RETAKE};
 pub use time_history::{history_time_step_limit, record_count, record_size, simulate, simulate_with};

@@ -43,12 +43,16 @@ pub(super) struct Ct {
     frame: [[f64; 3]; 3],
 }
 
-/// A contact point: its position from the centroids of blocks a and b \[m\], and its share of
-/// the contact ([`corner_shares`]).
+/// A contact point: its position from the centroids of blocks a and b \[m\] (in their
+/// reference orientations), and what the jump of b's point from a's adds to its motion since the
+/// start: zero for the model's contacts, whose two points were one; for a contact the update
+/// found, the centroids' and the points' positions then (`c_b - c_a - ra + rb`, so that the jump
+/// is the points' distance).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Pt {
     ra: [f64; 3],
     rb: [f64; 3],
+    off: [f64; 3],
 }
 
 /// A time history's contact dashpot at a point (see [`super::contact`]): its coefficients
@@ -83,6 +87,8 @@ pub(super) struct Integrator3<'a> {
     pub(super) forces: Vec<[f64; 3]>,
     /// each contact's state (OPEN, SLIDING, ROCKING)
     pub(super) flags: Vec<u8>,
+    /// each contact's family (its joint law)
+    families: Vec<crate::interface::Family>,
     /// each contact's forces and moments on its blocks: a's (f, m) then b's
     terms: Vec<[f64; 12]>,
     /// per block, the slots (2 k + side) of the terms on it, in increasing k
@@ -100,7 +106,12 @@ pub(super) struct Integrator3<'a> {
     /// time histories only (else empty): per point, its dashpot
     pub(super) dash: Vec<Dash>,
     prime: bool,
+    /// the contact update of a time history, if on (see [`update`])
+    update: Option<Box<super::update::Update<crate::shape::Polyhedron>>>,
 }
+
+mod update;
+pub use update::critical_time_step_moving_3d;
 
 impl std::ops::Deref for Integrator3<'_> {
     type Target = Motion;
@@ -297,6 +308,7 @@ impl<'a> Integrator3<'a> {
         let mut pts = Vec::with_capacity(np);
         let mut shares = Vec::with_capacity(np);
         let mut laws = Vec::with_capacity(m);
+        let families = contacts.iter().map(|c| c.family).collect();
         for (k, c) in contacts.iter().enumerate() {
             if c.corners.len() > MAX_CORNERS {
                 return Err(Error::input(format!(
@@ -312,28 +324,11 @@ impl<'a> Integrator3<'a> {
             laws.push(CornerLaw::new(model.law(k), c.area, alpha));
             shares.extend(w);
             for x in &c.corners {
-                pts.push(Pt { ra: sub(*x, cen[c.a]), rb: sub(*x, cen[c.b]) });
+                pts.push(Pt { ra: sub(*x, cen[c.a]), rb: sub(*x, cen[c.b]), off: [0.0; 3] });
             }
         }
         at.push(pts.len() as u32);
-        // per block, its slots in increasing k
-        let mut count = vec![0u32; nb + 1];
-        for c in &cts {
-            count[c.a as usize + 1] += 1;
-            count[c.b as usize + 1] += 1;
-        }
-        for i in 0..nb {
-            count[i + 1] += count[i];
-        }
-        let start = count.clone();
-        let mut slots = vec![0u32; 2 * m];
-        let mut fill = count;
-        for (k, c) in cts.iter().enumerate() {
-            for (side, blk) in [(0, c.a), (1, c.b)] {
-                slots[fill[blk as usize] as usize] = (2 * k + side) as u32;
-                fill[blk as usize] += 1;
-            }
-        }
+        let (start, slots) = slots_of(nb, &cts);
         Ok(Integrator3 {
             model,
             m: motion,
@@ -346,6 +341,7 @@ impl<'a> Integrator3<'a> {
             broken: vec![false; m],
             forces: vec![[0.0; 3]; np],
             flags: vec![0; m],
+            families,
             terms: vec![[0.0; 12]; m],
             start,
             slots,
@@ -356,6 +352,7 @@ impl<'a> Integrator3<'a> {
             axes,
             dash: vec![],
             prime: false,
+            update: None,
         })
     }
 
@@ -474,10 +471,10 @@ impl<'a> Integrator3<'a> {
                     // the jump of b's point from a's, and the lever arms now
                     let (xa, xb, d) = if large {
                         let (xa, xb) = (mat(ra_m, pt.ra), mat(rb_m, pt.rb));
-                        (xa, xb, [0, 1, 2].map(|r| ub[r] - ua[r] + xb[r] - pt.rb[r] - xa[r] + pt.ra[r]))
+                        (xa, xb, [0, 1, 2].map(|r| ub[r] - ua[r] + xb[r] - pt.rb[r] - xa[r] + pt.ra[r] + pt.off[r]))
                     } else {
                         let (wa, wb) = (cross(ta, pt.ra), cross(tb, pt.rb));
-                        (pt.ra, pt.rb, [0, 1, 2].map(|r| ub[r] + wb[r] - ua[r] - wa[r]))
+                        (pt.ra, pt.rb, [0, 1, 2].map(|r| ub[r] + wb[r] - ua[r] - wa[r] + pt.off[r]))
                     };
                     es[p] = [dot(frame[0], d), dot(frame[1], d), dot(frame[2], d)];
                     xs[p] = [xa, xb];
@@ -586,17 +583,18 @@ impl<'a> Integrator3<'a> {
         }
         self.interface_forces();
         self.m.finish_step(set_ext, prescribed);
+        if self.update.as_ref().is_some_and(|up| up.due3(&self.m.u, &self.rot)) {
+            update::search(self);
+        }
     }
 
     /// Starts the contact dashpots of a time history: each point's from its law's restitution
     /// and the reduced mass of its blocks (its share of the contact's, see [`super::contact`]).
     pub(super) fn start_dynamics(&mut self) {
         let model = self.model;
-        let free_mass = |i: usize| if (0..3).any(|r| self.m.free[6 * i + r]) { model.mass()[i] } else { f64::INFINITY };
         let mut dash = Vec::with_capacity(self.pts.len());
         for (k, c) in model.contacts().iter().enumerate() {
-            let reduced = 1.0 / (1.0 / free_mass(c.a) + 1.0 / free_mass(c.b));
-            let cf = super::contact::coefficients(model.law(k), c.area, 0.0, reduced);
+            let cf = self.dashpot_of(model.law(k), c.area, c.a, c.b);
             for &w in &self.shares[self.at[k] as usize..self.at[k + 1] as usize] {
                 dash.push(Dash { c: [w * cf[0], w * cf[1]], ..Dash::default() });
             }
@@ -606,9 +604,20 @@ impl<'a> Integrator3<'a> {
         self.m.track_damping = !matches!(self.m.damping, Damping::None);
     }
 
-    /// Energy dissipated by the contact dashpots \[J\].
+    /// The contact dashpot's coefficients (normal, shear) of a contact of law `law` and area
+    /// `area` between blocks `a` and `b` (see [`super::contact`]), from the reduced mass of its
+    /// free blocks.
+    fn dashpot_of(&self, law: &crate::joint::JointLaw, area: f64, a: usize, b: usize) -> [f64; 2] {
+        let free_mass = |i: usize| if (0..3).any(|r| self.m.free[6 * i + r]) { self.model.mass()[i] } else { f64::INFINITY };
+        let reduced = 1.0 / (1.0 / free_mass(a) + 1.0 / free_mass(b));
+        let cf = super::contact::coefficients(law, area, 0.0, reduced);
+        [cf[0], cf[1]]
+    }
+
+    /// Energy dissipated by the contact dashpots \[J\], those the contact update dropped included.
     pub(super) fn impact_dissipation(&self) -> f64 {
-        self.dash.iter().map(|d| d.damped).sum()
+        let dropped = self.update.as_ref().map_or(0.0, |up| up.dropped_dissipation.0);
+        self.dash.iter().map(|d| d.damped).sum::<f64>() + dropped
     }
 
     /// Elastic energy stored in the contact points \[J\].
@@ -822,12 +831,12 @@ impl super::time_history::Recorded for Integrator3<'_> {
     }
     fn out_of_range(&self, u0: &[f64]) -> Option<String> {
         let model = self.model;
-        let size = model.size();
-        let max_angle = if self.large { std::f64::consts::FRAC_PI_2 } else { 1.0 };
+        let (times, max_angle, what) = super::update::range(self.update.is_some(), self.large);
+        let size = times * model.size();
         for i in 0..model.n_blocks() {
             let moved = <Self as Kernel>::translation(&self.m.u, Some(u0), i);
             if moved > size {
-                return Some(format!("{} moved {moved:.3e} m, more than the wall's size ({size:.3e} m)", model.block_name(i)));
+                return Some(format!("{} moved {moved:.3e} m, more than {what} ({size:.3e} m)", model.block_name(i)));
             }
             let angle = self.rotation_angle(i);
             if angle > max_angle {
@@ -839,18 +848,54 @@ impl super::time_history::Recorded for Integrator3<'_> {
     fn ground_axis(d: usize) -> u8 {
         [0, 1, 2, 3, 3, 3][d % 6]
     }
+    fn finish(&self, h: &mut TimeHistory<[f64; 6]>) {
+        let Some(up) = &self.update else { return };
+        up.report(h);
+        h.contacts_3d = update::contacts(self);
+    }
+}
+
+/// Per block, the first of its slots in `slots` (then the end), and the slots (2 k + side) of
+/// the terms of contacts `cts` on it, in increasing k.
+fn slots_of(nb: usize, cts: &[Ct]) -> (Vec<u32>, Vec<u32>) {
+    let mut count = vec![0u32; nb + 1];
+    for c in cts {
+        count[c.a as usize + 1] += 1;
+        count[c.b as usize + 1] += 1;
+    }
+    for i in 0..nb {
+        count[i + 1] += count[i];
+    }
+    let start = count.clone();
+    let mut slots = vec![0u32; 2 * cts.len()];
+    let mut fill = count;
+    for (k, c) in cts.iter().enumerate() {
+        for (side, blk) in [(0, c.a), (1, c.b)] {
+            slots[fill[blk as usize] as usize] = (2 * k + side) as u32;
+            fill[blk as usize] += 1;
+        }
+    }
+    (start, slots)
 }
 
 /// The stable time step of a time history of a 3D model \[s\]: [`critical_time_step_3d`] lowered
 /// for the contact dashpots of its joints' restitution (as the plane's
 /// [`history_time_step_limit`](super::history_time_step_limit)).
-pub fn history_time_step_limit_3d(model: &Model3) -> f64 {
-    use crate::interface::Family;
-    let zeta = [Family::Bed, Family::Head, Family::Base, Family::Top]
-        .iter()
-        .map(|&f| super::contact::damping_ratio(model.laws().of(f).restitution))
-        .fold(0.0, f64::max);
-    critical_time_step_3d(model) * super::contact::stability_factor(3.0 * zeta)
+/// With the contact update (`contact_update`, a time history's default) the limit is that of a
+/// model whose blocks may touch along every face ([`critical_time_step_moving_3d`]), lower or
+/// equal.
+pub fn history_time_step_limit_3d(model: &Model3, contact_update: bool) -> f64 {
+    dashpot_limit_3d(model, if contact_update { critical_time_step_moving_3d(model) } else { critical_time_step_3d(model) })
+}
+
+/// The stability limit `crit` lowered for the contact dashpots of the joints of `model`.
+fn dashpot_limit_3d(model: &Model3, crit: f64) -> f64 {
+    crit * super::contact::stability_factor(3.0 * super::time_history::max_damping_ratio(model.laws()))
+}
+
+/// The time step of a time history of `model` under `opts` (as the plane's).
+fn history_time_step_3d(model: &Model3, opts: &DynamicOptions<[f64; 6]>) -> Result<f64, Error> {
+    super::time_history::updated_time_step(|| critical_time_step_3d(model), || critical_time_step_moving_3d(model), |crit| dashpot_limit_3d(model, crit), opts)
 }
 
 /// The bytes a time history of a 3D `model` under `opts` will hold, and its number of records
@@ -859,7 +904,7 @@ pub fn history_time_step_limit_3d(model: &Model3) -> f64 {
 /// shears, energies). Checks the options as [`simulate_3d`] does before it builds the integrator.
 pub fn record_size_3d(model: &Model3, opts: &DynamicOptions<[f64; 6]>) -> Result<(usize, f64), Error> {
     super::time_history::check_common(opts, model.n_blocks())?;
-    let dt = super::time_history::dashpot_time_step(critical_time_step_3d(model), history_time_step_limit_3d(model), opts)?;
+    let dt = history_time_step_3d(model, opts)?;
     let n_steps = super::time_history::count_time_steps(opts.duration, dt)?;
     let records = super::record_count(opts.record, dt, n_steps);
     Ok((records, records as f64 * (96.0 * model.n_blocks() as f64 + 8.0 * 15.0)))
@@ -882,7 +927,7 @@ pub fn simulate_3d_with(model: &Model3, opts: &DynamicOptions<[f64; 6]>, monitor
     }
     check_brittle(model)?;
     model.check_supports()?;
-    let dt = super::time_history::dashpot_time_step(critical_time_step_3d(model), history_time_step_limit_3d(model), opts)?;
+    let dt = history_time_step_3d(model, opts)?;
     let mut s = Integrator3::new(model, Some(dt), opts.safety, opts.damping, opts.threads, true)?;
     s.set_large(opts.large_rotations);
     let fixed = model.fixed();
@@ -902,6 +947,10 @@ pub fn simulate_3d_with(model: &Model3, opts: &DynamicOptions<[f64; 6]>, monitor
         }
     }
     s.start_dynamics();
+    if super::time_history::updating(opts) {
+        s.update = Some(Box::new(update::Update::new3(&s)));
+        update::search(&mut s);
+    }
     let loads = super::time_history::Loads::new(model.dead_load(), model.live_load(), opts, &s);
     super::time_history::run_history(s, loads, opts, nb, start, monitor)
 }

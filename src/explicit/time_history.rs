@@ -98,10 +98,9 @@ impl Recorded for Integrator<'_> {
     }
     fn finish(&self, h: &mut TimeHistory) {
         let Some(up) = &self.update else { return };
-        (h.contact_searches, h.contacts_created, h.contacts_dropped, h.contacts_renewed) = (up.searches, up.created, up.dropped, up.renewed);
+        up.report(h);
         h.contacts = update::contacts(self);
         h.contact_events = up.events.clone();
-        h.ground_level = up.ground;
     }
     fn out_of_range(&self, u0: &[f64]) -> Option<String> {
         out_of_range(self, u0)
@@ -127,15 +126,23 @@ pub fn history_time_step_limit(model: &Model, beta: f64, contact_update: bool) -
 /// The stability limit `crit` lowered for the contact dashpots of the joints of `model` and for
 /// stiffness-proportional damping `beta` (see [`history_time_step_limit`]).
 fn dashpot_limit(model: &Model, crit: f64, beta: f64) -> f64 {
-    crit * contact::stability_factor(3.0 * max_damping_ratio(model) + beta / crit)
+    crit * contact::stability_factor(3.0 * max_damping_ratio(model.laws()) + beta / crit)
 }
 
 /// The time step of a time history: the given one, or `safety` times the stability limit, both
 /// within that limit lowered for the contact dashpots (see [`contact::stability_factor`]: the
 /// rocking of a block on a dashpot of damping ratio zeta has up to 3 zeta).
 fn history_time_step(model: &Model, opts: &DynamicOptions) -> Result<f64, Error> {
-    let crit = if updating(opts) { update::critical_time_step_moving(model) } else { critical_time_step(model) };
-    let limit = dashpot_limit(model, crit, opts.stiffness_damping);
+    updated_time_step(|| critical_time_step(model), || update::critical_time_step_moving(model), |crit| dashpot_limit(model, crit, opts.stiffness_damping), opts)
+}
+
+/// The time step of a time history of either dimension: the stability limit `crit` of its
+/// model, or with the contact update `moving` (a block touching along every edge or face), each
+/// lowered by `limit` for the dashpots; a given time step beyond the latter with the update on
+/// is refused.
+pub(super) fn updated_time_step<V>(crit: impl FnOnce() -> f64, moving: impl FnOnce() -> f64, limit: impl FnOnce(f64) -> f64, opts: &DynamicOptions<V>) -> Result<f64, Error> {
+    let crit = if updating(opts) { moving() } else { crit() };
+    let limit = limit(crit);
     match opts.time_step {
         Some(dt) if updating(opts) && dt.is_finite() && dt > limit => Err(Error::input(format!(
             "analysis.time_step = {dt:.3e} s exceeds the stability limit of this model with its contacts updated (a block may touch along every edge) and their dashpots, {limit:.3e} s; or set contact_update = false"
@@ -145,16 +152,13 @@ fn history_time_step(model: &Model, opts: &DynamicOptions) -> Result<f64, Error>
 }
 
 /// Whether a time history under `opts` updates its contacts: asked, with finite rotations.
-fn updating(opts: &DynamicOptions) -> bool {
+pub(super) fn updating<V>(opts: &DynamicOptions<V>) -> bool {
     opts.contact_update && opts.large_rotations
 }
 
-/// The largest damping ratio of the contact dashpots of the joints of `model`.
-fn max_damping_ratio(model: &Model) -> f64 {
-    [Family::Bed, Family::Head, Family::Base, Family::Top]
-        .iter()
-        .map(|&f| contact::damping_ratio(model.laws().of(f).restitution))
-        .fold(0.0, f64::max)
+/// The largest damping ratio of the contact dashpots of the joints `laws`.
+pub(super) fn max_damping_ratio(laws: &crate::model::JointLaws) -> f64 {
+    [Family::Bed, Family::Head, Family::Base, Family::Top].iter().map(|&f| contact::damping_ratio(laws.of(f).restitution)).fold(0.0, f64::max)
 }
 
 /// The time step of a time history of stability limit `crit`, `limit` with its dashpots (see
@@ -410,6 +414,7 @@ impl<V> TimeHistory<V> {
             contacts_dropped: 0,
             contacts_renewed: 0,
             contacts: vec![],
+            contacts_3d: vec![],
             contact_events: vec![],
             ground_level: None,
         })
@@ -541,20 +546,11 @@ impl<V: Copy, K: Recorded<V = V>> Run<V, K> {
 /// (the small-rotation model) or a right angle (large rotations: the block lies on its side).
 fn out_of_range(s: &Integrator, u0: &[f64]) -> Option<String> {
     let model = s.model;
-    let updating = s.update.is_some();
-    // with the contact update a block may fall and tumble: only one that has left the ground is out
-    let size = if updating { (2.0 + update::GROUND_REACH) * model.size() } else { model.size() };
-    let max_phi = if updating {
-        f64::INFINITY
-    } else if s.large {
-        std::f64::consts::FRAC_PI_2
-    } else {
-        1.0
-    };
+    let (times, max_phi, what) = update::range(s.update.is_some(), s.large);
+    let size = times * model.size();
     for i in 0..model.n_blocks() {
         let moved = (s.u[3 * i] - u0[3 * i]).hypot(s.u[3 * i + 1] - u0[3 * i + 1]);
         if moved > size {
-            let what = if updating { "seven times the model's size" } else { "the wall's size" };
             return Some(format!("{} moved {moved:.3e} m, more than {what} ({size:.3e} m)", model.block_name(i)));
         }
         let phi = s.u[3 * i + 2] - u0[3 * i + 2];

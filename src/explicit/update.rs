@@ -49,11 +49,11 @@ pub const RETAKE: f64 = 2.0;
 /// the model's size (the larger side of that box): the debris of a collapsing arch flies out.
 pub const GROUND_REACH: f64 = 5.0;
 
-/// Two bodies and an edge of each, in increasing order of the bodies: what a contact is, from
-/// one search to the next.
-type Key = ([u32; 2], [u32; 2]);
+/// Two bodies and an edge (in 3D a face) of each, in increasing order of the bodies: what a
+/// contact is, from one search to the next.
+pub(super) type Key = ([u32; 2], [u32; 2]);
 
-fn key(bodies: [usize; 2], edges: [usize; 2]) -> Key {
+pub(super) fn key(bodies: [usize; 2], edges: [usize; 2]) -> Key {
     if bodies[0] <= bodies[1] {
         ([bodies[0] as u32, bodies[1] as u32], [edges[0] as u32, edges[1] as u32])
     } else {
@@ -61,23 +61,26 @@ fn key(bodies: [usize; 2], edges: [usize; 2]) -> Key {
     }
 }
 
-/// What the contact update keeps besides the integrator's arrays.
-pub(crate) struct Update {
+/// What the contact update keeps besides the integrator's arrays, in either dimension: `B` a
+/// body's shape (a polygon, a polyhedron).
+pub(crate) struct Update<B = Polygon> {
     /// the bodies in their reference positions: the model's blocks, then the ground's pieces
-    bodies: Vec<Polygon>,
+    pub(super) bodies: Vec<B>,
     /// the block whose dofs carry each body, and what each body is
-    block: Vec<usize>,
-    kind: Vec<BlockKind>,
+    pub(super) block: Vec<usize>,
+    pub(super) kind: Vec<BlockKind>,
     /// each block's largest distance from its centroid to a vertex \[m\]
-    radius: Vec<f64>,
-    /// each interface's bodies and edges
-    keys: Vec<Key>,
+    pub(super) radius: Vec<f64>,
+    /// each interface's bodies and edges (faces)
+    pub(super) keys: Vec<Key>,
     /// the gap tolerance, the travel tolerance and the contact tolerance \[m\]
     pub(super) gap: f64,
     pub(super) travel: f64,
-    tol: f64,
+    pub(super) tol: f64,
     /// the displacements at the last search
-    u_ref: Vec<f64>,
+    pub(super) u_ref: Vec<f64>,
+    /// in 3D, each block's rotation matrix at the last search (empty in the plane)
+    pub(super) rot_ref: Vec<[f64; 9]>,
     /// searches made, contacts created, dropped, and taken again from the moved blocks
     pub(super) searches: usize,
     pub(super) created: usize,
@@ -86,46 +89,179 @@ pub(crate) struct Update {
     /// what the dashpots of dropped contacts dissipated: impacts, stiffness-proportional \[J\]
     pub(super) dropped_dissipation: (f64, f64),
     /// each interface's number (see [`ContactEvent`]), and the next new contact's
-    ids: Vec<usize>,
-    next_id: usize,
+    pub(super) ids: Vec<usize>,
+    pub(super) next_id: usize,
     /// the contacts created, dropped and taken again, in order
     pub(super) events: Vec<ContactEvent>,
     /// the ground's level \[m\], if the model has one
     pub(super) ground: Option<f64>,
     /// a time history's: each interface has its contact dashpot
-    dashpots: bool,
+    pub(super) dashpots: bool,
 }
 
-/// The ground of `model` (see the module's notes): its rectangle, the block that carries it, and
-/// whether it is that block (the base, widened) or a body of its own.
-pub(super) fn ground(model: &Model) -> Option<(Polygon, usize, bool)> {
+impl<B> Update<B> {
+    /// The update of a model of blocks `bodies` of kinds `kinds` with its ground (its body, the
+    /// block that carries it, whether it replaces that block (the base widened), its level),
+    /// each block's radius, the keys of its interfaces (of the bodies, the ground in place), the
+    /// gap and contact tolerances, the displacements (and in 3D the rotation matrices) now, and
+    /// whether the interfaces have dashpots.
+    #[allow(clippy::type_complexity)]
+    pub(super) fn assemble(
+        (mut bodies, mut kind, ground): (Vec<B>, Vec<BlockKind>, Option<(B, usize, bool, f64)>),
+        radius: Vec<f64>,
+        keys: impl FnOnce(&[B]) -> Vec<Key>,
+        (gap, tol): (f64, f64),
+        u_ref: Vec<f64>,
+        rot_ref: Vec<[f64; 9]>,
+        dashpots: bool,
+    ) -> Self {
+        let mut block: Vec<usize> = (0..bodies.len()).collect();
+        let ground = ground.map(|(body, anchor, widened, level)| {
+            if widened {
+                bodies[anchor] = body;
+            } else {
+                bodies.push(body);
+                block.push(anchor);
+                kind.push(BlockKind::Base);
+            }
+            level
+        });
+        let keys = keys(&bodies);
+        let n = keys.len();
+        Update {
+            bodies,
+            block,
+            kind,
+            radius,
+            keys,
+            gap,
+            travel: 0.5 * gap,
+            tol,
+            u_ref,
+            rot_ref,
+            searches: 0,
+            created: 0,
+            dropped: 0,
+            renewed: 0,
+            dropped_dissipation: (0.0, 0.0),
+            ids: (0..n).collect(),
+            next_id: n,
+            events: vec![],
+            ground,
+            dashpots,
+        }
+    }
+
+    /// What the update adds to history `h` at the end of the run: its counts and the ground's level.
+    pub(super) fn report<V>(&self, h: &mut TimeHistory<V>) {
+        (h.contact_searches, h.contacts_created, h.contacts_dropped, h.contacts_renewed) = (self.searches, self.created, self.dropped, self.renewed);
+        h.ground_level = self.ground;
+    }
+
+    /// Whether block `i`, translated by `t` and turned so that a point at unit distance from its
+    /// centroid moved by `turn`, has some point beyond the travel tolerance.
+    #[inline(always)]
+    pub(super) fn beyond(&self, i: usize, t: f64, turn: f64) -> bool {
+        t + turn * self.radius[i] > self.travel
+    }
+
+    /// What `facing` finds between each two bodies of boxes `boxes` (where the displacements carry
+    /// them) within the gap of each other, a wall block among them, on the grid of the model's
+    /// detection: each with the body that owns its normal (`owner`: 0 the first of the two given),
+    /// then the other.
+    pub(super) fn near<const D: usize, F>(&self, boxes: &[Aabb<D>], facing: impl Fn(usize, usize) -> Vec<F>, owner: impl Fn(&F) -> usize) -> Vec<(usize, usize, F)> {
+        let mut found = vec![];
+        let kinds = &self.kind;
+        let _ = for_each_pair(boxes, self.gap, &mut || true, |i, j| {
+            if kinds[i] != BlockKind::Wall && kinds[j] != BlockKind::Wall {
+                return Ok(());
+            }
+            for f in facing(i, j) {
+                let (oa, ob) = if owner(&f) == 0 { (i, j) } else { (j, i) };
+                found.push((oa, ob, f));
+            }
+            Ok(())
+        });
+        found
+    }
+
+    /// The old contacts by their keys.
+    pub(super) fn by_key(&self) -> HashMap<Key, usize> {
+        self.keys.iter().enumerate().map(|(k, &key)| (key, k)).collect()
+    }
+}
+
+/// The box of the ground under blocks within `all` (the vertical the last axis): `all` widened in
+/// plan by [`GROUND_REACH`] times the model's size `size` on each side.
+pub(super) fn ground_reach<const D: usize>(all: &Aabb<D>, size: f64) -> Aabb<D> {
+    let reach = GROUND_REACH * size;
+    let mut b = *all;
+    for k in 0..D - 1 {
+        b.min[k] -= reach;
+        b.max[k] += reach;
+    }
+    b
+}
+
+/// The gap tolerance of the wall blocks whose boxes are `boxes` (see [`GAP_FRACTION`]).
+pub(super) fn gap_of<const D: usize>(boxes: impl Iterator<Item = Aabb<D>>) -> f64 {
+    GAP_FRACTION * boxes.map(|b| (0..D).map(|k| b.max[k] - b.min[k]).fold(f64::INFINITY, f64::min)).fold(f64::INFINITY, f64::min)
+}
+
+/// The largest distance from `g` to one of `vertices` \[m\].
+pub(super) fn radius_of<const D: usize>(g: [f64; D], vertices: &[[f64; D]]) -> f64 {
+    vertices.iter().map(|v| (0..D).map(|k| (v[k] - g[k]) * (v[k] - g[k])).sum::<f64>().sqrt()).fold(0.0, f64::max)
+}
+
+/// The law of a new contact between bodies of kinds `ka` and `kb`: a base's or a support's,
+/// the top beam's, else a bed joint's where `bed` (the normal within 45 degrees of the
+/// vertical), a head joint's otherwise.
+pub(super) fn new_family(ka: BlockKind, kb: BlockKind, bed: bool) -> Family {
+    match (ka, kb) {
+        (BlockKind::Base | BlockKind::Support, _) | (_, BlockKind::Base | BlockKind::Support) => Family::Base,
+        (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
+        _ if bed => Family::Bed,
+        _ => Family::Head,
+    }
+}
+
+/// The range of a time history's state (see `out_of_range`): how far a block may move, in
+/// multiples of the model's size, and turn \[rad\] (`large`: finite rotations), and the words of
+/// the first; with the contact update a block may fall and tumble: only one that has left the
+/// ground is out.
+pub(super) fn range(updating: bool, large: bool) -> (f64, f64, &'static str) {
+    if updating {
+        (2.0 + GROUND_REACH, f64::INFINITY, "seven times the model's size")
+    } else if large {
+        (1.0, std::f64::consts::FRAC_PI_2, "the wall's size")
+    } else {
+        (1.0, 1.0, "the wall's size")
+    }
+}
+
+/// The ground of `model` (see the module's notes): its rectangle, the block that carries it,
+/// whether it is that block (the base, widened) or a body of its own, and its level \[m\].
+pub(super) fn ground(model: &Model) -> Option<(Polygon, usize, bool, f64)> {
     if model.gravity_direction() != [0.0, -1.0] {
         return None;
     }
     let all = model.polygons().iter().fold(Aabb::around(&[]), |b, p| b.union(&p.aabb()));
     let h = all.max[1] - all.min[1];
-    let reach = GROUND_REACH * model.size();
-    let (x0, x1) = (all.min[0] - reach, all.max[0] + reach);
+    let wide = ground_reach(&all, model.size());
+    let (x0, x1) = (wide.min[0], wide.max[0]);
     let rect = |bottom: f64, top: f64| Polygon::new(vec![[x0, bottom], [x1, bottom], [x1, top], [x0, top]]);
     if let Some(base) = model.base() {
         let bb = model.polygons()[base].aabb();
-        Some((rect(bb.min[1], bb.max[1]), base, true))
+        Some((rect(bb.min[1], bb.max[1]), base, true, bb.max[1]))
     } else {
         let anchor = model.supports().next()?;
-        Some((rect(all.min[1] - h, all.min[1]), anchor, false))
+        Some((rect(all.min[1] - h, all.min[1]), anchor, false, all.min[1]))
     }
 }
 
 /// The gap tolerance of `model` (see [`GAP_FRACTION`]).
 pub(super) fn gap_tolerance(model: &Model) -> f64 {
-    let least = model.polygons()[..model.n_wall()]
-        .iter()
-        .map(|p| {
-            let b = p.aabb();
-            (b.max[0] - b.min[0]).min(b.max[1] - b.min[1])
-        })
-        .fold(f64::INFINITY, f64::min);
-    GAP_FRACTION * least
+    gap_of(model.polygons()[..model.n_wall()].iter().map(Polygon::aabb))
 }
 
 /// The stable time step of `model` once its blocks may touch anything along every edge: the
@@ -154,64 +290,24 @@ pub(super) fn critical_time_step_moving(model: &Model) -> f64 {
     bound.step().min(critical_time_step(model))
 }
 
-impl Update {
+impl Update<Polygon> {
     /// The contact update of `s` (finite rotations) at its current state, the model's
     /// interfaces matched to their edges.
     pub(super) fn new(s: &Integrator) -> Update {
         let model = s.model;
-        let mut bodies = model.polygons().to_vec();
-        let mut block: Vec<usize> = (0..model.n_blocks()).collect();
-        let mut kind = model.kinds().to_vec();
-        let ground = ground(model).map(|(rect, anchor, widened)| {
-            let level = rect.aabb().max[1];
-            if widened {
-                bodies[anchor] = rect;
-            } else {
-                bodies.push(rect);
-                block.push(anchor);
-                kind.push(BlockKind::Base);
-            }
-            level
-        });
-        let radius = (0..model.n_blocks())
-            .map(|i| {
-                let g = model.centroids()[i];
-                model.polygons()[i].vertices().iter().map(|v| (v[0] - g[0]).hypot(v[1] - g[1])).fold(0.0, f64::max)
-            })
-            .collect();
+        let radius = (0..model.n_blocks()).map(|i| radius_of(model.centroids()[i], model.polygons()[i].vertices())).collect();
         let tol = contact_tolerance(model.size());
-        let keys = model.interfaces().iter().map(|it| key([it.a, it.b], [edge_at(&bodies[it.a], it.c, it.n, tol), edge_at(&bodies[it.b], it.c, [-it.n[0], -it.n[1]], tol)])).collect();
-        let gap = gap_tolerance(model);
-        Update {
-            bodies,
-            block,
-            kind,
-            radius,
-            keys,
-            gap,
-            travel: 0.5 * gap,
-            tol,
-            u_ref: s.u.clone(),
-            searches: 0,
-            created: 0,
-            dropped: 0,
-            renewed: 0,
-            dropped_dissipation: (0.0, 0.0),
-            ids: (0..model.interfaces().len()).collect(),
-            next_id: model.interfaces().len(),
-            events: vec![],
-            ground,
-            dashpots: !s.dynm.is_empty(),
-        }
+        let keys = |bodies: &[Polygon]| model.interfaces().iter().map(|it| key([it.a, it.b], [edge_at(&bodies[it.a], it.c, it.n, tol), edge_at(&bodies[it.b], it.c, [-it.n[0], -it.n[1]], tol)])).collect();
+        Update::assemble((model.polygons().to_vec(), model.kinds().to_vec(), ground(model)), radius, keys, (gap_tolerance(model), tol), s.u.clone(), vec![], !s.dynm.is_empty())
     }
 
     /// Whether some block has moved by more than the travel tolerance since the last search.
     #[inline]
     pub(super) fn due(&self, u: &[f64]) -> bool {
         let r = &self.u_ref;
-        self.radius.iter().enumerate().any(|(i, &rad)| {
+        (0..self.radius.len()).any(|i| {
             let d = 3 * i;
-            (u[d] - r[d]).hypot(u[d + 1] - r[d + 1]) + (u[d + 2] - r[d + 2]).abs() * rad > self.travel
+            self.beyond(i, (u[d] - r[d]).hypot(u[d + 1] - r[d + 1]), (u[d + 2] - r[d + 2]).abs())
         })
     }
 
@@ -303,20 +399,8 @@ pub(super) fn search(s: &mut Integrator) {
     let u = &s.m.u;
     let polygons: Vec<Polygon> = (0..up.bodies.len()).map(|k| up.moved(model, u, k)).collect();
     let boxes: Vec<Aabb<2>> = polygons.iter().map(Polygon::aabb).collect();
-    let mut found: Vec<(usize, usize, Facing)> = vec![];
-    let (gap, tol) = (up.gap, up.tol);
-    let kinds = &up.kind;
-    let _ = for_each_pair(&boxes, gap, &mut || true, |i, j| {
-        if kinds[i] != BlockKind::Wall && kinds[j] != BlockKind::Wall {
-            return Ok(());
-        }
-        for f in facing_edges(&polygons[i], &polygons[j], gap, tol) {
-            let (oa, ob) = if f.owner == 0 { (i, j) } else { (j, i) };
-            found.push((oa, ob, f));
-        }
-        Ok(())
-    });
-    let old: HashMap<Key, usize> = up.keys.iter().enumerate().map(|(k, &key)| (key, k)).collect();
+    let found = up.near(&boxes, |i, j| facing_edges(&polygons[i], &polygons[j], up.gap, up.tol), |f| f.owner);
+    let old = up.by_key();
     let mut kept = vec![false; up.keys.len()];
     let up_dir = [-model.gravity_direction()[0], -model.gravity_direction()[1]];
     let mut next: Vec<Next> = found
@@ -325,12 +409,8 @@ pub(super) fn search(s: &mut Integrator) {
             let k = key([*oa, *ob], f.edges);
             let (a, b) = (up.block[*oa], up.block[*ob]);
             let fresh = || {
-                let family = match (up.kind[*oa], up.kind[*ob]) {
-                    (BlockKind::Base | BlockKind::Support, _) | (_, BlockKind::Base | BlockKind::Support) => Family::Base,
-                    (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
-                    _ if (f.n[0] * up_dir[0] + f.n[1] * up_dir[1]).abs() >= (f.n[0] * up_dir[1] - f.n[1] * up_dir[0]).abs() => Family::Bed,
-                    _ => Family::Head,
-                };
+                let bed = (f.n[0] * up_dir[0] + f.n[1] * up_dir[1]).abs() >= (f.n[0] * up_dir[1] - f.n[1] * up_dir[0]).abs();
+                let family = new_family(up.kind[*oa], up.kind[*ob], bed);
                 Some((arm_of(model, u, a, b, f), family))
             };
             match old.get(&k) {

@@ -76,7 +76,21 @@ pub fn shared(a: &Polyhedron, fa: usize, b: &Polyhedron, fb: usize, tol: f64) ->
     let (ga, gb) = (&a.faces()[fa], &b.faces()[fb]);
     let n = bisector(a, fa, b, fb);
     let (t1, t2) = frame(n);
-    let uv = |q: [f64; 3]| [dot(q, t1), dot(q, t2)];
+    let (poly, props) = overlap(a, fa, b, fb, [t1, t2], tol)?;
+    let plane = 0.5 * (dot(n, a.vertices()[ga.vertices[0]]) + dot(n, b.vertices()[gb.vertices[0]]));
+    let lift = |p: [f64; 2]| -> [f64; 3] { std::array::from_fn(|k| n[k] * plane + p[0] * t1[k] + p[1] * t2[k]) };
+    let first = (0..poly.len())
+        .min_by(|&i, &j| (poly[i][0] + poly[i][1], poly[i][0]).partial_cmp(&(poly[j][0] + poly[j][1], poly[j][0])).expect("finite"))
+        .expect("3 vertices at least");
+    let vertices = (0..poly.len()).map(|i| lift(poly[(first + i) % poly.len()])).collect();
+    Some(FaceContact { faces: [fa, fb], n, t1, t2, vertices, area: props.area, centroid: lift(props.centroid) })
+}
+
+/// The polygon face `fa` of `a` and face `fb` of `b` (facing) share seen along the normal of the
+/// tangents `t` (coordinates along them), counter-clockwise about `t1 x t2`, with its area and
+/// centroid, if it has an area of more than `tol` times its diameter.
+fn overlap(a: &Polyhedron, fa: usize, b: &Polyhedron, fb: usize, t: [[f64; 3]; 2], tol: f64) -> Option<(Vec<[f64; 2]>, Area)> {
+    let uv = |q: [f64; 3]| [dot(q, t[0]), dot(q, t[1])];
     // face a counter-clockwise about n, face b too once reversed (it is so about -n)
     let mut poly: Vec<[f64; 2]> = a.face_points(fa).map(uv).collect();
     let mut clip: Vec<[f64; 2]> = b.face_points(fb).map(uv).collect();
@@ -96,16 +110,107 @@ pub fn shared(a: &Polyhedron, fa: usize, b: &Polyhedron, fb: usize, tol: f64) ->
     }
     let props = Area::of(&poly);
     let diameter = poly.iter().flat_map(|p| poly.iter().map(move |q| dist2(*p, *q))).fold(0.0, f64::max).sqrt();
-    if !(props.area > tol * diameter) {
-        return None;
+    (props.area > tol * diameter).then_some((poly, props))
+}
+
+/// Whether `n` points up, or lies (within 1e-9) horizontal and points towards +x, or along y
+/// and towards +y: the direction of the normal of a contact, from the block it leaves (the
+/// lower one) into the other.
+pub(crate) fn upward(n: [f64; 3]) -> bool {
+    let e = 1e-9;
+    if n[2].abs() > e {
+        n[2] > 0.0
+    } else if n[0].abs() > e {
+        n[0] > 0.0
+    } else {
+        n[1] > 0.0
     }
-    let plane = 0.5 * (dot(n, a.vertices()[ga.vertices[0]]) + dot(n, b.vertices()[gb.vertices[0]]));
-    let lift = |p: [f64; 2]| -> [f64; 3] { std::array::from_fn(|k| n[k] * plane + p[0] * t1[k] + p[1] * t2[k]) };
-    let first = (0..poly.len())
-        .min_by(|&i, &j| (poly[i][0] + poly[i][1], poly[i][0]).partial_cmp(&(poly[j][0] + poly[j][1], poly[j][0])).expect("finite"))
-        .expect("3 vertices at least");
-    let vertices = (0..poly.len()).map(|i| lift(poly[(first + i) % poly.len()])).collect();
-    Some(FaceContact { faces: [fa, fb], n, t1, t2, vertices, area: props.area, centroid: lift(props.centroid) })
+}
+
+/// A face of one polyhedron near a face of another, facing it, as they move (see
+/// [`facing_faces`]): the polygon of the owner's face over which the other's lies, and where the
+/// other's face's plane lies along the normal at its corners.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FaceFacing {
+    /// Which polyhedron's face gives the normal: 0 the first given, 1 the second.
+    pub owner: usize,
+    /// The face of the first polyhedron and of the second.
+    pub faces: [usize; 2],
+    /// The owner's face's outward unit normal, from the owner into the other.
+    pub n: [f64; 3],
+    /// The unit tangents of [`FaceContact`] for `n`.
+    pub t1: [f64; 3],
+    /// See `t1`.
+    pub t2: [f64; 3],
+    /// Each corner of the polygon on the owner's face, and the point of the other's face's plane
+    /// along `n` from it \[m\] (their distance along `n`: the gap there, negative where they
+    /// overlap), counter-clockwise about `n`.
+    pub corners: Vec<[[f64; 3]; 2]>,
+    /// The polygon's area \[m2\] (on the owner's face).
+    pub area: f64,
+    /// The polygon's centroid on the owner's face \[m\].
+    pub centroid: [f64; 3],
+}
+
+/// Every pair of a face of `a` and a face of `b` whose outward normals are opposed within 60
+/// degrees, whose projections along the owner's normal share a polygon of area more than `tol`
+/// times its diameter, with the other's face no farther than `gap` from the owner's at some
+/// corner of it and not inside the owner by more than `gap` or half the depth of either
+/// polyhedron behind its face at every corner (a face that deep lies behind the other face, not
+/// on it), as [`crate::shape::facing_edges`] in the plane. The owner is the polyhedron the
+/// normal leaves as [`crate::space::detect`] orients it (the bisector of the two normals
+/// `upward`: the lower one, or the one at smaller x, y). Faces on one plane, facing, give the
+/// polygon of [`shared`] (seen along the owner's normal, not their bisector).
+pub fn facing_faces(a: &Polyhedron, b: &Polyhedron, gap: f64, tol: f64) -> Vec<FaceFacing> {
+    // how far each polyhedron reaches behind each of its faces
+    let depth = |p: &Polyhedron, f: usize| {
+        let g = &p.faces()[f];
+        p.vertices().iter().map(|&v| g.offset - dot(g.normal, v)).fold(0.0, f64::max)
+    };
+    let mut out = vec![];
+    for (fa, ga) in a.faces().iter().enumerate() {
+        for (fb, gb) in b.faces().iter().enumerate() {
+            if dot(ga.normal, gb.normal) >= -0.5 {
+                continue;
+            }
+            let owner = usize::from(!upward(sub(ga.normal, gb.normal)));
+            let ((p, fp), (q, fq)) = if owner == 0 { ((a, fa), (b, fb)) } else { ((b, fb), (a, fa)) };
+            let (n, gq) = (p.faces()[fp].normal, &q.faces()[fq]);
+            let (t1, t2) = frame(n);
+            let Some((poly, props)) = overlap(p, fp, q, fq, [t1, t2], tol) else { continue };
+            let off = p.faces()[fp].offset;
+            let lift = |x: [f64; 2]| -> [f64; 3] { std::array::from_fn(|k| n[k] * off + x[0] * t1[k] + x[1] * t2[k]) };
+            let slope = dot(gq.normal, n);
+            let corners: Vec<[[f64; 3]; 2]> = poly
+                .iter()
+                .map(|&x| {
+                    let on = lift(x);
+                    let s = (gq.offset - dot(gq.normal, on)) / slope;
+                    [on, std::array::from_fn(|k| on[k] + s * n[k])]
+                })
+                .collect();
+            let gaps = corners.iter().map(|[o, x]| dot(sub(*x, *o), n));
+            let (lo, hi) = gaps.fold((f64::MAX, f64::MIN), |(lo, hi), s| (lo.min(s), hi.max(s)));
+            let deep = gap.min(0.5 * depth(p, fp).min(depth(q, fq)));
+            if lo > gap || hi < -deep {
+                continue;
+            }
+            let faces = if owner == 0 { [fa, fb] } else { [fb, fa] };
+            out.push(FaceFacing { owner, faces, n, t1, t2, corners, area: props.area, centroid: lift(props.centroid) });
+        }
+    }
+    out
+}
+
+/// Face `f` of `p` as a contact polygon with a body beyond it: its corners (counter-clockwise
+/// from outside), its area \[m2\] and its centroid \[m\].
+pub fn face_patch(p: &Polyhedron, f: usize) -> (Vec<[f64; 3]>, f64, [f64; 3]) {
+    let g = &p.faces()[f];
+    let (t1, t2) = frame(g.normal);
+    let uv: Vec<[f64; 2]> = p.face_points(f).map(|q| [dot(q, t1), dot(q, t2)]).collect();
+    let props = Area::of(&uv);
+    let c = props.centroid;
+    (p.face_points(f).collect(), props.area, std::array::from_fn(|k| g.normal[k] * g.offset + c[0] * t1[k] + c[1] * t2[k]))
 }
 
 /// The convex polygon `poly` (counter-clockwise) less what lies right of the line from `q0` to

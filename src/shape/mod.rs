@@ -44,7 +44,9 @@ mod polyhedron;
 pub(crate) mod vec3;
 
 pub use contact2::{contacts, corner_contacts, facing_edges, penetration, EdgeContact, Facing};
-pub use contact3::{bisector, corner_contact, face_contacts, facing, penetration as penetration3, shared, FaceContact};
+pub use contact3::{bisector, corner_contact, face_contacts, face_patch, facing, facing_faces, penetration as penetration3, shared, FaceContact, FaceFacing};
+pub(crate) use contact3::upward;
+pub(crate) use polyhedron::frame;
 pub use mass::{Area, Volume};
 pub use polygon::{Defect, Polygon};
 pub use polyhedron::{Face, Polyhedron, MAX_HULL_POINTS};

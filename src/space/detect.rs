@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::interface::{BlockKind, Family};
 use crate::shape::grid::for_each_pair;
 use crate::shape::vec3::dot;
-use crate::shape::{bisector, corner_contact, facing, penetration3, shared, Aabb, FaceContact, Polyhedron, REL_TOL};
+use crate::shape::{bisector, corner_contact, facing, penetration3, shared, upward, Aabb, FaceContact, Polyhedron, REL_TOL};
 
 /// Finds every pair of boxes that share a rectangle of positive area (two faces with opposite
 /// normals, coplanar within a tolerance), and refuses overlapping boxes (naming both).
@@ -130,19 +130,6 @@ fn family(a: BlockKind, b: BlockKind, nz: f64) -> Family {
         (BlockKind::Top, _) | (_, BlockKind::Top) => Family::Top,
         _ if nz.abs() >= std::f64::consts::FRAC_1_SQRT_2 => Family::Bed,
         _ => Family::Head,
-    }
-}
-
-/// Whether `n` points up, or lies (within 1e-9) horizontal and points towards +x, or along y
-/// and towards +y: the direction of the normal of a contact.
-fn upward(n: [f64; 3]) -> bool {
-    let e = 1e-9;
-    if n[2].abs() > e {
-        n[2] > 0.0
-    } else if n[0].abs() > e {
-        n[0] > 0.0
-    } else {
-        n[1] > 0.0
     }
 }
 

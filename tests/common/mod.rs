@@ -150,3 +150,29 @@ pub fn vault_model(v: masonry_dem::space::Vaulted, mu: f64, direction: f64) -> m
     })
     .unwrap()
 }
+
+/// The coefficients (c0, c1, c2) of the least-squares quadratic through `pts`.
+pub fn quadratic(pts: &[(f64, f64)]) -> [f64; 3] {
+    let mut m = [[0.0; 4]; 3];
+    for &(t, y) in pts {
+        let p = [1.0, t, t * t];
+        for i in 0..3 {
+            for j in 0..3 {
+                m[i][j] += p[i] * p[j];
+            }
+            m[i][3] += p[i] * y;
+        }
+    }
+    for i in 0..3 {
+        let pivot = m[i];
+        for (r, row) in m.iter_mut().enumerate() {
+            if r != i {
+                let f = row[i] / pivot[i];
+                for (x, p) in row.iter_mut().zip(pivot) {
+                    *x -= f * p;
+                }
+            }
+        }
+    }
+    [m[0][3] / m[0][0], m[1][3] / m[1][1], m[2][3] / m[2][2]]
+}

@@ -146,6 +146,35 @@ def test_the_ground_motion_across_the_slope(tmp_path: Path) -> None:
     assert kwargs["base_acceleration_y"][1][0] == pytest.approx(AG * 0.5, rel=1e-15)
 
 
+def test_the_contact_update_from_a_case_file_and_from_python(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
+    # [time_history] contact_update = true (the default) runs Model3D.simulate(contact_update=True) to the last
+    # digit; the block
+    # slides by the closed form with its contact taken again from the moved block as it goes (the wedge is the
+    # block's length beyond it on each side: it slides off its top face's middle within the run)
+    path = write_case(tmp_path, history="contact_update = true\n")
+    c = md.load_case(path)
+    from_file = c.simulate(c.build_model())
+    t = np.array([0.0, 1.0])
+    direct = python_model().simulate(DURATION, base_acceleration=(t, np.full(2, AG)), record_interval=0.01,
+                                     contact_update=True)
+    assert from_file.status == direct.status == "completed"
+    for name in ("times", "displacements", "velocities", "kinetic_energy", "friction_dissipation", "energy_error"):
+        assert np.array_equal(np.asarray(getattr(from_file, name)), np.asarray(getattr(direct, name))), name
+    assert slide_acceleration(from_file) == pytest.approx(along_slope(AG), rel=0.01)
+    searches, created, dropped, renewed = from_file.contact_counts
+    assert searches > 1 and renewed > 0 and (created, dropped) == (0, 0), from_file.contact_counts
+    assert from_file.ground_level is not None
+    (tmp_path / "off").mkdir()
+    off = md.load_case(write_case(tmp_path / "off", history="contact_update = false\n")).simulate(python_model())
+    assert off.contact_counts == (0, 0, 0, 0) and off.ground_level is None
+    # the summary and the JSON say what the update did
+    out = tmp_path / "out.json"
+    assert cli.main(["simulate", str(path), "--json", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert f"contact update:      {searches:,} searches; 0 contacts created, 0 dropped" in printed, printed
+    assert json.loads(out.read_text())["contact_update"]["renewed"] == renewed
+
+
 def test_the_command_line_simulates_a_3d_case(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
     path = write_case(tmp_path)
     out = tmp_path / "out.json"
