@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 export VIRTUAL_ENV := $(abspath $(VENV))
 
-.PHONY: demo test develop rust-check rust-test cargo-test py-test fuzz fuzz-short wheel-check docs bench clean
+.PHONY: demo test develop rust-check rust-test cargo-test pytest py-test fuzz fuzz-short wheel-check docs bench clean
 
 # The package's dependencies are pyproject.toml's: `maturin develop` installs them with the package and the
 # extras of the README's commands (studies and pandas). It is always run with these same extras and the same
@@ -96,11 +96,14 @@ fuzz-short: develop $(VENV)/.extra-test
 		|| { tail -n 60 out/fuzz-short.log; echo "the fuzzer found a failing input: see out/fuzz/ and out/fuzz-short.log"; exit 1; }
 	@grep -E "^(Done|stat::number_of_executed_units|stat::new_units_added)" out/fuzz-short.log || true
 
-# Every test: the Rust tests with the 20 s of fuzzing beside them, then pytest. cargo test runs its test
-# binaries one after the other, most of them on one core, and the fuzzer runs on one: side by side they
-# share the two cores the tests alone would leave half idle (each one's output printed whole when it ends).
+# Every test: the Rust tests with the 20 s of fuzzing beside them, and pytest from when the fuzzer is done (it
+# keeps a core of its own for its 20 s of the clock). cargo test runs its test binaries one after the other, most
+# of them on one core: beside the fuzzer, then beside pytest, they share the two cores the tests alone would leave
+# half idle (each one's output printed whole when it ends).
 test: rust-check $(VENV)/.extra-test
-	@$(MAKE) --no-print-directory -j2 --output-sync=target cargo-test fuzz-short
+	@$(MAKE) --no-print-directory -j2 --output-sync=target cargo-test fuzz-short pytest
+
+pytest:
 	$(PYTEST)
 
 # The wheel a user would install, checked as a newcomer would use it: a portable (manylinux2014, glibc >= 2.17)
